@@ -1,0 +1,286 @@
+/* sgapi.h - a small, explicit graphics API whose whole pipeline runs on the CPU.
+ *
+ * Objects
+ *   sgDevice              owns everything; create one per thread that draws.
+ *   sgImage2D             RGBA8 texture / colour target, or D32 float depth target.
+ *   sgGeom                vertex arrays + 32-bit indices (triangles or quads).
+ *   sgPipelineStateObject immutable state, validated once at creation.
+ *
+ * Frame
+ *   sgBeginRenderPass(dev, &pass);  sgDraw(dev, pso, geom, &params) ...;  sgEndRenderPass(dev,
+ * &pass);
+ *
+ * Conventions
+ *   - Descriptors are zero-initialised structs: every field left at 0 takes the documented default.
+ *   - Every call returns an sgResult. On failure nothing is changed, and sgGetLastError() returns a
+ *     readable message (the device's log callback, if set, receives it too).
+ *   - Matrices are 16 floats, row-major: m[0..3] is the first row. Positions are column vectors:
+ *     clip = proj * worldView * position.
+ *   - Clip space is OpenGL's: x, y, z in [-w, w]; NDC y = +1 is the top row of the colour target,
+ *     NDC z = -1 maps to depth 0 and z = +1 to depth 1.
+ *   - Pixel data is uploaded and read back top row first. A texture coordinate t = 0 addresses the
+ *     bottom row (the last uploaded row), as in OpenGL.
+ */
+#ifndef SGAPI_H
+#define SGAPI_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SGAPI_VERSION_MAJOR 0
+#define SGAPI_VERSION_MINOR 1
+
+/* Public functions are the only symbols the shared library exports. */
+#if defined(SGAPI_BUILDING) && defined(__GNUC__)
+#define SGAPI_API __attribute__((visibility("default")))
+#else
+#define SGAPI_API
+#endif
+
+/* Largest supported image side; the fixed-point setup is proven not to overflow up to this size. */
+#define SG_MAX_IMAGE_SIZE 16384
+
+typedef enum sgResult {
+    SG_OK = 0,
+    SG_ERROR_NULL_POINTER,   /* a required pointer argument or descriptor field is NULL */
+    SG_ERROR_INVALID_ENUM,   /* an enum field holds an unknown value */
+    SG_ERROR_INVALID_HANDLE, /* zero, destroyed, of another kind, or of another device */
+    SG_ERROR_INVALID_VALUE,  /* a number is out of its range or not finite (e.g. a clear value) */
+    SG_ERROR_INVALID_SIZE,   /* image side outside 1..SG_MAX_IMAGE_SIZE, sizes differ, or a row
+                                pitch shorter than a row */
+    SG_ERROR_INVALID_COUNT,  /* a count below 1, an index count not a multiple of the
+                                primitive size, a pool size above 65535, thread_count < 0 */
+    SG_ERROR_INDEX_OUT_OF_RANGE, /* an index is >= the vertex count */
+    SG_ERROR_NOT_IN_PASS,        /* sgDraw / sgEndRenderPass outside a render pass */
+    SG_ERROR_ALREADY_IN_PASS,    /* sgBeginRenderPass inside a render pass */
+    SG_ERROR_PASS_MISMATCH,      /* sgEndRenderPass names other targets than sgBeginRenderPass */
+    SG_ERROR_FORMAT_MISMATCH,    /* image has the wrong format for this use */
+    SG_ERROR_NOT_SAMPLEABLE,     /* bound texture's format cannot be sampled */
+    SG_ERROR_MISSING_ATTRIBUTE,  /* the pipeline reads a vertex attribute the geom does not have */
+    SG_ERROR_MISSING_TEXTURE,    /* the pipeline samples a texture but none is bound */
+    SG_ERROR_MISSING_DEPTH,      /* the pipeline uses depth but the pass has no depth target */
+    SG_ERROR_IN_USE,             /* the image is a target of the open pass */
+    SG_ERROR_UNSUPPORTED,        /* a valid state this version does not implement yet */
+    SG_ERROR_POOL_EXHAUSTED,     /* no free slot of that object kind (see sgDeviceDesc) */
+    SG_ERROR_OUT_OF_MEMORY,      /* the allocator returned NULL */
+    SG_RESULT_COUNT
+} sgResult;
+
+/* Handles: a 32-bit id (slot, kind and generation). 0 is never valid. A stale id or one of another
+ * kind is always refused; an id of another device is refused unless its generation happens to
+ * coincide (1 chance in 16383). */
+typedef struct sgImage2D {
+    uint32_t id;
+} sgImage2D;
+typedef struct sgGeom {
+    uint32_t id;
+} sgGeom;
+typedef struct sgPipelineStateObject {
+    uint32_t id;
+} sgPipelineStateObject;
+
+typedef struct sgDevice sgDevice;
+
+/* ---- device ------------------------------------------------------------------------------------
+ */
+
+typedef struct sgAllocator {
+    void *(*alloc)(size_t size, void *user_data); /* must return memory aligned to 16 bytes */
+    void (*free)(void *ptr, void *user_data);
+    void *user_data;
+} sgAllocator;
+
+typedef struct sgDeviceDesc {
+    int thread_count;       /* 0: all cores. The raster currently runs on the calling thread. */
+    int image_pool_size;    /* 0: 256; at most 65535 */
+    int geom_pool_size;     /* 0: 1024; at most 65535 */
+    int pipeline_pool_size; /* 0: 64; at most 65535 */
+    sgAllocator allocator;  /* both NULL: malloc / free */
+    /* Optional: called with every error as it happens. */
+    void (*log)(sgResult result, const char *message, void *user_data);
+    void *log_user_data;
+} sgDeviceDesc;
+
+/** Creates a device; desc may be NULL for all defaults. */
+SGAPI_API sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device);
+/** Destroys a device and every object it still owns. NULL is a no-op. */
+SGAPI_API void sgDestroyDevice(sgDevice *device);
+/** The message of the last failed call on this device ("" if none). Valid until the next call. */
+SGAPI_API const char *sgGetLastError(const sgDevice *device);
+/** A short fixed name for a result code, e.g. "SG_ERROR_INVALID_HANDLE". */
+SGAPI_API const char *sgResultName(sgResult result);
+
+/* ---- images ------------------------------------------------------------------------------------
+ */
+
+typedef enum sgFormat {
+    SG_FORMAT_RGBA8_UNORM = 1, /* 4 bytes a pixel: R, G, B, A. Texture or colour target. */
+    SG_FORMAT_D32_FLOAT,       /* one float a pixel. Depth target only. */
+} sgFormat;
+
+typedef struct sgImage2DDesc {
+    int width, height; /* 1 .. SG_MAX_IMAGE_SIZE */
+    sgFormat format;   /* required */
+    /* Optional initial contents, top row first; row pitch = width * pixel size. NULL: zeros. */
+    const void *data;
+} sgImage2DDesc;
+
+/** Creates a 2D image; its storage is owned by the device. */
+SGAPI_API sgResult sgCreateImage2D(sgDevice *device, const sgImage2DDesc *desc,
+                                   sgImage2D *out_image);
+/** Destroys an image. Fails with SG_ERROR_IN_USE while it is a target of the open pass. */
+SGAPI_API sgResult sgDestroyImage2D(sgDevice *device, sgImage2D image);
+/** Replaces all pixels, top row first; row_pitch 0 means tightly packed. */
+SGAPI_API sgResult sgUploadImage2D(sgDevice *device, sgImage2D image, const void *data,
+                                   size_t row_pitch);
+/** Copies all pixels out, top row first; row_pitch 0 means tightly packed. */
+SGAPI_API sgResult sgReadImage2D(sgDevice *device, sgImage2D image, void *dst, size_t row_pitch);
+/** Reports an image's size and format; any out pointer may be NULL. */
+SGAPI_API sgResult sgGetImage2DInfo(sgDevice *device, sgImage2D image, int *width, int *height,
+                                    sgFormat *format);
+
+/* ---- geometry ----------------------------------------------------------------------------------
+ */
+
+typedef enum sgPrimitive {
+    SG_PRIMITIVE_DEFAULT = 0, /* triangles */
+    SG_PRIMITIVE_TRIANGLES,   /* 3 indices each */
+    SG_PRIMITIVE_QUADS,       /* 4 indices each (a b c d), drawn as triangles a b c and a c d */
+} sgPrimitive;
+
+typedef enum sgStorage {
+    SG_STORAGE_DEFAULT = 0, /* copy */
+    SG_STORAGE_COPY,      /* the arrays are copied at creation; the caller may free them at once */
+    SG_STORAGE_REFERENCE, /* the arrays are used in place: the caller keeps them alive and unchanged
+                             until sgDestroyGeom (indices are validated once, at creation) */
+} sgStorage;
+
+typedef struct sgGeomDesc {
+    int vertex_count;       /* >= 1 */
+    const float *positions; /* required: vertex_count * 4 floats (x, y, z, w) */
+    const float *colors;    /* optional: vertex_count * 4 floats (r, g, b, a); NULL: opaque white */
+    const float *texcoords; /* optional: vertex_count * 2 floats (s, t) */
+    const float *normals; /* optional: vertex_count * 3 floats; carried, not yet used by shading */
+    int index_count;      /* >= 1, a multiple of 3 (triangles) or 4 (quads) */
+    const uint32_t *indices; /* required: each < vertex_count */
+    sgPrimitive primitive;
+    sgStorage storage;
+} sgGeomDesc;
+
+/** Creates a geom, validating every index against vertex_count. */
+SGAPI_API sgResult sgCreateGeom(sgDevice *device, const sgGeomDesc *desc, sgGeom *out_geom);
+/** Destroys a geom (and its copies of the arrays, if it made them). */
+SGAPI_API sgResult sgDestroyGeom(sgDevice *device, sgGeom geom);
+
+/* ---- pipeline state ----------------------------------------------------------------------------
+ */
+
+typedef enum sgShade {
+    SG_SHADE_DEFAULT = 0,      /* vertex colour */
+    SG_SHADE_VERTEX_COLOR,     /* fragment = interpolated vertex colour */
+    SG_SHADE_TEXTURE_MODULATE, /* fragment = vertex colour * texel */
+} sgShade;
+
+typedef enum sgFilter {
+    SG_FILTER_DEFAULT = 0, /* nearest */
+    SG_FILTER_NEAREST,
+    SG_FILTER_BILINEAR,
+} sgFilter;
+
+typedef enum sgWrap {
+    SG_WRAP_DEFAULT = 0, /* repeat */
+    SG_WRAP_REPEAT,
+    SG_WRAP_CLAMP_TO_EDGE,
+} sgWrap;
+
+typedef enum sgCompare {
+    SG_COMPARE_DEFAULT = 0, /* always: no depth test */
+    SG_COMPARE_NEVER,
+    SG_COMPARE_LESS,
+    SG_COMPARE_EQUAL,
+    SG_COMPARE_LESS_EQUAL,
+    SG_COMPARE_GREATER,
+    SG_COMPARE_NOT_EQUAL,
+    SG_COMPARE_GREATER_EQUAL,
+    SG_COMPARE_ALWAYS,
+} sgCompare;
+
+typedef enum sgCull {
+    SG_CULL_DEFAULT = 0, /* none */
+    SG_CULL_NONE,
+    SG_CULL_BACK,
+    SG_CULL_FRONT,
+} sgCull;
+
+typedef enum sgFrontFace {
+    SG_FRONT_FACE_DEFAULT = 0, /* counter-clockwise */
+    SG_FRONT_FACE_CCW,         /* counter-clockwise as seen on screen (NDC y up) */
+    SG_FRONT_FACE_CW,
+} sgFrontFace;
+
+typedef enum sgBlend {
+    SG_BLEND_DEFAULT = 0, /* opaque */
+    SG_BLEND_OPAQUE,      /* the fragment replaces the pixel */
+    SG_BLEND_ALPHA, /* src * a + dst * (1 - a): reserved, creation returns SG_ERROR_UNSUPPORTED */
+} sgBlend;
+
+typedef struct sgPipelineDesc {
+    sgShade shade;
+    sgFilter filter; /* used by SG_SHADE_TEXTURE_MODULATE */
+    sgWrap wrap;     /* both s and t */
+    struct {
+        sgCompare compare; /* anything but ALWAYS reads the depth target */
+        bool write;        /* write the fragment's depth when it passes */
+    } depth;
+    sgCull cull;
+    sgFrontFace front_face;
+    sgBlend blend;
+} sgPipelineDesc;
+
+/** Creates an immutable pipeline state object and selects the code specialised for its state. */
+SGAPI_API sgResult sgCreatePipelineStateObject(sgDevice *device, const sgPipelineDesc *desc,
+                                               sgPipelineStateObject *out_pso);
+/** Destroys a pipeline state object. */
+SGAPI_API sgResult sgDestroyPipelineStateObject(sgDevice *device, sgPipelineStateObject pso);
+
+/* ---- render pass and draws ---------------------------------------------------------------------
+ */
+
+typedef enum sgLoadOp {
+    SG_LOAD_DEFAULT = 0, /* colour: clear to clear_color; depth: clear to 1.0 (the far plane) */
+    SG_LOAD_CLEAR,       /* start from the clear value given in the pass */
+    SG_LOAD_LOAD,        /* start from the target's current contents */
+} sgLoadOp;
+
+typedef struct sgPassDesc {
+    sgImage2D color; /* required, SG_FORMAT_RGBA8_UNORM */
+    sgImage2D depth; /* optional ({0}: none), SG_FORMAT_D32_FLOAT, same size as color */
+    sgLoadOp color_load;
+    sgLoadOp depth_load;
+    float clear_color[4]; /* r, g, b, a in [0, 1] */
+    float clear_depth;    /* used when depth_load is SG_LOAD_CLEAR, in [0, 1] */
+} sgPassDesc;
+
+typedef struct sgDrawParams {
+    float world_view[16]; /* row-major */
+    float proj[16];       /* row-major */
+    sgImage2D texture;    /* required by SG_SHADE_TEXTURE_MODULATE, ignored otherwise */
+} sgDrawParams;
+
+/** Opens a render pass on the given targets, clearing or loading them. */
+SGAPI_API sgResult sgBeginRenderPass(sgDevice *device, const sgPassDesc *pass);
+/** Draws a geom with a pipeline into the open pass. */
+SGAPI_API sgResult sgDraw(sgDevice *device, sgPipelineStateObject pso, sgGeom geom,
+                          const sgDrawParams *params);
+/** Closes the pass opened with the same targets and writes the result into them. */
+SGAPI_API sgResult sgEndRenderPass(sgDevice *device, const sgPassDesc *pass);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

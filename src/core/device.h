@@ -1,0 +1,84 @@
+/* device.h - the device and the objects it owns (internal). */
+#ifndef SG_DEVICE_H
+#define SG_DEVICE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/pool.h"
+#include "raster/framebuffer.h"
+#include "raster/rast_tile.h"
+#include "sgapi/sgapi.h"
+
+typedef struct sg_image {
+    int width, height;
+    sgFormat format;
+    size_t pixel_size;
+    uint8_t *data; /* linear, top row first */
+} sg_image;
+
+typedef struct sg_geom {
+    int vertex_count, index_count;
+    const float *positions, *colors, *texcoords, *normals;
+    const uint32_t *indices;
+    sgPrimitive primitive;
+    void *copy; /* the one block holding the copied arrays, or NULL when referenced */
+} sg_geom;
+
+typedef struct sg_pso {
+    sgPipelineDesc desc; /* every DEFAULT resolved */
+    sg_tile_fn tile_fn;
+    int nattr;
+    bool uses_depth;
+} sg_pso;
+
+struct sgDevice {
+    sgAllocator allocator;
+    void (*log)(sgResult result, const char *message, void *user_data);
+    void *log_user_data;
+    int thread_count;
+    char error[512];
+
+    sg_pool image_pool, geom_pool, pso_pool;
+    sg_image *images;
+    sg_geom *geoms;
+    sg_pso *psos;
+
+    /* The open pass. */
+    bool in_pass;
+    sgImage2D pass_color, pass_depth;
+    sg_fb fb;
+    size_t fb_color_capacity, fb_depth_capacity; /* in pixels */
+
+    /* Per-draw arenas, grown as needed and reused. */
+    float (*clip)[4];
+    uint32_t *outcodes;
+    size_t vertex_capacity;
+};
+
+/** Records an error message for sgGetLastError, passes it to the log callback, returns `result`. */
+sgResult sg_error(sgDevice *dev, sgResult result, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+/** Allocates through the device's allocator (NULL on failure or size 0). */
+void *sg_alloc(sgDevice *dev, size_t size);
+/** Frees through the device's allocator; NULL is a no-op. */
+void sg_free(sgDevice *dev, void *ptr);
+
+/** Takes a slot of the pool; when none is free, records SG_ERROR_POOL_EXHAUSTED for `fn`, naming
+ *  the sgDeviceDesc field that sizes the pool, and returns 0. */
+uint32_t sg_acquire(sgDevice *dev, sg_pool *pool, const char *fn, const char *desc_field);
+
+/** The live image behind a handle, or NULL. */
+sg_image *sg_lookup_image(sgDevice *dev, sgImage2D h);
+/** The live geom behind a handle, or NULL. */
+sg_geom *sg_lookup_geom(sgDevice *dev, sgGeom h);
+/** The live pipeline behind a handle, or NULL. */
+sg_pso *sg_lookup_pso(sgDevice *dev, sgPipelineStateObject h);
+
+/** Frees an image's storage (used by destroy and by device teardown). */
+void sg_image_release(sgDevice *dev, sg_image *img);
+/** Frees a geom's copies (used by destroy and by device teardown). */
+void sg_geom_release(sgDevice *dev, sg_geom *geom);
+
+#endif

@@ -1,0 +1,128 @@
+/* image.c - Image2D objects: creation, upload, read back. */
+#include "core/device.h"
+
+#include <string.h>
+
+/* Both formats are 4 bytes a pixel: RGBA8, or one float. */
+static size_t format_size(sgFormat f) {
+    (void)f;
+    return 4;
+}
+
+static const char *format_name(sgFormat f) {
+    return f == SG_FORMAT_RGBA8_UNORM ? "RGBA8_UNORM" : "D32_FLOAT";
+}
+
+void sg_image_release(sgDevice *dev, sg_image *img) {
+    sg_free(dev, img->data);
+    img->data = NULL;
+}
+
+static bool is_pass_target(const sgDevice *dev, sgImage2D h) {
+    return dev->in_pass && (dev->pass_color.id == h.id || dev->pass_depth.id == h.id);
+}
+
+sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *out) {
+    if (out) out->id = 0;
+    if (!dev) return SG_ERROR_NULL_POINTER;
+    if (!desc || !out)
+        return sg_error(dev, SG_ERROR_NULL_POINTER, "sgCreateImage2D: %s is NULL",
+                        !desc ? "desc" : "out_image");
+    if (desc->format != SG_FORMAT_RGBA8_UNORM && desc->format != SG_FORMAT_D32_FLOAT)
+        return sg_error(dev, SG_ERROR_INVALID_ENUM,
+                        "sgCreateImage2D: format %d is not an sgFormat (RGBA8_UNORM or D32_FLOAT)",
+                        (int)desc->format);
+    if (desc->width < 1 || desc->height < 1 || desc->width > SG_MAX_IMAGE_SIZE ||
+        desc->height > SG_MAX_IMAGE_SIZE)
+        return sg_error(dev, SG_ERROR_INVALID_SIZE,
+                        "sgCreateImage2D: size %dx%d is outside 1..%d in each dimension",
+                        desc->width, desc->height, SG_MAX_IMAGE_SIZE);
+    size_t ps = format_size(desc->format);
+    size_t bytes = (size_t)desc->width * (size_t)desc->height * ps;
+    uint8_t *data = sg_alloc(dev, bytes);
+    if (!data)
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgCreateImage2D: out of memory (%zu bytes)",
+                        bytes);
+    uint32_t id = sg_acquire(dev, &dev->image_pool, "sgCreateImage2D", "image_pool_size");
+    if (!id) {
+        sg_free(dev, data);
+        return SG_ERROR_POOL_EXHAUSTED;
+    }
+    if (desc->data)
+        memcpy(data, desc->data, bytes);
+    else
+        memset(data, 0, bytes);
+    sg_image *img = &dev->images[id & 0xffffu];
+    img->width = desc->width;
+    img->height = desc->height;
+    img->format = desc->format;
+    img->pixel_size = ps;
+    img->data = data;
+    out->id = id;
+    return SG_OK;
+}
+
+sgResult sgDestroyImage2D(sgDevice *dev, sgImage2D h) {
+    if (!dev) return SG_ERROR_NULL_POINTER;
+    sg_image *img = sg_lookup_image(dev, h);
+    if (!img)
+        return sg_error(dev, SG_ERROR_INVALID_HANDLE,
+                        "sgDestroyImage2D: image id 0x%08x is not a live image", h.id);
+    if (is_pass_target(dev, h))
+        return sg_error(dev, SG_ERROR_IN_USE,
+                        "sgDestroyImage2D: image 0x%08x is a target of the open render pass", h.id);
+    sg_image_release(dev, img);
+    sg_pool_release(&dev->image_pool, h.id);
+    return SG_OK;
+}
+
+/* Upload (caller -> image) or read back (image -> caller), row by row, after the same checks. */
+static sgResult transfer(sgDevice *dev, const char *fn, sgImage2D h, const void *src, void *dst,
+                         size_t row_pitch) {
+    sg_image *img = sg_lookup_image(dev, h);
+    if (!img)
+        return sg_error(dev, SG_ERROR_INVALID_HANDLE, "%s: image id 0x%08x is not a live image", fn,
+                        h.id);
+    if (!src && !dst) return sg_error(dev, SG_ERROR_NULL_POINTER, "%s: data pointer is NULL", fn);
+    size_t row = (size_t)img->width * img->pixel_size;
+    if (row_pitch != 0 && row_pitch < row)
+        return sg_error(dev, SG_ERROR_INVALID_SIZE,
+                        "%s: row_pitch %zu is smaller than one row of the %s image (%zu bytes)", fn,
+                        row_pitch, format_name(img->format), row);
+    if (is_pass_target(dev, h))
+        return sg_error(dev, SG_ERROR_IN_USE,
+                        "%s: image 0x%08x is a target of the open render pass; its contents are "
+                        "defined after sgEndRenderPass",
+                        fn, h.id);
+    size_t pitch = row_pitch ? row_pitch : row;
+    for (int y = 0; y < img->height; y++) {
+        uint8_t *pixels = img->data + (size_t)y * row;
+        if (src)
+            memcpy(pixels, (const uint8_t *)src + (size_t)y * pitch, row);
+        else
+            memcpy((uint8_t *)dst + (size_t)y * pitch, pixels, row);
+    }
+    return SG_OK;
+}
+
+sgResult sgUploadImage2D(sgDevice *dev, sgImage2D h, const void *data, size_t row_pitch) {
+    if (!dev) return SG_ERROR_NULL_POINTER;
+    return transfer(dev, "sgUploadImage2D", h, data, NULL, row_pitch);
+}
+
+sgResult sgReadImage2D(sgDevice *dev, sgImage2D h, void *dst, size_t row_pitch) {
+    if (!dev) return SG_ERROR_NULL_POINTER;
+    return transfer(dev, "sgReadImage2D", h, NULL, dst, row_pitch);
+}
+
+sgResult sgGetImage2DInfo(sgDevice *dev, sgImage2D h, int *width, int *height, sgFormat *format) {
+    if (!dev) return SG_ERROR_NULL_POINTER;
+    sg_image *img = sg_lookup_image(dev, h);
+    if (!img)
+        return sg_error(dev, SG_ERROR_INVALID_HANDLE,
+                        "sgGetImage2DInfo: image id 0x%08x is not a live image", h.id);
+    if (width) *width = img->width;
+    if (height) *height = img->height;
+    if (format) *format = img->format;
+    return SG_OK;
+}

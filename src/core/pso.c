@@ -1,0 +1,63 @@
+/* pso.c - pipeline state objects: validated and specialised once, at creation. */
+#include "core/device.h"
+
+#include <string.h>
+
+#include "raster/shade.h"
+
+#define CHECK_ENUM(field, lo, hi, type)                                                            \
+    if ((int)desc->field < (int)(lo) || (int)desc->field > (int)(hi))                              \
+        return sg_error(dev, SG_ERROR_INVALID_ENUM,                                                \
+                        "sgCreatePipelineStateObject: " #field " = %d is not an " type,            \
+                        (int)desc->field);
+
+sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
+                                     sgPipelineStateObject *out) {
+    if (out) out->id = 0;
+    if (!dev) return SG_ERROR_NULL_POINTER;
+    if (!desc || !out)
+        return sg_error(dev, SG_ERROR_NULL_POINTER, "sgCreatePipelineStateObject: %s is NULL",
+                        !desc ? "desc" : "out_pso");
+    CHECK_ENUM(shade, SG_SHADE_DEFAULT, SG_SHADE_TEXTURE_MODULATE, "sgShade")
+    CHECK_ENUM(filter, SG_FILTER_DEFAULT, SG_FILTER_BILINEAR, "sgFilter")
+    CHECK_ENUM(wrap, SG_WRAP_DEFAULT, SG_WRAP_CLAMP_TO_EDGE, "sgWrap")
+    CHECK_ENUM(depth.compare, SG_COMPARE_DEFAULT, SG_COMPARE_ALWAYS, "sgCompare")
+    CHECK_ENUM(cull, SG_CULL_DEFAULT, SG_CULL_FRONT, "sgCull")
+    CHECK_ENUM(front_face, SG_FRONT_FACE_DEFAULT, SG_FRONT_FACE_CW, "sgFrontFace")
+    CHECK_ENUM(blend, SG_BLEND_DEFAULT, SG_BLEND_ALPHA, "sgBlend")
+    if (desc->blend == SG_BLEND_ALPHA)
+        return sg_error(dev, SG_ERROR_UNSUPPORTED,
+                        "sgCreatePipelineStateObject: alpha blending is not implemented yet");
+
+    sg_pso p;
+    memset(&p, 0, sizeof p);
+    p.desc = *desc;
+    sgPipelineDesc *d = &p.desc;
+    if (!d->shade) d->shade = SG_SHADE_VERTEX_COLOR;
+    if (!d->filter) d->filter = SG_FILTER_NEAREST;
+    if (!d->wrap) d->wrap = SG_WRAP_REPEAT;
+    if (!d->depth.compare) d->depth.compare = SG_COMPARE_ALWAYS;
+    if (!d->cull) d->cull = SG_CULL_NONE;
+    if (!d->front_face) d->front_face = SG_FRONT_FACE_CCW;
+    if (!d->blend) d->blend = SG_BLEND_OPAQUE;
+    p.tile_fn = sg_shade_select(d->shade, d->filter, d->wrap, d->depth.compare, d->depth.write);
+    p.nattr = sg_shade_attr_count(d->shade);
+    p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;
+
+    uint32_t id =
+        sg_acquire(dev, &dev->pso_pool, "sgCreatePipelineStateObject", "pipeline_pool_size");
+    if (!id) return SG_ERROR_POOL_EXHAUSTED;
+    dev->psos[id & 0xffffu] = p;
+    out->id = id;
+    return SG_OK;
+}
+
+sgResult sgDestroyPipelineStateObject(sgDevice *dev, sgPipelineStateObject h) {
+    if (!dev) return SG_ERROR_NULL_POINTER;
+    if (!sg_lookup_pso(dev, h))
+        return sg_error(dev, SG_ERROR_INVALID_HANDLE,
+                        "sgDestroyPipelineStateObject: pipeline id 0x%08x is not a live pipeline",
+                        h.id);
+    sg_pool_release(&dev->pso_pool, h.id);
+    return SG_OK;
+}

@@ -1,0 +1,27 @@
+/* assemble.h - primitive assembly: indices to triangles, trivial reject, clipping, setup. */
+#ifndef SG_ASSEMBLE_H
+#define SG_ASSEMBLE_H
+
+#include <stdint.h>
+
+#include "pipeline/setup.h"
+
+typedef struct sg_assembly {
+    const uint32_t *indices;
+    int index_count;
+    int quads;              /* 4 indices a primitive (a b c d -> a b c, a c d), else 3 */
+    const float (*clip)[4]; /* transformed positions, from the vertex stage */
+    const uint32_t *outcodes;
+    const float *colors;    /* 4 floats a vertex, NULL: opaque white */
+    const float *texcoords; /* 2 floats a vertex, read when setup.nattr > 4 */
+    sg_guard guard;
+    sg_setup_params setup;
+    /* Receives every triangle that survives, in submission order. */
+    void (*emit)(const sg_tri *tri, void *user);
+    void *user;
+} sg_assembly;
+
+/** Assembles, clips and sets up every primitive of a draw. */
+void sg_assemble(const sg_assembly *a);
+
+#endif

@@ -1,0 +1,46 @@
+/* setup.h - perspective divide, viewport, snapping, culling and triangle setup.
+ *
+ * Screen positions are snapped to 8 sub-pixel bits. Edge functions are evaluated exactly in 64-bit
+ * integers at pixel centres (integer + 0.5), with the top-left rule folded into each edge's
+ * constant, so coverage is decided without any rounding: two triangles sharing an edge never both
+ * cover a pixel and never leave a gap. Depth, 1/w and attribute/w are float plane equations.
+ */
+#ifndef SG_SETUP_H
+#define SG_SETUP_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "pipeline/clip.h"
+#include "sgapi/sgapi.h"
+
+#define SG_SUBPIXEL_BITS 8
+#define SG_SUBPIXEL_ONE  (1 << SG_SUBPIXEL_BITS)
+
+typedef struct sg_setup_params {
+    int width, height;    /* viewport: the whole target */
+    int rect_x0, rect_y0; /* pixels that may be touched: [x0, x1) x [y0, y1) */
+    int rect_x1, rect_y1;
+    sgCull cull;            /* resolved: NONE, BACK or FRONT */
+    sgFrontFace front_face; /* resolved: CCW or CW */
+    int nattr;              /* attributes to interpolate (0 .. SG_MAX_ATTRS) */
+} sg_setup_params;
+
+/* A triangle ready for the raster. Every "at origin" value is taken at the centre of pixel
+ * (minx, miny); a step moves one pixel. Edge e covers a pixel when its value is >= 0. */
+typedef struct sg_tri {
+    int minx, miny, maxx, maxy; /* inclusive pixel bounds, inside the setup rectangle */
+    int64_t edge[3];            /* edge values at origin, fill-rule bias included */
+    int64_t edge_dx[3], edge_dy[3];
+    float z, z_dx, z_dy;   /* window depth (0 near .. 1 far), linear in screen space */
+    float q, q_dx, q_dy;   /* 1 / w */
+    float a[SG_MAX_ATTRS]; /* attribute / w */
+    float a_dx[SG_MAX_ATTRS], a_dy[SG_MAX_ATTRS];
+    int nattr;
+} sg_tri;
+
+/** Divides, snaps, culls and sets up one clipped triangle (all w > 0); false: nothing to draw. */
+bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cvert *v1,
+                       const sg_cvert *v2, sg_tri *out);
+
+#endif

@@ -1,0 +1,62 @@
+/* framebuffer.c - clearing the tiled framebuffer and converting it to and from linear images. */
+#include "raster/framebuffer.h"
+
+#include <string.h>
+
+static int tiles_of(int n) {
+    return (n + SG_TILE - 1) >> SG_TILE_SHIFT;
+}
+
+size_t sg_fb_tiled_pixels(int width, int height) {
+    return (size_t)tiles_of(width) * (size_t)tiles_of(height) * SG_TILE_PIXELS;
+}
+
+void sg_fb_fill_color(uint32_t *tiles, size_t pixels, uint32_t value) {
+    for (size_t i = 0; i < pixels; i++) tiles[i] = value;
+}
+
+void sg_fb_fill_depth(float *tiles, size_t pixels, float value) {
+    for (size_t i = 0; i < pixels; i++) tiles[i] = value;
+}
+
+void sg_tile_from_linear_rgba8(uint32_t *tiles, const uint8_t *src, size_t pitch, int w, int h) {
+    int tx = tiles_of(w);
+    for (int y = 0; y < h; y++) {
+        const uint8_t *row = src + (size_t)y * pitch;
+        for (int x = 0; x < w; x++) {
+            const uint8_t *p = row + (size_t)x * 4;
+            tiles[sg_fb_index(tx, x, y)] = sg_pack_rgba8(p[0], p[1], p[2], p[3]);
+        }
+    }
+}
+
+void sg_tile_to_linear_rgba8(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h) {
+    int tx = tiles_of(w);
+    for (int y = 0; y < h; y++) {
+        uint8_t *row = dst + (size_t)y * pitch;
+        for (int x = 0; x < w; x++) {
+            uint32_t v = tiles[sg_fb_index(tx, x, y)];
+            uint8_t *p = row + (size_t)x * 4;
+            p[0] = (uint8_t)v;
+            p[1] = (uint8_t)(v >> 8);
+            p[2] = (uint8_t)(v >> 16);
+            p[3] = (uint8_t)(v >> 24);
+        }
+    }
+}
+
+void sg_tile_from_linear_f32(float *tiles, const float *src, size_t pitch, int w, int h) {
+    int tx = tiles_of(w);
+    for (int y = 0; y < h; y++) {
+        const float *row = (const float *)(const void *)((const uint8_t *)src + (size_t)y * pitch);
+        for (int x = 0; x < w; x++) tiles[sg_fb_index(tx, x, y)] = row[x];
+    }
+}
+
+void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, int h) {
+    int tx = tiles_of(w);
+    for (int y = 0; y < h; y++) {
+        float *row = (float *)(void *)((uint8_t *)dst + (size_t)y * pitch);
+        for (int x = 0; x < w; x++) row[x] = tiles[sg_fb_index(tx, x, y)];
+    }
+}

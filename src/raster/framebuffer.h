@@ -1,0 +1,52 @@
+/* framebuffer.h - colour and depth stored in 4x4-pixel tiles.
+ *
+ * A 4x4 tile is 16 consecutive pixels, row by row; tiles follow each other left to right, then top
+ * to bottom. The raster touches a whole tile at once, so the 16 pixels it needs share two cache
+ * lines (colour, 64 bytes) and (depth, 64 bytes) instead of four rows far apart.
+ */
+#ifndef SG_FRAMEBUFFER_H
+#define SG_FRAMEBUFFER_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define SG_TILE        4
+#define SG_TILE_SHIFT  2
+#define SG_TILE_MASK   3
+#define SG_TILE_PIXELS 16
+
+typedef struct sg_fb {
+    int width, height;    /* in pixels */
+    int tiles_x, tiles_y; /* width and height rounded up to whole tiles */
+    uint32_t *color;      /* RGBA8 packed R | G << 8 | B << 16 | A << 24 */
+    float *depth;
+} sg_fb;
+
+/** Index of pixel (x, y) in the tiled arrays. */
+static inline size_t sg_fb_index(int tiles_x, int x, int y) {
+    return ((size_t)(y >> SG_TILE_SHIFT) * (size_t)tiles_x + (size_t)(x >> SG_TILE_SHIFT)) *
+               SG_TILE_PIXELS +
+           (size_t)((y & SG_TILE_MASK) * SG_TILE + (x & SG_TILE_MASK));
+}
+
+/** Packs four bytes in memory order R, G, B, A. */
+static inline uint32_t sg_pack_rgba8(uint32_t r, uint32_t g, uint32_t b, uint32_t a) {
+    return r | (g << 8) | (b << 16) | (a << 24);
+}
+
+/** Pixels of a tiled image of the given size (padding included). */
+size_t sg_fb_tiled_pixels(int width, int height);
+/** Fills every pixel (padding included) of the tiled colour array. */
+void sg_fb_fill_color(uint32_t *tiles, size_t pixels, uint32_t value);
+/** Fills every pixel (padding included) of the tiled depth array. */
+void sg_fb_fill_depth(float *tiles, size_t pixels, float value);
+/** Linear RGBA8 rows (top first) -> tiles. */
+void sg_tile_from_linear_rgba8(uint32_t *tiles, const uint8_t *src, size_t pitch, int w, int h);
+/** Tiles -> linear RGBA8 rows (top first). */
+void sg_tile_to_linear_rgba8(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h);
+/** Linear float rows -> tiles. */
+void sg_tile_from_linear_f32(float *tiles, const float *src, size_t pitch, int w, int h);
+/** Tiles -> linear float rows. */
+void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, int h);
+
+#endif

@@ -1,0 +1,62 @@
+/* test_mat4.c - the vertex stage's matrix maths and its row-major convention. */
+#include "test_common.h"
+
+#include "pipeline/mat4.h"
+#include "pipeline/vertex.h"
+
+static void mul_is_row_major_product(void **state) {
+    (void)state;
+    /* Translation by (1,2,3) in row-major: the offsets sit at m[3], m[7], m[11]. */
+    const float t[16] = {1, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3, 0, 0, 0, 1};
+    const float s[16] = {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 0, 0, 0, 1};
+    float ts[16], v[4];
+    sg_mat4_mul(ts, t, s); /* scale first, then translate */
+    const float p[4] = {1, 1, 1, 1};
+    sg_mat4_transform(v, ts, p);
+    assert_float_equal(v[0], 3.0f, 0.0f);
+    assert_float_equal(v[1], 5.0f, 0.0f);
+    assert_float_equal(v[2], 7.0f, 0.0f);
+    assert_float_equal(v[3], 1.0f, 0.0f);
+    float st[16];
+    sg_mat4_mul(st, s, t); /* translate first, then scale */
+    sg_mat4_transform(v, st, p);
+    assert_float_equal(v[0], 4.0f, 0.0f);
+    assert_float_equal(v[1], 9.0f, 0.0f);
+    assert_float_equal(v[2], 16.0f, 0.0f);
+}
+
+static void perspective_gives_w_equal_minus_z(void **state) {
+    (void)state;
+    /* The OpenGL perspective matrix the scenes use (fovy 45, near 0.1, far 100). */
+    const float proj[16] = {2.41421f, 0, 0,       0,        0, 2.41421f, 0,  0,
+                            0,        0, -1.002f, -0.2002f, 0, 0,        -1, 0};
+    float v[4];
+    const float near_pt[4] = {0, 0, -0.1f, 1}, far_pt[4] = {0, 0, -100, 1};
+    sg_mat4_transform(v, proj, near_pt);
+    assert_float_equal(v[2] / v[3], -1.0f, 1e-4f);
+    assert_float_equal(v[3], 0.1f, 1e-7f);
+    sg_mat4_transform(v, proj, far_pt);
+    assert_float_equal(v[2] / v[3], 1.0f, 1e-4f);
+}
+
+static void vertex_stage_transforms_each_vertex_once(void **state) {
+    (void)state;
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const float pos[3 * 4] = {0, 0, 0, 1, 2, 0, 0, 1, 0, 0, -2, 1};
+    float clip[3][4];
+    uint32_t codes[3];
+    sg_guard g = sg_guard_for_viewport(64, 64);
+    sg_vertex_transform(id, pos, 3, clip, codes, &g);
+    assert_int_equal(codes[0], 0);
+    assert_int_equal(codes[1], 0); /* x = 2 is outside the viewport but inside the guard band */
+    assert_int_equal(codes[2], SG_CLIP_NEAR);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(mul_is_row_major_product),
+        cmocka_unit_test(perspective_gives_w_equal_minus_z),
+        cmocka_unit_test(vertex_stage_transforms_each_vertex_once),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

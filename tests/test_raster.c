@@ -1,0 +1,177 @@
+/* test_raster.c - setup and tile rasterisation: the top-left fill rule and watertightness.
+ *
+ * Triangles go through sg_setup_triangle and sg_rast_triangle with a tile function that counts
+ * how often each pixel is hit, so coverage is checked exactly, pixel by pixel.
+ */
+#include "test_common.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pipeline/setup.h"
+#include "raster/framebuffer.h"
+#include "raster/rast_tile.h"
+#include "test_setup.h"
+
+#define W 64
+#define H 64
+
+typedef struct counter {
+    int hits[H][W];
+} counter;
+
+static void count_tile(const void *ctx, const sg_tri *t, int x0, int y0, uint32_t mask) {
+    (void)t;
+    counter *c = (counter *)(uintptr_t)ctx;
+    for (int b = 0; b < 16; b++)
+        if (mask & (1u << b)) c->hits[y0 + (b >> 2)][x0 + (b & 3)]++;
+}
+
+/* A vertex at pixel position (px, py), y down, as clip space with w = 1. */
+static sg_cvert at_pixel(double px, double py) {
+    sg_cvert v;
+    memset(&v, 0, sizeof v);
+    v.pos[0] = (float)(px / W * 2.0 - 1.0);
+    v.pos[1] = (float)(1.0 - py / H * 2.0);
+    v.pos[3] = 1.0f;
+    return v;
+}
+
+static void draw(counter *c, sg_cvert a, sg_cvert b, sg_cvert d) {
+    sg_setup_params p = sg_test_params(W, H, 0);
+    sg_tri t;
+    if (sg_setup_triangle(&p, &a, &b, &d, &t)) sg_rast_triangle(&t, count_tile, c);
+}
+
+static void square_halves_cover_each_pixel_once(void **state) {
+    (void)state;
+    counter *c = calloc(1, sizeof *c);
+    /* Corners on pixel centres and edges through pixel centres: every tie-break case. */
+    const double x0 = 8.5, y0 = 8.5, x1 = 40.5, y1 = 40.5;
+    draw(c, at_pixel(x0, y0), at_pixel(x1, y0), at_pixel(x1, y1));
+    draw(c, at_pixel(x0, y0), at_pixel(x1, y1), at_pixel(x0, y1));
+    int covered = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            assert_true(c->hits[y][x] <= 1);
+            covered += c->hits[y][x];
+            /* Top-left rule: the top row and left column on the edge are in, right and bottom out.
+             */
+            int inside = x >= 8 && x < 40 && y >= 8 && y < 40;
+            assert_int_equal(c->hits[y][x], inside);
+        }
+    assert_int_equal(covered, 32 * 32);
+    free(c);
+}
+
+static void fan_covers_disc_once(void **state) {
+    (void)state;
+    counter *c = calloc(1, sizeof *c);
+    const double cx = 31.5, cy = 30.5, r = 25.0; /* centre exactly on a pixel centre */
+    sg_cvert centre = at_pixel(cx, cy);
+    for (int i = 0; i < 64; i++) {
+        double a0 = 2 * M_PI * i / 64, a1 = 2 * M_PI * (i + 1) / 64;
+        draw(c, centre, at_pixel(cx + r * cos(a0), cy + r * sin(a0)),
+             at_pixel(cx + r * cos(a1), cy + r * sin(a1)));
+    }
+    int covered = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            assert_true(c->hits[y][x] <= 1);
+            covered += c->hits[y][x];
+            double dx = x + 0.5 - cx, dy = y + 0.5 - cy;
+            if (dx * dx + dy * dy < (r - 1.5) * (r - 1.5)) assert_int_equal(c->hits[y][x], 1);
+        }
+    assert_int_equal(c->hits[30][31], 1); /* the shared centre pixel: exactly one triangle */
+    assert_true(covered > 0);
+    free(c);
+    (void)covered;
+}
+
+static void random_meshes_are_watertight(void **state) {
+    (void)state;
+    /* A grid of jittered vertices, split into triangles both ways: every pixel inside the grid's
+     * outer square is hit exactly once. */
+    counter *c = calloc(1, sizeof *c);
+    enum { N = 9 };
+    double gx[N][N], gy[N][N];
+    uint32_t seed = 12345;
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            seed = seed * 1664525u + 1013904223u;
+            double jx = (i == 0 || i == N - 1) ? 0 : ((seed >> 8) % 1000) / 1000.0 - 0.5;
+            seed = seed * 1664525u + 1013904223u;
+            double jy = (j == 0 || j == N - 1) ? 0 : ((seed >> 8) % 1000) / 1000.0 - 0.5;
+            gx[j][i] = 4.0 + i * 7.0 + jx * 5.0;
+            gy[j][i] = 4.0 + j * 7.0 + jy * 5.0;
+        }
+    for (int j = 0; j + 1 < N; j++)
+        for (int i = 0; i + 1 < N; i++) {
+            sg_cvert a = at_pixel(gx[j][i], gy[j][i]), b = at_pixel(gx[j][i + 1], gy[j][i + 1]);
+            sg_cvert d = at_pixel(gx[j + 1][i], gy[j + 1][i]);
+            sg_cvert e = at_pixel(gx[j + 1][i + 1], gy[j + 1][i + 1]);
+            if ((i + j) & 1) {
+                draw(c, a, b, e);
+                draw(c, a, e, d);
+            } else {
+                draw(c, a, b, d);
+                draw(c, b, e, d);
+            }
+        }
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            int inside = x + 0.5 > 4.0 && x + 0.5 < 60.0 && y + 0.5 > 4.0 && y + 0.5 < 60.0;
+            assert_int_equal(c->hits[y][x], inside);
+        }
+    free(c);
+}
+
+static void culling_and_zero_area(void **state) {
+    (void)state;
+    sg_setup_params p = sg_test_params(W, H, 0);
+    sg_tri t;
+    /* Counter-clockwise on screen (y up): (10,50) -> (50,50) -> (30,10) in y-down pixels. */
+    sg_cvert a = at_pixel(10, 50), b = at_pixel(50, 50), d = at_pixel(30, 10);
+    p.cull = SG_CULL_BACK;
+    assert_true(sg_setup_triangle(&p, &a, &b, &d, &t));
+    assert_false(sg_setup_triangle(&p, &a, &d, &b, &t));
+    p.cull = SG_CULL_FRONT;
+    assert_false(sg_setup_triangle(&p, &a, &b, &d, &t));
+    assert_true(sg_setup_triangle(&p, &a, &d, &b, &t));
+    p.front_face = SG_FRONT_FACE_CW;
+    assert_true(sg_setup_triangle(&p, &a, &b, &d, &t));
+    p.cull = SG_CULL_NONE;
+    sg_cvert e = at_pixel(20, 30), f = at_pixel(40, 30); /* collinear with (30, 30) */
+    sg_cvert g = at_pixel(30, 30);
+    assert_false(sg_setup_triangle(&p, &e, &f, &g, &t));
+}
+
+static void huge_triangle_stays_exact(void **state) {
+    (void)state;
+    /* A triangle reaching the guard band on every side covers the whole target exactly once
+     * together with its mirror image. */
+    counter *c = calloc(1, sizeof *c);
+    sg_cvert a = at_pixel(-30000, -30000), b = at_pixel(30000, -30000);
+    sg_cvert d = at_pixel(30000, 30000), e = at_pixel(-30000, 30000);
+    draw(c, a, b, d);
+    draw(c, a, d, e);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) assert_int_equal(c->hits[y][x], 1);
+    free(c);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(square_halves_cover_each_pixel_once),
+        cmocka_unit_test(fan_covers_disc_once),
+        cmocka_unit_test(random_meshes_are_watertight),
+        cmocka_unit_test(culling_and_zero_area),
+        cmocka_unit_test(huge_triangle_stays_exact),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
