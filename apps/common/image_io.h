@@ -1,0 +1,25 @@
+/* image_io.h - reading images of any common format as RGBA8 and writing RGBA8 PNG files.
+ *
+ * API-neutral: pixels are plain bytes, R, G, B, A, top row first (as the image is displayed).
+ */
+#ifndef SC_IMAGE_IO_H
+#define SC_IMAGE_IO_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* An RGBA8 image, top row first, rows tightly packed (width * 4 bytes). */
+typedef struct sc_image {
+    int width, height;
+    unsigned char *pixels;
+} sc_image;
+
+/** Loads a PNG, BMP, JPEG, TGA, ... file as RGBA8; on failure *out is zeroed and err says why. */
+bool sc_image_load(const char *path, sc_image *out, char *err, size_t errlen);
+/** Frees an image loaded by sc_image_load and zeroes it; a zeroed image is fine. */
+void sc_image_free(sc_image *image);
+/** Writes RGBA8 pixels (top row first, tightly packed) as a PNG file. */
+bool sc_image_write_png(const char *path, int width, int height, const unsigned char *rgba,
+                        char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,37 @@
+/* obj.h - triangle meshes in plain arrays, and a Wavefront OBJ loader that produces them.
+ *
+ * API-neutral: nothing here knows about any graphics API, so every renderer can share it.
+ */
+#ifndef SC_OBJ_H
+#define SC_OBJ_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* Upper bound of vertex_count and index_count: small enough for a signed 32-bit count. */
+#define SC_MESH_MAX_COUNT 0x7fffffffu
+
+/* An indexed triangle list. Every array has one entry per vertex; the mesh owns them all. */
+typedef struct sc_mesh {
+    uint32_t vertex_count;
+    float *positions; /* vertex_count * 4: x, y, z, w (w = 1) */
+    float *colors;    /* vertex_count * 4: r, g, b, a (a = 1; white when the file has none) */
+    float *texcoords; /* vertex_count * 2: s, t, or NULL when no face uses a texture coordinate */
+    float *normals;   /* vertex_count * 3, or NULL when no face uses a normal */
+    uint32_t index_count; /* a multiple of 3, >= 3 */
+    uint32_t *indices;    /* each < vertex_count */
+} sc_mesh;
+
+/** Parses OBJ text of len bytes (NUL bytes are an error); name is used in error messages only. */
+bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, char *err,
+                  size_t errlen);
+/** Reads and parses an OBJ file. On failure *out is zeroed and err says why (with the line). */
+bool sc_obj_load(const char *path, sc_mesh *out, char *err, size_t errlen);
+/** Frees a mesh's arrays and zeroes it; a zeroed mesh is fine. */
+void sc_mesh_free(sc_mesh *mesh);
+
+/** Reads a whole file into a NUL-terminated buffer (for the loaders). Free with free(). */
+bool sc_read_file(const char *path, char **out_data, size_t *out_len, char *err, size_t errlen);
+
+#endif

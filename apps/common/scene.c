@@ -1,0 +1,594 @@
+/* scene.c - scene file parsing (JSON) and loading of the meshes and textures the draws name.
+ *
+ * Every value is validated here, so a renderer can map the result to its API without checks of
+ * its own; errors name the file, the scene and draw, and what is wrong.
+ */
+#include "scene.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cJSON.h>
+
+/* Where in the file an error is: -1 for "not inside one". */
+typedef struct loc {
+    int scene, draw;
+    const char *scene_name;
+} loc;
+
+enum { MESH_OBJ, MESH_HEIGHTMAP };
+
+typedef struct ctx {
+    const char *path;
+    char *dir; /* folder of the scene file with its trailing '/', or "" */
+    char *err;
+    size_t errlen;
+    sc_file *f;
+    unsigned char *mesh_kinds; /* MESH_OBJ or MESH_HEIGHTMAP per mesh, to tell sources apart */
+    size_t cap_meshes, cap_textures;
+} ctx;
+
+/* Lets the compiler check the format arguments of the error helpers. */
+#if defined(__GNUC__)
+#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
+#else
+#define PRINTF_LIKE(fmt, args)
+#endif
+
+static bool fail(ctx *c, const loc *l, const char *fmt, ...) PRINTF_LIKE(3, 4);
+
+/* Formats "file: scenes[i] ('name'), draws[j]: message"; always returns false. */
+static bool fail(ctx *c, const loc *l, const char *fmt, ...) {
+    if (!c->err || c->errlen == 0) return false;
+    int n = snprintf(c->err, c->errlen, "%s: ", c->path);
+    if (n >= 0 && (size_t)n < c->errlen && l && l->scene >= 0) {
+        n += snprintf(c->err + n, c->errlen - (size_t)n, "scenes[%d]", l->scene);
+        if ((size_t)n < c->errlen && l->scene_name)
+            n += snprintf(c->err + n, c->errlen - (size_t)n, " ('%s')", l->scene_name);
+        if ((size_t)n < c->errlen && l->draw >= 0)
+            n += snprintf(c->err + n, c->errlen - (size_t)n, ", draws[%d]", l->draw);
+        if ((size_t)n < c->errlen) n += snprintf(c->err + n, c->errlen - (size_t)n, ": ");
+    }
+    if (n >= 0 && (size_t)n < c->errlen) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(c->err + n, c->errlen - (size_t)n, fmt, ap);
+        va_end(ap);
+    }
+    return false;
+}
+
+static char *dup_str(const char *s) {
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+/* The capacity after growing from cap to hold need elements (doubling); 0 on overflow. */
+static size_t next_cap(size_t cap, size_t need) {
+    size_t n = cap ? cap : 8;
+    while (n < need) {
+        if (n > SIZE_MAX / 2) return 0;
+        n *= 2;
+    }
+    return n;
+}
+
+/* Reallocates *ptr to n elements of elem bytes; on failure *ptr is unchanged. */
+static bool resize(void **ptr, size_t n, size_t elem) {
+    if (n == 0 || n > SIZE_MAX / elem) return false;
+    void *q = realloc(*ptr, n * elem);
+    if (!q) return false;
+    *ptr = q;
+    return true;
+}
+
+/* A path from the file, made relative to the scene file's folder unless it is absolute. */
+static char *resolve_path(const ctx *c, const char *rel) {
+    if (rel[0] == '/') return dup_str(rel);
+    size_t a = strlen(c->dir), b = strlen(rel);
+    char *p = malloc(a + b + 1);
+    if (!p) return NULL;
+    memcpy(p, c->dir, a);
+    memcpy(p + a, rel, b + 1);
+    return p;
+}
+
+/* ---- values ---------------------------------------------------------------------------------- */
+
+static bool get_int(ctx *c, const loc *l, const cJSON *obj, const char *key, int lo, int hi,
+                    int *out, bool *present) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    *present = v != NULL;
+    if (!v) return true;
+    double d = cJSON_IsNumber(v) ? v->valuedouble : NAN;
+    if (!(d >= lo && d <= hi) || d != floor(d)) {
+        if (cJSON_IsNumber(v))
+            return fail(c, l, "'%s' must be an integer in %d..%d (got %g)", key, lo, hi, d);
+        return fail(c, l, "'%s' must be an integer in %d..%d", key, lo, hi);
+    }
+    *out = (int)d;
+    return true;
+}
+
+/* An array of exactly n finite numbers, each in [lo, hi]. */
+static bool get_floats(ctx *c, const loc *l, const cJSON *obj, const char *key, int n, double lo,
+                       double hi, float *out, bool *present) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    *present = v != NULL;
+    if (!v) return true;
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n)
+        return fail(c, l, "'%s' must be an array of %d numbers", key, n);
+    int i = 0;
+    const cJSON *e;
+    cJSON_ArrayForEach(e, v) {
+        if (!cJSON_IsNumber(e)) return fail(c, l, "'%s'[%d] is not a number", key, i);
+        double d = e->valuedouble;
+        float f = (float)d;
+        if (!isfinite(f)) return fail(c, l, "'%s'[%d] = %g does not fit a float", key, i, d);
+        if (d < lo || d > hi)
+            return fail(c, l, "'%s'[%d] = %g is out of range (%g..%g)", key, i, d, lo, hi);
+        out[i++] = f;
+    }
+    return true;
+}
+
+typedef struct enum_name {
+    const char *name;
+    int value;
+} enum_name;
+
+static const enum_name modes[] = {
+    {"vertex_color", SC_MODE_VERTEX_COLOR}, {"texture", SC_MODE_TEXTURE}, {NULL, 0}};
+static const enum_name filters[] = {
+    {"bilinear", SC_FILTER_BILINEAR}, {"nearest", SC_FILTER_NEAREST}, {NULL, 0}};
+static const enum_name wraps[] = {{"repeat", SC_WRAP_REPEAT}, {"clamp", SC_WRAP_CLAMP}, {NULL, 0}};
+static const enum_name culls[] = {
+    {"none", SC_CULL_NONE}, {"back", SC_CULL_BACK}, {"front", SC_CULL_FRONT}, {NULL, 0}};
+static const enum_name front_faces[] = {
+    {"ccw", SC_FRONT_FACE_CCW}, {"cw", SC_FRONT_FACE_CW}, {NULL, 0}};
+static const enum_name compares[] = {{"less", SC_COMPARE_LESS},
+                                     {"never", SC_COMPARE_NEVER},
+                                     {"equal", SC_COMPARE_EQUAL},
+                                     {"less_equal", SC_COMPARE_LESS_EQUAL},
+                                     {"greater", SC_COMPARE_GREATER},
+                                     {"not_equal", SC_COMPARE_NOT_EQUAL},
+                                     {"greater_equal", SC_COMPARE_GREATER_EQUAL},
+                                     {"always", SC_COMPARE_ALWAYS},
+                                     {NULL, 0}};
+
+/* A string naming one of the table's values; absent keeps *out (the default). */
+static bool get_enum(ctx *c, const loc *l, const cJSON *obj, const char *key,
+                     const enum_name *table, int *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v) return true;
+    if (cJSON_IsString(v)) {
+        for (const enum_name *e = table; e->name; e++) {
+            if (strcmp(e->name, v->valuestring) == 0) {
+                *out = e->value;
+                return true;
+            }
+        }
+    }
+    char names[160] = "";
+    for (const enum_name *e = table; e->name; e++) {
+        size_t n = strlen(names);
+        snprintf(names + n, sizeof names - n, "%s%s", n ? ", " : "", e->name);
+    }
+    if (cJSON_IsString(v))
+        return fail(c, l, "'%s' must be one of %s (got '%.60s')", key, names, v->valuestring);
+    return fail(c, l, "'%s' must be a string, one of %s", key, names);
+}
+
+static bool valid_name(const char *s) {
+    size_t n = 0;
+    for (; s[n]; n++) {
+        char ch = s[n];
+        bool ok = (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') ||
+                  (ch >= '0' && ch <= '9') || ch == '_' || ch == '.' || ch == '-';
+        if (!ok) return false;
+    }
+    return n >= 1 && n <= SC_MAX_NAME_LENGTH;
+}
+
+/* ---- meshes and textures --------------------------------------------------------------------- */
+
+bool sc_heightmap_mesh(const sc_image *image, float height_scale, sc_mesh *out, char *err,
+                       size_t errlen) {
+    memset(out, 0, sizeof *out);
+    const int w = image->width, h = image->height;
+    if (w < 2 || h < 2 || !image->pixels) {
+        snprintf(err, errlen, "a heightmap needs at least 2x2 pixels (got %dx%d)", w, h);
+        return false;
+    }
+    if (!isfinite(height_scale)) {
+        snprintf(err, errlen, "height_scale is not finite");
+        return false;
+    }
+    uint64_t nv = (uint64_t)w * (uint64_t)h, ni = 6 * (uint64_t)(w - 1) * (uint64_t)(h - 1);
+    if (nv > SC_MESH_MAX_COUNT || ni > SC_MESH_MAX_COUNT || nv > SIZE_MAX / (4 * sizeof(float)) ||
+        ni > SIZE_MAX / sizeof(uint32_t)) {
+        snprintf(err, errlen, "heightmap of %dx%d pixels is too large", w, h);
+        return false;
+    }
+    sc_mesh m = {0};
+    m.positions = malloc((size_t)nv * 4 * sizeof(float));
+    m.colors = malloc((size_t)nv * 4 * sizeof(float));
+    m.texcoords = malloc((size_t)nv * 2 * sizeof(float));
+    m.indices = malloc((size_t)ni * sizeof(uint32_t));
+    if (!m.positions || !m.colors || !m.texcoords || !m.indices) {
+        sc_mesh_free(&m);
+        snprintf(err, errlen, "out of memory for a heightmap of %dx%d pixels", w, h);
+        return false;
+    }
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            size_t i = (size_t)y * (size_t)w + (size_t)x;
+            /* Row y counts from the bottom of the image as displayed, as texcoord t does: the
+             * vertex at t = y / H sits on the height of the texel row t samples. */
+            size_t row = (size_t)(h - 1 - y);
+            const unsigned char *px = image->pixels + (row * (size_t)w + (size_t)x) * 4;
+            float *p = m.positions + i * 4, *col = m.colors + i * 4, *t = m.texcoords + i * 2;
+            p[0] = (float)(x - w / 2.0);
+            p[1] = (float)(height_scale * (double)(px[0] + px[1] + px[2]) / 765.0);
+            p[2] = (float)(y - h / 2.0);
+            p[3] = 1.0f;
+            col[0] = col[1] = col[2] = col[3] = 1.0f;
+            t[0] = (float)((double)x / w);
+            t[1] = (float)((double)y / h);
+        }
+    }
+    uint32_t *idx = m.indices;
+    for (int y = 0; y + 1 < h; y++) {
+        for (int x = 0; x + 1 < w; x++) {
+            uint32_t i = (uint32_t)y * (uint32_t)w + (uint32_t)x, W = (uint32_t)w;
+            *idx++ = i, *idx++ = i + W, *idx++ = i + 1;
+            *idx++ = i + 1, *idx++ = i + W, *idx++ = i + W + 1;
+        }
+    }
+    m.vertex_count = (uint32_t)nv;
+    m.index_count = (uint32_t)ni;
+    *out = m;
+    return true;
+}
+
+static bool check_image_size(ctx *c, const loc *l, const char *path, const sc_image *img) {
+    if (img->width > SC_MAX_IMAGE_SIZE || img->height > SC_MAX_IMAGE_SIZE)
+        return fail(c, l, "image '%s' is %dx%d, larger than %d on a side", path, img->width,
+                    img->height, SC_MAX_IMAGE_SIZE);
+    return true;
+}
+
+/* Appends a mesh with its source and kind; takes ownership of source and mesh, even on failure. */
+static bool add_mesh(ctx *c, const loc *l, char *source, int kind, sc_mesh *mesh, int *out) {
+    sc_file *f = c->f;
+    if (f->mesh_count == c->cap_meshes) {
+        /* Arrays that grew before a later one failed are merely larger than cap_meshes says. */
+        size_t n = f->mesh_count < INT_MAX ? next_cap(c->cap_meshes, f->mesh_count + 1) : 0;
+        if (!n || !resize((void **)&f->meshes, n, sizeof *f->meshes) ||
+            !resize((void **)&f->mesh_sources, n, sizeof *f->mesh_sources) ||
+            !resize((void **)&c->mesh_kinds, n, 1)) {
+            free(source);
+            sc_mesh_free(mesh);
+            return fail(c, l, "out of memory");
+        }
+        c->cap_meshes = n;
+    }
+    f->meshes[f->mesh_count] = *mesh;
+    f->mesh_sources[f->mesh_count] = source;
+    c->mesh_kinds[f->mesh_count] = (unsigned char)kind;
+    *out = (int)f->mesh_count++;
+    return true;
+}
+
+/* The draw's "mesh": an OBJ path or {"heightmap": path, "height_scale": number}. */
+static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(draw, "mesh");
+    const char *rel;
+    double scale = 1.0;
+    int kind;
+    if (!v) return fail(c, l, "missing 'mesh'");
+    if (cJSON_IsString(v)) {
+        kind = MESH_OBJ;
+        rel = v->valuestring;
+    } else if (cJSON_IsObject(v)) {
+        kind = MESH_HEIGHTMAP;
+        const cJSON *hm = cJSON_GetObjectItemCaseSensitive(v, "heightmap");
+        const cJSON *hs = cJSON_GetObjectItemCaseSensitive(v, "height_scale");
+        if (!cJSON_IsString(hm)) return fail(c, l, "'mesh' object needs a 'heightmap' path");
+        if (hs && (!cJSON_IsNumber(hs) || !isfinite((float)hs->valuedouble)))
+            return fail(c, l, "'height_scale' must be a finite number");
+        rel = hm->valuestring;
+        if (hs) scale = hs->valuedouble;
+    } else {
+        return fail(c, l, "'mesh' must be a path or a {\"heightmap\": ...} object");
+    }
+    if (rel[0] == '\0') return fail(c, l, "'mesh' names an empty path");
+
+    char *path = resolve_path(c, rel);
+    if (!path) return fail(c, l, "out of memory");
+    char *source = path;
+    if (kind == MESH_HEIGHTMAP) {
+        int n = snprintf(NULL, 0, "%s (heightmap, height_scale %.9g)", path, (float)scale);
+        source = n > 0 ? malloc((size_t)n + 1) : NULL;
+        if (source)
+            snprintf(source, (size_t)n + 1, "%s (heightmap, height_scale %.9g)", path,
+                     (float)scale);
+        if (!source) {
+            free(path);
+            return fail(c, l, "out of memory");
+        }
+    }
+    /* Loaded once per file: later draws naming the same mesh share it. */
+    for (size_t i = 0; i < c->f->mesh_count; i++) {
+        if (c->mesh_kinds[i] == kind && strcmp(c->f->mesh_sources[i], source) == 0) {
+            if (source != path) free(source);
+            free(path);
+            *out = (int)i;
+            return true;
+        }
+    }
+
+    char why[512];
+    sc_mesh mesh;
+    bool ok;
+    if (kind == MESH_OBJ) {
+        ok = sc_obj_load(path, &mesh, why, sizeof why);
+    } else {
+        sc_image img;
+        ok = sc_image_load(path, &img, why, sizeof why);
+        if (ok && !check_image_size(c, l, path, &img)) {
+            sc_image_free(&img);
+            if (source != path) free(source);
+            free(path);
+            return false;
+        }
+        if (ok) ok = sc_heightmap_mesh(&img, (float)scale, &mesh, why, sizeof why);
+        sc_image_free(&img);
+    }
+    if (source != path) free(path);
+    if (!ok) {
+        free(source);
+        return fail(c, l, "mesh: %s", why);
+    }
+    return add_mesh(c, l, source, kind, &mesh, out);
+}
+
+/* The draw's "texture": a path, null or absent (-1). */
+static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(draw, "texture");
+    *out = -1;
+    if (!v || cJSON_IsNull(v)) return true;
+    if (!cJSON_IsString(v)) return fail(c, l, "'texture' must be a path or null");
+    if (v->valuestring[0] == '\0') return fail(c, l, "'texture' names an empty path");
+    char *path = resolve_path(c, v->valuestring);
+    if (!path) return fail(c, l, "out of memory");
+    sc_file *f = c->f;
+    for (size_t i = 0; i < f->texture_count; i++) {
+        if (strcmp(f->texture_sources[i], path) == 0) {
+            free(path);
+            *out = (int)i;
+            return true;
+        }
+    }
+    char why[512];
+    sc_image img;
+    if (!sc_image_load(path, &img, why, sizeof why)) {
+        free(path);
+        return fail(c, l, "texture: %s", why);
+    }
+    if (!check_image_size(c, l, path, &img)) {
+        sc_image_free(&img);
+        free(path);
+        return false;
+    }
+    if (f->texture_count == c->cap_textures) {
+        size_t n = f->texture_count < INT_MAX ? next_cap(c->cap_textures, f->texture_count + 1) : 0;
+        if (!n || !resize((void **)&f->textures, n, sizeof *f->textures) ||
+            !resize((void **)&f->texture_sources, n, sizeof *f->texture_sources)) {
+            sc_image_free(&img);
+            free(path);
+            return fail(c, l, "out of memory");
+        }
+        c->cap_textures = n;
+    }
+    f->textures[f->texture_count] = img;
+    f->texture_sources[f->texture_count] = path;
+    *out = (int)f->texture_count++;
+    return true;
+}
+
+/* ---- scenes and draws ------------------------------------------------------------------------ */
+
+static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
+    if (!cJSON_IsObject(v)) return fail(c, l, "a draw must be an object");
+    if (!get_mesh(c, l, v, &d->mesh)) return false;
+    if (!get_texture(c, l, v, &d->texture)) return false;
+
+    /* Without "mode", a draw that names a texture is textured. */
+    int mode = d->texture >= 0 ? SC_MODE_TEXTURE : SC_MODE_VERTEX_COLOR;
+    int filter = SC_FILTER_BILINEAR, wrap = SC_WRAP_REPEAT, cull = SC_CULL_NONE;
+    int front = SC_FRONT_FACE_CCW, compare = SC_COMPARE_LESS;
+    if (!get_enum(c, l, v, "mode", modes, &mode) ||
+        !get_enum(c, l, v, "filter", filters, &filter) ||
+        !get_enum(c, l, v, "wrap", wraps, &wrap) || !get_enum(c, l, v, "cull", culls, &cull) ||
+        !get_enum(c, l, v, "front_face", front_faces, &front) ||
+        !get_enum(c, l, v, "depth_compare", compares, &compare))
+        return false;
+    d->mode = (sc_mode)mode;
+    d->filter = (sc_filter)filter;
+    d->wrap = (sc_wrap)wrap;
+    d->cull = (sc_cull)cull;
+    d->front_face = (sc_front_face)front;
+    d->depth_compare = (sc_compare)compare;
+
+    const cJSON *dw = cJSON_GetObjectItemCaseSensitive(v, "depth_write");
+    if (dw && !cJSON_IsBool(dw)) return fail(c, l, "'depth_write' must be true or false");
+    d->depth_write = !dw || cJSON_IsTrue(dw);
+
+    bool present;
+    if (!get_floats(c, l, v, "worldView", 16, -HUGE_VAL, HUGE_VAL, d->world_view, &present))
+        return false;
+    if (!present) return fail(c, l, "missing 'worldView' (16 numbers, row-major)");
+    if (!get_floats(c, l, v, "proj", 16, -HUGE_VAL, HUGE_VAL, d->proj, &present)) return false;
+    if (!present) return fail(c, l, "missing 'proj' (16 numbers, row-major)");
+    return true;
+}
+
+/* File-level values every scene starts from. */
+typedef struct defaults {
+    int width, height;
+    bool has_width, has_height;
+    float clear_color[4];
+} defaults;
+
+static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, sc_scene *s) {
+    loc l = {index, -1, NULL};
+    if (!cJSON_IsObject(v)) return fail(c, &l, "a scene must be an object");
+    const cJSON *name = cJSON_GetObjectItemCaseSensitive(v, "name");
+    if (!name) return fail(c, &l, "missing 'name'");
+    if (!cJSON_IsString(name) || !valid_name(name->valuestring))
+        return fail(c, &l, "'name' must be 1 to %d characters of A-Z a-z 0-9 _ . -",
+                    SC_MAX_NAME_LENGTH);
+    for (int i = 0; i < index; i++) {
+        if (strcmp(c->f->scenes[i].name, name->valuestring) == 0)
+            return fail(c, &l, "scene name '%s' is already used by scenes[%d]", name->valuestring,
+                        i);
+    }
+    s->name = dup_str(name->valuestring);
+    if (!s->name) return fail(c, &l, "out of memory");
+    l.scene_name = s->name;
+
+    bool has_w = def->has_width, has_h = def->has_height, present;
+    s->width = def->width;
+    s->height = def->height;
+    if (!get_int(c, &l, v, "width", 1, SC_MAX_IMAGE_SIZE, &s->width, &present)) return false;
+    has_w |= present;
+    if (!get_int(c, &l, v, "height", 1, SC_MAX_IMAGE_SIZE, &s->height, &present)) return false;
+    has_h |= present;
+    if (!has_w || !has_h)
+        return fail(c, &l, "no '%s': set it in the scene or at the top of the file",
+                    has_w ? "height" : "width");
+    memcpy(s->clear_color, def->clear_color, sizeof s->clear_color);
+    if (!get_floats(c, &l, v, "clear_color", 4, 0.0, 1.0, s->clear_color, &present)) return false;
+
+    const cJSON *draws = cJSON_GetObjectItemCaseSensitive(v, "draws");
+    if (!draws) return fail(c, &l, "missing 'draws'");
+    if (!cJSON_IsArray(draws)) return fail(c, &l, "'draws' must be an array");
+    int n = cJSON_GetArraySize(draws);
+    if (n > 0) {
+        s->draws = calloc((size_t)n, sizeof *s->draws);
+        if (!s->draws) return fail(c, &l, "out of memory");
+    }
+    const cJSON *d;
+    cJSON_ArrayForEach(d, draws) {
+        l.draw = (int)s->draw_count;
+        if (!parse_draw(c, &l, d, &s->draws[s->draw_count])) return false;
+        s->draw_count++;
+    }
+    return true;
+}
+
+static bool parse_root(ctx *c, const cJSON *root) {
+    loc none = {-1, -1, NULL};
+    if (!cJSON_IsObject(root)) return fail(c, &none, "the top level must be a JSON object");
+    defaults def = {0};
+    if (!get_int(c, &none, root, "width", 1, SC_MAX_IMAGE_SIZE, &def.width, &def.has_width) ||
+        !get_int(c, &none, root, "height", 1, SC_MAX_IMAGE_SIZE, &def.height, &def.has_height))
+        return false;
+    bool present;
+    if (!get_floats(c, &none, root, "clear_color", 4, 0.0, 1.0, def.clear_color, &present))
+        return false;
+
+    const cJSON *scenes = cJSON_GetObjectItemCaseSensitive(root, "scenes");
+    if (!scenes) return fail(c, &none, "missing 'scenes'");
+    if (!cJSON_IsArray(scenes)) return fail(c, &none, "'scenes' must be an array");
+    int n = cJSON_GetArraySize(scenes);
+    if (n == 0) return fail(c, &none, "'scenes' is empty");
+    c->f->scenes = calloc((size_t)n, sizeof *c->f->scenes);
+    if (!c->f->scenes) return fail(c, &none, "out of memory");
+    const cJSON *s;
+    cJSON_ArrayForEach(s, scenes) {
+        /* Counted before parsing, so sc_free also frees a half-parsed scene. */
+        size_t i = c->f->scene_count++;
+        if (!parse_scene(c, (int)i, s, &def, &c->f->scenes[i])) return false;
+    }
+    return true;
+}
+
+bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, char *err,
+              size_t errlen) {
+    memset(out, 0, sizeof *out);
+    if (err && errlen) err[0] = '\0';
+    ctx c = {.path = path, .err = err, .errlen = errlen, .f = out};
+    loc none = {-1, -1, NULL};
+    bool ok = false;
+    cJSON *root = NULL;
+
+    out->path = dup_str(path);
+    const char *slash = strrchr(path, '/');
+    size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
+    c.dir = malloc(dirlen + 1);
+    if (!out->path || !c.dir) {
+        fail(&c, &none, "out of memory");
+        goto done;
+    }
+    memcpy(c.dir, path, dirlen);
+    c.dir[dirlen] = '\0';
+
+    const char *end = NULL;
+    root = cJSON_ParseWithLengthOpts(json, len, &end, false);
+    if (!root) {
+        /* The parser reports where it stopped; a line number is what an editor needs. */
+        size_t line = 1, at = end && end >= json && end <= json + len ? (size_t)(end - json) : 0;
+        for (size_t i = 0; i < at; i++) line += json[i] == '\n';
+        fail(&c, &none, "invalid JSON (line %zu)", line);
+        goto done;
+    }
+    ok = parse_root(&c, root);
+done:
+    cJSON_Delete(root);
+    free(c.dir);
+    free(c.mesh_kinds);
+    if (!ok) sc_free(out);
+    return ok;
+}
+
+bool sc_load(const char *path, sc_file *out, char *err, size_t errlen) {
+    char *text;
+    size_t len;
+    memset(out, 0, sizeof *out);
+    if (!sc_read_file(path, &text, &len, err, errlen)) return false;
+    bool ok = sc_parse(path, text, len, out, err, errlen);
+    free(text);
+    return ok;
+}
+
+void sc_free(sc_file *file) {
+    if (!file) return;
+    for (size_t i = 0; i < file->scene_count; i++) {
+        free(file->scenes[i].name);
+        free(file->scenes[i].draws);
+    }
+    free(file->scenes);
+    for (size_t i = 0; i < file->mesh_count; i++) {
+        sc_mesh_free(&file->meshes[i]);
+        free(file->mesh_sources[i]);
+    }
+    free(file->meshes);
+    free(file->mesh_sources);
+    for (size_t i = 0; i < file->texture_count; i++) {
+        sc_image_free(&file->textures[i]);
+        free(file->texture_sources[i]);
+    }
+    free(file->textures);
+    free(file->texture_sources);
+    free(file->path);
+    memset(file, 0, sizeof *file);
+}

@@ -1,0 +1,93 @@
+/* scene.h - scene files: lists of draws (mesh, texture, state, matrices) per named scene, with the
+ * meshes and textures they use loaded once per file. The format is described in
+ * docs/scene-format.md.
+ *
+ * API-neutral: the state is described by this file's own enums, which each renderer maps to its
+ * API.
+ */
+#ifndef SC_SCENE_H
+#define SC_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "image_io.h"
+#include "obj.h"
+
+/* Largest scene, texture and heightmap side accepted. */
+#define SC_MAX_IMAGE_SIZE 16384
+/* Longest scene name: it becomes a file name, with an extension added. */
+#define SC_MAX_NAME_LENGTH 200
+
+/* In every enum, the first value (0) is the format's default. */
+typedef enum sc_mode {
+    SC_MODE_VERTEX_COLOR, /* fragment = interpolated vertex colour */
+    SC_MODE_TEXTURE,      /* fragment = vertex colour * texel (vertex colour if texture is -1) */
+} sc_mode;
+
+typedef enum sc_filter { SC_FILTER_BILINEAR, SC_FILTER_NEAREST } sc_filter;
+typedef enum sc_wrap { SC_WRAP_REPEAT, SC_WRAP_CLAMP } sc_wrap;
+typedef enum sc_cull { SC_CULL_NONE, SC_CULL_BACK, SC_CULL_FRONT } sc_cull;
+typedef enum sc_front_face { SC_FRONT_FACE_CCW, SC_FRONT_FACE_CW } sc_front_face;
+
+typedef enum sc_compare {
+    SC_COMPARE_LESS,
+    SC_COMPARE_NEVER,
+    SC_COMPARE_EQUAL,
+    SC_COMPARE_LESS_EQUAL,
+    SC_COMPARE_GREATER,
+    SC_COMPARE_NOT_EQUAL,
+    SC_COMPARE_GREATER_EQUAL,
+    SC_COMPARE_ALWAYS,
+} sc_compare;
+
+/* One draw call. */
+typedef struct sc_draw {
+    int mesh;    /* index into sc_file.meshes */
+    int texture; /* index into sc_file.textures, or -1 when the draw names none (null) */
+    sc_mode mode;
+    sc_filter filter;
+    sc_wrap wrap;
+    sc_cull cull;
+    sc_front_face front_face;
+    sc_compare depth_compare;
+    bool depth_write;
+    float world_view[16]; /* row-major: elements 0..3 are the first row */
+    float proj[16];       /* row-major; clip = proj * world_view * position */
+} sc_draw;
+
+/* One image to render. */
+typedef struct sc_scene {
+    char *name;           /* [A-Za-z0-9_.-]+, unique in the file */
+    int width, height;    /* 1 .. SC_MAX_IMAGE_SIZE */
+    float clear_color[4]; /* r, g, b, a in [0, 1] */
+    sc_draw *draws;       /* in order; may be empty (the image is only cleared) */
+    size_t draw_count;
+} sc_scene;
+
+/* A loaded scene file: the scenes and everything their draws refer to. */
+typedef struct sc_file {
+    char *path; /* as given to sc_load / sc_parse */
+    sc_scene *scenes;
+    size_t scene_count;
+    sc_mesh *meshes;
+    char **mesh_sources; /* per mesh, where it came from (for messages): a path or heightmap spec */
+    size_t mesh_count;
+    sc_image *textures;     /* RGBA8, top row first */
+    char **texture_sources; /* per texture, its path */
+    size_t texture_count;
+} sc_file;
+
+/** Loads a scene file and every mesh and texture it names; on failure *out is zeroed. */
+bool sc_load(const char *path, sc_file *out, char *err, size_t errlen);
+/** Parses scene JSON text; path names it in messages and relative paths start at its folder. */
+bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, char *err,
+              size_t errlen);
+/** Frees everything a loaded file holds and zeroes it; a zeroed file is fine. */
+void sc_free(sc_file *file);
+
+/** Builds the heightmap grid mesh of an image (see docs/scene-format.md); needs 2x2 pixels. */
+bool sc_heightmap_mesh(const sc_image *image, float height_scale, sc_mesh *out, char *err,
+                       size_t errlen);
+
+#endif

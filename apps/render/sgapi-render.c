@@ -1,0 +1,515 @@
+/* sgapi-render - renders every scene of scene files with sgapi and writes one PNG per scene.
+ *
+ *   sgapi-render [--frames N] [--scene NAME]... [--threads T] SCENE.json... -o DIR
+ *
+ * Writes DIR/<scene name>.png and prints, per scene, the wall-clock time of one frame: the time
+ * from sgBeginRenderPass to the return of sgEndRenderPass (loading and uploads are not counted),
+ * the median over N frames.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include <sgapi/sgapi.h>
+
+#include "image_io.h"
+#include "scene.h"
+
+typedef struct options {
+    const char *out_dir;
+    int frames;
+    int threads;
+    const char **files;
+    int file_count;
+    const char **scenes; /* --scene filters; none: every scene */
+    int scene_count;
+} options;
+
+static void usage(FILE *f) {
+    fprintf(f, "usage: sgapi-render [options] SCENE.json... -o DIR\n"
+               "Renders every scene of the files to DIR/<scene name>.png and prints each scene's\n"
+               "time per frame (render pass only).\n"
+               "  -o DIR          output folder, created if missing (required)\n"
+               "  --frames N      render each scene N times and print the median (default 1)\n"
+               "  --scene NAME    render only scenes of that name (repeatable)\n"
+               "  --threads T     worker threads for the device (default 0: all cores)\n"
+               "  -h, --help      show this help\n");
+}
+
+/* A whole decimal number in [lo, hi]. */
+static bool parse_int(const char *s, int lo, int hi, int *out) {
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end != '\0' || v < lo || v > hi) return false;
+    *out = (int)v;
+    return true;
+}
+
+/* 0: parsed; 1: help was printed; 2: bad arguments (already reported). */
+static int parse_args(int argc, char **argv, options *o) {
+    o->frames = 1;
+    o->files = calloc((size_t)argc, sizeof *o->files);
+    o->scenes = calloc((size_t)argc, sizeof *o->scenes);
+    if (!o->files || !o->scenes) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        return 2;
+    }
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
+                           !strcmp(a, "--threads");
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            return 1;
+        }
+        if (takes_value && !value) {
+            fprintf(stderr, "sgapi-render: %s needs a value\n", a);
+            return 2;
+        }
+        if (!strcmp(a, "-o")) {
+            o->out_dir = value;
+        } else if (!strcmp(a, "--frames")) {
+            if (!parse_int(value, 1, 1000000, &o->frames)) {
+                fprintf(stderr, "sgapi-render: --frames needs a whole number >= 1, not '%s'\n",
+                        value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--threads")) {
+            if (!parse_int(value, 0, 4096, &o->threads)) {
+                fprintf(stderr, "sgapi-render: --threads needs a whole number >= 0, not '%s'\n",
+                        value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--scene")) {
+            o->scenes[o->scene_count++] = value;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            fprintf(stderr, "sgapi-render: unknown option '%s' (see --help)\n", a);
+            return 2;
+        } else {
+            o->files[o->file_count++] = a;
+        }
+        if (takes_value) i++;
+    }
+    if (o->file_count == 0 || !o->out_dir) {
+        fprintf(stderr, "sgapi-render: %s\n",
+                o->file_count == 0 ? "no scene file given" : "no output folder (-o DIR)");
+        usage(stderr);
+        return 2;
+    }
+    return 0;
+}
+
+/* Creates a folder and its missing parents, like mkdir -p. */
+static bool make_dirs(const char *path) {
+    size_t n = strlen(path);
+    char *p = malloc(n + 1);
+    if (!p) return false;
+    memcpy(p, path, n + 1);
+    bool ok = true;
+    for (size_t i = 1; i <= n && ok; i++) {
+        if (p[i] != '/' && p[i] != '\0') continue;
+        char saved = p[i];
+        p[i] = '\0';
+        struct stat st;
+        if (mkdir(p, 0777) != 0 && errno != EEXIST)
+            ok = false;
+        else if (stat(p, &st) != 0 || !S_ISDIR(st.st_mode))
+            ok = false;
+        if (!ok)
+            fprintf(stderr, "sgapi-render: cannot create folder '%s': %s\n", p,
+                    errno == EEXIST ? "a file of that name exists" : strerror(errno));
+        p[i] = saved;
+    }
+    free(p);
+    return ok;
+}
+
+static bool selected(const options *o, const char *name) {
+    if (o->scene_count == 0) return true;
+    for (int i = 0; i < o->scene_count; i++)
+        if (!strcmp(o->scenes[i], name)) return true;
+    return false;
+}
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Lets the compiler check the format arguments of the error helpers. */
+#if defined(__GNUC__)
+#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
+#else
+#define PRINTF_LIKE(fmt, args)
+#endif
+
+static bool sg_fail(sgDevice *dev, sgResult r, const char *fmt, ...) PRINTF_LIKE(3, 4);
+
+/* Reports a failed sgapi call with its context; always returns false. */
+static bool sg_fail(sgDevice *dev, sgResult r, const char *fmt, ...) {
+    va_list ap;
+    fprintf(stderr, "sgapi-render: ");
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    if (dev)
+        fprintf(stderr, ": %s: %s\n", sgResultName(r), sgGetLastError(dev));
+    else
+        fprintf(stderr, ": %s\n", sgResultName(r));
+    return false;
+}
+
+/* ---- pipeline cache -------------------------------------------------------------------------- */
+
+typedef struct pso_cache {
+    sgPipelineDesc *descs;
+    sgPipelineStateObject *psos;
+    size_t count, cap;
+} pso_cache;
+
+static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
+    return a->shade == b->shade && a->filter == b->filter && a->wrap == b->wrap &&
+           a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
+           a->cull == b->cull && a->front_face == b->front_face && a->blend == b->blend;
+}
+
+/* The pipeline for a state: created on first use, then reused for every draw with that state. */
+static bool get_pso(sgDevice *dev, pso_cache *c, const sgPipelineDesc *desc,
+                    sgPipelineStateObject *out) {
+    for (size_t i = 0; i < c->count; i++) {
+        if (same_desc(&c->descs[i], desc)) {
+            *out = c->psos[i];
+            return true;
+        }
+    }
+    if (c->count == c->cap) {
+        size_t n = c->cap ? c->cap * 2 : 16;
+        sgPipelineDesc *d = realloc(c->descs, n * sizeof *d);
+        if (d) c->descs = d;
+        sgPipelineStateObject *p = d ? realloc(c->psos, n * sizeof *p) : NULL;
+        if (p) c->psos = p;
+        if (!d || !p) {
+            fprintf(stderr, "sgapi-render: out of memory\n");
+            return false;
+        }
+        c->cap = n;
+    }
+    sgResult r = sgCreatePipelineStateObject(dev, desc, out);
+    if (r != SG_OK) return sg_fail(dev, r, "sgCreatePipelineStateObject");
+    c->descs[c->count] = *desc;
+    c->psos[c->count++] = *out;
+    return true;
+}
+
+static const sgCompare compare_map[] = {
+    [SC_COMPARE_LESS] = SG_COMPARE_LESS,
+    [SC_COMPARE_NEVER] = SG_COMPARE_NEVER,
+    [SC_COMPARE_EQUAL] = SG_COMPARE_EQUAL,
+    [SC_COMPARE_LESS_EQUAL] = SG_COMPARE_LESS_EQUAL,
+    [SC_COMPARE_GREATER] = SG_COMPARE_GREATER,
+    [SC_COMPARE_NOT_EQUAL] = SG_COMPARE_NOT_EQUAL,
+    [SC_COMPARE_GREATER_EQUAL] = SG_COMPARE_GREATER_EQUAL,
+    [SC_COMPARE_ALWAYS] = SG_COMPARE_ALWAYS,
+};
+
+/* The pipeline state of a draw; filter and wrap only matter when a texture is sampled, so they
+ * are left at their defaults otherwise, letting more draws share one pipeline. */
+static sgPipelineDesc pipeline_of(const sc_draw *d) {
+    sgPipelineDesc p;
+    memset(&p, 0, sizeof p);
+    /* A texture draw without a texture is drawn with its vertex colours: the OpenGL reference
+     * binds an incomplete texture there, which disables texturing. */
+    bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
+    p.shade = textured ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_VERTEX_COLOR;
+    if (textured) {
+        p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
+        p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
+    }
+    p.depth.compare = compare_map[d->depth_compare];
+    p.depth.write = d->depth_write;
+    p.cull = d->cull == SC_CULL_BACK    ? SG_CULL_BACK
+             : d->cull == SC_CULL_FRONT ? SG_CULL_FRONT
+                                        : SG_CULL_NONE;
+    p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
+    p.blend = SG_BLEND_OPAQUE;
+    return p;
+}
+
+/* ---- rendering ------------------------------------------------------------------------------- */
+
+/* What one file's meshes and textures became on the device. */
+typedef struct uploads {
+    sgGeom *geoms;
+    sgImage2D *images;
+    size_t geom_count, image_count;
+} uploads;
+
+static void destroy_uploads(sgDevice *dev, uploads *u) {
+    for (size_t i = 0; i < u->geom_count; i++) sgDestroyGeom(dev, u->geoms[i]);
+    for (size_t i = 0; i < u->image_count; i++) sgDestroyImage2D(dev, u->images[i]);
+    free(u->geoms);
+    free(u->images);
+    memset(u, 0, sizeof *u);
+}
+
+static bool upload(sgDevice *dev, const sc_file *f, uploads *u) {
+    memset(u, 0, sizeof *u);
+    u->geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->geoms);
+    u->images = calloc(f->texture_count ? f->texture_count : 1, sizeof *u->images);
+    if (!u->geoms || !u->images) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        return false;
+    }
+    for (size_t i = 0; i < f->texture_count; i++) {
+        const sc_image *t = &f->textures[i];
+        sgImage2DDesc desc = {t->width, t->height, SG_FORMAT_RGBA8_UNORM, t->pixels};
+        sgResult r = sgCreateImage2D(dev, &desc, &u->images[i]);
+        if (r != SG_OK) return sg_fail(dev, r, "texture '%s'", f->texture_sources[i]);
+        u->image_count++;
+    }
+    for (size_t i = 0; i < f->mesh_count; i++) {
+        const sc_mesh *m = &f->meshes[i];
+        sgGeomDesc desc;
+        memset(&desc, 0, sizeof desc);
+        /* The loader caps both counts at INT32_MAX, so they fit. */
+        desc.vertex_count = (int)m->vertex_count;
+        desc.positions = m->positions;
+        desc.colors = m->colors;
+        desc.texcoords = m->texcoords;
+        desc.normals = m->normals;
+        desc.index_count = (int)m->index_count;
+        desc.indices = m->indices;
+        desc.primitive = SG_PRIMITIVE_TRIANGLES;
+        /* The loaded file outlives the geom, so the arrays need not be copied. */
+        desc.storage = SG_STORAGE_REFERENCE;
+        sgResult r = sgCreateGeom(dev, &desc, &u->geoms[i]);
+        if (r != SG_OK) return sg_fail(dev, r, "mesh '%s'", f->mesh_sources[i]);
+        u->geom_count++;
+    }
+    return true;
+}
+
+/* Renders one scene frames times, writes its PNG and prints its median time per frame. */
+static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, const sc_scene *s,
+                         const uploads *u, pso_cache *cache) {
+    bool ok = false;
+    sgImage2D color = {0}, depth = {0};
+    sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
+    double *times = calloc((size_t)o->frames, sizeof *times);
+    unsigned char *pixels = malloc((size_t)s->width * (size_t)s->height * 4);
+    char *png = malloc(strlen(o->out_dir) + strlen(s->name) + 6);
+    if (!psos || !times || !pixels || !png) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        goto done;
+    }
+    for (size_t i = 0; i < s->draw_count; i++) {
+        sgPipelineDesc desc = pipeline_of(&s->draws[i]);
+        if (!get_pso(dev, cache, &desc, &psos[i])) {
+            fprintf(stderr, "sgapi-render: in %s, scene '%s', draw %zu\n", f->path, s->name, i);
+            goto done;
+        }
+    }
+
+    sgImage2DDesc cd = {s->width, s->height, SG_FORMAT_RGBA8_UNORM, NULL};
+    sgImage2DDesc dd = {s->width, s->height, SG_FORMAT_D32_FLOAT, NULL};
+    sgResult r = sgCreateImage2D(dev, &cd, &color);
+    if (r != SG_OK) {
+        sg_fail(dev, r, "scene '%s': colour target", s->name);
+        goto done;
+    }
+    r = sgCreateImage2D(dev, &dd, &depth);
+    if (r != SG_OK) {
+        sg_fail(dev, r, "scene '%s': depth target", s->name);
+        goto done;
+    }
+
+    sgPassDesc pass;
+    memset(&pass, 0, sizeof pass);
+    pass.color = color;
+    pass.depth = depth;
+    pass.color_load = SG_LOAD_CLEAR;
+    pass.depth_load = SG_LOAD_DEFAULT; /* clears to 1.0, the far plane */
+    memcpy(pass.clear_color, s->clear_color, sizeof pass.clear_color);
+
+    for (int frame = 0; frame < o->frames; frame++) {
+        double t0 = now_ms();
+        r = sgBeginRenderPass(dev, &pass);
+        if (r != SG_OK) {
+            sg_fail(dev, r, "scene '%s': sgBeginRenderPass", s->name);
+            goto done;
+        }
+        for (size_t i = 0; i < s->draw_count; i++) {
+            const sc_draw *d = &s->draws[i];
+            sgDrawParams params;
+            memset(&params, 0, sizeof params);
+            memcpy(params.world_view, d->world_view, sizeof params.world_view);
+            memcpy(params.proj, d->proj, sizeof params.proj);
+            if (d->texture >= 0) params.texture = u->images[d->texture];
+            r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
+            if (r != SG_OK) {
+                sg_fail(dev, r, "scene '%s', draw %zu (%s): sgDraw", s->name, i,
+                        f->mesh_sources[d->mesh]);
+                sgEndRenderPass(dev, &pass); /* close the pass so the targets can be freed */
+                goto done;
+            }
+        }
+        r = sgEndRenderPass(dev, &pass);
+        if (r != SG_OK) {
+            sg_fail(dev, r, "scene '%s': sgEndRenderPass", s->name);
+            goto done;
+        }
+        times[frame] = now_ms() - t0;
+    }
+
+    r = sgReadImage2D(dev, color, pixels, 0);
+    if (r != SG_OK) {
+        sg_fail(dev, r, "scene '%s': sgReadImage2D", s->name);
+        goto done;
+    }
+    sprintf(png, "%s/%s.png", o->out_dir, s->name);
+    char err[1024];
+    if (!sc_image_write_png(png, s->width, s->height, pixels, err, sizeof err)) {
+        fprintf(stderr, "sgapi-render: %s\n", err);
+        goto done;
+    }
+    qsort(times, (size_t)o->frames, sizeof *times, cmp_double);
+    double median = o->frames % 2 ? times[o->frames / 2]
+                                  : (times[o->frames / 2 - 1] + times[o->frames / 2]) / 2;
+    if (o->frames > 1)
+        printf("%-32s %10.3f ms/frame (median of %d)\n", s->name, median, o->frames);
+    else
+        printf("%-32s %10.3f ms/frame\n", s->name, median);
+    fflush(stdout);
+    ok = true;
+done:
+    if (depth.id) sgDestroyImage2D(dev, depth);
+    if (color.id) sgDestroyImage2D(dev, color);
+    free(psos);
+    free(times);
+    free(pixels);
+    free(png);
+    return ok;
+}
+
+/* ---- main ------------------------------------------------------------------------------------ */
+
+static size_t max_size(size_t a, size_t b) {
+    return a > b ? a : b;
+}
+
+int main(int argc, char **argv) {
+    options o = {0};
+    int status = parse_args(argc, argv, &o);
+    if (status) {
+        free(o.files);
+        free(o.scenes);
+        return status == 1 ? 0 : 2;
+    }
+
+    /* Everything is loaded first, so a bad file stops the run before any rendering. */
+    sc_file *files = calloc((size_t)o.file_count, sizeof *files);
+    sgDevice *dev = NULL;
+    pso_cache cache = {0};
+    int loaded = 0;
+    status = 1;
+    if (!files) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        goto done;
+    }
+    for (; loaded < o.file_count; loaded++) {
+        char err[1024];
+        if (!sc_load(o.files[loaded], &files[loaded], err, sizeof err)) {
+            fprintf(stderr, "sgapi-render: %s\n", err);
+            goto done;
+        }
+    }
+
+    /* Each name is one output file: two selected scenes of one name would overwrite each other. */
+    size_t max_images = 0, max_geoms = 0;
+    for (int i = 0; i < o.file_count; i++) {
+        const sc_file *f = &files[i];
+        max_images = max_size(max_images, f->texture_count);
+        max_geoms = max_size(max_geoms, f->mesh_count);
+        for (size_t j = 0; j < f->scene_count; j++) {
+            const char *name = f->scenes[j].name;
+            if (!selected(&o, name)) continue;
+            for (int k = 0; k <= i; k++) {
+                size_t end = k == i ? j : files[k].scene_count;
+                for (size_t m = 0; m < end; m++) {
+                    if (!strcmp(files[k].scenes[m].name, name)) {
+                        fprintf(stderr, "sgapi-render: scene '%s' is in both %s and %s\n", name,
+                                files[k].path, f->path);
+                        goto done;
+                    }
+                }
+            }
+        }
+    }
+    for (int i = 0; i < o.scene_count; i++) {
+        bool found = false;
+        for (int k = 0; k < o.file_count && !found; k++)
+            for (size_t m = 0; m < files[k].scene_count && !found; m++)
+                found = !strcmp(files[k].scenes[m].name, o.scenes[i]);
+        if (!found) {
+            fprintf(stderr, "sgapi-render: no scene named '%s'\n", o.scenes[i]);
+            goto done;
+        }
+    }
+    if (!make_dirs(o.out_dir)) goto done;
+
+    /* Pools big enough for the largest file (its textures plus the two targets) and for every
+     * distinct pipeline_of() result: 5 colour sources (vertex colour; texture x 2 filters x
+     * 2 wraps) x 8 compares x 2 depth writes x 3 culls x 2 front faces. */
+    if (max_images > INT_MAX - 2 || max_geoms > INT_MAX) {
+        fprintf(stderr, "sgapi-render: too many meshes or textures in one file\n");
+        goto done;
+    }
+    sgDeviceDesc dd;
+    memset(&dd, 0, sizeof dd);
+    dd.thread_count = o.threads;
+    if (max_images + 2 > 256) dd.image_pool_size = (int)max_images + 2;
+    if (max_geoms > 1024) dd.geom_pool_size = (int)max_geoms;
+    dd.pipeline_pool_size = 5 * 8 * 2 * 3 * 2;
+    sgResult r = sgCreateDevice(&dd, &dev);
+    if (r != SG_OK) {
+        sg_fail(NULL, r, "sgCreateDevice");
+        goto done;
+    }
+
+    for (int i = 0; i < o.file_count; i++) {
+        const sc_file *f = &files[i];
+        uploads u;
+        bool ok = upload(dev, f, &u);
+        for (size_t j = 0; ok && j < f->scene_count; j++) {
+            if (selected(&o, f->scenes[j].name))
+                ok = render_scene(dev, &o, f, &f->scenes[j], &u, &cache);
+        }
+        destroy_uploads(dev, &u);
+        if (!ok) goto done;
+    }
+    status = 0;
+done:
+    sgDestroyDevice(dev); /* also destroys the cached pipelines */
+    free(cache.descs);
+    free(cache.psos);
+    for (int i = 0; i < loaded; i++) sc_free(&files[i]);
+    free(files);
+    free(o.files);
+    free(o.scenes);
+    return status;
+}

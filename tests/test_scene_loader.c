@@ -1,0 +1,549 @@
+/* test_scene_loader.c - the API-neutral loaders: OBJ meshes, heightmap meshes and scene files.
+ *
+ * Every input file is written by the test itself into a fresh temporary folder.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "test_common.h"
+
+#include "image_io.h"
+#include "obj.h"
+#include "scene.h"
+
+/* ---- helpers --------------------------------------------------------------------------------- */
+
+#define MAX_FILES 32
+
+/* The temporary folder of the whole group and the files written into it. */
+typedef struct tmp_dir {
+    char path[512];
+    char *files[MAX_FILES];
+    int file_count;
+} tmp_dir;
+
+static int group_setup(void **state) {
+    tmp_dir *t = calloc(1, sizeof *t);
+    if (!t) return -1;
+    const char *base = getenv("TMPDIR");
+    snprintf(t->path, sizeof t->path, "%s/sgscene-test-XXXXXX", base && *base ? base : "/tmp");
+    if (!mkdtemp(t->path)) {
+        free(t);
+        return -1;
+    }
+    *state = t;
+    return 0;
+}
+
+static int group_teardown(void **state) {
+    tmp_dir *t = *state;
+    for (int i = 0; i < t->file_count; i++) {
+        remove(t->files[i]);
+        free(t->files[i]);
+    }
+    rmdir(t->path);
+    free(t);
+    return 0;
+}
+
+/* The full path of name in the temporary folder; remembered, so teardown removes the file. */
+static char *tmp_path(tmp_dir *t, const char *name) {
+    size_t n = strlen(t->path) + strlen(name) + 2;
+    char *p = malloc(n);
+    assert_non_null(p);
+    snprintf(p, n, "%s/%s", t->path, name);
+    for (int i = 0; i < t->file_count; i++) {
+        if (!strcmp(t->files[i], p)) {
+            free(p);
+            return t->files[i];
+        }
+    }
+    assert_true(t->file_count < MAX_FILES);
+    t->files[t->file_count++] = p;
+    return p;
+}
+
+static const char *write_file(tmp_dir *t, const char *name, const char *text) {
+    const char *path = tmp_path(t, name);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(text, 1, strlen(text), f), strlen(text));
+    assert_int_equal(fclose(f), 0);
+    return path;
+}
+
+static bool parse_obj(const char *text, sc_mesh *m, char *err, size_t errlen) {
+    return sc_obj_parse("test.obj", text, strlen(text), m, err, errlen);
+}
+
+static void assert_floats(const float *got, const float *want, int n) {
+    for (int i = 0; i < n; i++) assert_float_equal(got[i], want[i], 1e-6);
+}
+
+static void assert_indices(const sc_mesh *m, const uint32_t *want, uint32_t n) {
+    assert_int_equal(m->index_count, n);
+    for (uint32_t i = 0; i < n; i++) assert_int_equal(m->indices[i], want[i]);
+}
+
+/* ---- OBJ ------------------------------------------------------------------------------------- */
+
+static void obj_colour_extension(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    assert_true(parse_obj("# comment\n\no thing\ng group\ns 1\nusemtl red\nmtllib x.mtl\n"
+                          "v 0 0 0 1 0 0\nv 1 0 0 0 0.5 0\nv 0 1 0\nf 1 2 3\n",
+                          &m, err, sizeof err));
+    assert_int_equal(m.vertex_count, 3);
+    assert_null(m.texcoords);
+    assert_null(m.normals);
+    const float pos[12] = {0, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1};
+    const float col[12] = {1, 0, 0, 1, 0, 0.5f, 0, 1, 1, 1, 1, 1}; /* no colour: white */
+    assert_floats(m.positions, pos, 12);
+    assert_floats(m.colors, col, 12);
+    const uint32_t idx[3] = {0, 1, 2};
+    assert_indices(&m, idx, 3);
+    sc_mesh_free(&m);
+}
+
+static void obj_fan_split(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    const char *verts = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0.5 0\n";
+    char text[256];
+
+    snprintf(text, sizeof text, "%sf 1 2 3 4\n", verts);
+    assert_true(parse_obj(text, &m, err, sizeof err));
+    const uint32_t quad[6] = {0, 1, 2, 0, 2, 3};
+    assert_indices(&m, quad, 6);
+    assert_int_equal(m.vertex_count, 4);
+    sc_mesh_free(&m);
+
+    snprintf(text, sizeof text, "%sf 1 2 3 4 5\n", verts);
+    assert_true(parse_obj(text, &m, err, sizeof err));
+    const uint32_t penta[9] = {0, 1, 2, 0, 2, 3, 0, 3, 4};
+    assert_indices(&m, penta, 9);
+    sc_mesh_free(&m);
+}
+
+static void obj_negative_indices(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    /* -1 is the latest element defined before the face, so the second face reaches v 4..6. */
+    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                          "f -3/-3 -2/-2 -1/-1\n"
+                          "v 5 0 0\nv 6 0 0\nv 7 0 0\n"
+                          "f -3/1 -2/2 -1/3\n",
+                          &m, err, sizeof err));
+    assert_int_equal(m.vertex_count, 6);
+    const uint32_t idx[6] = {0, 1, 2, 3, 4, 5};
+    assert_indices(&m, idx, 6);
+    assert_float_equal(m.positions[3 * 4], 5.0f, 0);
+    assert_float_equal(m.positions[5 * 4], 7.0f, 0);
+    const float tc[4] = {0, 0, 1, 0};
+    assert_floats(m.texcoords, tc, 4);
+    sc_mesh_free(&m);
+}
+
+static void obj_position_and_normal(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 1 0\n"
+                          "f 1//1 2//1 3//2\r\n",
+                          &m, err, sizeof err));
+    assert_null(m.texcoords);
+    assert_non_null(m.normals);
+    const float n[9] = {0, 0, 1, 0, 0, 1, 0, 1, 0};
+    assert_floats(m.normals, n, 9);
+    sc_mesh_free(&m);
+
+    /* a/b/c: all three attributes. */
+    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.75\nvn 1 0 0\n"
+                          "f 1/1/1 2/1/1 3/1/1\n",
+                          &m, err, sizeof err));
+    assert_non_null(m.texcoords);
+    assert_non_null(m.normals);
+    assert_float_equal(m.texcoords[4], 0.25f, 0);
+    assert_float_equal(m.texcoords[5], 0.75f, 0);
+    sc_mesh_free(&m);
+}
+
+static void obj_bad_index_is_an_error(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    static const struct {
+        const char *text, *want;
+    } cases[] = {
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "test.obj:4:"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "out of range"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "index 0"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n", "out of range"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n", "texture coordinate"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//2 2//1 3//1\n", "normal"},
+        /* A face may only use what is defined before it. */
+        {"f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", "test.obj:1:"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n", "out of range"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        memset(err, 0, sizeof err);
+        assert_false(parse_obj(cases[i].text, &m, err, sizeof err));
+        if (!strstr(err, cases[i].want))
+            fail_msg("case %zu: '%s' lacks '%s'", i, err, cases[i].want);
+        assert_null(m.positions);
+        assert_int_equal(m.vertex_count, 0);
+    }
+}
+
+static void obj_garbage_is_an_error(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    static const char *const cases[] = {
+        "",
+        "just some words\n",
+        "v 1 2\nf 1 1 1\n",
+        "v a b c\n",
+        "v 1 2 3 4 5\n",
+        "v 1 2 3 1e999\n",
+        "v nan 0 0\n",
+        "vn 1 2\n",
+        "vt\n",
+        "v 0 0 0\nf 1 1\n",
+        "v 0 0 0\nf 1/ 1 1\n",
+        "v 0 0 0\nf 1// 1 1\n",
+        "v 0 0 0\nf 1/1/1/1 1 1\n",
+        "v 0 0 0\nf 1x 1 1\n",
+        "v 0 0 0\nf --1 1 1\n",
+        "v 0.000000000000000000000000000000000000000000000000000000000000000000000000001 0 0\n",
+        "\xff\xfe\x01\x02 v f / //\n",
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        err[0] = '\0';
+        assert_false(parse_obj(cases[i], &m, err, sizeof err));
+        if (err[0] == '\0') fail_msg("case %zu: no error message", i);
+    }
+    /* A NUL byte in the middle of a line. */
+    static const char nul[] = "v 0 0 0\nv 1 0\0 0\nv 0 1 0\nf 1 2 3\n";
+    assert_false(sc_obj_parse("nul.obj", nul, sizeof nul - 1, &m, err, sizeof err));
+    assert_non_null(strstr(err, "nul.obj:2:"));
+
+    /* Random lines of OBJ-like tokens: any result is fine as long as it is a clean one. */
+    static const char *const tokens[] = {"v", "vt", "vn",  "f",  " ", "1",    "2",  "-1", "-3",
+                                         "/", "//", "0.5", "\n", "#", "1e30", "\t", "x"};
+    const size_t ntok = sizeof tokens / sizeof tokens[0];
+    uint32_t seed = 12345;
+    char text[512];
+    for (int round = 0; round < 3000; round++) {
+        size_t len = 0;
+        text[0] = '\0';
+        int count = 1 + (int)(seed % 60);
+        for (int k = 0; k < count; k++) {
+            seed = seed * 1664525u + 1013904223u;
+            const char *tok = tokens[(seed >> 16) % ntok];
+            size_t n = strlen(tok);
+            if (len + n + 1 >= sizeof text) break;
+            memcpy(text + len, tok, n + 1);
+            len += n;
+        }
+        if (parse_obj(text, &m, err, sizeof err)) {
+            for (uint32_t k = 0; k < m.index_count; k++) assert_true(m.indices[k] < m.vertex_count);
+            sc_mesh_free(&m);
+        } else {
+            assert_true(err[0] != '\0');
+        }
+    }
+}
+
+static void obj_shares_equal_tuples(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    /* Two triangles of a quad, position and texcoord indices equal: 4 vertices, not 6. */
+    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                          "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
+                          &m, err, sizeof err));
+    assert_int_equal(m.vertex_count, 4);
+    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    assert_indices(&m, idx, 6);
+    sc_mesh_free(&m);
+
+    /* The same position with other texcoords, or without one, is another vertex. */
+    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\n"
+                          "f 1/1 2/1 3/1\nf 1/2 2/1 3\n",
+                          &m, err, sizeof err));
+    assert_int_equal(m.vertex_count, 5);
+    const uint32_t idx2[6] = {0, 1, 2, 3, 1, 4};
+    assert_indices(&m, idx2, 6);
+    assert_float_equal(m.texcoords[3 * 2], 1.0f, 0);
+    assert_float_equal(m.texcoords[4 * 2], 0.0f, 0); /* none: zeros */
+    sc_mesh_free(&m);
+}
+
+static void obj_load_from_file(void **state) {
+    tmp_dir *t = *state;
+    char err[256];
+    sc_mesh m;
+    const char *path = write_file(t, "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3");
+    assert_true(sc_obj_load(path, &m, err, sizeof err));
+    assert_int_equal(m.index_count, 3);
+    sc_mesh_free(&m);
+    assert_false(sc_obj_load(tmp_path(t, "missing.obj"), &m, err, sizeof err));
+    assert_non_null(strstr(err, "missing.obj"));
+}
+
+/* ---- heightmap ------------------------------------------------------------------------------- */
+
+static void heightmap_mesh(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    /* 3x2 pixels, stored top row first; grid rows count from the bottom, so the stored second
+     * row is grid row y = 0. Pixel (2, 1) has R+G+B = 255. */
+    const unsigned char px[3 * 2 * 4] = {
+        100, 100, 100, 255, 50,  50,  50,  255, 85, 85, 85, 255, /* y = 1 */
+        0,   0,   0,   255, 255, 255, 255, 255, 10, 20, 30, 255, /* y = 0 */
+    };
+    assert_true(sc_image_write_png(tmp_path(t, "height.png"), 3, 2, px, err, sizeof err));
+    const char *path =
+        write_file(t, "hm.json",
+                   "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"hm\", \"draws\": ["
+                   "{\"mesh\": {\"heightmap\": \"height.png\", \"height_scale\": 3},"
+                   " \"worldView\": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1],"
+                   " \"proj\": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]}]}");
+    sc_file f;
+    if (!sc_load(path, &f, err, sizeof err)) fail_msg("%s", err);
+    assert_int_equal(f.mesh_count, 1);
+    const sc_mesh *m = &f.meshes[0];
+    assert_int_equal(m->vertex_count, 6);
+    assert_int_equal(m->index_count, 12); /* 2 cells x 2 triangles */
+    const uint32_t idx[12] = {0, 3, 1, 1, 3, 4, 1, 4, 2, 2, 4, 5};
+    assert_indices(m, idx, 12);
+    /* Pixel (2, 1): x - W/2, scale * (R+G+B) / 765, y - H/2. */
+    const float p5[4] = {0.5f, 1.0f, 0.0f, 1.0f};
+    assert_floats(m->positions + 5 * 4, p5, 4);
+    const float p1[4] = {-0.5f, 3.0f, -1.0f, 1.0f};
+    assert_floats(m->positions + 1 * 4, p1, 4);
+    assert_float_equal(m->texcoords[5 * 2], 2.0f / 3.0f, 1e-6);
+    assert_float_equal(m->texcoords[5 * 2 + 1], 0.5f, 1e-6);
+    assert_float_equal(m->colors[5 * 4], 1.0f, 0);
+    assert_null(m->normals);
+    sc_free(&f);
+
+    /* A heightmap needs two rows and two columns. */
+    sc_image thin = {1, 2, (unsigned char *)px};
+    sc_mesh none;
+    assert_false(sc_heightmap_mesh(&thin, 1.0f, &none, err, sizeof err));
+}
+
+/* ---- scene files ----------------------------------------------------------------------------- */
+
+#define IDENTITY "[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]"
+#define MATRICES "\"worldView\": " IDENTITY ", \"proj\": " IDENTITY
+
+static void write_assets(tmp_dir *t) {
+    write_file(t, "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    const unsigned char px[4] = {255, 0, 0, 255};
+    char err[256];
+    assert_true(sc_image_write_png(tmp_path(t, "red.png"), 1, 1, px, err, sizeof err));
+}
+
+/* Loads scene text written to name; on failure returns false with the message in err. */
+static bool load_scene(tmp_dir *t, const char *name, const char *json, sc_file *f, char *err,
+                       size_t errlen) {
+    write_assets(t);
+    return sc_load(write_file(t, name, json), f, err, errlen);
+}
+
+static void scene_defaults(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    if (!load_scene(t, "defaults.json",
+                    "{\"width\": 64, \"height\": 32, \"matrices\": \"a note\", \"scenes\": ["
+                    "{\"name\": \"a\", \"draws\": [{\"mesh\": \"tri.obj\", " MATRICES "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(f.scene_count, 1);
+    const sc_scene *s = &f.scenes[0];
+    assert_string_equal(s->name, "a");
+    assert_int_equal(s->width, 64);
+    assert_int_equal(s->height, 32);
+    for (int i = 0; i < 4; i++) assert_float_equal(s->clear_color[i], 0.0f, 0);
+    assert_int_equal(s->draw_count, 1);
+    const sc_draw *d = &s->draws[0];
+    assert_int_equal(d->mesh, 0);
+    assert_int_equal(d->texture, -1);
+    assert_int_equal(d->mode, SC_MODE_VERTEX_COLOR);
+    assert_int_equal(d->filter, SC_FILTER_BILINEAR);
+    assert_int_equal(d->wrap, SC_WRAP_REPEAT);
+    assert_int_equal(d->cull, SC_CULL_NONE);
+    assert_int_equal(d->front_face, SC_FRONT_FACE_CCW);
+    assert_int_equal(d->depth_compare, SC_COMPARE_LESS);
+    assert_true(d->depth_write);
+    assert_float_equal(d->world_view[0], 1.0f, 0);
+    assert_float_equal(d->proj[15], 1.0f, 0);
+    sc_free(&f);
+}
+
+static void scene_overrides(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    if (!load_scene(
+            t, "overrides.json",
+            "{\"width\": 64, \"height\": 32, \"clear_color\": [0, 0, 0, 1], \"scenes\": ["
+            "{\"name\": \"a\", \"draws\": []},"
+            "{\"name\": \"b.2-x\", \"width\": 10, \"height\": 20,"
+            " \"clear_color\": [0.5, 0.25, 1, 0], \"draws\": ["
+            "  {\"mesh\": \"tri.obj\", \"texture\": \"red.png\", \"filter\": \"nearest\","
+            "   \"wrap\": \"clamp\", \"cull\": \"back\", \"front_face\": \"cw\","
+            "   \"depth_compare\": \"greater_equal\", \"depth_write\": false,"
+            "   \"worldView\": [2,0,0,0, 0,2,0,0, 0,0,2,0, 0,0,0,1], \"proj\": " IDENTITY "},"
+            "  {\"mesh\": \"tri.obj\", \"mode\": \"vertex_color\", \"texture\": \"red.png\","
+            "   \"cull\": \"front\", \"depth_compare\": \"always\", " MATRICES "}]}]}",
+            &f, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(f.scene_count, 2);
+    assert_int_equal(f.scenes[0].width, 64);
+    assert_int_equal(f.scenes[0].draw_count, 0);
+    assert_float_equal(f.scenes[0].clear_color[3], 1.0f, 0);
+    const sc_scene *s = &f.scenes[1];
+    assert_int_equal(s->width, 10);
+    assert_int_equal(s->height, 20);
+    assert_float_equal(s->clear_color[0], 0.5f, 0);
+    assert_float_equal(s->clear_color[1], 0.25f, 0);
+    assert_float_equal(s->clear_color[3], 0.0f, 0);
+
+    /* Both draws share the one mesh and the one texture. */
+    assert_int_equal(f.mesh_count, 1);
+    assert_int_equal(f.texture_count, 1);
+    assert_int_equal(f.textures[0].width, 1);
+    assert_int_equal(f.textures[0].pixels[0], 255);
+
+    const sc_draw *d = &s->draws[0];
+    assert_int_equal(d->texture, 0);
+    assert_int_equal(d->mode, SC_MODE_TEXTURE); /* implied by the texture */
+    assert_int_equal(d->filter, SC_FILTER_NEAREST);
+    assert_int_equal(d->wrap, SC_WRAP_CLAMP);
+    assert_int_equal(d->cull, SC_CULL_BACK);
+    assert_int_equal(d->front_face, SC_FRONT_FACE_CW);
+    assert_int_equal(d->depth_compare, SC_COMPARE_GREATER_EQUAL);
+    assert_false(d->depth_write);
+    assert_float_equal(d->world_view[0], 2.0f, 0);
+    d = &s->draws[1];
+    assert_int_equal(d->mesh, 0);
+    assert_int_equal(d->texture, 0);
+    assert_int_equal(d->mode, SC_MODE_VERTEX_COLOR);
+    assert_int_equal(d->cull, SC_CULL_FRONT);
+    assert_int_equal(d->depth_compare, SC_COMPARE_ALWAYS);
+    sc_free(&f);
+}
+
+static void scene_texture_null(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    if (!load_scene(t, "null.json",
+                    "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"n\", \"draws\": ["
+                    "{\"mesh\": \"tri.obj\", \"mode\": \"texture\", \"texture\": null, " MATRICES
+                    "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(f.scenes[0].draws[0].mode, SC_MODE_TEXTURE);
+    assert_int_equal(f.scenes[0].draws[0].texture, -1);
+    assert_int_equal(f.texture_count, 0);
+    sc_free(&f);
+}
+
+/* Scene files that must fail, each with words its message must contain. */
+static void scene_errors(void **state) {
+    tmp_dir *t = *state;
+    static const struct {
+        const char *json, *want1, *want2;
+    } cases[] = {
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"filter\": \"trilinear\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]",
+         "'filter' must be one of bilinear, nearest (got 'trilinear')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"depth_compare\": 3, " MATRICES "}]}]}",
+         "draws[0]", "'depth_compare' must be a string"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"nope.obj\", " MATRICES "}]}]}",
+         "draws[0]", "nope.obj"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{" MATRICES
+         "}]}]}",
+         "draws[0]", "missing 'mesh'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"texture\": \"nope.png\", " MATRICES "}]}]}",
+         "draws[0]", "nope.png"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"worldView\": [1,2,3], \"proj\": " IDENTITY "}]}]}",
+         "draws[0]", "'worldView' must be an array of 16 numbers"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"worldView\": " IDENTITY "}]}]}",
+         "draws[0]", "missing 'proj'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a/b\", \"draws\": []}]}",
+         "scenes[0]", "'name'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": []},"
+         " {\"name\": \"a\", \"draws\": []}]}",
+         "scenes[1]", "already used"},
+        {"{\"width\": 0, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": []}]}", "width",
+         "1..16384"},
+        {"{\"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": []}]}", "scenes[0] ('a')",
+         "no 'width'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"height\": 16385,"
+         " \"draws\": []}]}",
+         "scenes[0] ('a')", "'height'"},
+        {"{\"width\": 4, \"height\": 4, \"clear_color\": [0, 0, 2, 0], \"scenes\": []}",
+         "clear_color", "out of range"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": []}", "'scenes' is empty", ".json"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"depth_write\": 1, " MATRICES "}]}]}",
+         "draws[0]", "'depth_write'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "{\"heightmap\": \"red.png\"}, " MATRICES "}]}]}",
+         "draws[0]", "2x2"},
+        {"{\n\"width\": 4,\n\"height\": x\n}", "invalid JSON", "line 3"},
+        {"[1, 2]", "errors.json", "top level"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char err[512] = "";
+        sc_file f;
+        if (load_scene(t, "errors.json", cases[i].json, &f, err, sizeof err)) {
+            sc_free(&f);
+            fail_msg("case %zu loaded", i);
+        }
+        if (!strstr(err, cases[i].want1) || !strstr(err, cases[i].want2))
+            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, err, cases[i].want1, cases[i].want2);
+        assert_null(f.scenes);
+        assert_int_equal(f.mesh_count, 0);
+    }
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(obj_colour_extension),
+        cmocka_unit_test(obj_fan_split),
+        cmocka_unit_test(obj_negative_indices),
+        cmocka_unit_test(obj_position_and_normal),
+        cmocka_unit_test(obj_bad_index_is_an_error),
+        cmocka_unit_test(obj_garbage_is_an_error),
+        cmocka_unit_test(obj_shares_equal_tuples),
+        cmocka_unit_test(obj_load_from_file),
+        cmocka_unit_test(heightmap_mesh),
+        cmocka_unit_test(scene_defaults),
+        cmocka_unit_test(scene_overrides),
+        cmocka_unit_test(scene_texture_null),
+        cmocka_unit_test(scene_errors),
+    };
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+}
