@@ -14,9 +14,10 @@ build: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Renders the default scenes to $(OUT)/ and prints each scene's time per frame.
+# Renders the default scenes to $(OUT)/ and prints, per scene, the time per frame next to the
+# error against its golden (lavapipe) image; heat maps go to $(OUT)/<scene>-heat.png.
 demo: build
-	$(BUILD)/apps/sgapi-render scenes/default.json -o $(OUT) --frames 5
+	$(BUILD)/apps/sgapi-render scenes/default.json -o $(OUT) --frames 5 --compare golden
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -3,7 +3,8 @@
 # Runs apt-get as root, or through sudo otherwise.
 set -eu
 
-PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev"
+PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev
+    libvulkan-dev mesa-vulkan-drivers glslang-tools"
 
 missing=""
 for p in $PACKAGES; do

@@ -18,6 +18,8 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include "image_diff.h"
+
 static int usage(FILE *f) {
     fprintf(f, "usage: sgapi-diff A.png B.png [--heat OUT.png] [--background R,G,B,A]\n"
                "                  [--min-psnr DB] [--max-over2 PCT] [--max-coverage PCT]\n"
@@ -32,24 +34,6 @@ static int parse_double(const char *s, double *out) {
     return errno == 0 && end != s && *end == '\0' && isfinite(*out);
 }
 
-/* Heat map colour for a difference of d/255: black, then blue, red, yellow, white. */
-static void heat(int d, unsigned char *p) {
-    static const int stops[5][3] = {
-        {0, 0, 0}, {0, 0, 255}, {255, 0, 0}, {255, 255, 0}, {255, 255, 255}};
-    static const int at[5] = {0, 1, 8, 32, 128};
-    if (d <= 0) {
-        p[0] = p[1] = p[2] = 0;
-    } else {
-        int k = 0;
-        while (k < 3 && d > at[k + 1]) k++;
-        double t = d >= at[4] ? 1.0 : (double)(d - at[k]) / (at[k + 1] - at[k]);
-        if (d >= at[4]) k = 3;
-        for (int c = 0; c < 3; c++)
-            p[c] = (unsigned char)lround(stops[k][c] + t * (stops[k + 1][c] - stops[k][c]));
-    }
-    p[3] = 255;
-}
-
 int main(int argc, char **argv) {
     const char *paths[2] = {NULL, NULL}, *heat_path = NULL;
     double min_psnr = -1, max_over2 = -1, max_cov = -1;
@@ -61,7 +45,9 @@ int main(int argc, char **argv) {
         if (!strcmp(a, "--heat") && has_value) {
             heat_path = argv[++i];
         } else if (!strcmp(a, "--background") && has_value) {
-            if (sscanf(argv[++i], "%d,%d,%d,%d", &bg[0], &bg[1], &bg[2], &bg[3]) != 4) {
+            if (sscanf(argv[++i], "%d,%d,%d,%d", &bg[0], &bg[1], &bg[2], &bg[3]) != 4 ||
+                bg[0] < 0 || bg[0] > 255 || bg[1] < 0 || bg[1] > 255 || bg[2] < 0 || bg[2] > 255 ||
+                bg[3] < 0 || bg[3] > 255) {
                 fprintf(stderr, "sgapi-diff: --background wants R,G,B,A in 0..255\n");
                 return 2;
             }
@@ -100,39 +86,18 @@ int main(int argc, char **argv) {
         fprintf(stderr, "sgapi-diff: sizes differ: %dx%d vs %dx%d\n", w[0], h[0], w[1], h[1]);
         return 2;
     }
-    size_t pixels = (size_t)w[0] * (size_t)h[0];
-    unsigned char *hm = heat_path ? malloc(pixels * 4) : NULL;
-    double sq = 0, abs_sum = 0;
-    int max_err = 0;
-    size_t over2 = 0, over8 = 0, over32 = 0, cov = 0;
-    for (size_t i = 0; i < pixels; i++) {
-        const unsigned char *a = img[0] + i * 4, *b = img[1] + i * 4;
-        int m = 0, bga = 1, bgb = 1;
-        for (int c = 0; c < 4; c++) {
-            int d = abs((int)a[c] - (int)b[c]);
-            if (c < 3) sq += (double)d * d;
-            abs_sum += d;
-            if (d > m) m = d;
-            bga &= a[c] == bg[c];
-            bgb &= b[c] == bg[c];
-        }
-        if (m > max_err) max_err = m;
-        over2 += m > 2;
-        over8 += m > 8;
-        over32 += m > 32;
-        cov += bga != bgb;
-        if (hm) heat(m, hm + i * 4);
-    }
-    double mse = sq / ((double)pixels * 3);
-    double psnr = mse > 0 ? 10.0 * log10(255.0 * 255.0 / mse) : INFINITY;
-    double pct2 = 100.0 * over2 / pixels, pctcov = 100.0 * cov / pixels;
+    unsigned char background[4];
+    for (int c = 0; c < 4; c++) background[c] = (unsigned char)bg[c];
+    unsigned char *hm = heat_path ? malloc((size_t)w[0] * (size_t)h[0] * 4) : NULL;
+    sc_diff d = sc_image_diff(img[0], img[1], w[0], h[0], background, hm);
+    double psnr = d.psnr_db, pct2 = d.pct_over[0], pctcov = d.pct_coverage;
     printf("psnr_db %.2f\n", psnr);
-    printf("mean_abs_error %.4f\n", abs_sum / ((double)pixels * 4));
-    printf("max_error %d\n", max_err);
+    printf("mean_abs_error %.4f\n", d.mean_abs_error);
+    printf("max_error %d\n", d.max_error);
     printf("pct_over_2 %.4f\n", pct2);
-    printf("pct_over_8 %.4f\n", 100.0 * over8 / pixels);
-    printf("pct_over_32 %.4f\n", 100.0 * over32 / pixels);
-    printf("coverage_mismatch_pct %.4f (%zu pixels)\n", pctcov, cov);
+    printf("pct_over_8 %.4f\n", d.pct_over[1]);
+    printf("pct_over_32 %.4f\n", d.pct_over[2]);
+    printf("coverage_mismatch_pct %.4f (%zu pixels)\n", pctcov, d.coverage_mismatch);
     int status = 0;
     if (hm) {
         if (!stbi_write_png(heat_path, w[0], h[0], 4, hm, w[0] * 4)) {

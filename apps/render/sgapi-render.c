@@ -10,6 +10,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +20,7 @@
 
 #include <sgapi/sgapi.h>
 
+#include "image_diff.h"
 #include "image_io.h"
 #include "scene.h"
 
@@ -30,6 +32,8 @@ typedef struct options {
     int file_count;
     const char **scenes; /* --scene filters; none: every scene */
     int scene_count;
+    const char *compare_dir; /* --compare: reference images, one DIR/<scene>.png per scene */
+    double min_psnr, max_over2, max_coverage; /* thresholds of --compare; < 0: none */
 } options;
 
 static void usage(FILE *f) {
@@ -40,6 +44,11 @@ static void usage(FILE *f) {
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     worker threads for the device (default 0: all cores)\n"
+               "  --compare DIR   compare each image with DIR/<scene name>.png: print PSNR,\n"
+               "                  %% of pixels over 2/255 and coverage mismatch next to the time,\n"
+               "                  and write DIR_OUT/<scene name>-heat.png\n"
+               "  --min-psnr DB, --max-over2 PCT, --max-coverage PCT\n"
+               "                  with --compare: fail (exit 1) when a scene is past a threshold\n"
                "  -h, --help      show this help\n");
 }
 
@@ -56,6 +65,7 @@ static bool parse_int(const char *s, int lo, int hi, int *out) {
 /* 0: parsed; 1: help was printed; 2: bad arguments (already reported). */
 static int parse_args(int argc, char **argv, options *o) {
     o->frames = 1;
+    o->min_psnr = o->max_over2 = o->max_coverage = -1;
     o->files = calloc((size_t)argc, sizeof *o->files);
     o->scenes = calloc((size_t)argc, sizeof *o->scenes);
     if (!o->files || !o->scenes) {
@@ -65,8 +75,10 @@ static int parse_args(int argc, char **argv, options *o) {
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        bool threshold =
+            !strcmp(a, "--min-psnr") || !strcmp(a, "--max-over2") || !strcmp(a, "--max-coverage");
         bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
-                           !strcmp(a, "--threads");
+                           !strcmp(a, "--threads") || !strcmp(a, "--compare") || threshold;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -91,6 +103,19 @@ static int parse_args(int argc, char **argv, options *o) {
             }
         } else if (!strcmp(a, "--scene")) {
             o->scenes[o->scene_count++] = value;
+        } else if (!strcmp(a, "--compare")) {
+            o->compare_dir = value;
+        } else if (threshold) {
+            char *end;
+            errno = 0;
+            double v = strtod(value, &end);
+            if (errno || end == value || *end || !(v >= 0)) {
+                fprintf(stderr, "sgapi-render: %s needs a number >= 0, not '%s'\n", a, value);
+                return 2;
+            }
+            *(!strcmp(a, "--min-psnr")    ? &o->min_psnr
+              : !strcmp(a, "--max-over2") ? &o->max_over2
+                                          : &o->max_coverage) = v;
         } else if (a[0] == '-' && a[1] != '\0') {
             fprintf(stderr, "sgapi-render: unknown option '%s' (see --help)\n", a);
             return 2;
@@ -304,6 +329,50 @@ static bool upload(sgDevice *dev, const sc_file *f, uploads *u) {
     return true;
 }
 
+/* Compares a rendered scene with its reference image: appends the figures to the scene's line
+ * (without its newline), writes the heat map, and checks the thresholds. */
+static bool compare_scene(const options *o, const sc_scene *s, const unsigned char *pixels) {
+    size_t len = strlen(o->compare_dir) + strlen(o->out_dir) + strlen(s->name) + 16;
+    char *path = malloc(len);
+    char err[1024];
+    sc_image ref = {0};
+    bool ok = path != NULL;
+    if (ok) snprintf(path, len, "%s/%s.png", o->compare_dir, s->name);
+    ok = ok && sc_image_load(path, &ref, err, sizeof err);
+    if (!ok) {
+        printf("\n");
+        fprintf(stderr, "sgapi-render: --compare: %s\n", path ? err : "out of memory");
+        free(path);
+        return false;
+    }
+    if (ref.width != s->width || ref.height != s->height) {
+        printf("\n");
+        fprintf(stderr, "sgapi-render: --compare: %s is %dx%d, the scene %dx%d\n", path, ref.width,
+                ref.height, s->width, s->height);
+        sc_image_free(&ref);
+        free(path);
+        return false;
+    }
+    /* Background, for the coverage figure, is the scene's clear colour as stored. */
+    unsigned char bg[4];
+    for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
+    unsigned char *heat = malloc((size_t)s->width * (size_t)s->height * 4);
+    sc_diff d = sc_image_diff(pixels, ref.pixels, s->width, s->height, bg, heat);
+    printf("  psnr %6.2f dB  >2/255 %7.4f %%  >8/255 %7.4f %%  max %3d  coverage %7.4f %%",
+           d.psnr_db, d.pct_over[0], d.pct_over[1], d.max_error, d.pct_coverage);
+    if (o->min_psnr >= 0 && d.psnr_db < o->min_psnr) ok = false;
+    if (o->max_over2 >= 0 && d.pct_over[0] > o->max_over2) ok = false;
+    if (o->max_coverage >= 0 && d.pct_coverage > o->max_coverage) ok = false;
+    printf("%s\n", ok ? "" : "  FAIL");
+    snprintf(path, len, "%s/%s-heat.png", o->out_dir, s->name);
+    if (heat && !sc_image_write_png(path, s->width, s->height, heat, err, sizeof err))
+        fprintf(stderr, "sgapi-render: %s\n", err);
+    free(heat);
+    sc_image_free(&ref);
+    free(path);
+    return ok;
+}
+
 /* Renders one scene frames times, writes its PNG and prints its median time per frame. */
 static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, const sc_scene *s,
                          const uploads *u, pso_cache *cache) {
@@ -391,11 +460,11 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
     double median = o->frames % 2 ? times[o->frames / 2]
                                   : (times[o->frames / 2 - 1] + times[o->frames / 2]) / 2;
     if (o->frames > 1)
-        printf("%-32s %10.3f ms/frame (median of %d)\n", s->name, median, o->frames);
+        printf("%-32s %10.3f ms/frame (median of %d)", s->name, median, o->frames);
     else
-        printf("%-32s %10.3f ms/frame\n", s->name, median);
+        printf("%-32s %10.3f ms/frame", s->name, median);
+    ok = o->compare_dir ? compare_scene(o, s, pixels) : (printf("\n"), true);
     fflush(stdout);
-    ok = true;
 done:
     if (depth.id) sgDestroyImage2D(dev, depth);
     if (color.id) sgDestroyImage2D(dev, color);

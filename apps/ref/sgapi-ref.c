@@ -1,0 +1,823 @@
+/* sgapi-ref - renders scene files with Vulkan on Mesa's lavapipe (llvmpipe), headless, as the
+ * reference that sgapi's images are checked against.
+ *
+ *   sgapi-ref [--frames N] [--scene NAME]... [--threads T] SCENE.json... -o DIR
+ *
+ * Same scene loader, same conventions as sgapi-render (see docs/reference.md): OpenGL clip space
+ * mapped to Vulkan's in the vertex shader, texture rows uploaded bottom first so t = 0 is the
+ * bottom row, RGBA8 unorm colour, D32 float depth, no mipmaps. Writes DIR/<scene>.png and prints
+ * the time per frame (submit to fence, median of N). --threads sets LP_NUM_THREADS.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include <vulkan/vulkan.h>
+
+#include "image_io.h"
+#include "scene.h"
+#include "spv_color_frag.h"
+#include "spv_color_vert.h"
+#include "spv_texture_frag.h"
+#include "spv_texture_vert.h"
+
+#define MAX_PIPELINES 512
+
+typedef struct buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *mapped;
+} buffer;
+
+typedef struct texture {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+} texture;
+
+typedef struct pipeline_entry {
+    uint32_t key;
+    VkPipeline pipeline;
+} pipeline_entry;
+
+typedef struct ref {
+    VkInstance instance;
+    VkPhysicalDevice phys;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t queue_family;
+    VkPhysicalDeviceMemoryProperties mem;
+    VkCommandPool cmd_pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+    VkShaderModule modules[4]; /* color.vert, color.frag, texture.vert, texture.frag */
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout layout_color, layout_texture;
+    VkSampler samplers[4]; /* [filter bilinear?][wrap clamp?] */
+    VkRenderPass render_pass;
+    pipeline_entry pipelines[MAX_PIPELINES];
+    int pipeline_count;
+    char err[1024];
+} ref;
+
+static bool fail(ref *r, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->err, sizeof r->err, fmt, ap);
+    va_end(ap);
+    return false;
+}
+
+#define VK_CHECK(r, call)                                                                          \
+    do {                                                                                           \
+        VkResult vr_ = (call);                                                                     \
+        if (vr_ != VK_SUCCESS) return fail(r, "%s failed (VkResult %d)", #call, (int)vr_);         \
+    } while (0)
+
+static bool find_memory(ref *r, uint32_t bits, VkMemoryPropertyFlags want, uint32_t *out) {
+    for (uint32_t i = 0; i < r->mem.memoryTypeCount; i++)
+        if ((bits & (1u << i)) && (r->mem.memoryTypes[i].propertyFlags & want) == want) {
+            *out = i;
+            return true;
+        }
+    return fail(r, "no Vulkan memory type with flags 0x%x", (unsigned)want);
+}
+
+static bool create_instance(ref *r) {
+    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                             .pApplicationName = "sgapi-ref",
+                             .apiVersion = VK_API_VERSION_1_1};
+    VkInstanceCreateInfo ici = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+                                .pApplicationInfo = &app};
+    VkResult vr = vkCreateInstance(&ici, NULL, &r->instance);
+    if (vr != VK_SUCCESS)
+        return fail(r,
+                    "cannot create a Vulkan instance (VkResult %d): is the Vulkan loader "
+                    "(libvulkan1) and Mesa's lavapipe (mesa-vulkan-drivers) installed?",
+                    (int)vr);
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(r->instance, &n, NULL);
+    VkPhysicalDevice devs[16];
+    if (n > 16) n = 16;
+    vkEnumeratePhysicalDevices(r->instance, &n, devs);
+    for (uint32_t i = 0; i < n; i++) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devs[i], &p);
+        /* The reference is lavapipe only: a GPU or another software driver would be another
+         * reference with other rounding. */
+        if (p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && strstr(p.deviceName, "llvmpipe")) {
+            r->phys = devs[i];
+            return true;
+        }
+    }
+    return fail(r,
+                "no llvmpipe (lavapipe) Vulkan device among %u device(s): install Debian's "
+                "mesa-vulkan-drivers",
+                n);
+}
+
+static bool create_device(ref *r) {
+    vkGetPhysicalDeviceMemoryProperties(r->phys, &r->mem);
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(r->phys, &n, NULL);
+    VkQueueFamilyProperties qf[16];
+    if (n > 16) n = 16;
+    vkGetPhysicalDeviceQueueFamilyProperties(r->phys, &n, qf);
+    r->queue_family = UINT32_MAX;
+    for (uint32_t i = 0; i < n; i++)
+        if (qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) {
+            r->queue_family = i;
+            break;
+        }
+    if (r->queue_family == UINT32_MAX) return fail(r, "lavapipe has no graphics queue");
+    float prio = 1.0f;
+    VkDeviceQueueCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                   .queueFamilyIndex = r->queue_family,
+                                   .queueCount = 1,
+                                   .pQueuePriorities = &prio};
+    VkDeviceCreateInfo dci = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                              .queueCreateInfoCount = 1,
+                              .pQueueCreateInfos = &qci};
+    VK_CHECK(r, vkCreateDevice(r->phys, &dci, NULL, &r->device));
+    vkGetDeviceQueue(r->device, r->queue_family, 0, &r->queue);
+    VkCommandPoolCreateInfo cpi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                   .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                   .queueFamilyIndex = r->queue_family};
+    VK_CHECK(r, vkCreateCommandPool(r->device, &cpi, NULL, &r->cmd_pool));
+    VkCommandBufferAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                       .commandPool = r->cmd_pool,
+                                       .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                       .commandBufferCount = 1};
+    VK_CHECK(r, vkAllocateCommandBuffers(r->device, &cai, &r->cmd));
+    VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(r, vkCreateFence(r->device, &fci, NULL, &r->fence));
+    return true;
+}
+
+static bool create_shaders_and_layouts(ref *r) {
+    const uint32_t *code[4] = {spv_color_vert, spv_color_frag, spv_texture_vert, spv_texture_frag};
+    size_t size[4] = {sizeof spv_color_vert, sizeof spv_color_frag, sizeof spv_texture_vert,
+                      sizeof spv_texture_frag};
+    for (int i = 0; i < 4; i++) {
+        VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                        .codeSize = size[i],
+                                        .pCode = code[i]};
+        VK_CHECK(r, vkCreateShaderModule(r->device, &smi, NULL, &r->modules[i]));
+    }
+    VkDescriptorSetLayoutBinding b = {.binding = 0,
+                                      .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                      .descriptorCount = 1,
+                                      .stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT};
+    VkDescriptorSetLayoutCreateInfo dli = {.sType =
+                                               VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                           .bindingCount = 1,
+                                           .pBindings = &b};
+    VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &dli, NULL, &r->set_layout));
+    VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_VERTEX_BIT, .size = 128};
+    VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                      .pushConstantRangeCount = 1,
+                                      .pPushConstantRanges = &pcr};
+    VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_color));
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &r->set_layout;
+    VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_texture));
+    for (int f = 0; f < 2; f++)
+        for (int w = 0; w < 2; w++) {
+            VkSamplerAddressMode am =
+                w ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE : VK_SAMPLER_ADDRESS_MODE_REPEAT;
+            VkFilter filter = f ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+            /* One level, so no mipmapping whatever the minification. */
+            VkSamplerCreateInfo sci = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                                       .magFilter = filter,
+                                       .minFilter = filter,
+                                       .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                                       .addressModeU = am,
+                                       .addressModeV = am,
+                                       .addressModeW = am,
+                                       .maxLod = 0.0f};
+            VK_CHECK(r, vkCreateSampler(r->device, &sci, NULL, &r->samplers[f * 2 + w]));
+        }
+    VkAttachmentDescription att[2] = {
+        {.format = VK_FORMAT_R8G8B8A8_UNORM,
+         .samples = VK_SAMPLE_COUNT_1_BIT,
+         .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+         .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+         .stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+         .stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
+         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+         .finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL},
+        {.format = VK_FORMAT_D32_SFLOAT,
+         .samples = VK_SAMPLE_COUNT_1_BIT,
+         .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+         .storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
+         .stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+         .stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
+         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+         .finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL}};
+    VkAttachmentReference cref = {0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference dref = {1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub = {.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                .colorAttachmentCount = 1,
+                                .pColorAttachments = &cref,
+                                .pDepthStencilAttachment = &dref};
+    VkRenderPassCreateInfo rpi = {.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO,
+                                  .attachmentCount = 2,
+                                  .pAttachments = att,
+                                  .subpassCount = 1,
+                                  .pSubpasses = &sub};
+    VK_CHECK(r, vkCreateRenderPass(r->device, &rpi, NULL, &r->render_pass));
+    return true;
+}
+
+/* The pipeline state a draw needs, packed into a key. */
+static uint32_t pipeline_key(const sc_draw *d, bool textured) {
+    return (uint32_t)textured | (uint32_t)d->cull << 1 | (uint32_t)d->front_face << 3 |
+           (uint32_t)d->depth_compare << 4 | (uint32_t)d->depth_write << 8;
+}
+
+static const VkCompareOp compare_ops[] = {
+    [SC_COMPARE_LESS] = VK_COMPARE_OP_LESS,
+    [SC_COMPARE_NEVER] = VK_COMPARE_OP_NEVER,
+    [SC_COMPARE_EQUAL] = VK_COMPARE_OP_EQUAL,
+    [SC_COMPARE_LESS_EQUAL] = VK_COMPARE_OP_LESS_OR_EQUAL,
+    [SC_COMPARE_GREATER] = VK_COMPARE_OP_GREATER,
+    [SC_COMPARE_NOT_EQUAL] = VK_COMPARE_OP_NOT_EQUAL,
+    [SC_COMPARE_GREATER_EQUAL] = VK_COMPARE_OP_GREATER_OR_EQUAL,
+    [SC_COMPARE_ALWAYS] = VK_COMPARE_OP_ALWAYS,
+};
+
+static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *out) {
+    uint32_t key = pipeline_key(d, textured);
+    for (int i = 0; i < r->pipeline_count; i++)
+        if (r->pipelines[i].key == key) {
+            *out = r->pipelines[i].pipeline;
+            return true;
+        }
+    if (r->pipeline_count == MAX_PIPELINES) return fail(r, "too many pipeline states");
+    VkPipelineShaderStageCreateInfo stages[2] = {
+        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+         .stage = VK_SHADER_STAGE_VERTEX_BIT,
+         .module = r->modules[textured ? 2 : 0],
+         .pName = "main"},
+        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+         .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
+         .module = r->modules[textured ? 3 : 1],
+         .pName = "main"}};
+    VkVertexInputBindingDescription bind[3] = {{0, 16, VK_VERTEX_INPUT_RATE_VERTEX},
+                                               {1, 16, VK_VERTEX_INPUT_RATE_VERTEX},
+                                               {2, 8, VK_VERTEX_INPUT_RATE_VERTEX}};
+    VkVertexInputAttributeDescription attr[3] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                                                 {1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                                                 {2, 2, VK_FORMAT_R32G32_SFLOAT, 0}};
+    VkPipelineVertexInputStateCreateInfo vi = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+        .vertexBindingDescriptionCount = textured ? 3 : 2,
+        .pVertexBindingDescriptions = bind,
+        .vertexAttributeDescriptionCount = textured ? 3 : 2,
+        .pVertexAttributeDescriptions = attr};
+    VkPipelineInputAssemblyStateCreateInfo ia = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
+        .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+    VkPipelineViewportStateCreateInfo vp = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
+        .viewportCount = 1,
+        .scissorCount = 1};
+    /* The y flip in the vertex shader keeps on-screen winding, so CCW means CCW as displayed. */
+    VkPipelineRasterizationStateCreateInfo rs = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
+        .polygonMode = VK_POLYGON_MODE_FILL,
+        .cullMode = d->cull == SC_CULL_BACK    ? VK_CULL_MODE_BACK_BIT
+                    : d->cull == SC_CULL_FRONT ? VK_CULL_MODE_FRONT_BIT
+                                               : VK_CULL_MODE_NONE,
+        .frontFace = d->front_face == SC_FRONT_FACE_CW ? VK_FRONT_FACE_CLOCKWISE
+                                                       : VK_FRONT_FACE_COUNTER_CLOCKWISE,
+        .lineWidth = 1.0f};
+    VkPipelineMultisampleStateCreateInfo ms = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
+        .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
+    VkPipelineDepthStencilStateCreateInfo ds = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
+        .depthTestEnable = VK_TRUE,
+        .depthWriteEnable = d->depth_write ? VK_TRUE : VK_FALSE,
+        .depthCompareOp = compare_ops[d->depth_compare]};
+    VkPipelineColorBlendAttachmentState cba = {.colorWriteMask = 0xf};
+    VkPipelineColorBlendStateCreateInfo cb = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
+        .attachmentCount = 1,
+        .pAttachments = &cba};
+    VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dy = {.sType =
+                                               VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
+                                           .dynamicStateCount = 2,
+                                           .pDynamicStates = dyn};
+    VkGraphicsPipelineCreateInfo gpi = {.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+                                        .stageCount = 2,
+                                        .pStages = stages,
+                                        .pVertexInputState = &vi,
+                                        .pInputAssemblyState = &ia,
+                                        .pViewportState = &vp,
+                                        .pRasterizationState = &rs,
+                                        .pMultisampleState = &ms,
+                                        .pDepthStencilState = &ds,
+                                        .pColorBlendState = &cb,
+                                        .pDynamicState = &dy,
+                                        .layout = textured ? r->layout_texture : r->layout_color,
+                                        .renderPass = r->render_pass};
+    VK_CHECK(r, vkCreateGraphicsPipelines(r->device, VK_NULL_HANDLE, 1, &gpi, NULL, out));
+    r->pipelines[r->pipeline_count].key = key;
+    r->pipelines[r->pipeline_count].pipeline = *out;
+    r->pipeline_count++;
+    return true;
+}
+
+static bool create_buffer(ref *r, VkDeviceSize size, VkBufferUsageFlags usage, buffer *b) {
+    VkBufferCreateInfo bci = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size ? size : 4, .usage = usage};
+    VK_CHECK(r, vkCreateBuffer(r->device, &bci, NULL, &b->buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(r->device, b->buffer, &req);
+    uint32_t type = 0;
+    if (!find_memory(r, req.memoryTypeBits,
+                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                     &type))
+        return false;
+    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                .allocationSize = req.size,
+                                .memoryTypeIndex = type};
+    VK_CHECK(r, vkAllocateMemory(r->device, &mai, NULL, &b->memory));
+    VK_CHECK(r, vkBindBufferMemory(r->device, b->buffer, b->memory, 0));
+    VK_CHECK(r, vkMapMemory(r->device, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped));
+    return true;
+}
+
+static void destroy_buffer(ref *r, buffer *b) {
+    if (b->buffer) vkDestroyBuffer(r->device, b->buffer, NULL);
+    if (b->memory) vkFreeMemory(r->device, b->memory, NULL);
+    memset(b, 0, sizeof *b);
+}
+
+static bool create_image(ref *r, int w, int h, VkFormat format, VkImageUsageFlags usage,
+                         VkImageAspectFlags aspect, texture *t) {
+    VkImageCreateInfo ici = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+                             .imageType = VK_IMAGE_TYPE_2D,
+                             .format = format,
+                             .extent = {(uint32_t)w, (uint32_t)h, 1},
+                             .mipLevels = 1,
+                             .arrayLayers = 1,
+                             .samples = VK_SAMPLE_COUNT_1_BIT,
+                             .tiling = VK_IMAGE_TILING_OPTIMAL,
+                             .usage = usage,
+                             .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+    VK_CHECK(r, vkCreateImage(r->device, &ici, NULL, &t->image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(r->device, t->image, &req);
+    uint32_t type = 0;
+    if (!find_memory(r, req.memoryTypeBits, 0, &type)) return false;
+    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                .allocationSize = req.size,
+                                .memoryTypeIndex = type};
+    VK_CHECK(r, vkAllocateMemory(r->device, &mai, NULL, &t->memory));
+    VK_CHECK(r, vkBindImageMemory(r->device, t->image, t->memory, 0));
+    VkImageViewCreateInfo vci = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                 .image = t->image,
+                                 .viewType = VK_IMAGE_VIEW_TYPE_2D,
+                                 .format = format,
+                                 .subresourceRange = {aspect, 0, 1, 0, 1}};
+    VK_CHECK(r, vkCreateImageView(r->device, &vci, NULL, &t->view));
+    return true;
+}
+
+static void destroy_image(ref *r, texture *t) {
+    if (t->view) vkDestroyImageView(r->device, t->view, NULL);
+    if (t->image) vkDestroyImage(r->device, t->image, NULL);
+    if (t->memory) vkFreeMemory(r->device, t->memory, NULL);
+    memset(t, 0, sizeof *t);
+}
+
+static bool begin_commands(ref *r) {
+    VK_CHECK(r, vkResetCommandBuffer(r->cmd, 0));
+    VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    VK_CHECK(r, vkBeginCommandBuffer(r->cmd, &bi));
+    return true;
+}
+
+static bool submit_and_wait(ref *r) {
+    VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+                       .commandBufferCount = 1,
+                       .pCommandBuffers = &r->cmd};
+    VK_CHECK(r, vkQueueSubmit(r->queue, 1, &si, r->fence));
+    VK_CHECK(r, vkWaitForFences(r->device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    VK_CHECK(r, vkResetFences(r->device, 1, &r->fence));
+    return true;
+}
+
+static void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                    VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src,
+                    VkPipelineStageFlags dst) {
+    VkImageMemoryBarrier b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+                              .srcAccessMask = src_access,
+                              .dstAccessMask = dst_access,
+                              .oldLayout = from,
+                              .newLayout = to,
+                              .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                              .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                              .image = image,
+                              .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    vkCmdPipelineBarrier(cmd, src, dst, 0, 0, NULL, 0, NULL, 1, &b);
+}
+
+/* Uploads an RGBA8 texture (top row first) with its rows reversed, so that image row 0 is the
+ * bottom row as displayed and t = 0 samples it, as in OpenGL and sgapi. */
+static bool upload_texture(ref *r, const sc_image *img, texture *t) {
+    if (!create_image(r, img->width, img->height, VK_FORMAT_R8G8B8A8_UNORM,
+                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                      VK_IMAGE_ASPECT_COLOR_BIT, t))
+        return false;
+    size_t row = (size_t)img->width * 4;
+    buffer staging = {0};
+    if (!create_buffer(r, row * (size_t)img->height, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging))
+        return false;
+    for (int y = 0; y < img->height; y++)
+        memcpy((uint8_t *)staging.mapped + (size_t)y * row,
+               img->pixels + (size_t)(img->height - 1 - y) * row, row);
+    bool ok = begin_commands(r);
+    if (ok) {
+        barrier(r->cmd, t->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                0, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                VK_PIPELINE_STAGE_TRANSFER_BIT);
+        VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                  .imageExtent = {(uint32_t)img->width, (uint32_t)img->height, 1}};
+        vkCmdCopyBufferToImage(r->cmd, staging.buffer, t->image,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        barrier(r->cmd, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+        ok = vkEndCommandBuffer(r->cmd) == VK_SUCCESS && submit_and_wait(r);
+    }
+    destroy_buffer(r, &staging);
+    return ok || fail(r, "texture upload failed: %s", r->err);
+}
+
+/* GPU copies of one scene file's meshes and textures. */
+typedef struct uploads {
+    buffer *vertex; /* per mesh: positions | colours | texcoords, back to back */
+    buffer *index;
+    texture *textures;
+    size_t mesh_count, texture_count;
+} uploads;
+
+static bool upload_file(ref *r, const sc_file *f, uploads *u) {
+    u->vertex = calloc(f->mesh_count + 1, sizeof *u->vertex);
+    u->index = calloc(f->mesh_count + 1, sizeof *u->index);
+    u->textures = calloc(f->texture_count + 1, sizeof *u->textures);
+    if (!u->vertex || !u->index || !u->textures) return fail(r, "out of memory");
+    for (size_t i = 0; i < f->mesh_count; i++) {
+        const sc_mesh *m = &f->meshes[i];
+        size_t n = m->vertex_count;
+        size_t bytes = n * 16 + n * 16 + n * 8;
+        if (!create_buffer(r, bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &u->vertex[i]))
+            return false;
+        u->mesh_count = i + 1;
+        uint8_t *p = u->vertex[i].mapped;
+        memcpy(p, m->positions, n * 16);
+        memcpy(p + n * 16, m->colors, n * 16);
+        if (m->texcoords)
+            memcpy(p + n * 32, m->texcoords, n * 8);
+        else
+            memset(p + n * 32, 0, n * 8);
+        if (!create_buffer(r, (VkDeviceSize)m->index_count * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                           &u->index[i]))
+            return false;
+        memcpy(u->index[i].mapped, m->indices, (size_t)m->index_count * 4);
+    }
+    for (size_t i = 0; i < f->texture_count; i++) {
+        if (!upload_texture(r, &f->textures[i], &u->textures[i])) return false;
+        u->texture_count = i + 1;
+    }
+    return true;
+}
+
+static void destroy_uploads(ref *r, uploads *u) {
+    for (size_t i = 0; i < u->mesh_count; i++) {
+        destroy_buffer(r, &u->vertex[i]);
+        destroy_buffer(r, &u->index[i]);
+    }
+    for (size_t i = 0; i < u->texture_count; i++) destroy_image(r, &u->textures[i]);
+    free(u->vertex);
+    free(u->index);
+    free(u->textures);
+    memset(u, 0, sizeof *u);
+}
+
+static double now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Records one scene: clear, every draw, copy of the colour image to `readback`. */
+static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
+                         VkFramebuffer fb, VkImage color, const buffer *readback,
+                         VkDescriptorSet *sets) {
+    if (!begin_commands(r)) return false;
+    VkClearValue clear[2];
+    memcpy(clear[0].color.float32, s->clear_color, sizeof s->clear_color);
+    clear[1].depthStencil.depth = 1.0f;
+    clear[1].depthStencil.stencil = 0;
+    VkRenderPassBeginInfo rbi = {.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
+                                 .renderPass = r->render_pass,
+                                 .framebuffer = fb,
+                                 .renderArea = {{0, 0}, {(uint32_t)s->width, (uint32_t)s->height}},
+                                 .clearValueCount = 2,
+                                 .pClearValues = clear};
+    vkCmdBeginRenderPass(r->cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+    VkViewport vp = {0, 0, (float)s->width, (float)s->height, 0.0f, 1.0f};
+    VkRect2D sc = {{0, 0}, {(uint32_t)s->width, (uint32_t)s->height}};
+    vkCmdSetViewport(r->cmd, 0, 1, &vp);
+    vkCmdSetScissor(r->cmd, 0, 1, &sc);
+    for (size_t i = 0; i < s->draw_count; i++) {
+        const sc_draw *d = &s->draws[i];
+        /* As in sgapi-render: a texture draw without a texture is drawn with vertex colour. */
+        bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
+        VkPipeline pipe;
+        if (!get_pipeline(r, d, textured, &pipe)) return false;
+        vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        VkPipelineLayout layout = textured ? r->layout_texture : r->layout_color;
+        float pc[32];
+        memcpy(pc, d->world_view, 64);
+        memcpy(pc + 16, d->proj, 64);
+        vkCmdPushConstants(r->cmd, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 128, pc);
+        if (textured)
+            vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &sets[i],
+                                    0, NULL);
+        const sc_mesh *m = &f->meshes[d->mesh];
+        VkDeviceSize n = m->vertex_count;
+        VkBuffer vb[3] = {u->vertex[d->mesh].buffer, u->vertex[d->mesh].buffer,
+                          u->vertex[d->mesh].buffer};
+        VkDeviceSize off[3] = {0, n * 16, n * 32};
+        vkCmdBindVertexBuffers(r->cmd, 0, textured ? 3 : 2, vb, off);
+        vkCmdBindIndexBuffer(r->cmd, u->index[d->mesh].buffer, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(r->cmd, m->index_count, 1, 0, 0, 0);
+    }
+    vkCmdEndRenderPass(r->cmd);
+    VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                              .imageExtent = {(uint32_t)s->width, (uint32_t)s->height, 1}};
+    vkCmdCopyImageToBuffer(r->cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback->buffer, 1,
+                           &copy);
+    VK_CHECK(r, vkEndCommandBuffer(r->cmd));
+    return true;
+}
+
+static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
+                         const char *out_dir, int frames) {
+    texture color = {0}, depth = {0};
+    buffer readback = {0};
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet *sets = calloc(s->draw_count + 1, sizeof *sets);
+    double *times = calloc((size_t)frames, sizeof *times);
+    bool ok = sets && times;
+    if (!ok) fail(r, "out of memory");
+    ok = ok &&
+         create_image(r, s->width, s->height, VK_FORMAT_R8G8B8A8_UNORM,
+                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                      VK_IMAGE_ASPECT_COLOR_BIT, &color) &&
+         create_image(r, s->width, s->height, VK_FORMAT_D32_SFLOAT,
+                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                      &depth) &&
+         create_buffer(r, (VkDeviceSize)s->width * s->height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                       &readback);
+    if (ok) {
+        VkImageView views[2] = {color.view, depth.view};
+        VkFramebufferCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO,
+                                       .renderPass = r->render_pass,
+                                       .attachmentCount = 2,
+                                       .pAttachments = views,
+                                       .width = (uint32_t)s->width,
+                                       .height = (uint32_t)s->height,
+                                       .layers = 1};
+        ok = vkCreateFramebuffer(r->device, &fci, NULL, &fb) == VK_SUCCESS ||
+             fail(r, "vkCreateFramebuffer failed");
+    }
+    if (ok && s->draw_count) {
+        VkDescriptorPoolSize ps = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                   (uint32_t)s->draw_count};
+        VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                          .maxSets = (uint32_t)s->draw_count,
+                                          .poolSizeCount = 1,
+                                          .pPoolSizes = &ps};
+        ok = vkCreateDescriptorPool(r->device, &dpi, NULL, &pool) == VK_SUCCESS ||
+             fail(r, "vkCreateDescriptorPool failed");
+        for (size_t i = 0; ok && i < s->draw_count; i++) {
+            const sc_draw *d = &s->draws[i];
+            if (d->mode != SC_MODE_TEXTURE || d->texture < 0) continue;
+            VkDescriptorSetAllocateInfo dai = {.sType =
+                                                   VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                               .descriptorPool = pool,
+                                               .descriptorSetCount = 1,
+                                               .pSetLayouts = &r->set_layout};
+            ok = vkAllocateDescriptorSets(r->device, &dai, &sets[i]) == VK_SUCCESS ||
+                 fail(r, "vkAllocateDescriptorSets failed");
+            if (!ok) break;
+            VkDescriptorImageInfo ii = {.sampler =
+                                            r->samplers[(d->filter == SC_FILTER_BILINEAR ? 2 : 0) +
+                                                        (d->wrap == SC_WRAP_CLAMP ? 1 : 0)],
+                                        .imageView = u->textures[d->texture].view,
+                                        .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                      .dstSet = sets[i],
+                                      .descriptorCount = 1,
+                                      .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                      .pImageInfo = &ii};
+            vkUpdateDescriptorSets(r->device, 1, &w, 0, NULL);
+        }
+    }
+    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, sets);
+    for (int i = 0; ok && i < frames; i++) {
+        double t0 = now_ms();
+        ok = submit_and_wait(r);
+        times[i] = now_ms() - t0;
+    }
+    if (ok) {
+        qsort(times, (size_t)frames, sizeof *times, cmp_double);
+        double median =
+            frames % 2 ? times[frames / 2] : 0.5 * (times[frames / 2 - 1] + times[frames / 2]);
+        size_t len = strlen(out_dir) + strlen(s->name) + 8;
+        char *path = malloc(len);
+        char err[512];
+        if (!path) {
+            ok = fail(r, "out of memory");
+        } else {
+            snprintf(path, len, "%s/%s.png", out_dir, s->name);
+            ok = sc_image_write_png(path, s->width, s->height, readback.mapped, err, sizeof err) ||
+                 fail(r, "%s", err);
+            free(path);
+        }
+        if (ok) {
+            if (frames > 1)
+                printf("%-32s %10.3f ms/frame (median of %d)\n", s->name, median, frames);
+            else
+                printf("%-32s %10.3f ms/frame\n", s->name, median);
+        }
+    }
+    if (pool) vkDestroyDescriptorPool(r->device, pool, NULL);
+    if (fb) vkDestroyFramebuffer(r->device, fb, NULL);
+    destroy_buffer(r, &readback);
+    destroy_image(r, &color);
+    destroy_image(r, &depth);
+    free(sets);
+    free(times);
+    return ok;
+}
+
+static void destroy_ref(ref *r) {
+    if (r->device) {
+        vkDeviceWaitIdle(r->device);
+        for (int i = 0; i < r->pipeline_count; i++)
+            vkDestroyPipeline(r->device, r->pipelines[i].pipeline, NULL);
+        if (r->render_pass) vkDestroyRenderPass(r->device, r->render_pass, NULL);
+        for (int i = 0; i < 4; i++) {
+            if (r->samplers[i]) vkDestroySampler(r->device, r->samplers[i], NULL);
+            if (r->modules[i]) vkDestroyShaderModule(r->device, r->modules[i], NULL);
+        }
+        if (r->layout_color) vkDestroyPipelineLayout(r->device, r->layout_color, NULL);
+        if (r->layout_texture) vkDestroyPipelineLayout(r->device, r->layout_texture, NULL);
+        if (r->set_layout) vkDestroyDescriptorSetLayout(r->device, r->set_layout, NULL);
+        if (r->fence) vkDestroyFence(r->device, r->fence, NULL);
+        if (r->cmd_pool) vkDestroyCommandPool(r->device, r->cmd_pool, NULL);
+        vkDestroyDevice(r->device, NULL);
+    }
+    if (r->instance) vkDestroyInstance(r->instance, NULL);
+}
+
+static void usage(FILE *f) {
+    fprintf(f, "usage: sgapi-ref [options] SCENE.json... -o DIR\n"
+               "Renders every scene with Vulkan on lavapipe to DIR/<scene name>.png and prints\n"
+               "each scene's time per frame (submit to completion).\n"
+               "  -o DIR          output folder, created if missing (required)\n"
+               "  --frames N      render each scene N times and print the median (default 1)\n"
+               "  --scene NAME    render only scenes of that name (repeatable)\n"
+               "  --threads T     lavapipe's raster threads (sets LP_NUM_THREADS)\n"
+               "  -h, --help      show this help\n");
+}
+
+static bool make_dir(const char *path) {
+    char buf[4096];
+    size_t n = strlen(path);
+    if (n == 0 || n >= sizeof buf) return false;
+    memcpy(buf, path, n + 1);
+    for (size_t i = 1; i <= n; i++)
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char c = buf[i];
+            buf[i] = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return false;
+            buf[i] = c;
+        }
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+int main(int argc, char **argv) {
+    const char *out_dir = NULL;
+    const char **files = calloc((size_t)argc, sizeof *files);
+    const char **only = calloc((size_t)argc, sizeof *only);
+    int nfiles = 0, nonly = 0, frames = 1;
+    if (!files || !only) return 1;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        bool more = i + 1 < argc;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(a, "-o") && more) {
+            out_dir = argv[++i];
+        } else if (!strcmp(a, "--frames") && more) {
+            char *end;
+            long v = strtol(argv[++i], &end, 10);
+            if (*end || v < 1 || v > 100000) {
+                fprintf(stderr, "sgapi-ref: --frames wants 1..100000, got '%s'\n", argv[i]);
+                return 2;
+            }
+            frames = (int)v;
+        } else if (!strcmp(a, "--scene") && more) {
+            only[nonly++] = argv[++i];
+        } else if (!strcmp(a, "--threads") && more) {
+            char *end;
+            long v = strtol(argv[++i], &end, 10);
+            if (*end || v < 0 || v > 1024) {
+                fprintf(stderr, "sgapi-ref: --threads wants 0..1024, got '%s'\n", argv[i]);
+                return 2;
+            }
+            /* lavapipe reads it when its device is created. */
+            setenv("LP_NUM_THREADS", argv[i], 1);
+        } else if (a[0] == '-') {
+            fprintf(stderr, "sgapi-ref: unknown option or missing value: %s\n", a);
+            usage(stderr);
+            return 2;
+        } else {
+            files[nfiles++] = a;
+        }
+    }
+    if (!out_dir || nfiles == 0) {
+        usage(stderr);
+        return 2;
+    }
+    if (!make_dir(out_dir)) {
+        fprintf(stderr, "sgapi-ref: cannot create output folder %s: %s\n", out_dir,
+                strerror(errno));
+        return 1;
+    }
+    ref *r = calloc(1, sizeof *r);
+    if (!r) return 1;
+    int status = 0;
+    if (!create_instance(r) || !create_device(r) || !create_shaders_and_layouts(r)) {
+        fprintf(stderr, "sgapi-ref: %s\n", r->err);
+        destroy_ref(r);
+        free(r);
+        return 1;
+    }
+    for (int fi = 0; fi < nfiles && !status; fi++) {
+        sc_file f;
+        char err[1024];
+        if (!sc_load(files[fi], &f, err, sizeof err)) {
+            fprintf(stderr, "sgapi-ref: %s\n", err);
+            status = 1;
+            break;
+        }
+        uploads u = {0};
+        if (!upload_file(r, &f, &u)) {
+            fprintf(stderr, "sgapi-ref: %s: %s\n", files[fi], r->err);
+            status = 1;
+        }
+        for (size_t si = 0; !status && si < f.scene_count; si++) {
+            const sc_scene *s = &f.scenes[si];
+            bool want = nonly == 0;
+            for (int k = 0; k < nonly; k++) want |= strcmp(only[k], s->name) == 0;
+            if (!want) continue;
+            if (!render_scene(r, &f, s, &u, out_dir, frames)) {
+                fprintf(stderr, "sgapi-ref: %s: scene %s: %s\n", files[fi], s->name, r->err);
+                status = 1;
+            }
+        }
+        destroy_uploads(r, &u);
+        sc_free(&f);
+    }
+    destroy_ref(r);
+    free(r);
+    free(files);
+    free(only);
+    return status;
+}

@@ -1,0 +1,27 @@
+#!/bin/sh
+# Prints the markdown table of sgapi against lavapipe for the default scenes and, when it sits
+# beside the checkout, the gapi-task suite: each renderer's time per frame (median of 5) next to
+# the error figures of sgapi's image against lavapipe's.
+#   tools/accuracy-table.sh [BUILD_DIR]      (default: build; run `make build` first)
+set -eu
+build=${1:-build}
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+echo "| suite | scene | sgapi ms | lavapipe ms | PSNR dB | % > 2/255 | % > 8/255 | max err | coverage % |"
+echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+table() { # suite scenes.json
+    "$build/apps/sgapi-ref" "$2" -o "$out/$1-ref" --frames 5 >"$out/$1-ref.txt"
+    "$build/apps/sgapi-render" "$2" -o "$out/$1" --frames 5 --compare "$out/$1-ref" >"$out/$1.txt"
+    # sgapi-render --compare prints: NAME MS ms/frame (median of 5) psnr P dB >2/255 A % >8/255
+    # B % max M coverage C %
+    awk -v suite="$1" 'NR == FNR { ref[$1] = $2; next }
+        { for (i = 1; i <= NF; i++) v[$i] = $(i + 1)
+          printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", suite, $1, $2, ref[$1],
+                 v["psnr"], v[">2/255"], v[">8/255"], v["max"], v["coverage"] }' \
+        "$out/$1-ref.txt" "$out/$1.txt"
+}
+table default scenes/default.json
+if [ -f ../shared/gapi-task/scenes.json ]; then
+    table gapi-task ../shared/gapi-task/scenes.json
+fi
