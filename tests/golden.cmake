@@ -1,12 +1,28 @@
 # Image regression against the lavapipe reference, with the targets of golden/thresholds.csv:
 # - default scenes against the committed lavapipe renders in golden/ (golden_<scene>);
 # - default scenes against a live lavapipe render (live_<scene>);
+# - the hard cases of scenes/hard/ against a live lavapipe render (hard_<scene>); where a scene
+#   has a twin <scene>.reference.json, lavapipe renders the twin (the same image in exact
+#   arithmetic, without a precision problem of lavapipe's: docs/accuracy.md);
 # - the external gapi-task suite, when it sits beside the checkout, against a live lavapipe
 #   render (gapi_<scene>).
 # Each check renders its scene with sgapi-render --compare, which also writes a heat map.
 set(CHECK_OUT ${CMAKE_CURRENT_BINARY_DIR}/image_checks)
 set(DEFAULT_SCENES ${PROJECT_SOURCE_DIR}/scenes/default.json)
 set(GAPI_TASK ${PROJECT_SOURCE_DIR}/../shared/gapi-task/scenes.json)
+set(HARD_DIR ${PROJECT_SOURCE_DIR}/scenes/hard)
+
+file(STRINGS ${PROJECT_SOURCE_DIR}/golden/thresholds.csv ROWS REGEX "^[^#]")
+set(HARD_REF_FILES)
+foreach(row ${ROWS})
+  if(row MATCHES "^hard,([^,]+),")
+    set(file ${HARD_DIR}/${CMAKE_MATCH_1}.json)
+    if(EXISTS ${HARD_DIR}/${CMAKE_MATCH_1}.reference.json)
+      set(file ${HARD_DIR}/${CMAKE_MATCH_1}.reference.json)
+    endif()
+    list(APPEND HARD_REF_FILES ${file})
+  endif()
+endforeach()
 
 # The live checks need sgapi-ref; without it (-DSGAPI_BUILD_REFERENCE=OFF, as in the sanitizer
 # build, where Mesa is not instrumented) only the checks against golden/ remain.
@@ -17,6 +33,8 @@ if(TARGET sgapi-ref)
     add_test(NAME ref_gapi_task COMMAND sgapi-ref ${GAPI_TASK} -o ${CHECK_OUT}/ref_gapi_task)
     set_tests_properties(ref_gapi_task PROPERTIES FIXTURES_SETUP ref_gapi_task)
   endif()
+  add_test(NAME ref_hard_cases COMMAND sgapi-ref ${HARD_REF_FILES} -o ${CHECK_OUT}/ref_hard)
+  set_tests_properties(ref_hard_cases PROPERTIES FIXTURES_SETUP ref_hard)
 endif()
 
 # One check: render `scene` of `file` with sgapi and compare it with `ref_dir`/<scene>.png.
@@ -29,7 +47,6 @@ function(sg_image_check name file scene ref_dir out_dir fixture)
   endif()
 endfunction()
 
-file(STRINGS ${PROJECT_SOURCE_DIR}/golden/thresholds.csv ROWS REGEX "^[^#]")
 foreach(row ${ROWS})
   string(REPLACE "," ";" f "${row}")
   list(GET f 0 suite)
@@ -43,6 +60,13 @@ foreach(row ${ROWS})
     if(TARGET sgapi-ref)
       sg_image_check(live_${scene} ${DEFAULT_SCENES} ${scene} ${CHECK_OUT}/ref_default
                      ${CHECK_OUT}/live ref_default ${psnr} ${over2} ${cov})
+    endif()
+  elseif(suite STREQUAL "hard")
+    if(TARGET sgapi-ref)
+      sg_image_check(hard_${scene} ${HARD_DIR}/${scene}.json ${scene} ${CHECK_OUT}/ref_hard
+                     ${CHECK_OUT}/hard ref_hard ${psnr} ${over2} ${cov})
+    else() # rendered unchecked, so that the sanitizer build runs every hard case too
+      add_test(NAME hard_${scene} COMMAND sgapi-render ${HARD_DIR}/${scene}.json -o ${CHECK_OUT}/hard)
     endif()
   elseif(suite STREQUAL "gapi-task" AND EXISTS ${GAPI_TASK} AND TARGET sgapi-ref)
     sg_image_check(gapi_${scene} ${GAPI_TASK} ${scene} ${CHECK_OUT}/ref_gapi_task

@@ -290,7 +290,7 @@ static void device_create_errors(void **state) {
     d.allocator.alloc = NULL;
     expect_create_device_fails(&d, SG_ERROR_NULL_POINTER, &log, &mem);
 
-    /* 2^20 is above the largest pool (65535, a limit the header does not state). */
+    /* 2^20 is above the largest pool (65535). */
     const int bad_sizes[] = {-1, -1000, 1 << 20};
     for (size_t i = 0; i < sizeof bad_sizes / sizeof bad_sizes[0]; i++) {
         d = good;

@@ -1,6 +1,6 @@
 #!/bin/sh
-# Prints the markdown table of sgapi against lavapipe for the default scenes and, when it sits
-# beside the checkout, the gapi-task suite: each renderer's time per frame (median of 5) next to
+# Prints the markdown table of sgapi against lavapipe for the default scenes, the hard cases and,
+# when it sits beside the checkout, the gapi-task suite: each renderer's time per frame (median of 5) next to
 # the error figures of sgapi's image against lavapipe's.
 #   tools/accuracy-table.sh [BUILD_DIR]      (default: build; run `make build` first)
 set -eu
@@ -22,6 +22,20 @@ table() { # suite scenes.json
         "$out/$1-ref.txt" "$out/$1.txt"
 }
 table default scenes/default.json
+# The hard cases: each file alone; where a reference twin exists, lavapipe renders the twin.
+for f in scenes/hard/*.json; do
+    case $f in *.reference.json) continue ;; esac
+    ref=${f%.json}.reference.json
+    [ -f "$ref" ] || ref=$f
+    "$build/apps/sgapi-ref" "$ref" -o "$out/hard-ref" --frames 5 >>"$out/hard-ref.txt"
+    "$build/apps/sgapi-render" "$f" -o "$out/hard" --frames 5 --compare "$out/hard-ref" \
+        >>"$out/hard.txt"
+done
+awk 'NR == FNR { ref[$1] = $2; next }
+    { for (i = 1; i <= NF; i++) v[$i] = $(i + 1)
+      printf "| hard | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, ref[$1],
+             v["psnr"], v[">2/255"], v[">8/255"], v["max"], v["coverage"] }' \
+    "$out/hard-ref.txt" "$out/hard.txt"
 if [ -f ../shared/gapi-task/scenes.json ]; then
     table gapi-task ../shared/gapi-task/scenes.json
 fi

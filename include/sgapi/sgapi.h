@@ -7,13 +7,19 @@
  *   sgPipelineStateObject immutable state, validated once at creation.
  *
  * Frame
- *   sgBeginRenderPass(dev, &pass);  sgDraw(dev, pso, geom, &params) ...;  sgEndRenderPass(dev,
- * &pass);
+ *   sgBeginRenderPass(dev, &pass);
+ *   sgDraw(dev, pso, geom, &params); ...
+ *   sgEndRenderPass(dev, &pass);
  *
  * Conventions
  *   - Descriptors are zero-initialised structs: every field left at 0 takes the documented default.
- *   - Every call returns an sgResult. On failure nothing is changed, and sgGetLastError() returns a
- *     readable message (the device's log callback, if set, receives it too).
+ *   - Every call returns an sgResult. On failure nothing is changed but a create call's out-handle,
+ *     which is zeroed, and sgGetLastError() returns a readable message (the device's log callback,
+ *     if set, receives it too). A call given a NULL device can only return its code; a failed
+ *     sgCreateDevice reports its message to the desc's log callback.
+ *   - Vertex data and matrices may hold NaN or infinity: a triangle that meets one is not drawn,
+ *     and nothing else is affected. Texcoords under repeat wrapping keep full precision however
+ *     far from 0 they are.
  *   - Matrices are 16 floats, row-major: m[0..3] is the first row. Positions are column vectors:
  *     clip = proj * worldView * position.
  *   - Clip space is OpenGL's: x, y, z in [-w, w]; NDC y = +1 is the top row of the colour target,
@@ -47,14 +53,14 @@ extern "C" {
 
 typedef enum sgResult {
     SG_OK = 0,
-    SG_ERROR_NULL_POINTER,   /* a required pointer argument or descriptor field is NULL */
-    SG_ERROR_INVALID_ENUM,   /* an enum field holds an unknown value */
-    SG_ERROR_INVALID_HANDLE, /* zero, destroyed, of another kind, or of another device */
-    SG_ERROR_INVALID_VALUE,  /* a number is out of its range or not finite (e.g. a clear value) */
-    SG_ERROR_INVALID_SIZE,   /* image side outside 1..SG_MAX_IMAGE_SIZE, sizes differ, or a row
-                                pitch shorter than a row */
-    SG_ERROR_INVALID_COUNT,  /* a count below 1, an index count not a multiple of the
-                                primitive size, a pool size above 65535, thread_count < 0 */
+    SG_ERROR_NULL_POINTER,       /* a required pointer argument or descriptor field is NULL */
+    SG_ERROR_INVALID_ENUM,       /* an enum field holds an unknown value */
+    SG_ERROR_INVALID_HANDLE,     /* zero, destroyed, of another kind, or of another device */
+    SG_ERROR_INVALID_VALUE,      /* a clear value is outside [0, 1] or NaN */
+    SG_ERROR_INVALID_SIZE,       /* image side outside 1..SG_MAX_IMAGE_SIZE, sizes differ, or a row
+                                    pitch shorter than a row */
+    SG_ERROR_INVALID_COUNT,      /* a count below 1, an index count not a multiple of the
+                                    primitive size, a pool size above 65535, thread_count < 0 */
     SG_ERROR_INDEX_OUT_OF_RANGE, /* an index is >= the vertex count */
     SG_ERROR_NOT_IN_PASS,        /* sgDraw / sgEndRenderPass outside a render pass */
     SG_ERROR_ALREADY_IN_PASS,    /* sgBeginRenderPass inside a render pass */
@@ -71,9 +77,10 @@ typedef enum sgResult {
     SG_RESULT_COUNT
 } sgResult;
 
-/* Handles: a 32-bit id (slot, kind and generation). 0 is never valid. A stale id or one of another
- * kind is always refused; an id of another device is refused unless its generation happens to
- * coincide (1 chance in 16383). */
+/* Handles: a 32-bit id (slot, kind and generation). 0 is never valid. An id of another kind is
+ * always refused; a stale id is refused until its slot has been reused 16383 times (the generation
+ * then wraps); an id of another device is refused unless its generation happens to coincide
+ * (1 chance in 16383). */
 typedef struct sgImage2D {
     uint32_t id;
 } sgImage2D;

@@ -107,6 +107,8 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.outcodes = dev->outcodes;
     a.colors = geom->colors;
     a.texcoords = geom->texcoords;
+    a.rebase_texcoords =
+        pso->desc.shade == SG_SHADE_TEXTURE_MODULATE && pso->desc.wrap == SG_WRAP_REPEAT;
     a.setup.width = fb->width;
     a.setup.height = fb->height;
     a.setup.rect_x0 = 0;

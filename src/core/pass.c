@@ -53,7 +53,7 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
         return sg_error(dev, SG_ERROR_INVALID_ENUM,
                         "sgBeginRenderPass: color_load %d / depth_load %d is not an sgLoadOp",
                         (int)pass->color_load, (int)pass->depth_load);
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < 4 && pass->color_load != SG_LOAD_LOAD; k++)
         if (!unit_range(pass->clear_color[k]))
             return sg_error(dev, SG_ERROR_INVALID_VALUE,
                             "sgBeginRenderPass: clear_color[%d] = %g is outside [0, 1]", k,

@@ -14,6 +14,7 @@ typedef struct sg_assembly {
     const uint32_t *outcodes;
     const float *colors;    /* 4 floats a vertex, NULL: opaque white */
     const float *texcoords; /* 2 floats a vertex, read when setup.nattr > 4 */
+    int rebase_texcoords;   /* repeat wrapping: move each triangle's texcoords next to 0 */
     sg_guard guard;
     sg_setup_params setup;
     /* Receives every triangle that survives, in submission order. */
