@@ -19,8 +19,21 @@ build: deps
 demo: build
 	$(BUILD)/apps/sgapi-render scenes/default.json -o $(OUT) --frames 5 --compare golden
 
+# Every test; then the suite again, built with clang under ASan + UBSan in build-asan/ (without the
+# live lavapipe checks, see tools/sanitize.sh); then the default scenes under valgrind memcheck.
+# Any sanitizer or memcheck report fails.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	sh tools/sanitize.sh build-asan $(JOBS)
+	sh tools/memcheck.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD) $(OUT)
+
+# Fuzzes the file loaders (OBJ, scene JSON, images) with libFuzzer in build-fuzz/ (clang, ASan +
+# UBSan), FUZZ_SECONDS seconds per target; fails on any crash, found inputs go to
+# build-fuzz/crashes/<target>/ (docs/fuzzing.md).
+FUZZ_SECONDS ?= 60
+.PHONY: fuzz
+fuzz: deps
+	FUZZ_SECONDS=$(FUZZ_SECONDS) JOBS=$(JOBS) sh tools/fuzz.sh

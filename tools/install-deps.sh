@@ -4,7 +4,8 @@
 set -eu
 
 PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev
-    libvulkan-dev mesa-vulkan-drivers glslang-tools"
+    libvulkan-dev mesa-vulkan-drivers glslang-tools
+    clang libclang-rt-14-dev valgrind"
 
 missing=""
 for p in $PACKAGES; do

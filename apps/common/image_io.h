@@ -16,7 +16,11 @@ typedef struct sc_image {
 
 /** Loads a PNG, BMP, JPEG, TGA, ... file as RGBA8; on failure *out is zeroed and err says why. */
 bool sc_image_load(const char *path, sc_image *out, char *err, size_t errlen);
-/** Frees an image loaded by sc_image_load and zeroes it; a zeroed image is fine. */
+/** Decodes the bytes of such a file, held in memory, as sc_image_load does (it reads the file and
+ * calls this); on failure *out is zeroed and err says why. */
+bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, char *err,
+                          size_t errlen);
+/** Frees an image loaded by sc_image_load(_memory) and zeroes it; a zeroed image is fine. */
 void sc_image_free(sc_image *image);
 /** Writes RGBA8 pixels (top row first, tightly packed) as a PNG file. */
 bool sc_image_write_png(const char *path, int width, int height, const unsigned char *rgba,

@@ -3,6 +3,8 @@
  * Every value is validated here, so a renderer can map the result to its API without checks of
  * its own; errors name the file, the scene and draw, and what is wrong.
  */
+#define _POSIX_C_SOURCE 200809L /* stat */
+
 #include "scene.h"
 
 #include <limits.h>
@@ -12,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <cJSON.h>
 
@@ -98,6 +101,16 @@ static char *resolve_path(const ctx *c, const char *rel) {
     memcpy(p, c->dir, a);
     memcpy(p + a, rel, b + 1);
     return p;
+}
+
+/* A mesh or texture path must not name a device, FIFO or folder: /dev/zero would be read until
+ * memory runs out, and opening a FIFO blocks forever. A missing file passes, for the loader to
+ * report. */
+static bool check_regular(ctx *c, const loc *l, const char *what, const char *path) {
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode))
+        return fail(c, l, "%s: '%s' is not a regular file", what, path);
+    return true;
 }
 
 /* ---- values ---------------------------------------------------------------------------------- */
@@ -335,6 +348,11 @@ static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
         }
     }
 
+    if (!check_regular(c, l, "mesh", path)) {
+        if (source != path) free(source);
+        free(path);
+        return false;
+    }
     char why[512];
     sc_mesh mesh;
     bool ok;
@@ -376,6 +394,10 @@ static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
             *out = (int)i;
             return true;
         }
+    }
+    if (!check_regular(c, l, "texture", path)) {
+        free(path);
+        return false;
     }
     char why[512];
     sc_image img;
