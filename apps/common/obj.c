@@ -112,8 +112,7 @@ static bool parse_float(parser *p, const char *tb, const char *te, float *out) {
     if (end != buf + n) return fail(p, "not a number: '%s'", buf);
     /* "nan" and "inf" spelled out pass through: the renderer drops such triangles, and test
      * scenes need a way to say so. A finite-looking number that overflows is an error. */
-    if (!isfinite(f) && !strpbrk(buf, "nNiI"))
-        return fail(p, "number out of range: '%s'", buf);
+    if (!isfinite(f) && !strpbrk(buf, "nNiI")) return fail(p, "number out of range: '%s'", buf);
     *out = f;
     return true;
 }
