@@ -171,22 +171,28 @@ static void members_2d(char *out, size_t n, const char *extra) {
 
 /* ---- the cases ------------------------------------------------------------------------------- */
 
-/* Triangles 0.01 px thin and 2000 px long at many angles, all on screen in a 2048 x 2048 target
- * (huge_* covers triangles reaching off screen), and a fan of 1000 triangles around one pixel
- * centre. */
-static void case_slivers(const char *dir) {
-    px_space p = {2048, 2048};
-    mesh m = mesh_open(dir, "slivers.obj", 0);
+/* 90 triangles 0.01 px thin and 2000 px long at angles over 180 degrees, around (c, c) in a
+ * target of `size` pixels, written to `name`. */
+static void sliver_mesh(const char *dir, const char *name, double size, double c) {
+    px_space p = {size, size};
+    mesh m = mesh_open(dir, name, 0);
     for (int i = 0; i < 90; i++) {
         double a = i * (M_PI / 90.0) + 0.0123;
-        double cx = 1024 + 37.0 * cos(i * 1.7), cy = 1024 + 37.0 * sin(i * 2.3);
+        double cx = c + 10.0 * cos(i * 1.7), cy = c + 10.0 * sin(i * 2.3);
         double dx = cos(a), dy = sin(a);
         double x0 = cx - 1000 * dx, y0 = cy - 1000 * dy, x1 = cx + 1000 * dx, y1 = cy + 1000 * dy;
         /* 0.01 px wide at the far end: the two long edges almost coincide. */
         px_tri(&m, p, x0, y0, x1, y1, x1 - 0.01 * dy, y1 + 0.01 * dx, (unsigned)i);
     }
     mesh_close(&m);
-    p = (px_space){512, 512};
+}
+
+/* Slivers wholly on screen (a 2048 x 2048 target) and the same slivers in a 512 x 512 target,
+ * reaching far off screen; and a fan of 1000 triangles around one pixel centre. */
+static void case_slivers(const char *dir) {
+    sliver_mesh(dir, "slivers.obj", 2048, 1024);
+    sliver_mesh(dir, "slivers_offscreen.obj", 512, 256);
+    px_space p = {512, 512};
     mesh fan = mesh_open(dir, "fan1000.obj", 0);
     double cx = 255.5, cy = 255.5, r = 200.0; /* the centre is a pixel centre */
     for (int i = 0; i < 1000; i++) {
@@ -198,6 +204,7 @@ static void case_slivers(const char *dir) {
     char mem[512];
     members_2d(mem, sizeof mem, NULL);
     one_draw_scene(dir, "slivers", 2048, 2048, "slivers.obj", mem);
+    one_draw_scene(dir, "slivers_offscreen", 512, 512, "slivers_offscreen.obj", mem);
     one_draw_scene(dir, "fan_1000", 512, 512, "fan1000.obj", mem);
 }
 
