@@ -103,7 +103,7 @@ typedef struct sgAllocator {
 } sgAllocator;
 
 typedef struct sgDeviceDesc {
-    int thread_count;       /* 0: all cores. The raster currently runs on the calling thread. */
+    int thread_count;       /* raster threads, the caller included; 0: all cores */
     int image_pool_size;    /* 0: 256; at most 65535 */
     int geom_pool_size;     /* 0: 1024; at most 65535 */
     int pipeline_pool_size; /* 0: 64; at most 65535 */

@@ -137,12 +137,33 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
         sgDestroyDevice(dev);
         return sg_error(&tmp, SG_ERROR_OUT_OF_MEMORY, "sgCreateDevice: out of memory for pools");
     }
+    dev->binner.alloc = dev->allocator.alloc;
+    dev->binner.free = dev->allocator.free;
+    dev->binner.user = dev->allocator.user_data;
+    if (dev->thread_count > 1) {
+        dev->threads = sg_alloc(dev, (size_t)(dev->thread_count - 1) * sizeof *dev->threads);
+        if (!dev->threads) {
+            int threads = dev->thread_count; /* read before the device is gone */
+            sgDestroyDevice(dev);
+            return sg_error(&tmp, SG_ERROR_OUT_OF_MEMORY,
+                            "sgCreateDevice: out of memory for %d threads", threads);
+        }
+    }
+    dev->workers_started = sg_workers_start(&dev->workers, dev->thread_count, dev->threads);
+    if (!dev->workers_started) {
+        sgDestroyDevice(dev);
+        return sg_error(&tmp, SG_ERROR_OUT_OF_MEMORY, "sgCreateDevice: cannot start threads");
+    }
     *out_device = dev;
     return SG_OK;
 }
 
 void sgDestroyDevice(sgDevice *dev) {
     if (!dev) return;
+    if (dev->workers_started) sg_workers_stop(&dev->workers);
+    sg_free(dev, dev->threads);
+    sg_binner_release(&dev->binner);
+    sg_free(dev, dev->bin_jobs);
     if (dev->images)
         for (int i = 0; i < dev->image_pool.capacity; i++)
             if (dev->image_pool.live[i]) sg_image_release(dev, &dev->images[i]);

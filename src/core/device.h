@@ -7,6 +7,8 @@
 #include <stdint.h>
 
 #include "core/pool.h"
+#include "core/workers.h"
+#include "raster/bin.h"
 #include "raster/framebuffer.h"
 #include "raster/rast_tile.h"
 #include "sgapi/sgapi.h"
@@ -55,6 +57,14 @@ struct sgDevice {
     float (*clip)[4];
     uint32_t *outcodes;
     size_t vertex_capacity;
+    sg_binner binner; /* set-up triangles of the draw, by screen bin */
+    int *bin_jobs;    /* the non-empty bins of the draw */
+    int bin_jobs_capacity;
+
+    /* The raster threads (the calling thread is one of them). */
+    sg_workers workers;
+    pthread_t *threads;
+    bool workers_started;
 };
 
 /** Records an error message for sgGetLastError, passes it to the log callback, returns `result`. */

@@ -8,15 +8,30 @@
 #include "pipeline/vertex.h"
 #include "raster/shade.h"
 
-typedef struct raster_sink {
+/* Setup hands each triangle to the binner; the bins are rasterised once the draw's front end is
+ * done. */
+static void bin_emit(const sg_tri *tri, void *user) {
+    sg_binner_add(user, tri);
+}
+
+typedef struct raster_job {
+    const sg_binner *binner;
+    const int *bins; /* the non-empty bins */
     sg_tile_fn tile_fn;
     const sg_shade_ctx *ctx;
-} raster_sink;
+} raster_job;
 
-/* Triangles are rasterised as they leave setup; binning will slot in here. */
-static void raster_emit(const sg_tri *tri, void *user) {
-    const raster_sink *sink = user;
-    sg_rast_triangle(tri, sink->tile_fn, sink->ctx);
+/* One bin: its triangles in submission order, clipped to the bin. Bins share no pixels, so the
+ * result is the same whichever thread runs which bin. */
+static void raster_bin(void *vjob, int job) {
+    const raster_job *r = vjob;
+    int index = r->bins[job];
+    const sg_bin *bin = &r->binner->bins[index];
+    int x0 = (index % r->binner->bins_x) << SG_BIN_SHIFT;
+    int y0 = (index / r->binner->bins_x) << SG_BIN_SHIFT;
+    for (uint32_t i = 0; i < bin->count; i++)
+        sg_rast_triangle_in(&r->binner->tris[bin->tris[i]], x0, y0, x0 + SG_BIN_SIZE,
+                            y0 + SG_BIN_SIZE, r->tile_fn, r->ctx);
 }
 
 static bool grow_vertex_arenas(sgDevice *dev, size_t n) {
@@ -99,7 +114,16 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     sg_vertex_transform(mvp, geom->positions, geom->vertex_count, dev->clip, dev->outcodes,
                         &a.guard);
 
-    raster_sink sink = {pso->tile_fn, &ctx};
+    if (!sg_binner_reset(&dev->binner, fb->width, fb->height))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for screen bins");
+    int nbins = dev->binner.bins_x * dev->binner.bins_y;
+    if (nbins > dev->bin_jobs_capacity) {
+        int *jobs = sg_alloc(dev, (size_t)nbins * sizeof *jobs);
+        if (!jobs) return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for bins");
+        sg_free(dev, dev->bin_jobs);
+        dev->bin_jobs = jobs;
+        dev->bin_jobs_capacity = nbins;
+    }
     a.indices = geom->indices;
     a.index_count = geom->index_count;
     a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
@@ -118,8 +142,17 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.setup.cull = pso->desc.cull;
     a.setup.front_face = pso->desc.front_face;
     a.setup.nattr = pso->nattr;
-    a.emit = raster_emit;
-    a.user = &sink;
+    a.emit = bin_emit;
+    a.user = &dev->binner;
     sg_assemble(&a);
+    if (dev->binner.out_of_memory) /* nothing of the draw has reached the framebuffer yet */
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %zu triangles",
+                        dev->binner.tri_count);
+
+    int jobs = 0;
+    for (int i = 0; i < nbins; i++)
+        if (dev->binner.bins[i].count) dev->bin_jobs[jobs++] = i;
+    raster_job rj = {&dev->binner, dev->bin_jobs, pso->tile_fn, &ctx};
+    sg_workers_run(&dev->workers, jobs, raster_bin, &rj);
     return SG_OK;
 }

@@ -19,6 +19,50 @@ static bool ensure(sgDevice *dev, void **ptr, size_t *capacity, size_t pixels) {
     return *ptr != NULL;
 }
 
+/* Clearing or loading the tiled framebuffer at Begin, and resolving it at End, one band of 64
+ * pixel rows a job, so the whole frame's fixed cost is spread over the raster threads. */
+typedef struct band_job {
+    sg_fb *fb;
+    sg_image *color, *depth; /* depth may be NULL */
+    bool resolve;            /* End: tiles -> images; Begin: clear or load */
+    bool load_color, load_depth;
+    uint32_t clear_color;
+    float clear_depth;
+} band_job;
+
+static int bands_of(int height) {
+    return (height + SG_BIN_SIZE - 1) / SG_BIN_SIZE;
+}
+
+static void run_band(void *vjob, int band) {
+    const band_job *j = vjob;
+    sg_fb *fb = j->fb;
+    int y0 = band * SG_BIN_SIZE;
+    int h = fb->height - y0 < SG_BIN_SIZE ? fb->height - y0 : SG_BIN_SIZE;
+    /* A band starts on a tile row, so its tiles are one contiguous run of the tiled arrays. */
+    size_t first = (size_t)(y0 >> SG_TILE_SHIFT) * (size_t)fb->tiles_x * SG_TILE_PIXELS;
+    size_t count =
+        (size_t)((h + SG_TILE - 1) >> SG_TILE_SHIFT) * (size_t)fb->tiles_x * SG_TILE_PIXELS;
+    size_t cpitch = (size_t)fb->width * 4;
+    uint8_t *cdata = j->color->data + (size_t)y0 * cpitch;
+    float *ddata = j->depth ? (float *)(void *)(j->depth->data + (size_t)y0 * cpitch) : NULL;
+    if (j->resolve) {
+        sg_tile_to_linear_rgba8(cdata, cpitch, fb->color + first, fb->width, h);
+        if (ddata) sg_tile_to_linear_f32(ddata, cpitch, fb->depth + first, fb->width, h);
+        return;
+    }
+    if (j->load_color)
+        sg_tile_from_linear_rgba8(fb->color + first, cdata, cpitch, fb->width, h);
+    else
+        sg_fb_fill_color(fb->color + first, count, j->clear_color);
+    if (ddata) {
+        if (j->load_depth)
+            sg_tile_from_linear_f32(fb->depth + first, ddata, cpitch, fb->width, h);
+        else
+            sg_fb_fill_depth(fb->depth + first, count, j->clear_depth);
+    }
+}
+
 sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     if (!dev) return SG_ERROR_NULL_POINTER;
     if (!pass) return sg_error(dev, SG_ERROR_NULL_POINTER, "sgBeginRenderPass: pass is NULL");
@@ -74,23 +118,17 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     fb->height = color->height;
     fb->tiles_x = (color->width + SG_TILE - 1) / SG_TILE;
     fb->tiles_y = (color->height + SG_TILE - 1) / SG_TILE;
-    if (pass->color_load == SG_LOAD_LOAD) {
-        sg_tile_from_linear_rgba8(fb->color, color->data, (size_t)color->width * 4, color->width,
-                                  color->height);
-    } else {
-        const float *c = pass->clear_color;
-        sg_fb_fill_color(fb->color, pixels,
-                         sg_pack_rgba8(sg_to_unorm8(c[0]), sg_to_unorm8(c[1]), sg_to_unorm8(c[2]),
-                                       sg_to_unorm8(c[3])));
-    }
-    if (depth) {
-        if (pass->depth_load == SG_LOAD_LOAD)
-            sg_tile_from_linear_f32(fb->depth, (const float *)(const void *)depth->data,
-                                    (size_t)depth->width * 4, depth->width, depth->height);
-        else
-            sg_fb_fill_depth(fb->depth, pixels,
-                             pass->depth_load == SG_LOAD_CLEAR ? pass->clear_depth : 1.0f);
-    }
+    const float *c = pass->clear_color;
+    band_job job = {fb,
+                    color,
+                    depth,
+                    false,
+                    pass->color_load == SG_LOAD_LOAD,
+                    pass->depth_load == SG_LOAD_LOAD,
+                    sg_pack_rgba8(sg_to_unorm8(c[0]), sg_to_unorm8(c[1]), sg_to_unorm8(c[2]),
+                                  sg_to_unorm8(c[3])),
+                    pass->depth_load == SG_LOAD_CLEAR ? pass->clear_depth : 1.0f};
+    sg_workers_run(&dev->workers, bands_of(color->height), run_band, &job);
     dev->in_pass = true;
     dev->pass_color = pass->color;
     dev->pass_depth = pass->depth;
@@ -109,13 +147,9 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                         pass->color.id, pass->depth.id, dev->pass_color.id, dev->pass_depth.id);
     /* Targets cannot be destroyed while the pass is open, so both lookups succeed. */
     sg_image *color = sg_lookup_image(dev, dev->pass_color);
-    sg_tile_to_linear_rgba8(color->data, (size_t)color->width * 4, dev->fb.color, color->width,
-                            color->height);
-    if (dev->pass_depth.id) {
-        sg_image *depth = sg_lookup_image(dev, dev->pass_depth);
-        sg_tile_to_linear_f32((float *)(void *)depth->data, (size_t)depth->width * 4, dev->fb.depth,
-                              depth->width, depth->height);
-    }
+    sg_image *depth = dev->pass_depth.id ? sg_lookup_image(dev, dev->pass_depth) : NULL;
+    band_job job = {&dev->fb, color, depth, true, false, false, 0, 0.0f};
+    sg_workers_run(&dev->workers, bands_of(color->height), run_band, &job);
     dev->in_pass = false;
     dev->pass_color.id = 0;
     dev->pass_depth.id = 0;

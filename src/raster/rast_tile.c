@@ -18,8 +18,15 @@ static uint32_t bounds_mask(const sg_tri *t, int x0, int y0) {
 }
 
 void sg_rast_triangle(const sg_tri *t, sg_tile_fn fn, const void *ctx) {
-    int tx0 = t->minx >> SG_TILE_SHIFT, tx1 = t->maxx >> SG_TILE_SHIFT;
-    int ty0 = t->miny >> SG_TILE_SHIFT, ty1 = t->maxy >> SG_TILE_SHIFT;
+    sg_rast_triangle_in(t, 0, 0, t->maxx + 1, t->maxy + 1, fn, ctx);
+}
+
+void sg_rast_triangle_in(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
+                         const void *ctx) {
+    int tx0 = (t->minx > rx0 ? t->minx : rx0) >> SG_TILE_SHIFT;
+    int ty0 = (t->miny > ry0 ? t->miny : ry0) >> SG_TILE_SHIFT;
+    int tx1 = (t->maxx < rx1 - 1 ? t->maxx : rx1 - 1) >> SG_TILE_SHIFT;
+    int ty1 = (t->maxy < ry1 - 1 ? t->maxy : ry1 - 1) >> SG_TILE_SHIFT;
     /* Offsets from a tile's first pixel centre to the corner where each edge is largest
      * (for rejection) and smallest (for acceptance). */
     int64_t hi[3], lo[3];

@@ -1,0 +1,1105 @@
+/* sgapi-bench - speed against error: sgapi next to the lavapipe reference, scene by scene.
+ *
+ *   sgapi-bench SCENE.json... [--frames N] [--threads T] [--csv FILE] [--pareto [--plot OUT.png]]
+ *               [--quick] [--ref PATH]
+ *
+ * For every scene of the files it measures:
+ *   - sgapi's steady-state time per frame at 1 and at T threads (one device per thread count):
+ *     3 warm-up frames, then the median of N frames, each timed from sgBeginRenderPass to the
+ *     return of sgEndRenderPass (loading, uploads and pipeline creation are not counted);
+ *   - lavapipe's, at 1 and T threads, by running sgapi-ref (found beside this program) on the
+ *     scene and reading the time it prints;
+ *   - the error of sgapi's T-thread image against lavapipe's: PSNR and % of pixels over 2/255.
+ * It prints a markdown table, the geometric mean of the sgapi/lavapipe ratios, and the floor of
+ * the machine: one 1024x1024 colour + depth frame cleared and written by sgapi with no draws.
+ *
+ * --pareto also measures, at T threads, each setting of the `settings` table below and prints
+ * its time and error per scene, writes pareto.csv, and plots time against PSNR with gnuplot when
+ * it is installed.
+ *
+ * Example: sgapi-bench scenes/default.json --csv bench.csv
+ * --quick (2 frames, no warm-up) only checks that everything runs; its times mean nothing.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <sgapi/sgapi.h>
+
+#include "image_diff.h"
+#include "image_io.h"
+#include "scene.h"
+
+#define WARMUP_FRAMES 3
+#define MIN_FRAMES    20     /* fewer gives no steady-state median */
+#define MAX_FRAMES    100000 /* sgapi-ref's limit */
+#define QUICK_FRAMES  2
+#define MAX_THREADS   1024 /* sgapi-ref's limit */
+#define FLOOR_SIZE    1024
+
+/* ---- settings of --pareto -------------------------------------------------------------------- */
+
+/* One way of drawing every scene: a change to the pipeline state of each draw (NULL: the scene as
+ * written). Each row adds one point per scene to the speed/error curve. */
+typedef struct setting {
+    const char *name;
+    void (*adjust)(sgPipelineDesc *desc);
+} setting;
+
+static void nearest_filter(sgPipelineDesc *desc) {
+    if (desc->shade == SG_SHADE_TEXTURE_MODULATE) desc->filter = SG_FILTER_NEAREST;
+}
+
+static const setting settings[] = {
+    {"default", NULL}, /* must stay first: the main table's T-thread figures are this row's */
+    {"nearest", nearest_filter},
+};
+#define SETTING_COUNT ((int)(sizeof settings / sizeof settings[0]))
+
+/* ---- options --------------------------------------------------------------------------------- */
+
+typedef struct options {
+    const char **files;
+    int file_count;
+    int frames, warmup, threads;
+    bool quick, pareto;
+    const char *csv;  /* NULL: no CSV */
+    const char *plot; /* --plot; NULL: pareto.png */
+    const char *ref;  /* --ref; NULL: sgapi-ref beside this program */
+} options;
+
+static void usage(FILE *f) {
+    fprintf(f,
+            "usage: sgapi-bench SCENE.json... [options]\n"
+            "Measures, per scene, sgapi's and lavapipe's (sgapi-ref's) median time per frame at 1\n"
+            "and T threads and the error of sgapi's image against lavapipe's, and prints them as\n"
+            "a markdown table, with the geometric mean of the time ratios and the time of an\n"
+            "empty %dx%d frame (the floor).\n"
+            "  --frames N      timed frames per measurement, >= %d (default %d), after %d warm-up\n"
+            "                  frames\n"
+            "  --threads T     the multi-threaded measurements' thread count (default: all cores)\n"
+            "  --csv FILE      also write the table as CSV\n"
+            "  --pareto        also measure every setting (default, nearest filter) at T threads:\n"
+            "                  print a second table, write pareto.csv (beside --csv FILE, or in\n"
+            "                  the current folder) and plot it when gnuplot is installed\n"
+            "  --plot OUT.png  with --pareto: the plot's file (default pareto.png)\n"
+            "  --quick         %d frames, no warm-up: checks that everything runs; the times mean\n"
+            "                  nothing\n"
+            "  --ref PATH      the sgapi-ref program (default: the one beside sgapi-bench)\n"
+            "  -h, --help      show this help\n",
+            FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, MIN_FRAMES, WARMUP_FRAMES, QUICK_FRAMES);
+}
+
+/* A whole decimal number in [lo, hi]. */
+static bool parse_int(const char *s, int lo, int hi, int *out) {
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end != '\0' || v < lo || v > hi) return false;
+    *out = (int)v;
+    return true;
+}
+
+static int default_threads(void) {
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > MAX_THREADS ? MAX_THREADS : (int)n;
+}
+
+/* 0: parsed; 1: help was printed; 2: bad arguments (already reported). */
+static int parse_args(int argc, char **argv, options *o) {
+    bool frames_given = false;
+    o->frames = MIN_FRAMES;
+    o->warmup = WARMUP_FRAMES;
+    o->threads = default_threads();
+    o->files = calloc((size_t)argc, sizeof *o->files);
+    if (!o->files) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return 2;
+    }
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        bool takes_value = !strcmp(a, "--frames") || !strcmp(a, "--threads") ||
+                           !strcmp(a, "--csv") || !strcmp(a, "--plot") || !strcmp(a, "--ref");
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            return 1;
+        }
+        if (takes_value && !value) {
+            fprintf(stderr, "sgapi-bench: %s needs a value\n", a);
+            return 2;
+        }
+        if (!strcmp(a, "--frames")) {
+            if (!parse_int(value, MIN_FRAMES, MAX_FRAMES, &o->frames)) {
+                fprintf(stderr, "sgapi-bench: --frames needs a whole number in %d..%d, not '%s'\n",
+                        MIN_FRAMES, MAX_FRAMES, value);
+                return 2;
+            }
+            frames_given = true;
+        } else if (!strcmp(a, "--threads")) {
+            if (!parse_int(value, 1, MAX_THREADS, &o->threads)) {
+                fprintf(stderr, "sgapi-bench: --threads needs a whole number in 1..%d, not '%s'\n",
+                        MAX_THREADS, value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--csv")) {
+            o->csv = value;
+        } else if (!strcmp(a, "--plot")) {
+            o->plot = value;
+        } else if (!strcmp(a, "--ref")) {
+            o->ref = value;
+        } else if (!strcmp(a, "--pareto")) {
+            o->pareto = true;
+        } else if (!strcmp(a, "--quick")) {
+            o->quick = true;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            fprintf(stderr, "sgapi-bench: unknown option '%s' (see --help)\n", a);
+            return 2;
+        } else {
+            o->files[o->file_count++] = a;
+        }
+        if (takes_value) i++;
+    }
+    if (o->file_count == 0) {
+        fprintf(stderr, "sgapi-bench: no scene file given\n");
+        usage(stderr);
+        return 2;
+    }
+    if (o->quick && frames_given) {
+        fprintf(stderr, "sgapi-bench: --quick and --frames exclude each other\n");
+        return 2;
+    }
+    if (o->plot && !o->pareto) {
+        fprintf(stderr, "sgapi-bench: --plot only works with --pareto\n");
+        return 2;
+    }
+    if (o->quick) {
+        o->frames = QUICK_FRAMES;
+        o->warmup = 0;
+    }
+    return 0;
+}
+
+/* ---- small helpers --------------------------------------------------------------------------- */
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sorts the n >= 1 values in place and returns their median. */
+static double median(double *v, int n) {
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+/* a + b + c in a new string (free it), or NULL when out of memory. */
+static char *concat3(const char *a, const char *b, const char *c) {
+    size_t la = strlen(a), lb = strlen(b), lc = strlen(c);
+    char *p = malloc(la + lb + lc + 1);
+    if (!p) return NULL;
+    memcpy(p, a, la);
+    memcpy(p + la, b, lb);
+    memcpy(p + la + lb, c, lc + 1);
+    return p;
+}
+
+/* The folder part of a path ("." when it has none), in a new string. */
+static char *dir_of(const char *path) {
+    const char *slash = strrchr(path, '/');
+    if (!slash) return concat3(".", "", "");
+    size_t n = slash == path ? 1 : (size_t)(slash - path);
+    char *d = malloc(n + 1);
+    if (!d) return NULL;
+    memcpy(d, path, n);
+    d[n] = '\0';
+    return d;
+}
+
+/* Lets the compiler check the format arguments of the error helper. */
+#if defined(__GNUC__)
+#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
+#else
+#define PRINTF_LIKE(fmt, args)
+#endif
+
+static bool sg_fail(sgDevice *dev, sgResult r, const char *fmt, ...) PRINTF_LIKE(3, 4);
+
+/* Reports a failed sgapi call with its context; always returns false. */
+static bool sg_fail(sgDevice *dev, sgResult r, const char *fmt, ...) {
+    va_list ap;
+    fprintf(stderr, "sgapi-bench: ");
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    if (dev)
+        fprintf(stderr, ": %s: %s\n", sgResultName(r), sgGetLastError(dev));
+    else
+        fprintf(stderr, ": %s\n", sgResultName(r));
+    return false;
+}
+
+/* ---- child processes ------------------------------------------------------------------------- */
+
+/* Runs argv[0] (looked up in PATH when it has no '/') and captures its stdout into *out
+ * (NUL-terminated; free() it). Its stderr is ours, so its own messages reach the user.
+ * Returns 0 when it ran, with *status its exit status (-1: killed by a signal); otherwise the
+ * errno of the failure (ENOENT: no such program), with err saying what failed. */
+static int run_child(char *const argv[], char **out, int *status, char *err, size_t errlen) {
+    int out_pipe[2], exec_pipe[2];
+    *out = NULL;
+    if (pipe(out_pipe) != 0) {
+        int e = errno;
+        snprintf(err, errlen, "cannot run %s: pipe: %s", argv[0], strerror(e));
+        return e;
+    }
+    /* Closed by a successful exec: the parent then reads nothing from it, and otherwise the
+     * errno of the failed exec. */
+    if (pipe(exec_pipe) != 0 || fcntl(exec_pipe[1], F_SETFD, FD_CLOEXEC) != 0) {
+        int e = errno;
+        snprintf(err, errlen, "cannot run %s: pipe: %s", argv[0], strerror(e));
+        close(out_pipe[0]);
+        close(out_pipe[1]);
+        return e;
+    }
+    fflush(stdout);
+    fflush(stderr);
+    pid_t pid = fork();
+    if (pid < 0) {
+        int e = errno;
+        snprintf(err, errlen, "cannot run %s: fork: %s", argv[0], strerror(e));
+        close(out_pipe[0]);
+        close(out_pipe[1]);
+        close(exec_pipe[0]);
+        close(exec_pipe[1]);
+        return e;
+    }
+    if (pid == 0) {
+        close(out_pipe[0]);
+        close(exec_pipe[0]);
+        if (dup2(out_pipe[1], STDOUT_FILENO) >= 0) {
+            close(out_pipe[1]);
+            execvp(argv[0], argv);
+        }
+        int e = errno;
+        ssize_t written = write(exec_pipe[1], &e, sizeof e);
+        (void)written;
+        _exit(127);
+    }
+    close(out_pipe[1]);
+    close(exec_pipe[1]);
+    /* Read to the end even when out of memory, so the child never blocks on a full pipe. */
+    size_t len = 0, cap = 4096;
+    char *buf = malloc(cap);
+    bool ok = buf != NULL;
+    char chunk[4096];
+    for (;;) {
+        ssize_t n = read(out_pipe[0], chunk, sizeof chunk);
+        if (n == 0) break;
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            break;
+        }
+        if (ok && len + (size_t)n + 1 > cap) {
+            char *grown = realloc(buf, (len + (size_t)n + 1) * 2);
+            if (grown) {
+                buf = grown;
+                cap = (len + (size_t)n + 1) * 2;
+            } else {
+                ok = false;
+            }
+        }
+        if (ok) {
+            memcpy(buf + len, chunk, (size_t)n);
+            len += (size_t)n;
+        }
+    }
+    close(out_pipe[0]);
+    int exec_errno = 0;
+    ssize_t got;
+    do got = read(exec_pipe[0], &exec_errno, sizeof exec_errno);
+    while (got < 0 && errno == EINTR);
+    close(exec_pipe[0]);
+    int ws = 0;
+    while (waitpid(pid, &ws, 0) < 0 && errno == EINTR) {
+    }
+    if (got == (ssize_t)sizeof exec_errno) {
+        snprintf(err, errlen, "cannot run %s: %s", argv[0], strerror(exec_errno));
+        free(buf);
+        return exec_errno ? exec_errno : EINVAL;
+    }
+    if (!ok) {
+        snprintf(err, errlen, "out of memory reading the output of %s", argv[0]);
+        free(buf);
+        return ENOMEM;
+    }
+    buf[len] = '\0';
+    *out = buf;
+    *status = WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
+    return 0;
+}
+
+/* sgapi-ref beside this program: the two are built into, and installed to, the same folder. */
+static char *find_ref(const char *argv0) {
+    char self[4096];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n > 0 && n < (ssize_t)sizeof self - 1) {
+        self[n] = '\0';
+    } else if (strchr(argv0, '/')) {
+        snprintf(self, sizeof self, "%s", argv0);
+    } else {
+        return concat3("sgapi-ref", "", ""); /* found through PATH, as this program was */
+    }
+    char *dir = dir_of(self);
+    char *ref = dir ? concat3(dir, "/", "sgapi-ref") : NULL;
+    free(dir);
+    return ref;
+}
+
+/* lavapipe's median time per frame of one scene at `threads` raster threads, read from the line
+ * "NAME  X ms/frame ..." that sgapi-ref prints; its image is left in tmpdir/NAME.png. */
+static bool run_lavapipe(const options *o, const char *ref, const char *file, const char *scene,
+                         int threads, const char *tmpdir, double *ms) {
+    char frames_s[16], threads_s[16], err[1024];
+    snprintf(frames_s, sizeof frames_s, "%d", o->frames);
+    snprintf(threads_s, sizeof threads_s, "%d", threads);
+    char *argv[] = {(char *)ref, (char *)file, "--frames", frames_s,       "--scene", (char *)scene,
+                    "--threads", threads_s,    "-o",       (char *)tmpdir, NULL};
+    char *out;
+    int status;
+    if (run_child(argv, &out, &status, err, sizeof err) != 0) {
+        fprintf(stderr, "sgapi-bench: %s\n", err);
+        fprintf(stderr, "sgapi-bench: the lavapipe reference could not run; build sgapi-ref "
+                        "(it needs the Vulkan loader and glslang) or name it with --ref PATH\n");
+        return false;
+    }
+    if (status != 0) {
+        fprintf(stderr,
+                "sgapi-bench: %s failed (exit status %d) on scene '%s' of %s at %d thread(s)%s\n",
+                ref, status, scene, file, threads,
+                status == 1 ? " (its own message, if any, is above)" : "");
+        free(out);
+        return false;
+    }
+    bool found = false;
+    size_t n = strlen(scene);
+    for (char *line = out; line && *line && !found;) {
+        char *next = strchr(line, '\n');
+        if (next) *next++ = '\0';
+        if (!strncmp(line, scene, n) && (line[n] == ' ' || line[n] == '\t')) {
+            char *end;
+            double v = strtod(line + n, &end);
+            while (*end == ' ') end++;
+            if (end != line + n && !strncmp(end, "ms/frame", 8) && isfinite(v) && v >= 0) {
+                *ms = v;
+                found = true;
+            }
+        }
+        line = next;
+    }
+    if (!found)
+        fprintf(stderr, "sgapi-bench: %s printed no time for scene '%s' of %s; it printed:\n%s\n",
+                ref, scene, file, out);
+    free(out);
+    return found;
+}
+
+/* ---- pipeline cache -------------------------------------------------------------------------- */
+
+typedef struct pso_cache {
+    sgPipelineDesc *descs;
+    sgPipelineStateObject *psos;
+    size_t count, cap;
+} pso_cache;
+
+static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
+    return a->shade == b->shade && a->filter == b->filter && a->wrap == b->wrap &&
+           a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
+           a->cull == b->cull && a->front_face == b->front_face && a->blend == b->blend;
+}
+
+/* The pipeline for a state: created on first use, then reused for every draw with that state. */
+static bool get_pso(sgDevice *dev, pso_cache *c, const sgPipelineDesc *desc,
+                    sgPipelineStateObject *out) {
+    for (size_t i = 0; i < c->count; i++) {
+        if (same_desc(&c->descs[i], desc)) {
+            *out = c->psos[i];
+            return true;
+        }
+    }
+    if (c->count == c->cap) {
+        size_t n = c->cap ? c->cap * 2 : 16;
+        sgPipelineDesc *d = realloc(c->descs, n * sizeof *d);
+        if (d) c->descs = d;
+        sgPipelineStateObject *p = d ? realloc(c->psos, n * sizeof *p) : NULL;
+        if (p) c->psos = p;
+        if (!d || !p) {
+            fprintf(stderr, "sgapi-bench: out of memory\n");
+            return false;
+        }
+        c->cap = n;
+    }
+    sgResult r = sgCreatePipelineStateObject(dev, desc, out);
+    if (r != SG_OK) return sg_fail(dev, r, "sgCreatePipelineStateObject");
+    c->descs[c->count] = *desc;
+    c->psos[c->count++] = *out;
+    return true;
+}
+
+static const sgCompare compare_map[] = {
+    [SC_COMPARE_LESS] = SG_COMPARE_LESS,
+    [SC_COMPARE_NEVER] = SG_COMPARE_NEVER,
+    [SC_COMPARE_EQUAL] = SG_COMPARE_EQUAL,
+    [SC_COMPARE_LESS_EQUAL] = SG_COMPARE_LESS_EQUAL,
+    [SC_COMPARE_GREATER] = SG_COMPARE_GREATER,
+    [SC_COMPARE_NOT_EQUAL] = SG_COMPARE_NOT_EQUAL,
+    [SC_COMPARE_GREATER_EQUAL] = SG_COMPARE_GREATER_EQUAL,
+    [SC_COMPARE_ALWAYS] = SG_COMPARE_ALWAYS,
+};
+
+/* The pipeline state of a draw, as sgapi-render makes it, then changed by the setting. */
+static sgPipelineDesc pipeline_of(const sc_draw *d, const setting *st) {
+    sgPipelineDesc p;
+    memset(&p, 0, sizeof p);
+    /* A texture draw without a texture is drawn with its vertex colours, as the references do. */
+    bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
+    p.shade = textured ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_VERTEX_COLOR;
+    if (textured) {
+        p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
+        p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
+    }
+    p.depth.compare = compare_map[d->depth_compare];
+    p.depth.write = d->depth_write;
+    p.cull = d->cull == SC_CULL_BACK    ? SG_CULL_BACK
+             : d->cull == SC_CULL_FRONT ? SG_CULL_FRONT
+                                        : SG_CULL_NONE;
+    p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
+    p.blend = SG_BLEND_OPAQUE;
+    if (st->adjust) st->adjust(&p);
+    return p;
+}
+
+/* ---- sgapi ----------------------------------------------------------------------------------- */
+
+/* What one file's meshes and textures became on a device. */
+typedef struct uploads {
+    sgGeom *geoms;
+    sgImage2D *images;
+    size_t geom_count, image_count;
+} uploads;
+
+static void destroy_uploads(sgDevice *dev, uploads *u) {
+    for (size_t i = 0; i < u->geom_count; i++) sgDestroyGeom(dev, u->geoms[i]);
+    for (size_t i = 0; i < u->image_count; i++) sgDestroyImage2D(dev, u->images[i]);
+    free(u->geoms);
+    free(u->images);
+    memset(u, 0, sizeof *u);
+}
+
+static bool upload(sgDevice *dev, const sc_file *f, uploads *u) {
+    memset(u, 0, sizeof *u);
+    u->geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->geoms);
+    u->images = calloc(f->texture_count ? f->texture_count : 1, sizeof *u->images);
+    if (!u->geoms || !u->images) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return false;
+    }
+    for (size_t i = 0; i < f->texture_count; i++) {
+        const sc_image *t = &f->textures[i];
+        sgImage2DDesc desc = {t->width, t->height, SG_FORMAT_RGBA8_UNORM, t->pixels};
+        sgResult r = sgCreateImage2D(dev, &desc, &u->images[i]);
+        if (r != SG_OK) return sg_fail(dev, r, "texture '%s'", f->texture_sources[i]);
+        u->image_count++;
+    }
+    for (size_t i = 0; i < f->mesh_count; i++) {
+        const sc_mesh *m = &f->meshes[i];
+        sgGeomDesc desc;
+        memset(&desc, 0, sizeof desc);
+        /* The loader caps both counts at INT32_MAX, so they fit. */
+        desc.vertex_count = (int)m->vertex_count;
+        desc.positions = m->positions;
+        desc.colors = m->colors;
+        desc.texcoords = m->texcoords;
+        desc.normals = m->normals;
+        desc.index_count = (int)m->index_count;
+        desc.indices = m->indices;
+        desc.primitive = SG_PRIMITIVE_TRIANGLES;
+        desc.storage = SG_STORAGE_REFERENCE; /* the loaded file outlives the device */
+        sgResult r = sgCreateGeom(dev, &desc, &u->geoms[i]);
+        if (r != SG_OK) return sg_fail(dev, r, "mesh '%s'", f->mesh_sources[i]);
+        u->geom_count++;
+    }
+    return true;
+}
+
+/* Draws a scene o->warmup untimed frames, then o->frames timed ones; *ms is the median time of a
+ * timed frame, and pixels, when not NULL, receives the image (width * height * 4 bytes). The
+ * pipelines and targets are made before the first frame, so they are not timed. */
+static bool measure_scene(sgDevice *dev, pso_cache *cache, const sc_scene *s, const uploads *u,
+                          const setting *st, const options *o, double *ms, unsigned char *pixels) {
+    bool ok = false;
+    sgImage2D color = {0}, depth = {0};
+    sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
+    double *times = calloc((size_t)o->frames, sizeof *times);
+    if (!psos || !times) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        goto done;
+    }
+    for (size_t i = 0; i < s->draw_count; i++) {
+        sgPipelineDesc desc = pipeline_of(&s->draws[i], st);
+        if (!get_pso(dev, cache, &desc, &psos[i])) goto done;
+    }
+    sgImage2DDesc cd = {s->width, s->height, SG_FORMAT_RGBA8_UNORM, NULL};
+    sgImage2DDesc dd = {s->width, s->height, SG_FORMAT_D32_FLOAT, NULL};
+    sgResult r = sgCreateImage2D(dev, &cd, &color);
+    if (r != SG_OK) {
+        sg_fail(dev, r, "scene '%s': colour target", s->name);
+        goto done;
+    }
+    r = sgCreateImage2D(dev, &dd, &depth);
+    if (r != SG_OK) {
+        sg_fail(dev, r, "scene '%s': depth target", s->name);
+        goto done;
+    }
+    sgPassDesc pass;
+    memset(&pass, 0, sizeof pass);
+    pass.color = color;
+    pass.depth = depth;
+    pass.color_load = SG_LOAD_CLEAR;
+    pass.depth_load = SG_LOAD_DEFAULT; /* clears to 1.0, the far plane */
+    memcpy(pass.clear_color, s->clear_color, sizeof pass.clear_color);
+
+    for (int frame = -o->warmup; frame < o->frames; frame++) {
+        double t0 = now_ms();
+        r = sgBeginRenderPass(dev, &pass);
+        if (r != SG_OK) {
+            sg_fail(dev, r, "scene '%s': sgBeginRenderPass", s->name);
+            goto done;
+        }
+        for (size_t i = 0; i < s->draw_count; i++) {
+            const sc_draw *d = &s->draws[i];
+            sgDrawParams params;
+            memset(&params, 0, sizeof params);
+            memcpy(params.world_view, d->world_view, sizeof params.world_view);
+            memcpy(params.proj, d->proj, sizeof params.proj);
+            if (d->texture >= 0) params.texture = u->images[d->texture];
+            r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
+            if (r != SG_OK) {
+                sg_fail(dev, r, "scene '%s', draw %zu: sgDraw", s->name, i);
+                sgEndRenderPass(dev, &pass); /* close the pass so the targets can be freed */
+                goto done;
+            }
+        }
+        r = sgEndRenderPass(dev, &pass);
+        if (r != SG_OK) {
+            sg_fail(dev, r, "scene '%s': sgEndRenderPass", s->name);
+            goto done;
+        }
+        double t = now_ms() - t0;
+        if (frame >= 0) times[frame] = t;
+    }
+    if (pixels) {
+        r = sgReadImage2D(dev, color, pixels, 0);
+        if (r != SG_OK) {
+            sg_fail(dev, r, "scene '%s': sgReadImage2D", s->name);
+            goto done;
+        }
+    }
+    *ms = median(times, o->frames);
+    ok = true;
+done:
+    if (depth.id) sgDestroyImage2D(dev, depth);
+    if (color.id) sgDestroyImage2D(dev, color);
+    free(psos);
+    free(times);
+    return ok;
+}
+
+/* ---- the run --------------------------------------------------------------------------------- */
+
+/* Everything measured of one scene. Index [0] of the pairs is 1 thread, [1] T threads. */
+typedef struct result {
+    const char *file; /* as given */
+    const sc_scene *scene;
+    double sg_ms[2], lp_ms[2];
+    sc_image lp_image;                   /* lavapipe's, until every setting is compared with it */
+    double setting_ms[SETTING_COUNT];    /* sgapi at T threads; [0] is sg_ms[1] */
+    sc_diff setting_diff[SETTING_COUNT]; /* against lp_image; [0] is the main table's */
+} result;
+
+/* Runs lavapipe on every scene at 1 and T threads and keeps its image. */
+static bool measure_lavapipe(const options *o, const char *ref, const char *tmpdir, result *res,
+                             size_t count) {
+    for (size_t i = 0; i < count; i++) {
+        result *x = &res[i];
+        const sc_scene *s = x->scene;
+        if (i == 0 || strcmp(res[i - 1].file, x->file))
+            fprintf(stderr, "sgapi-bench: %s: lavapipe...\n", x->file);
+        char *png = concat3(tmpdir, "/", s->name);
+        char *path = png ? concat3(png, ".png", "") : NULL;
+        free(png);
+        if (!path) {
+            fprintf(stderr, "sgapi-bench: out of memory\n");
+            return false;
+        }
+        /* lavapipe draws the same image at any thread count: the last run's is kept. */
+        bool ok = run_lavapipe(o, ref, x->file, s->name, 1, tmpdir, &x->lp_ms[0]);
+        if (ok && o->threads == 1)
+            x->lp_ms[1] = x->lp_ms[0];
+        else if (ok)
+            ok = run_lavapipe(o, ref, x->file, s->name, o->threads, tmpdir, &x->lp_ms[1]);
+        char err[1024];
+        if (ok && !sc_image_load(path, &x->lp_image, err, sizeof err)) {
+            fprintf(stderr, "sgapi-bench: lavapipe's image of '%s': %s\n", s->name, err);
+            ok = false;
+        }
+        remove(path); /* so the temporary folder is empty at the end, whatever happened */
+        free(path);
+        if (!ok) return false;
+        if (x->lp_image.width != s->width || x->lp_image.height != s->height) {
+            fprintf(stderr, "sgapi-bench: lavapipe's image of '%s' is %dx%d, the scene %dx%d\n",
+                    s->name, x->lp_image.width, x->lp_image.height, s->width, s->height);
+            return false;
+        }
+    }
+    return true;
+}
+
+static bool create_device(int threads, const sc_file *files, int file_count, sgDevice **dev) {
+    size_t images = 0, geoms = 0;
+    for (int i = 0; i < file_count; i++) {
+        if (files[i].texture_count > images) images = files[i].texture_count;
+        if (files[i].mesh_count > geoms) geoms = files[i].mesh_count;
+    }
+    /* Pools for the largest file (its textures plus the two targets) and for every distinct
+     * pipeline_of() result of every setting: 5 colour sources (vertex colour; texture x
+     * 2 filters x 2 wraps) x 8 compares x 2 depth writes x 3 culls x 2 front faces. */
+    if (images > 65535 - 2 || geoms > 65535) {
+        fprintf(stderr, "sgapi-bench: too many meshes or textures in one file\n");
+        return false;
+    }
+    sgDeviceDesc dd;
+    memset(&dd, 0, sizeof dd);
+    dd.thread_count = threads;
+    if (images + 2 > 256) dd.image_pool_size = (int)images + 2;
+    if (geoms > 1024) dd.geom_pool_size = (int)geoms;
+    dd.pipeline_pool_size = 5 * 8 * 2 * 3 * 2 * SETTING_COUNT;
+    sgResult r = sgCreateDevice(&dd, dev);
+    if (r != SG_OK) return sg_fail(NULL, r, "sgCreateDevice with %d thread(s)", threads);
+    return true;
+}
+
+/* Measures every scene on one device of `threads` threads into slot (0: 1 thread, 1: T
+ * threads), and the floor into *floor_ms. With `compare`, also every setting in use, each
+ * compared with lavapipe's image. */
+static bool measure_sgapi(const options *o, const sc_file *files, result *res, int threads,
+                          int slot, bool compare, double *floor_ms) {
+    sgDevice *dev = NULL;
+    pso_cache cache = {0};
+    uploads u = {0};
+    unsigned char *pixels = NULL;
+    bool ok = create_device(threads, files, o->file_count, &dev);
+    int nsettings = compare && o->pareto ? SETTING_COUNT : 1;
+    size_t first = 0; /* the first result of the current file */
+    for (int fi = 0; ok && fi < o->file_count; fi++) {
+        const sc_file *f = &files[fi];
+        fprintf(stderr, "sgapi-bench: %s: sgapi, %d thread%s...\n", f->path, threads,
+                threads == 1 ? "" : "s");
+        ok = upload(dev, f, &u);
+        for (size_t si = 0; ok && si < f->scene_count; si++) {
+            result *x = &res[first + si];
+            const sc_scene *s = x->scene;
+            free(pixels);
+            pixels = compare ? malloc((size_t)s->width * (size_t)s->height * 4) : NULL;
+            if (compare && !pixels) {
+                fprintf(stderr, "sgapi-bench: out of memory\n");
+                ok = false;
+                break;
+            }
+            unsigned char bg[4];
+            for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
+            for (int k = 0; ok && k < nsettings; k++) {
+                double ms;
+                ok = measure_scene(dev, &cache, s, &u, &settings[k], o, &ms, pixels);
+                if (!ok) {
+                    fprintf(stderr, "sgapi-bench: in %s, scene '%s', setting '%s'\n", f->path,
+                            s->name, settings[k].name);
+                    break;
+                }
+                if (k == 0) x->sg_ms[slot] = ms;
+                if (compare) {
+                    x->setting_ms[k] = ms;
+                    x->setting_diff[k] =
+                        sc_image_diff(pixels, x->lp_image.pixels, s->width, s->height, bg, NULL);
+                }
+            }
+        }
+        destroy_uploads(dev, &u);
+        first += f->scene_count;
+    }
+    if (ok) {
+        sc_scene empty = {.name = "floor", .width = FLOOR_SIZE, .height = FLOOR_SIZE};
+        ok = measure_scene(dev, &cache, &empty, &u, &settings[0], o, floor_ms, NULL);
+    }
+    free(pixels);
+    sgDestroyDevice(dev); /* also destroys the cached pipelines */
+    free(cache.descs);
+    free(cache.psos);
+    return ok;
+}
+
+/* ---- output ---------------------------------------------------------------------------------- */
+
+static double ratio(const result *x, int slot) {
+    return x->sg_ms[slot] / x->lp_ms[slot];
+}
+
+static void print_table(const options *o, const result *res, size_t count,
+                        const double floor_ms[2]) {
+    int t = o->threads;
+    printf("| scene | sgapi 1t ms | sgapi %dt ms | lavapipe 1t ms | lavapipe %dt ms | ratio 1t | "
+           "ratio %dt | PSNR dB | %% > 2/255 |\n",
+           t, t, t);
+    printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    double log_sum[2] = {0, 0};
+    int used[2] = {0, 0};
+    for (size_t i = 0; i < count; i++) {
+        const result *x = &res[i];
+        printf("| %s | %.3f | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f | %.4f |\n", x->scene->name,
+               x->sg_ms[0], x->sg_ms[1], x->lp_ms[0], x->lp_ms[1], ratio(x, 0), ratio(x, 1),
+               x->setting_diff[0].psnr_db, x->setting_diff[0].pct_over[0]);
+        for (int s = 0; s < 2; s++) {
+            double r = ratio(x, s);
+            /* A time that rounds to 0 gives no ratio worth averaging. */
+            if (isfinite(r) && r > 0) {
+                log_sum[s] += log(r);
+                used[s]++;
+            }
+        }
+    }
+    double mean[2];
+    for (int s = 0; s < 2; s++) mean[s] = used[s] ? exp(log_sum[s] / used[s]) : NAN;
+    /* At --threads 1 both columns are one measurement: said once. */
+    printf("\ngeometric mean of sgapi/lavapipe over %d scene%s: 1t %.2f", used[0],
+           used[0] == 1 ? "" : "s", mean[0]);
+    if (t > 1) printf(", %dt %.2f", t, mean[1]);
+    printf("\nfloor (sgapi, one %dx%d colour + depth frame cleared and written, no draws): 1t "
+           "%.3f ms",
+           FLOOR_SIZE, FLOOR_SIZE, floor_ms[0]);
+    if (t > 1) printf(", %dt %.3f ms", t, floor_ms[1]);
+    printf("\n");
+}
+
+static void write_csv(FILE *f, const result *res, size_t count) {
+    fprintf(f, "scene,sgapi_ms_1t,sgapi_ms_nt,lavapipe_ms_1t,lavapipe_ms_nt,ratio_1t,ratio_nt,"
+               "psnr_db,pct_over_2\n");
+    for (size_t i = 0; i < count; i++) {
+        const result *x = &res[i];
+        fprintf(f, "%s,%.3f,%.3f,%.3f,%.3f,%.4f,%.4f,%.2f,%.4f\n", x->scene->name, x->sg_ms[0],
+                x->sg_ms[1], x->lp_ms[0], x->lp_ms[1], ratio(x, 0), ratio(x, 1),
+                x->setting_diff[0].psnr_db, x->setting_diff[0].pct_over[0]);
+    }
+}
+
+static void print_pareto(const options *o, const result *res, size_t count) {
+    printf("\n| scene | setting | sgapi %dt ms | PSNR dB | %% > 2/255 |\n", o->threads);
+    printf("| --- | --- | ---: | ---: | ---: |\n");
+    for (size_t i = 0; i < count; i++)
+        for (int k = 0; k < SETTING_COUNT; k++)
+            printf("| %s | %s | %.3f | %.2f | %.4f |\n", res[i].scene->name, settings[k].name,
+                   res[i].setting_ms[k], res[i].setting_diff[k].psnr_db,
+                   res[i].setting_diff[k].pct_over[0]);
+}
+
+static void write_pareto_csv(FILE *f, const result *res, size_t count) {
+    fprintf(f, "scene,setting,sgapi_ms_nt,psnr_db,pct_over_2\n");
+    for (size_t i = 0; i < count; i++)
+        for (int k = 0; k < SETTING_COUNT; k++)
+            fprintf(f, "%s,%s,%.3f,%.2f,%.4f\n", res[i].scene->name, settings[k].name,
+                    res[i].setting_ms[k], res[i].setting_diff[k].psnr_db,
+                    res[i].setting_diff[k].pct_over[0]);
+}
+
+/* Writes a gnuplot string literal: single quotes, in which only '' needs escaping. */
+static void gp_string(FILE *f, const char *s) {
+    fputc('\'', f);
+    for (; *s; s++) {
+        if (*s == '\'') fputc('\'', f);
+        fputc(*s, f);
+    }
+    fputc('\'', f);
+}
+
+/* Where a PSNR is drawn: an infinite one (identical images) on the line at inf_y. */
+static double psnr_y(double psnr, double inf_y) {
+    return isfinite(psnr) ? psnr : inf_y;
+}
+
+/* Plots time against PSNR, one point per scene and setting, with gnuplot; a missing gnuplot is
+ * reported and skipped, as the figures are in pareto.csv anyway. */
+static bool plot_pareto(const options *o, const result *res, size_t count, const char *tmpdir) {
+    const char *out = o->plot ? o->plot : "pareto.png";
+    /* Identical images have an infinite PSNR: they are drawn on a line above every finite one. */
+    double top = 0;
+    bool any_inf = false;
+    for (size_t i = 0; i < count; i++)
+        for (int k = 0; k < SETTING_COUNT; k++) {
+            double p = res[i].setting_diff[k].psnr_db;
+            if (isfinite(p) && p > top) top = p;
+            any_inf |= !isfinite(p);
+        }
+    double inf_y = ceil(top / 10) * 10 + 10;
+    char *script = concat3(tmpdir, "/pareto.gp", "");
+    FILE *f = script ? fopen(script, "w") : NULL;
+    if (!f) {
+        fprintf(stderr, "sgapi-bench: cannot write the gnuplot script: %s\n",
+                script ? strerror(errno) : "out of memory");
+        free(script);
+        return false;
+    }
+    fprintf(f, "set terminal png size 1400,1000 noenhanced\nset output ");
+    gp_string(f, out);
+    fprintf(f,
+            "\nset title 'sgapi at %d thread%s: time per frame against error vs lavapipe'\n"
+            "set xlabel 'sgapi ms per frame (median, log scale)'\n"
+            "set ylabel 'PSNR against lavapipe, dB (higher is closer)'\n"
+            "set logscale x\nset grid\nset key bottom right box opaque\n"
+            "set offsets graph 0.02, graph 0.15, graph 0.05, graph 0.05\n",
+            o->threads, o->threads == 1 ? "" : "s");
+    if (any_inf)
+        fprintf(f,
+                "set arrow from graph 0, first %g to graph 1, first %g nohead dt 2 lc rgb 'gray'\n"
+                "set label 'identical to lavapipe (infinite PSNR)' at graph 0.01, first %g "
+                "offset 0, 0.8\n",
+                inf_y, inf_y, inf_y);
+    for (int k = 0; k < SETTING_COUNT; k++) {
+        fprintf(f, "$s%d << EOD\n", k);
+        for (size_t i = 0; i < count; i++) {
+            const result *x = &res[i];
+            /* A setting that leaves a scene's image as an earlier one made it changed nothing
+             * in that scene: its point sits on the earlier one, whose label is enough. */
+            bool repeat = false;
+            for (int j = 0; j < k && !repeat; j++)
+                repeat = psnr_y(x->setting_diff[j].psnr_db, inf_y) ==
+                             psnr_y(x->setting_diff[k].psnr_db, inf_y) &&
+                         x->setting_diff[j].pct_over[0] == x->setting_diff[k].pct_over[0];
+            /* Scene names are [A-Za-z0-9_.-]+, so a double-quoted field needs no escape. */
+            fprintf(f, "\"%s\" %.6g %.6g\n", repeat ? "" : x->scene->name, x->setting_ms[k],
+                    psnr_y(x->setting_diff[k].psnr_db, inf_y));
+        }
+        fprintf(f, "EOD\n");
+    }
+    /* Each scene's settings joined by a line: the scene's own speed/error curve. */
+    fprintf(f, "$curves << EOD\n");
+    for (size_t i = 0; i < count; i++) {
+        for (int k = 0; k < SETTING_COUNT; k++)
+            fprintf(f, "%.6g %.6g\n", res[i].setting_ms[k],
+                    psnr_y(res[i].setting_diff[k].psnr_db, inf_y));
+        fprintf(f, "\n");
+    }
+    fprintf(f, "EOD\nplot $curves using 1:2 with lines lc rgb 'gray' notitle");
+    for (int k = 0; k < SETTING_COUNT; k++)
+        fprintf(f,
+                ", \\\n  $s%d using 2:3 with points pt 7 ps 1.5 lt %d title '%s', \\\n"
+                "  $s%d using 2:3:1 with labels left offset char 0.8, 0.5 font ',8' tc lt %d "
+                "notitle",
+                k, k + 1, settings[k].name, k, k + 1);
+    fprintf(f, "\n");
+    bool ok = fclose(f) == 0;
+    if (!ok) {
+        fprintf(stderr, "sgapi-bench: cannot write the gnuplot script: %s\n", strerror(errno));
+        remove(script);
+        free(script);
+        return false;
+    }
+    char *argv[] = {"gnuplot", script, NULL};
+    char *gp_out = NULL, err[1024];
+    int status = 0;
+    int e = run_child(argv, &gp_out, &status, err, sizeof err);
+    if (e == ENOENT) {
+        fprintf(stderr, "sgapi-bench: gnuplot is not installed: no plot (the figures are in "
+                        "pareto.csv)\n");
+    } else if (e != 0) {
+        fprintf(stderr, "sgapi-bench: %s\n", err);
+        ok = false;
+    } else if (status != 0) {
+        fprintf(stderr, "sgapi-bench: gnuplot failed (exit status %d) drawing %s\n", status, out);
+        ok = false;
+    } else {
+        fprintf(stderr, "sgapi-bench: wrote %s\n", out);
+    }
+    free(gp_out);
+    remove(script);
+    free(script);
+    return ok;
+}
+
+/* ---- main ------------------------------------------------------------------------------------ */
+
+/* Opens an output file at the start, so a bad path stops the run before minutes of measuring. */
+static FILE *open_output(const char *path) {
+    FILE *f = fopen(path, "w");
+    if (!f) fprintf(stderr, "sgapi-bench: cannot write %s: %s\n", path, strerror(errno));
+    return f;
+}
+
+/* Closes an output file; a failed run removes it rather than leave it empty. */
+static bool close_output(FILE *f, const char *path, bool keep) {
+    if (!f) return true;
+    bool ok = fclose(f) == 0;
+    if (keep && !ok) fprintf(stderr, "sgapi-bench: cannot write %s: %s\n", path, strerror(errno));
+    if (!keep || !ok) remove(path);
+    return ok;
+}
+
+int main(int argc, char **argv) {
+    options o = {0};
+    int status = parse_args(argc, argv, &o);
+    if (status) {
+        free(o.files);
+        return status == 1 ? 0 : 2;
+    }
+    status = 1;
+    sc_file *files = NULL;
+    result *res = NULL;
+    size_t count = 0;
+    int loaded = 0;
+    char *ref = NULL, *pareto_path = NULL, *tmpdir = NULL;
+    FILE *csv = NULL, *pareto_csv = NULL;
+    double floor_ms[2] = {0, 0};
+
+    ref = o.ref ? concat3(o.ref, "", "") : find_ref(argv[0]);
+    if (!ref) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        goto done;
+    }
+    if (strchr(ref, '/') && access(ref, X_OK) != 0) {
+        fprintf(stderr,
+                "sgapi-bench: cannot run the lavapipe reference %s: %s\n"
+                "sgapi-bench: build sgapi-ref (it needs the Vulkan loader and glslang) or name it "
+                "with --ref PATH\n",
+                ref, strerror(errno));
+        goto done;
+    }
+    if (o.pareto) {
+        char *dir = o.csv ? dir_of(o.csv) : NULL;
+        pareto_path =
+            o.csv ? (dir ? concat3(dir, "/", "pareto.csv") : NULL) : concat3("pareto.csv", "", "");
+        free(dir);
+        if (!pareto_path) {
+            fprintf(stderr, "sgapi-bench: out of memory\n");
+            goto done;
+        }
+        const char *base = o.csv ? strrchr(o.csv, '/') : NULL;
+        if (o.csv && !strcmp(base ? base + 1 : o.csv, "pareto.csv")) {
+            fprintf(stderr,
+                    "sgapi-bench: --csv %s would be overwritten by --pareto's "
+                    "pareto.csv: choose another name\n",
+                    o.csv);
+            goto done;
+        }
+    }
+    if (o.csv && !(csv = open_output(o.csv))) goto done;
+    if (pareto_path && !(pareto_csv = open_output(pareto_path))) goto done;
+
+    /* Everything is loaded first, so a bad file stops the run before any measuring. */
+    files = calloc((size_t)o.file_count, sizeof *files);
+    if (!files) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        goto done;
+    }
+    for (; loaded < o.file_count; loaded++) {
+        char err[1024];
+        if (!sc_load(o.files[loaded], &files[loaded], err, sizeof err)) {
+            fprintf(stderr, "sgapi-bench: %s\n", err);
+            goto done;
+        }
+        count += files[loaded].scene_count;
+    }
+    res = calloc(count ? count : 1, sizeof *res);
+    if (!res) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        goto done;
+    }
+    for (int i = 0, n = 0; i < o.file_count; i++)
+        for (size_t j = 0; j < files[i].scene_count; j++, n++) {
+            res[n].file = o.files[i];
+            res[n].scene = &files[i].scenes[j];
+        }
+
+    /* sgapi-ref writes its images here; they are read back and removed scene by scene. */
+    const char *tmp = getenv("TMPDIR");
+    tmpdir = concat3(tmp && *tmp ? tmp : "/tmp", "/sgapi-bench-", "XXXXXX");
+    if (!tmpdir || !mkdtemp(tmpdir)) {
+        fprintf(stderr, "sgapi-bench: cannot make a temporary folder: %s\n",
+                tmpdir ? strerror(errno) : "out of memory");
+        free(tmpdir);
+        tmpdir = NULL;
+        goto done;
+    }
+    if (o.quick)
+        fprintf(stderr, "sgapi-bench: --quick: %d frames, no warm-up: the times mean nothing\n",
+                o.frames);
+
+    /* lavapipe first: it fails fastest when missing, and its images are needed to compare
+     * sgapi's as they are made. */
+    if (!measure_lavapipe(&o, ref, tmpdir, res, count)) goto done;
+    if (o.threads == 1) {
+        if (!measure_sgapi(&o, files, res, 1, 0, true, &floor_ms[0])) goto done;
+        for (size_t i = 0; i < count; i++) res[i].sg_ms[1] = res[i].sg_ms[0];
+        floor_ms[1] = floor_ms[0];
+    } else {
+        if (!measure_sgapi(&o, files, res, 1, 0, false, &floor_ms[0]) ||
+            !measure_sgapi(&o, files, res, o.threads, 1, true, &floor_ms[1]))
+            goto done;
+    }
+
+    print_table(&o, res, count, floor_ms);
+    if (csv) write_csv(csv, res, count);
+    if (o.pareto) {
+        print_pareto(&o, res, count);
+        write_pareto_csv(pareto_csv, res, count);
+    }
+    fflush(stdout);
+    status = 0;
+    if (!close_output(csv, o.csv, true)) status = 1;
+    csv = NULL;
+    if (pareto_csv) {
+        if (close_output(pareto_csv, pareto_path, true))
+            fprintf(stderr, "sgapi-bench: wrote %s\n", pareto_path);
+        else
+            status = 1;
+        pareto_csv = NULL;
+    }
+    if (o.pareto && !plot_pareto(&o, res, count, tmpdir)) status = 1;
+done:
+    close_output(csv, o.csv, false);
+    close_output(pareto_csv, pareto_path, false);
+    if (tmpdir) rmdir(tmpdir);
+    for (size_t i = 0; res && i < count; i++) sc_image_free(&res[i].lp_image);
+    for (int i = 0; i < loaded; i++) sc_free(&files[i]);
+    free(files);
+    free(res);
+    free(tmpdir);
+    free(pareto_path);
+    free(ref);
+    free(o.files);
+    return status;
+}

@@ -1,0 +1,30 @@
+/* workers.h - the device's thread pool: runs numbered jobs on all threads, the caller included. */
+#ifndef SG_WORKERS_H
+#define SG_WORKERS_H
+
+#include <pthread.h>
+#include <stdbool.h>
+
+typedef void (*sg_job_fn)(void *ctx, int job);
+
+typedef struct sg_workers {
+    int count; /* threads that run jobs, the caller included (>= 1) */
+    pthread_t *threads;
+    pthread_mutex_t lock;
+    pthread_cond_t start, done;
+    /* The batch being run. */
+    sg_job_fn fn;
+    void *ctx;
+    int jobs, next, finished, generation;
+    int busy; /* workers still inside the current batch */
+    bool quit;
+} sg_workers;
+
+/** Starts count - 1 threads (none when count is 1). */
+bool sg_workers_start(sg_workers *w, int count, pthread_t *threads);
+/** Runs fn(ctx, 0 .. jobs - 1) across the threads and returns when all are done. */
+void sg_workers_run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx);
+/** Stops and joins the threads. */
+void sg_workers_stop(sg_workers *w);
+
+#endif

@@ -1,0 +1,72 @@
+/* bin.c - sorting set-up triangles into screen bins (see bin.h). Storage grows and is kept, so a
+ * steady stream of similar frames allocates nothing. */
+#include "raster/bin.h"
+
+#include <string.h>
+
+/* Grows an array to hold `need` elements of `size` bytes, doubling; false when out of memory. */
+static bool grow(sg_binner *b, void **ptr, size_t *capacity, size_t need, size_t size) {
+    if (need <= *capacity) return true;
+    size_t cap = *capacity ? *capacity : 64;
+    while (cap < need) cap *= 2;
+    void *p = b->alloc(cap * size, b->user);
+    if (!p) return false;
+    if (*ptr) {
+        memcpy(p, *ptr, *capacity * size);
+        b->free(*ptr, b->user);
+    }
+    *ptr = p;
+    *capacity = cap;
+    return true;
+}
+
+bool sg_binner_reset(sg_binner *b, int width, int height) {
+    int bx = (width + SG_BIN_SIZE - 1) >> SG_BIN_SHIFT,
+        by = (height + SG_BIN_SIZE - 1) >> SG_BIN_SHIFT;
+    if (bx * by > b->bin_capacity) {
+        sg_bin *bins = b->alloc((size_t)(bx * by) * sizeof *bins, b->user);
+        if (!bins) return false;
+        memset(bins, 0, (size_t)(bx * by) * sizeof *bins);
+        if (b->bins) {
+            memcpy(bins, b->bins, (size_t)b->bin_capacity * sizeof *bins);
+            b->free(b->bins, b->user);
+        }
+        b->bins = bins;
+        b->bin_capacity = bx * by;
+    }
+    b->bins_x = bx;
+    b->bins_y = by;
+    for (int i = 0; i < bx * by; i++) b->bins[i].count = 0;
+    b->tri_count = 0;
+    b->out_of_memory = false;
+    return true;
+}
+
+void sg_binner_add(sg_binner *b, const sg_tri *tri) {
+    if (b->out_of_memory) return;
+    if (!grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + 1, sizeof *b->tris)) {
+        b->out_of_memory = true;
+        return;
+    }
+    uint32_t index = (uint32_t)b->tri_count++;
+    b->tris[index] = *tri;
+    for (int y = tri->miny >> SG_BIN_SHIFT; y <= tri->maxy >> SG_BIN_SHIFT; y++)
+        for (int x = tri->minx >> SG_BIN_SHIFT; x <= tri->maxx >> SG_BIN_SHIFT; x++) {
+            sg_bin *bin = &b->bins[y * b->bins_x + x];
+            size_t cap = bin->capacity;
+            if (!grow(b, (void **)&bin->tris, &cap, bin->count + 1u, sizeof *bin->tris)) {
+                b->out_of_memory = true;
+                return;
+            }
+            bin->capacity = (uint32_t)cap;
+            bin->tris[bin->count++] = index;
+        }
+}
+
+void sg_binner_release(sg_binner *b) {
+    for (int i = 0; i < b->bin_capacity; i++)
+        if (b->bins[i].tris) b->free(b->bins[i].tris, b->user);
+    if (b->bins) b->free(b->bins, b->user);
+    if (b->tris) b->free(b->tris, b->user);
+    memset(b, 0, sizeof *b);
+}

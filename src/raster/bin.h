@@ -1,0 +1,38 @@
+/* bin.h - screen bins: set-up triangles sorted into 64 x 64-pixel bins, in submission order, so
+ * that bins can be rasterised on any thread in any order with the same result. */
+#ifndef SG_BIN_H
+#define SG_BIN_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "pipeline/setup.h"
+
+#define SG_BIN_SHIFT 6
+#define SG_BIN_SIZE  (1 << SG_BIN_SHIFT)
+
+typedef struct sg_bin {
+    uint32_t *tris; /* indices into sg_binner.tris, in submission order */
+    uint32_t count, capacity;
+} sg_bin;
+
+typedef struct sg_binner {
+    void *(*alloc)(size_t size, void *user);
+    void (*free)(void *ptr, void *user);
+    void *user;
+    sg_tri *tris;
+    size_t tri_count, tri_capacity;
+    sg_bin *bins;
+    int bins_x, bins_y, bin_capacity;
+    bool out_of_memory; /* set when a list could not grow; the draw is then abandoned */
+} sg_binner;
+
+/** Empties every bin and sizes the grid for a width x height target. */
+bool sg_binner_reset(sg_binner *b, int width, int height);
+/** Stores a triangle and lists it in every bin its bounds touch. */
+void sg_binner_add(sg_binner *b, const sg_tri *tri);
+/** Frees everything the binner holds. */
+void sg_binner_release(sg_binner *b);
+
+#endif
