@@ -2,6 +2,7 @@
 #include "pipeline/setup.h"
 
 #include <math.h>
+#include <string.h>
 
 typedef struct screen_vert {
     int32_t x, y; /* snapped, 1/256 pixel */
@@ -115,5 +116,13 @@ bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cv
               &out->a_dx[k], &out->a_dy[k]);
     }
     out->nattr = p->nattr;
+    out->flat = SG_FLAT_NONE;
+    if (p->nattr >= 4 && memcmp(s[0].attr, s[1].attr, 4 * sizeof(float)) == 0 &&
+        memcmp(s[0].attr, s[2].attr, 4 * sizeof(float)) == 0) {
+        memcpy(out->color, s[0].attr, sizeof out->color);
+        bool white = true;
+        for (int k = 0; k < 4; k++) white &= out->color[k] == 1.0f;
+        out->flat = white ? SG_FLAT_WHITE : SG_FLAT_COLOR;
+    }
     return true;
 }

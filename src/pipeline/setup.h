@@ -37,7 +37,13 @@ typedef struct sg_tri {
     float a[SG_MAX_ATTRS]; /* attribute / w */
     float a_dx[SG_MAX_ATTRS], a_dy[SG_MAX_ATTRS];
     int nattr;
+    /* The three vertex colours are equal: the colour is `color` everywhere, exactly (interpolating
+     * it would only add rounding), and SG_FLAT_WHITE when that colour is opaque white. */
+    int flat;
+    float color[4];
 } sg_tri;
+
+enum { SG_FLAT_NONE, SG_FLAT_COLOR, SG_FLAT_WHITE };
 
 /** Divides, snaps, culls and sets up one clipped triangle (all w > 0); false: nothing to draw. */
 bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cvert *v1,

@@ -32,6 +32,19 @@ void sg_tile_from_linear_rgba8(uint32_t *tiles, const uint8_t *src, size_t pitch
 
 void sg_tile_to_linear_rgba8(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h) {
     int tx = tiles_of(w);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    /* The packed pixel's bytes in memory already are R, G, B, A: a tile row is 16 bytes to copy. */
+    int whole = w >> SG_TILE_SHIFT;
+    for (int y = 0; y < h; y++) {
+        uint8_t *row = dst + (size_t)y * pitch;
+        const uint32_t *src = tiles + sg_fb_index(tx, 0, y);
+        for (int t = 0; t < whole; t++)
+            memcpy(row + (size_t)t * 16, src + (size_t)t * SG_TILE_PIXELS, 16);
+        for (int x = whole << SG_TILE_SHIFT; x < w; x++)
+            memcpy(row + (size_t)x * 4, &tiles[sg_fb_index(tx, x, y)], 4);
+    }
+    return;
+#endif
     for (int y = 0; y < h; y++) {
         uint8_t *row = dst + (size_t)y * pitch;
         for (int x = 0; x < w; x++) {
@@ -54,9 +67,13 @@ void sg_tile_from_linear_f32(float *tiles, const float *src, size_t pitch, int w
 }
 
 void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, int h) {
-    int tx = tiles_of(w);
+    int tx = tiles_of(w), whole = w >> SG_TILE_SHIFT;
     for (int y = 0; y < h; y++) {
         float *row = (float *)(void *)((uint8_t *)dst + (size_t)y * pitch);
-        for (int x = 0; x < w; x++) row[x] = tiles[sg_fb_index(tx, x, y)];
+        const float *src = tiles + sg_fb_index(tx, 0, y);
+        for (int t = 0; t < whole; t++)
+            memcpy(row + (size_t)t * SG_TILE, src + (size_t)t * SG_TILE_PIXELS,
+                   SG_TILE * sizeof(float));
+        for (int x = whole << SG_TILE_SHIFT; x < w; x++) row[x] = tiles[sg_fb_index(tx, x, y)];
     }
 }

@@ -26,11 +26,12 @@ static inline bool depth_passes(sgCompare op, float z, float d) {
     }
 }
 
-/* The one body every variant is made from; the constant arguments fold away per variant. */
+/* The one body every variant is made from; the constant arguments fold away per variant, and
+ * `flat` (a per-triangle constant, see sg_tri) is split off at the top into its own loops. */
 static inline __attribute__((always_inline)) void
-shade_tile(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const int textured,
-           const int bilinear, const int repeat, const int zmode, const int zwrite) {
-    const sg_shade_ctx *c = vctx;
+shade_pixels(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+             const int textured, const int bilinear, const int repeat, const int zmode,
+             const int zwrite, const int flat) {
     size_t base = sg_fb_index(c->tiles_x, x0, y0);
     float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
     while (mask) {
@@ -45,19 +46,39 @@ shade_tile(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, con
             if (zmode == Z_ANY && !depth_passes(c->compare, z, *dp)) continue;
             if (zwrite) *dp = z;
         }
-        float w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+        float w = 0.0f;
+        if (textured || flat == SG_FLAT_NONE) w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
         float col[4];
-        for (int k = 0; k < 4; k++) col[k] = (t->a[k] + t->a_dx[k] * dx + t->a_dy[k] * dy) * w;
+        for (int k = 0; k < 4; k++)
+            col[k] = flat != SG_FLAT_NONE ? t->color[k]
+                                          : (t->a[k] + t->a_dx[k] * dx + t->a_dy[k] * dy) * w;
         if (textured) {
             float s = (t->a[4] + t->a_dx[4] * dx + t->a_dy[4] * dy) * w;
             float u = (t->a[5] + t->a_dx[5] * dx + t->a_dy[5] * dy) * w;
             sg_texel tx = bilinear ? sg_sample_bilinear(&c->tex, s, u, repeat)
                                    : sg_sample_nearest(&c->tex, s, u, repeat);
+            if (flat == SG_FLAT_WHITE) { /* 1 * texel / 255, back to unorm8, is the texel */
+                c->color[base + (size_t)bit] = sg_pack_rgba8((uint32_t)tx.c[0], (uint32_t)tx.c[1],
+                                                             (uint32_t)tx.c[2], (uint32_t)tx.c[3]);
+                continue;
+            }
             for (int k = 0; k < 4; k++) col[k] *= (float)tx.c[k] * (1.0f / 255.0f);
         }
         c->color[base + (size_t)bit] = sg_pack_rgba8(sg_to_unorm8(col[0]), sg_to_unorm8(col[1]),
                                                      sg_to_unorm8(col[2]), sg_to_unorm8(col[3]));
     }
+}
+
+static inline __attribute__((always_inline)) void
+shade_tile(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const int textured,
+           const int bilinear, const int repeat, const int zmode, const int zwrite) {
+    const sg_shade_ctx *c = vctx;
+    if (t->flat == SG_FLAT_WHITE)
+        shade_pixels(c, t, x0, y0, mask, textured, bilinear, repeat, zmode, zwrite, SG_FLAT_WHITE);
+    else if (t->flat == SG_FLAT_COLOR)
+        shade_pixels(c, t, x0, y0, mask, textured, bilinear, repeat, zmode, zwrite, SG_FLAT_COLOR);
+    else
+        shade_pixels(c, t, x0, y0, mask, textured, bilinear, repeat, zmode, zwrite, SG_FLAT_NONE);
 }
 
 #define SG_VARIANT(tex, bil, rep, zm, zw)                                                          \
