@@ -39,6 +39,7 @@
 
 #include "image_diff.h"
 #include "image_io.h"
+#include "scene_sgapi.h"
 #include "scene.h"
 
 #define WARMUP_FRAMES 3
@@ -193,22 +194,8 @@ static int parse_args(int argc, char **argv, options *o) {
 
 /* ---- small helpers --------------------------------------------------------------------------- */
 
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Sorts the n >= 1 values in place and returns their median. */
-static double median(double *v, int n) {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
+#define PROG         "sgapi-bench"
+#define sg_fail(...) ss_fail(PROG, __VA_ARGS__)
 
 /* a + b + c in a new string (free it), or NULL when out of memory. */
 static char *concat3(const char *a, const char *b, const char *c) {
@@ -231,29 +218,6 @@ static char *dir_of(const char *path) {
     memcpy(d, path, n);
     d[n] = '\0';
     return d;
-}
-
-/* Lets the compiler check the format arguments of the error helper. */
-#if defined(__GNUC__)
-#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
-#else
-#define PRINTF_LIKE(fmt, args)
-#endif
-
-static bool sg_fail(sgDevice *dev, sgResult r, const char *fmt, ...) PRINTF_LIKE(3, 4);
-
-/* Reports a failed sgapi call with its context; always returns false. */
-static bool sg_fail(sgDevice *dev, sgResult r, const char *fmt, ...) {
-    va_list ap;
-    fprintf(stderr, "sgapi-bench: ");
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    if (dev)
-        fprintf(stderr, ": %s: %s\n", sgResultName(r), sgGetLastError(dev));
-    else
-        fprintf(stderr, ": %s\n", sgResultName(r));
-    return false;
 }
 
 /* ---- child processes ------------------------------------------------------------------------- */
@@ -421,139 +385,21 @@ static bool run_lavapipe(const options *o, const char *ref, const char *file, co
     return found;
 }
 
-/* ---- pipeline cache -------------------------------------------------------------------------- */
-
-typedef struct pso_cache {
-    sgPipelineDesc *descs;
-    sgPipelineStateObject *psos;
-    size_t count, cap;
-} pso_cache;
-
-static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
-    return a->shade == b->shade && a->filter == b->filter && a->wrap == b->wrap &&
-           a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
-           a->cull == b->cull && a->front_face == b->front_face && a->blend == b->blend;
-}
-
-/* The pipeline for a state: created on first use, then reused for every draw with that state. */
-static bool get_pso(sgDevice *dev, pso_cache *c, const sgPipelineDesc *desc,
-                    sgPipelineStateObject *out) {
-    for (size_t i = 0; i < c->count; i++) {
-        if (same_desc(&c->descs[i], desc)) {
-            *out = c->psos[i];
-            return true;
-        }
-    }
-    if (c->count == c->cap) {
-        size_t n = c->cap ? c->cap * 2 : 16;
-        sgPipelineDesc *d = realloc(c->descs, n * sizeof *d);
-        if (d) c->descs = d;
-        sgPipelineStateObject *p = d ? realloc(c->psos, n * sizeof *p) : NULL;
-        if (p) c->psos = p;
-        if (!d || !p) {
-            fprintf(stderr, "sgapi-bench: out of memory\n");
-            return false;
-        }
-        c->cap = n;
-    }
-    sgResult r = sgCreatePipelineStateObject(dev, desc, out);
-    if (r != SG_OK) return sg_fail(dev, r, "sgCreatePipelineStateObject");
-    c->descs[c->count] = *desc;
-    c->psos[c->count++] = *out;
-    return true;
-}
-
-static const sgCompare compare_map[] = {
-    [SC_COMPARE_LESS] = SG_COMPARE_LESS,
-    [SC_COMPARE_NEVER] = SG_COMPARE_NEVER,
-    [SC_COMPARE_EQUAL] = SG_COMPARE_EQUAL,
-    [SC_COMPARE_LESS_EQUAL] = SG_COMPARE_LESS_EQUAL,
-    [SC_COMPARE_GREATER] = SG_COMPARE_GREATER,
-    [SC_COMPARE_NOT_EQUAL] = SG_COMPARE_NOT_EQUAL,
-    [SC_COMPARE_GREATER_EQUAL] = SG_COMPARE_GREATER_EQUAL,
-    [SC_COMPARE_ALWAYS] = SG_COMPARE_ALWAYS,
-};
+/* ---- sgapi ----------------------------------------------------------------------------------- */
 
 /* The pipeline state of a draw, as sgapi-render makes it, then changed by the setting. */
 static sgPipelineDesc pipeline_of(const sc_draw *d, const setting *st) {
-    sgPipelineDesc p;
-    memset(&p, 0, sizeof p);
-    /* A texture draw without a texture is drawn with its vertex colours, as the references do. */
-    bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
-    p.shade = textured ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_VERTEX_COLOR;
-    if (textured) {
-        p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
-        p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
-    }
-    p.depth.compare = compare_map[d->depth_compare];
-    p.depth.write = d->depth_write;
-    p.cull = d->cull == SC_CULL_BACK    ? SG_CULL_BACK
-             : d->cull == SC_CULL_FRONT ? SG_CULL_FRONT
-                                        : SG_CULL_NONE;
-    p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
-    p.blend = SG_BLEND_OPAQUE;
+    sgPipelineDesc p = ss_pipeline_desc(d);
     if (st->adjust) st->adjust(&p);
     return p;
-}
-
-/* ---- sgapi ----------------------------------------------------------------------------------- */
-
-/* What one file's meshes and textures became on a device. */
-typedef struct uploads {
-    sgGeom *geoms;
-    sgImage2D *images;
-    size_t geom_count, image_count;
-} uploads;
-
-static void destroy_uploads(sgDevice *dev, uploads *u) {
-    for (size_t i = 0; i < u->geom_count; i++) sgDestroyGeom(dev, u->geoms[i]);
-    for (size_t i = 0; i < u->image_count; i++) sgDestroyImage2D(dev, u->images[i]);
-    free(u->geoms);
-    free(u->images);
-    memset(u, 0, sizeof *u);
-}
-
-static bool upload(sgDevice *dev, const sc_file *f, uploads *u) {
-    memset(u, 0, sizeof *u);
-    u->geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->geoms);
-    u->images = calloc(f->texture_count ? f->texture_count : 1, sizeof *u->images);
-    if (!u->geoms || !u->images) {
-        fprintf(stderr, "sgapi-bench: out of memory\n");
-        return false;
-    }
-    for (size_t i = 0; i < f->texture_count; i++) {
-        const sc_image *t = &f->textures[i];
-        sgImage2DDesc desc = {t->width, t->height, SG_FORMAT_RGBA8_UNORM, t->pixels};
-        sgResult r = sgCreateImage2D(dev, &desc, &u->images[i]);
-        if (r != SG_OK) return sg_fail(dev, r, "texture '%s'", f->texture_sources[i]);
-        u->image_count++;
-    }
-    for (size_t i = 0; i < f->mesh_count; i++) {
-        const sc_mesh *m = &f->meshes[i];
-        sgGeomDesc desc;
-        memset(&desc, 0, sizeof desc);
-        /* The loader caps both counts at INT32_MAX, so they fit. */
-        desc.vertex_count = (int)m->vertex_count;
-        desc.positions = m->positions;
-        desc.colors = m->colors;
-        desc.texcoords = m->texcoords;
-        desc.normals = m->normals;
-        desc.index_count = (int)m->index_count;
-        desc.indices = m->indices;
-        desc.primitive = SG_PRIMITIVE_TRIANGLES;
-        desc.storage = SG_STORAGE_REFERENCE; /* the loaded file outlives the device */
-        sgResult r = sgCreateGeom(dev, &desc, &u->geoms[i]);
-        if (r != SG_OK) return sg_fail(dev, r, "mesh '%s'", f->mesh_sources[i]);
-        u->geom_count++;
-    }
-    return true;
 }
 
 /* Draws a scene o->warmup untimed frames, then o->frames timed ones; *ms is the median time of a
  * timed frame, and pixels, when not NULL, receives the image (width * height * 4 bytes). The
  * pipelines and targets are made before the first frame, so they are not timed. */
-static bool measure_scene(sgDevice *dev, pso_cache *cache, const sc_scene *s, const uploads *u,
-                          const setting *st, const options *o, double *ms, unsigned char *pixels) {
+static bool measure_scene(sgDevice *dev, ss_pso_cache *cache, const sc_file *f, const sc_scene *s,
+                          const ss_uploads *u, const setting *st, const options *o, double *ms,
+                          unsigned char *pixels) {
     bool ok = false;
     sgImage2D color = {0}, depth = {0};
     sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
@@ -564,55 +410,16 @@ static bool measure_scene(sgDevice *dev, pso_cache *cache, const sc_scene *s, co
     }
     for (size_t i = 0; i < s->draw_count; i++) {
         sgPipelineDesc desc = pipeline_of(&s->draws[i], st);
-        if (!get_pso(dev, cache, &desc, &psos[i])) goto done;
-    }
-    sgImage2DDesc cd = {s->width, s->height, SG_FORMAT_RGBA8_UNORM, NULL};
-    sgImage2DDesc dd = {s->width, s->height, SG_FORMAT_D32_FLOAT, NULL};
-    sgResult r = sgCreateImage2D(dev, &cd, &color);
-    if (r != SG_OK) {
-        sg_fail(dev, r, "scene '%s': colour target", s->name);
-        goto done;
-    }
-    r = sgCreateImage2D(dev, &dd, &depth);
-    if (r != SG_OK) {
-        sg_fail(dev, r, "scene '%s': depth target", s->name);
-        goto done;
+        if (!ss_get_pso(PROG, dev, cache, &desc, &psos[i])) goto done;
     }
     sgPassDesc pass;
-    memset(&pass, 0, sizeof pass);
-    pass.color = color;
-    pass.depth = depth;
-    pass.color_load = SG_LOAD_CLEAR;
-    pass.depth_load = SG_LOAD_DEFAULT; /* clears to 1.0, the far plane */
-    memcpy(pass.clear_color, s->clear_color, sizeof pass.clear_color);
+    if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass)) goto done;
+    sgResult r;
 
     for (int frame = -o->warmup; frame < o->frames; frame++) {
-        double t0 = now_ms();
-        r = sgBeginRenderPass(dev, &pass);
-        if (r != SG_OK) {
-            sg_fail(dev, r, "scene '%s': sgBeginRenderPass", s->name);
-            goto done;
-        }
-        for (size_t i = 0; i < s->draw_count; i++) {
-            const sc_draw *d = &s->draws[i];
-            sgDrawParams params;
-            memset(&params, 0, sizeof params);
-            memcpy(params.world_view, d->world_view, sizeof params.world_view);
-            memcpy(params.proj, d->proj, sizeof params.proj);
-            if (d->texture >= 0) params.texture = u->images[d->texture];
-            r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
-            if (r != SG_OK) {
-                sg_fail(dev, r, "scene '%s', draw %zu: sgDraw", s->name, i);
-                sgEndRenderPass(dev, &pass); /* close the pass so the targets can be freed */
-                goto done;
-            }
-        }
-        r = sgEndRenderPass(dev, &pass);
-        if (r != SG_OK) {
-            sg_fail(dev, r, "scene '%s': sgEndRenderPass", s->name);
-            goto done;
-        }
-        double t = now_ms() - t0;
+        double t0 = ss_now_ms();
+        if (!ss_draw_frame(PROG, dev, f, s, u, psos, &pass)) goto done;
+        double t = ss_now_ms() - t0;
         if (frame >= 0) times[frame] = t;
     }
     if (pixels) {
@@ -622,7 +429,7 @@ static bool measure_scene(sgDevice *dev, pso_cache *cache, const sc_scene *s, co
             goto done;
         }
     }
-    *ms = median(times, o->frames);
+    *ms = ss_median(times, o->frames);
     ok = true;
 done:
     if (depth.id) sgDestroyImage2D(dev, depth);
@@ -712,8 +519,8 @@ static bool create_device(int threads, const sc_file *files, int file_count, sgD
 static bool measure_sgapi(const options *o, const sc_file *files, result *res, int threads,
                           int slot, bool compare, double *floor_ms) {
     sgDevice *dev = NULL;
-    pso_cache cache = {0};
-    uploads u = {0};
+    ss_pso_cache cache = {0};
+    ss_uploads u = {0};
     unsigned char *pixels = NULL;
     bool ok = create_device(threads, files, o->file_count, &dev);
     int nsettings = compare && o->pareto ? SETTING_COUNT : 1;
@@ -722,7 +529,7 @@ static bool measure_sgapi(const options *o, const sc_file *files, result *res, i
         const sc_file *f = &files[fi];
         fprintf(stderr, "sgapi-bench: %s: sgapi, %d thread%s...\n", f->path, threads,
                 threads == 1 ? "" : "s");
-        ok = upload(dev, f, &u);
+        ok = ss_upload(PROG, dev, f, &u);
         for (size_t si = 0; ok && si < f->scene_count; si++) {
             result *x = &res[first + si];
             const sc_scene *s = x->scene;
@@ -737,7 +544,7 @@ static bool measure_sgapi(const options *o, const sc_file *files, result *res, i
             for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
             for (int k = 0; ok && k < nsettings; k++) {
                 double ms;
-                ok = measure_scene(dev, &cache, s, &u, &settings[k], o, &ms, pixels);
+                ok = measure_scene(dev, &cache, f, s, &u, &settings[k], o, &ms, pixels);
                 if (!ok) {
                     fprintf(stderr, "sgapi-bench: in %s, scene '%s', setting '%s'\n", f->path,
                             s->name, settings[k].name);
@@ -751,17 +558,17 @@ static bool measure_sgapi(const options *o, const sc_file *files, result *res, i
                 }
             }
         }
-        destroy_uploads(dev, &u);
+        ss_destroy_uploads(dev, &u);
         first += f->scene_count;
     }
     if (ok) {
+        /* No draws: neither the file nor the uploads are looked at. */
         sc_scene empty = {.name = "floor", .width = FLOOR_SIZE, .height = FLOOR_SIZE};
-        ok = measure_scene(dev, &cache, &empty, &u, &settings[0], o, floor_ms, NULL);
+        ok = measure_scene(dev, &cache, NULL, &empty, &u, &settings[0], o, floor_ms, NULL);
     }
     free(pixels);
     sgDestroyDevice(dev); /* also destroys the cached pipelines */
-    free(cache.descs);
-    free(cache.psos);
+    ss_pso_cache_free(&cache);
     return ok;
 }
 

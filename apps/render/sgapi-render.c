@@ -11,7 +11,6 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +21,7 @@
 
 #include "image_diff.h"
 #include "image_io.h"
+#include "scene_sgapi.h"
 #include "scene.h"
 
 typedef struct options {
@@ -165,169 +165,10 @@ static bool selected(const options *o, const char *name) {
     return false;
 }
 
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Lets the compiler check the format arguments of the error helpers. */
-#if defined(__GNUC__)
-#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
-#else
-#define PRINTF_LIKE(fmt, args)
-#endif
-
-static bool sg_fail(sgDevice *dev, sgResult r, const char *fmt, ...) PRINTF_LIKE(3, 4);
-
-/* Reports a failed sgapi call with its context; always returns false. */
-static bool sg_fail(sgDevice *dev, sgResult r, const char *fmt, ...) {
-    va_list ap;
-    fprintf(stderr, "sgapi-render: ");
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    if (dev)
-        fprintf(stderr, ": %s: %s\n", sgResultName(r), sgGetLastError(dev));
-    else
-        fprintf(stderr, ": %s\n", sgResultName(r));
-    return false;
-}
-
-/* ---- pipeline cache -------------------------------------------------------------------------- */
-
-typedef struct pso_cache {
-    sgPipelineDesc *descs;
-    sgPipelineStateObject *psos;
-    size_t count, cap;
-} pso_cache;
-
-static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
-    return a->shade == b->shade && a->filter == b->filter && a->wrap == b->wrap &&
-           a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
-           a->cull == b->cull && a->front_face == b->front_face && a->blend == b->blend;
-}
-
-/* The pipeline for a state: created on first use, then reused for every draw with that state. */
-static bool get_pso(sgDevice *dev, pso_cache *c, const sgPipelineDesc *desc,
-                    sgPipelineStateObject *out) {
-    for (size_t i = 0; i < c->count; i++) {
-        if (same_desc(&c->descs[i], desc)) {
-            *out = c->psos[i];
-            return true;
-        }
-    }
-    if (c->count == c->cap) {
-        size_t n = c->cap ? c->cap * 2 : 16;
-        sgPipelineDesc *d = realloc(c->descs, n * sizeof *d);
-        if (d) c->descs = d;
-        sgPipelineStateObject *p = d ? realloc(c->psos, n * sizeof *p) : NULL;
-        if (p) c->psos = p;
-        if (!d || !p) {
-            fprintf(stderr, "sgapi-render: out of memory\n");
-            return false;
-        }
-        c->cap = n;
-    }
-    sgResult r = sgCreatePipelineStateObject(dev, desc, out);
-    if (r != SG_OK) return sg_fail(dev, r, "sgCreatePipelineStateObject");
-    c->descs[c->count] = *desc;
-    c->psos[c->count++] = *out;
-    return true;
-}
-
-static const sgCompare compare_map[] = {
-    [SC_COMPARE_LESS] = SG_COMPARE_LESS,
-    [SC_COMPARE_NEVER] = SG_COMPARE_NEVER,
-    [SC_COMPARE_EQUAL] = SG_COMPARE_EQUAL,
-    [SC_COMPARE_LESS_EQUAL] = SG_COMPARE_LESS_EQUAL,
-    [SC_COMPARE_GREATER] = SG_COMPARE_GREATER,
-    [SC_COMPARE_NOT_EQUAL] = SG_COMPARE_NOT_EQUAL,
-    [SC_COMPARE_GREATER_EQUAL] = SG_COMPARE_GREATER_EQUAL,
-    [SC_COMPARE_ALWAYS] = SG_COMPARE_ALWAYS,
-};
-
-/* The pipeline state of a draw; filter and wrap only matter when a texture is sampled, so they
- * are left at their defaults otherwise, letting more draws share one pipeline. */
-static sgPipelineDesc pipeline_of(const sc_draw *d) {
-    sgPipelineDesc p;
-    memset(&p, 0, sizeof p);
-    /* A texture draw without a texture is drawn with its vertex colours: the OpenGL reference
-     * binds an incomplete texture there, which disables texturing. */
-    bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
-    p.shade = textured ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_VERTEX_COLOR;
-    if (textured) {
-        p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
-        p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
-    }
-    p.depth.compare = compare_map[d->depth_compare];
-    p.depth.write = d->depth_write;
-    p.cull = d->cull == SC_CULL_BACK    ? SG_CULL_BACK
-             : d->cull == SC_CULL_FRONT ? SG_CULL_FRONT
-                                        : SG_CULL_NONE;
-    p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
-    p.blend = SG_BLEND_OPAQUE;
-    return p;
-}
+#define PROG         "sgapi-render"
+#define sg_fail(...) ss_fail(PROG, __VA_ARGS__)
 
 /* ---- rendering ------------------------------------------------------------------------------- */
-
-/* What one file's meshes and textures became on the device. */
-typedef struct uploads {
-    sgGeom *geoms;
-    sgImage2D *images;
-    size_t geom_count, image_count;
-} uploads;
-
-static void destroy_uploads(sgDevice *dev, uploads *u) {
-    for (size_t i = 0; i < u->geom_count; i++) sgDestroyGeom(dev, u->geoms[i]);
-    for (size_t i = 0; i < u->image_count; i++) sgDestroyImage2D(dev, u->images[i]);
-    free(u->geoms);
-    free(u->images);
-    memset(u, 0, sizeof *u);
-}
-
-static bool upload(sgDevice *dev, const sc_file *f, uploads *u) {
-    memset(u, 0, sizeof *u);
-    u->geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->geoms);
-    u->images = calloc(f->texture_count ? f->texture_count : 1, sizeof *u->images);
-    if (!u->geoms || !u->images) {
-        fprintf(stderr, "sgapi-render: out of memory\n");
-        return false;
-    }
-    for (size_t i = 0; i < f->texture_count; i++) {
-        const sc_image *t = &f->textures[i];
-        sgImage2DDesc desc = {t->width, t->height, SG_FORMAT_RGBA8_UNORM, t->pixels};
-        sgResult r = sgCreateImage2D(dev, &desc, &u->images[i]);
-        if (r != SG_OK) return sg_fail(dev, r, "texture '%s'", f->texture_sources[i]);
-        u->image_count++;
-    }
-    for (size_t i = 0; i < f->mesh_count; i++) {
-        const sc_mesh *m = &f->meshes[i];
-        sgGeomDesc desc;
-        memset(&desc, 0, sizeof desc);
-        /* The loader caps both counts at INT32_MAX, so they fit. */
-        desc.vertex_count = (int)m->vertex_count;
-        desc.positions = m->positions;
-        desc.colors = m->colors;
-        desc.texcoords = m->texcoords;
-        desc.normals = m->normals;
-        desc.index_count = (int)m->index_count;
-        desc.indices = m->indices;
-        desc.primitive = SG_PRIMITIVE_TRIANGLES;
-        /* The loaded file outlives the geom, so the arrays need not be copied. */
-        desc.storage = SG_STORAGE_REFERENCE;
-        sgResult r = sgCreateGeom(dev, &desc, &u->geoms[i]);
-        if (r != SG_OK) return sg_fail(dev, r, "mesh '%s'", f->mesh_sources[i]);
-        u->geom_count++;
-    }
-    return true;
-}
 
 /* Compares a rendered scene with its reference image: appends the figures to the scene's line
  * (without its newline), writes the heat map, and checks the thresholds. */
@@ -375,7 +216,7 @@ static bool compare_scene(const options *o, const sc_scene *s, const unsigned ch
 
 /* Renders one scene frames times, writes its PNG and prints its median time per frame. */
 static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, const sc_scene *s,
-                         const uploads *u, pso_cache *cache) {
+                         const ss_uploads *u, ss_pso_cache *cache) {
     bool ok = false;
     sgImage2D color = {0}, depth = {0};
     sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
@@ -387,62 +228,21 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
         goto done;
     }
     for (size_t i = 0; i < s->draw_count; i++) {
-        sgPipelineDesc desc = pipeline_of(&s->draws[i]);
-        if (!get_pso(dev, cache, &desc, &psos[i])) {
+        sgPipelineDesc desc = ss_pipeline_desc(&s->draws[i]);
+        if (!ss_get_pso(PROG, dev, cache, &desc, &psos[i])) {
             fprintf(stderr, "sgapi-render: in %s, scene '%s', draw %zu\n", f->path, s->name, i);
             goto done;
         }
     }
 
-    sgImage2DDesc cd = {s->width, s->height, SG_FORMAT_RGBA8_UNORM, NULL};
-    sgImage2DDesc dd = {s->width, s->height, SG_FORMAT_D32_FLOAT, NULL};
-    sgResult r = sgCreateImage2D(dev, &cd, &color);
-    if (r != SG_OK) {
-        sg_fail(dev, r, "scene '%s': colour target", s->name);
-        goto done;
-    }
-    r = sgCreateImage2D(dev, &dd, &depth);
-    if (r != SG_OK) {
-        sg_fail(dev, r, "scene '%s': depth target", s->name);
-        goto done;
-    }
-
     sgPassDesc pass;
-    memset(&pass, 0, sizeof pass);
-    pass.color = color;
-    pass.depth = depth;
-    pass.color_load = SG_LOAD_CLEAR;
-    pass.depth_load = SG_LOAD_DEFAULT; /* clears to 1.0, the far plane */
-    memcpy(pass.clear_color, s->clear_color, sizeof pass.clear_color);
+    if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass)) goto done;
+    sgResult r;
 
     for (int frame = 0; frame < o->frames; frame++) {
-        double t0 = now_ms();
-        r = sgBeginRenderPass(dev, &pass);
-        if (r != SG_OK) {
-            sg_fail(dev, r, "scene '%s': sgBeginRenderPass", s->name);
-            goto done;
-        }
-        for (size_t i = 0; i < s->draw_count; i++) {
-            const sc_draw *d = &s->draws[i];
-            sgDrawParams params;
-            memset(&params, 0, sizeof params);
-            memcpy(params.world_view, d->world_view, sizeof params.world_view);
-            memcpy(params.proj, d->proj, sizeof params.proj);
-            if (d->texture >= 0) params.texture = u->images[d->texture];
-            r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
-            if (r != SG_OK) {
-                sg_fail(dev, r, "scene '%s', draw %zu (%s): sgDraw", s->name, i,
-                        f->mesh_sources[d->mesh]);
-                sgEndRenderPass(dev, &pass); /* close the pass so the targets can be freed */
-                goto done;
-            }
-        }
-        r = sgEndRenderPass(dev, &pass);
-        if (r != SG_OK) {
-            sg_fail(dev, r, "scene '%s': sgEndRenderPass", s->name);
-            goto done;
-        }
-        times[frame] = now_ms() - t0;
+        double t0 = ss_now_ms();
+        if (!ss_draw_frame(PROG, dev, f, s, u, psos, &pass)) goto done;
+        times[frame] = ss_now_ms() - t0;
     }
 
     r = sgReadImage2D(dev, color, pixels, 0);
@@ -456,9 +256,7 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
         fprintf(stderr, "sgapi-render: %s\n", err);
         goto done;
     }
-    qsort(times, (size_t)o->frames, sizeof *times, cmp_double);
-    double median = o->frames % 2 ? times[o->frames / 2]
-                                  : (times[o->frames / 2 - 1] + times[o->frames / 2]) / 2;
+    double median = ss_median(times, o->frames);
     if (o->frames > 1)
         printf("%-32s %10.3f ms/frame (median of %d)", s->name, median, o->frames);
     else
@@ -493,7 +291,7 @@ int main(int argc, char **argv) {
     /* Everything is loaded first, so a bad file stops the run before any rendering. */
     sc_file *files = calloc((size_t)o.file_count, sizeof *files);
     sgDevice *dev = NULL;
-    pso_cache cache = {0};
+    ss_pso_cache cache = {0};
     int loaded = 0;
     status = 1;
     if (!files) {
@@ -562,20 +360,19 @@ int main(int argc, char **argv) {
 
     for (int i = 0; i < o.file_count; i++) {
         const sc_file *f = &files[i];
-        uploads u;
-        bool ok = upload(dev, f, &u);
+        ss_uploads u;
+        bool ok = ss_upload(PROG, dev, f, &u);
         for (size_t j = 0; ok && j < f->scene_count; j++) {
             if (selected(&o, f->scenes[j].name))
                 ok = render_scene(dev, &o, f, &f->scenes[j], &u, &cache);
         }
-        destroy_uploads(dev, &u);
+        ss_destroy_uploads(dev, &u);
         if (!ok) goto done;
     }
     status = 0;
 done:
     sgDestroyDevice(dev); /* also destroys the cached pipelines */
-    free(cache.descs);
-    free(cache.psos);
+    ss_pso_cache_free(&cache);
     for (int i = 0; i < loaded; i++) sc_free(&files[i]);
     free(files);
     free(o.files);

@@ -1,0 +1,197 @@
+/* scene_sgapi.c - drawing scene files with sgapi: pipeline state, pipeline cache, uploads. */
+#define _POSIX_C_SOURCE 200809L
+#include "scene_sgapi.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const sgCompare compare_map[] = {
+    [SC_COMPARE_LESS] = SG_COMPARE_LESS,
+    [SC_COMPARE_NEVER] = SG_COMPARE_NEVER,
+    [SC_COMPARE_EQUAL] = SG_COMPARE_EQUAL,
+    [SC_COMPARE_LESS_EQUAL] = SG_COMPARE_LESS_EQUAL,
+    [SC_COMPARE_GREATER] = SG_COMPARE_GREATER,
+    [SC_COMPARE_NOT_EQUAL] = SG_COMPARE_NOT_EQUAL,
+    [SC_COMPARE_GREATER_EQUAL] = SG_COMPARE_GREATER_EQUAL,
+    [SC_COMPARE_ALWAYS] = SG_COMPARE_ALWAYS,
+};
+
+sgPipelineDesc ss_pipeline_desc(const sc_draw *d) {
+    sgPipelineDesc p;
+    memset(&p, 0, sizeof p);
+    /* A texture draw without a texture is drawn with its vertex colours: the OpenGL reference
+     * binds an incomplete texture there, which disables texturing. */
+    bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
+    p.shade = textured ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_VERTEX_COLOR;
+    /* Filter and wrap only matter when a texture is sampled; left at their defaults otherwise,
+     * so that more draws share one pipeline. */
+    if (textured) {
+        p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
+        p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
+    }
+    p.depth.compare = compare_map[d->depth_compare];
+    p.depth.write = d->depth_write;
+    p.cull = d->cull == SC_CULL_BACK    ? SG_CULL_BACK
+             : d->cull == SC_CULL_FRONT ? SG_CULL_FRONT
+                                        : SG_CULL_NONE;
+    p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
+    p.blend = SG_BLEND_OPAQUE;
+    return p;
+}
+
+static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
+    return a->shade == b->shade && a->filter == b->filter && a->wrap == b->wrap &&
+           a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
+           a->cull == b->cull && a->front_face == b->front_face && a->blend == b->blend;
+}
+
+bool ss_get_pso(const char *prog, sgDevice *dev, ss_pso_cache *c, const sgPipelineDesc *desc,
+                sgPipelineStateObject *out) {
+    for (size_t i = 0; i < c->count; i++) {
+        if (same_desc(&c->descs[i], desc)) {
+            *out = c->psos[i];
+            return true;
+        }
+    }
+    if (c->count == c->cap) {
+        size_t n = c->cap ? c->cap * 2 : 16;
+        sgPipelineDesc *d = realloc(c->descs, n * sizeof *d);
+        if (d) c->descs = d;
+        sgPipelineStateObject *p = d ? realloc(c->psos, n * sizeof *p) : NULL;
+        if (p) c->psos = p;
+        if (!d || !p) {
+            fprintf(stderr, "%s: out of memory\n", prog);
+            return false;
+        }
+        c->cap = n;
+    }
+    sgResult r = sgCreatePipelineStateObject(dev, desc, out);
+    if (r != SG_OK) return ss_fail(prog, dev, r, "sgCreatePipelineStateObject");
+    c->descs[c->count] = *desc;
+    c->psos[c->count++] = *out;
+    return true;
+}
+
+void ss_pso_cache_free(ss_pso_cache *c) {
+    free(c->descs);
+    free(c->psos);
+    memset(c, 0, sizeof *c);
+}
+
+void ss_destroy_uploads(sgDevice *dev, ss_uploads *u) {
+    for (size_t i = 0; i < u->geom_count; i++) sgDestroyGeom(dev, u->geoms[i]);
+    for (size_t i = 0; i < u->image_count; i++) sgDestroyImage2D(dev, u->images[i]);
+    free(u->geoms);
+    free(u->images);
+    memset(u, 0, sizeof *u);
+}
+
+bool ss_upload(const char *prog, sgDevice *dev, const sc_file *f, ss_uploads *u) {
+    memset(u, 0, sizeof *u);
+    u->geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->geoms);
+    u->images = calloc(f->texture_count ? f->texture_count : 1, sizeof *u->images);
+    if (!u->geoms || !u->images) {
+        fprintf(stderr, "%s: out of memory\n", prog);
+        return false;
+    }
+    for (size_t i = 0; i < f->texture_count; i++) {
+        const sc_image *t = &f->textures[i];
+        sgImage2DDesc desc = {t->width, t->height, SG_FORMAT_RGBA8_UNORM, t->pixels};
+        sgResult r = sgCreateImage2D(dev, &desc, &u->images[i]);
+        if (r != SG_OK) return ss_fail(prog, dev, r, "texture '%s'", f->texture_sources[i]);
+        u->image_count++;
+    }
+    for (size_t i = 0; i < f->mesh_count; i++) {
+        const sc_mesh *m = &f->meshes[i];
+        sgGeomDesc desc;
+        memset(&desc, 0, sizeof desc);
+        /* The loader caps both counts at INT32_MAX, so they fit. */
+        desc.vertex_count = (int)m->vertex_count;
+        desc.positions = m->positions;
+        desc.colors = m->colors;
+        desc.texcoords = m->texcoords;
+        desc.normals = m->normals;
+        desc.index_count = (int)m->index_count;
+        desc.indices = m->indices;
+        desc.primitive = SG_PRIMITIVE_TRIANGLES;
+        /* The loaded file outlives the geom, so the arrays need not be copied. */
+        desc.storage = SG_STORAGE_REFERENCE;
+        sgResult r = sgCreateGeom(dev, &desc, &u->geoms[i]);
+        if (r != SG_OK) return ss_fail(prog, dev, r, "mesh '%s'", f->mesh_sources[i]);
+        u->geom_count++;
+    }
+    return true;
+}
+
+bool ss_create_targets(const char *prog, sgDevice *dev, const sc_scene *s, sgImage2D *color,
+                       sgImage2D *depth, sgPassDesc *pass) {
+    sgImage2DDesc cd = {s->width, s->height, SG_FORMAT_RGBA8_UNORM, NULL};
+    sgImage2DDesc dd = {s->width, s->height, SG_FORMAT_D32_FLOAT, NULL};
+    sgResult r = sgCreateImage2D(dev, &cd, color);
+    if (r != SG_OK) return ss_fail(prog, dev, r, "scene '%s': colour target", s->name);
+    r = sgCreateImage2D(dev, &dd, depth);
+    if (r != SG_OK) return ss_fail(prog, dev, r, "scene '%s': depth target", s->name);
+    memset(pass, 0, sizeof *pass);
+    pass->color = *color;
+    pass->depth = *depth;
+    pass->color_load = SG_LOAD_CLEAR;
+    pass->depth_load = SG_LOAD_DEFAULT; /* clears to 1.0, the far plane */
+    memcpy(pass->clear_color, s->clear_color, sizeof pass->clear_color);
+    return true;
+}
+
+bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *f, const sc_scene *s,
+                   const ss_uploads *u, const sgPipelineStateObject *psos, const sgPassDesc *pass) {
+    sgResult r = sgBeginRenderPass(dev, pass);
+    if (r != SG_OK) return ss_fail(prog, dev, r, "scene '%s': sgBeginRenderPass", s->name);
+    for (size_t i = 0; i < s->draw_count; i++) {
+        const sc_draw *d = &s->draws[i];
+        sgDrawParams params;
+        memset(&params, 0, sizeof params);
+        memcpy(params.world_view, d->world_view, sizeof params.world_view);
+        memcpy(params.proj, d->proj, sizeof params.proj);
+        if (d->texture >= 0) params.texture = u->images[d->texture];
+        r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
+        if (r != SG_OK) {
+            ss_fail(prog, dev, r, "scene '%s', draw %zu (%s): sgDraw", s->name, i,
+                    f->mesh_sources[d->mesh]);
+            sgEndRenderPass(dev, pass); /* close the pass so the targets can be freed */
+            return false;
+        }
+    }
+    r = sgEndRenderPass(dev, pass);
+    if (r != SG_OK) return ss_fail(prog, dev, r, "scene '%s': sgEndRenderPass", s->name);
+    return true;
+}
+
+bool ss_fail(const char *prog, sgDevice *dev, sgResult r, const char *fmt, ...) {
+    va_list ap;
+    fprintf(stderr, "%s: ", prog);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    if (dev)
+        fprintf(stderr, ": %s: %s\n", sgResultName(r), sgGetLastError(dev));
+    else
+        fprintf(stderr, ": %s\n", sgResultName(r));
+    return false;
+}
+
+double ss_now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double ss_median(double *v, int n) {
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
