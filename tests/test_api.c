@@ -1029,6 +1029,12 @@ static void pass_begin_errors(void **state) {
         p.depth_load = (sgLoadOp)bad_load[i];
         BEGIN_FAILS(SG_ERROR_INVALID_ENUM);
     }
+    const int bad_store[] = {-1, SG_STORE_DONT_CARE + 1, 100};
+    for (size_t i = 0; i < sizeof bad_store / sizeof bad_store[0]; i++) {
+        p = good;
+        p.depth_store = (sgStoreOp)bad_store[i];
+        BEGIN_FAILS(SG_ERROR_INVALID_ENUM);
+    }
 
     const float bad_values[] = {NAN, -NAN, INFINITY, -INFINITY, -0.001f, 1.001f, -1.0f, 2.0f};
     for (size_t i = 0; i < sizeof bad_values / sizeof bad_values[0]; i++) {
@@ -1417,6 +1423,19 @@ static void load_ops(void **state) {
     assert_image_rgba(f, color, 255, 0, 0, 255);
     assert_ok(f, sgReadImage2D(f->dev, depth, dback, 0));
     assert_memory_equal(dback, ramp, sizeof ramp);
+
+    /* DONT_CARE leaves the depth target as it was before the pass; STORE writes it. */
+    pass.depth_load = SG_LOAD_CLEAR;
+    pass.clear_depth = 0.5f;
+    pass.depth_store = SG_STORE_DONT_CARE;
+    assert_ok(f, sgBeginRenderPass(f->dev, &pass));
+    assert_ok(f, sgEndRenderPass(f->dev, &pass));
+    assert_ok(f, sgReadImage2D(f->dev, depth, dback, 0));
+    assert_memory_equal(dback, ramp, sizeof ramp);
+    pass.depth_store = SG_STORE_STORE;
+    assert_ok(f, sgBeginRenderPass(f->dev, &pass));
+    assert_ok(f, sgEndRenderPass(f->dev, &pass));
+    assert_image_depth(f, depth, 0.5f);
 }
 
 static void depth_test_and_write(void **state) {

@@ -264,13 +264,20 @@ typedef enum sgLoadOp {
     SG_LOAD_LOAD,        /* start from the target's current contents */
 } sgLoadOp;
 
+typedef enum sgStoreOp {
+    SG_STORE_DEFAULT = 0, /* store */
+    SG_STORE_STORE,       /* the target holds the pass's result after sgEndRenderPass */
+    SG_STORE_DONT_CARE,   /* the target keeps its contents from before the pass (saves a write) */
+} sgStoreOp;
+
 typedef struct sgPassDesc {
     sgImage2D color; /* required, SG_FORMAT_RGBA8_UNORM */
     sgImage2D depth; /* optional ({0}: none), SG_FORMAT_D32_FLOAT, same size as color */
     sgLoadOp color_load;
     sgLoadOp depth_load;
-    float clear_color[4]; /* r, g, b, a in [0, 1] */
-    float clear_depth;    /* used when depth_load is SG_LOAD_CLEAR, in [0, 1] */
+    float clear_color[4];  /* r, g, b, a in [0, 1] */
+    float clear_depth;     /* used when depth_load is SG_LOAD_CLEAR, in [0, 1] */
+    sgStoreOp depth_store; /* whether the depth target receives the pass's depth */
 } sgPassDesc;
 
 typedef struct sgDrawParams {

@@ -50,6 +50,7 @@ struct sgDevice {
     /* The open pass. */
     bool in_pass;
     sgImage2D pass_color, pass_depth;
+    bool store_depth; /* the open pass writes its depth back at the end */
     sg_fb fb;
     size_t fb_color_capacity, fb_depth_capacity; /* in pixels */
 

@@ -92,6 +92,10 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                             "sgBeginRenderPass: depth target is %dx%d but color target is %dx%d",
                             depth->width, depth->height, color->width, color->height);
     }
+    if ((int)pass->depth_store < SG_STORE_DEFAULT || pass->depth_store > SG_STORE_DONT_CARE)
+        return sg_error(dev, SG_ERROR_INVALID_ENUM,
+                        "sgBeginRenderPass: depth_store %d is not an sgStoreOp",
+                        (int)pass->depth_store);
     if ((int)pass->color_load < SG_LOAD_DEFAULT || pass->color_load > SG_LOAD_LOAD ||
         (int)pass->depth_load < SG_LOAD_DEFAULT || pass->depth_load > SG_LOAD_LOAD)
         return sg_error(dev, SG_ERROR_INVALID_ENUM,
@@ -130,6 +134,7 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                     pass->depth_load == SG_LOAD_CLEAR ? pass->clear_depth : 1.0f};
     sg_workers_run(&dev->workers, bands_of(color->height), run_band, &job);
     dev->in_pass = true;
+    dev->store_depth = pass->depth_store != SG_STORE_DONT_CARE;
     dev->pass_color = pass->color;
     dev->pass_depth = pass->depth;
     return SG_OK;
@@ -147,7 +152,8 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                         pass->color.id, pass->depth.id, dev->pass_color.id, dev->pass_depth.id);
     /* Targets cannot be destroyed while the pass is open, so both lookups succeed. */
     sg_image *color = sg_lookup_image(dev, dev->pass_color);
-    sg_image *depth = dev->pass_depth.id ? sg_lookup_image(dev, dev->pass_depth) : NULL;
+    sg_image *depth =
+        dev->pass_depth.id && dev->store_depth ? sg_lookup_image(dev, dev->pass_depth) : NULL;
     band_job job = {&dev->fb, color, depth, true, false, false, 0, 0.0f};
     sg_workers_run(&dev->workers, bands_of(color->height), run_band, &job);
     dev->in_pass = false;
