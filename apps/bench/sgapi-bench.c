@@ -37,6 +37,7 @@
 
 #include <sgapi/sgapi.h>
 
+#include "cli.h"
 #include "image_diff.h"
 #include "image_io.h"
 #include "scene_sgapi.h"
@@ -102,16 +103,6 @@ static void usage(FILE *f) {
             FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, MIN_FRAMES, WARMUP_FRAMES, QUICK_FRAMES);
 }
 
-/* A whole decimal number in [lo, hi]. */
-static bool parse_int(const char *s, int lo, int hi, int *out) {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno || end == s || *end != '\0' || v < lo || v > hi) return false;
-    *out = (int)v;
-    return true;
-}
-
 static int default_threads(void) {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > MAX_THREADS ? MAX_THREADS : (int)n;
@@ -142,14 +133,14 @@ static int parse_args(int argc, char **argv, options *o) {
             return 2;
         }
         if (!strcmp(a, "--frames")) {
-            if (!parse_int(value, MIN_FRAMES, MAX_FRAMES, &o->frames)) {
+            if (!sc_parse_int(value, MIN_FRAMES, MAX_FRAMES, &o->frames)) {
                 fprintf(stderr, "sgapi-bench: --frames needs a whole number in %d..%d, not '%s'\n",
                         MIN_FRAMES, MAX_FRAMES, value);
                 return 2;
             }
             frames_given = true;
         } else if (!strcmp(a, "--threads")) {
-            if (!parse_int(value, 1, MAX_THREADS, &o->threads)) {
+            if (!sc_parse_int(value, 1, MAX_THREADS, &o->threads)) {
                 fprintf(stderr, "sgapi-bench: --threads needs a whole number in 1..%d, not '%s'\n",
                         MAX_THREADS, value);
                 return 2;

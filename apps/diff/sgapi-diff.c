@@ -18,6 +18,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include "cli.h"
 #include "image_diff.h"
 
 static int usage(FILE *f) {
@@ -25,13 +26,6 @@ static int usage(FILE *f) {
                "                  [--min-psnr DB] [--max-over2 PCT] [--max-coverage PCT]\n"
                "Compares two images; with thresholds, exits 1 when any is exceeded.\n");
     return f == stderr ? 2 : 0;
-}
-
-static int parse_double(const char *s, double *out) {
-    char *end;
-    errno = 0;
-    *out = strtod(s, &end);
-    return errno == 0 && end != s && *end == '\0' && isfinite(*out);
 }
 
 int main(int argc, char **argv) {
@@ -55,7 +49,7 @@ int main(int argc, char **argv) {
                     !strcmp(a, "--max-coverage")) &&
                    has_value) {
             double v;
-            if (!parse_double(argv[++i], &v)) {
+            if (!sc_parse_double(argv[++i], 0.0, &v)) {
                 fprintf(stderr, "sgapi-diff: %s wants a number, got '%s'\n", a, argv[i]);
                 return 2;
             }

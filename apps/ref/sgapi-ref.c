@@ -21,6 +21,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "cli.h"
 #include "image_io.h"
 #include "scene.h"
 #include "spv_color_frag.h"
@@ -745,19 +746,15 @@ int main(int argc, char **argv) {
         } else if (!strcmp(a, "-o") && more) {
             out_dir = argv[++i];
         } else if (!strcmp(a, "--frames") && more) {
-            char *end;
-            long v = strtol(argv[++i], &end, 10);
-            if (*end || v < 1 || v > 100000) {
+            if (!sc_parse_int(argv[++i], 1, 100000, &frames)) {
                 fprintf(stderr, "sgapi-ref: --frames wants 1..100000, got '%s'\n", argv[i]);
                 return 2;
             }
-            frames = (int)v;
         } else if (!strcmp(a, "--scene") && more) {
             only[nonly++] = argv[++i];
         } else if (!strcmp(a, "--threads") && more) {
-            char *end;
-            long v = strtol(argv[++i], &end, 10);
-            if (*end || v < 0 || v > 1024) {
+            int threads;
+            if (!sc_parse_int(argv[++i], 0, 1024, &threads)) {
                 fprintf(stderr, "sgapi-ref: --threads wants 0..1024, got '%s'\n", argv[i]);
                 return 2;
             }

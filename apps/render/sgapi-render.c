@@ -19,6 +19,7 @@
 
 #include <sgapi/sgapi.h>
 
+#include "cli.h"
 #include "image_diff.h"
 #include "image_io.h"
 #include "scene_sgapi.h"
@@ -52,16 +53,6 @@ static void usage(FILE *f) {
                "  -h, --help      show this help\n");
 }
 
-/* A whole decimal number in [lo, hi]. */
-static bool parse_int(const char *s, int lo, int hi, int *out) {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno || end == s || *end != '\0' || v < lo || v > hi) return false;
-    *out = (int)v;
-    return true;
-}
-
 /* 0: parsed; 1: help was printed; 2: bad arguments (already reported). */
 static int parse_args(int argc, char **argv, options *o) {
     o->frames = 1;
@@ -90,13 +81,13 @@ static int parse_args(int argc, char **argv, options *o) {
         if (!strcmp(a, "-o")) {
             o->out_dir = value;
         } else if (!strcmp(a, "--frames")) {
-            if (!parse_int(value, 1, 1000000, &o->frames)) {
+            if (!sc_parse_int(value, 1, 1000000, &o->frames)) {
                 fprintf(stderr, "sgapi-render: --frames needs a whole number >= 1, not '%s'\n",
                         value);
                 return 2;
             }
         } else if (!strcmp(a, "--threads")) {
-            if (!parse_int(value, 0, 4096, &o->threads)) {
+            if (!sc_parse_int(value, 0, 4096, &o->threads)) {
                 fprintf(stderr, "sgapi-render: --threads needs a whole number >= 0, not '%s'\n",
                         value);
                 return 2;
@@ -106,10 +97,8 @@ static int parse_args(int argc, char **argv, options *o) {
         } else if (!strcmp(a, "--compare")) {
             o->compare_dir = value;
         } else if (threshold) {
-            char *end;
-            errno = 0;
-            double v = strtod(value, &end);
-            if (errno || end == value || *end || !(v >= 0)) {
+            double v;
+            if (!sc_parse_double(value, 0.0, &v)) {
                 fprintf(stderr, "sgapi-render: %s needs a number >= 0, not '%s'\n", a, value);
                 return 2;
             }
