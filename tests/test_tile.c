@@ -22,19 +22,19 @@ static void round_trip_odd_sizes(void **state) {
     uint8_t src[7 * 5 * 4], dst[7 * 5 * 4];
     for (int i = 0; i < w * h * 4; i++) src[i] = (uint8_t)(i * 7 + 3);
     uint32_t *tiles = calloc(sg_fb_tiled_pixels(w, h), 4);
-    sg_tile_from_linear_rgba8(tiles, src, (size_t)w * 4, w, h);
+    sg_tile_from_linear_rgba8(tiles, src, (size_t)w * 4, w, h, 2);
     /* Byte order in memory is R, G, B, A. */
     uint32_t p = tiles[sg_fb_index(2, 6, 4)];
     const uint8_t *s = src + (4 * w + 6) * 4;
     assert_int_equal(p, sg_pack_rgba8(s[0], s[1], s[2], s[3]));
-    sg_tile_to_linear_rgba8(dst, (size_t)w * 4, tiles, w, h);
+    sg_tile_to_linear_rgba8(dst, (size_t)w * 4, tiles, w, h, 2);
     assert_memory_equal(src, dst, sizeof src);
 
     float fs[35], fd[35];
     for (int i = 0; i < 35; i++) fs[i] = (float)i * 0.25f;
     float *ft = calloc(sg_fb_tiled_pixels(w, h), 4);
-    sg_tile_from_linear_f32(ft, fs, (size_t)w * 4, w, h);
-    sg_tile_to_linear_f32(fd, (size_t)w * 4, ft, w, h);
+    sg_tile_from_linear_f32(ft, fs, (size_t)w * 4, w, h, 2);
+    sg_tile_to_linear_f32(fd, (size_t)w * 4, ft, w, h, 2);
     assert_memory_equal(fs, fd, sizeof fs);
     free(tiles);
     free(ft);

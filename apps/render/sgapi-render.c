@@ -1,6 +1,6 @@
 /* sgapi-render - renders every scene of scene files with sgapi and writes one PNG per scene.
  *
- *   sgapi-render [--frames N] [--scene NAME]... [--threads T] SCENE.json... -o DIR
+ *   sgapi-render [--frames N] [--scene NAME]... [--threads T] [--simd SET] SCENE.json... -o DIR
  *
  * Writes DIR/<scene name>.png and prints, per scene, the wall-clock time of one frame: the time
  * from sgBeginRenderPass to the return of sgEndRenderPass (loading and uploads are not counted),
@@ -29,6 +29,7 @@ typedef struct options {
     const char *out_dir;
     int frames;
     int threads;
+    sgSimd simd;
     const char **files;
     int file_count;
     const char **scenes; /* --scene filters; none: every scene */
@@ -45,6 +46,8 @@ static void usage(FILE *f) {
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     worker threads for the device (default 0: all cores)\n"
+               "  --simd SET      instruction set of the raster: scalar, sse2 or avx2 (default:\n"
+               "                  the best this CPU runs; all give the same images)\n"
                "  --compare DIR   compare each image with DIR/<scene name>.png: print PSNR,\n"
                "                  %% of pixels over 2/255 and coverage mismatch next to the time,\n"
                "                  and write DIR_OUT/<scene name>-heat.png\n"
@@ -69,7 +72,8 @@ static int parse_args(int argc, char **argv, options *o) {
         bool threshold =
             !strcmp(a, "--min-psnr") || !strcmp(a, "--max-over2") || !strcmp(a, "--max-coverage");
         bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
-                           !strcmp(a, "--threads") || !strcmp(a, "--compare") || threshold;
+                           !strcmp(a, "--threads") || !strcmp(a, "--simd") ||
+                           !strcmp(a, "--compare") || threshold;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -90,6 +94,17 @@ static int parse_args(int argc, char **argv, options *o) {
             if (!sc_parse_int(value, 0, 4096, &o->threads)) {
                 fprintf(stderr, "sgapi-render: --threads needs a whole number >= 0, not '%s'\n",
                         value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--simd")) {
+            if (!strcmp(value, "scalar")) {
+                o->simd = SG_SIMD_SCALAR;
+            } else if (!strcmp(value, "sse2")) {
+                o->simd = SG_SIMD_SSE2;
+            } else if (!strcmp(value, "avx2")) {
+                o->simd = SG_SIMD_AVX2;
+            } else {
+                fprintf(stderr, "sgapi-render: --simd is scalar, sse2 or avx2, not '%s'\n", value);
                 return 2;
             }
         } else if (!strcmp(a, "--scene")) {
@@ -338,6 +353,7 @@ int main(int argc, char **argv) {
     sgDeviceDesc dd;
     memset(&dd, 0, sizeof dd);
     dd.thread_count = o.threads;
+    dd.simd = o.simd;
     if (max_images + 2 > 256) dd.image_pool_size = (int)max_images + 2;
     if (max_geoms > 1024) dd.geom_pool_size = (int)max_geoms;
     dd.pipeline_pool_size = 5 * 8 * 2 * 3 * 2;

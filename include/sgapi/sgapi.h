@@ -102,8 +102,17 @@ typedef struct sgAllocator {
     void *user_data;
 } sgAllocator;
 
+/* Instruction set of the raster. All give the same images, byte for byte. */
+typedef enum sgSimd {
+    SG_SIMD_DEFAULT = 0, /* the best this CPU runs */
+    SG_SIMD_SCALAR,      /* portable C, the reference the others are tested against */
+    SG_SIMD_SSE2,        /* x86-64 baseline */
+    SG_SIMD_AVX2,        /* x86-64 with AVX2 */
+} sgSimd;
+
 typedef struct sgDeviceDesc {
     int thread_count;       /* raster threads, the caller included; 0: all cores */
+    sgSimd simd;            /* 0: the best this CPU runs; a set it lacks is SG_ERROR_UNSUPPORTED */
     int image_pool_size;    /* 0: 256; at most 65535 */
     int geom_pool_size;     /* 0: 1024; at most 65535 */
     int pipeline_pool_size; /* 0: 64; at most 65535 */

@@ -117,6 +117,17 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
         return sg_error(&tmp, SG_ERROR_INVALID_COUNT,
                         "sgCreateDevice: thread_count must be >= 0 (0: all cores), got %d",
                         d.thread_count);
+    if ((int)d.simd < SG_SIMD_DEFAULT || d.simd > SG_SIMD_AVX2)
+        return sg_error(&tmp, SG_ERROR_INVALID_ENUM, "sgCreateDevice: simd %d is not an sgSimd",
+                        (int)d.simd);
+    sg_isa best = sg_isa_detect();
+    sg_isa isa = d.simd == SG_SIMD_DEFAULT ? best : (sg_isa)(d.simd - SG_SIMD_SCALAR);
+    if (isa > best)
+        return sg_error(&tmp, SG_ERROR_UNSUPPORTED,
+                        "sgCreateDevice: simd %s is not supported by this CPU (the best it runs "
+                        "is %s)",
+                        d.simd == SG_SIMD_AVX2 ? "AVX2" : "SSE2",
+                        best == SG_ISA_AVX2 ? "AVX2" : (best == SG_ISA_SSE2 ? "SSE2" : "scalar"));
     sgAllocator a = d.allocator;
     if (!a.alloc) {
         a.alloc = default_alloc;
@@ -130,6 +141,7 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
     dev->log_user_data = d.log_user_data;
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     dev->thread_count = d.thread_count ? d.thread_count : (cores > 0 ? (int)cores : 1);
+    dev->isa = isa;
     dev->images = pool_create(dev, &dev->image_pool, ip, 1, sizeof(sg_image));
     dev->geoms = pool_create(dev, &dev->geom_pool, gp, 2, sizeof(sg_geom));
     dev->psos = pool_create(dev, &dev->pso_pool, pp, 3, sizeof(sg_pso));
@@ -163,7 +175,7 @@ void sgDestroyDevice(sgDevice *dev) {
     if (dev->workers_started) sg_workers_stop(&dev->workers);
     sg_free(dev, dev->threads);
     sg_binner_release(&dev->binner);
-    sg_free(dev, dev->bin_jobs);
+    sg_free(dev, dev->draws);
     if (dev->images)
         for (int i = 0; i < dev->image_pool.capacity; i++)
             if (dev->image_pool.live[i]) sg_image_release(dev, &dev->images[i]);
@@ -173,8 +185,6 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->images);
     sg_free(dev, dev->geoms);
     sg_free(dev, dev->psos);
-    sg_free(dev, dev->fb.color);
-    sg_free(dev, dev->fb.depth);
     sg_free(dev, dev->clip);
     sg_free(dev, dev->outcodes);
     dev->allocator.free(dev, dev->allocator.user_data);

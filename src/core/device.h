@@ -10,14 +10,17 @@
 #include "core/workers.h"
 #include "raster/bin.h"
 #include "raster/framebuffer.h"
+#include "raster/rast_bin.h"
 #include "raster/rast_tile.h"
+#include "raster/shade.h"
 #include "sgapi/sgapi.h"
 
 typedef struct sg_image {
     int width, height;
     sgFormat format;
     size_t pixel_size;
-    uint8_t *data; /* linear, top row first */
+    uint8_t *data;     /* linear, top row first */
+    uint32_t pass_use; /* serial of the last pass a draw sampled it in */
 } sg_image;
 
 typedef struct sg_geom {
@@ -30,7 +33,8 @@ typedef struct sg_geom {
 
 typedef struct sg_pso {
     sgPipelineDesc desc; /* every DEFAULT resolved */
-    sg_tile_fn tile_fn;
+    sg_tile_fn depth_fn; /* visibility (depth.c) */
+    sg_shade_fn shade_fn;
     int nattr;
     bool uses_depth;
 } sg_pso;
@@ -40,6 +44,7 @@ struct sgDevice {
     void (*log)(sgResult result, const char *message, void *user_data);
     void *log_user_data;
     int thread_count;
+    sg_isa isa; /* instruction set of the raster */
     char error[512];
 
     sg_pool image_pool, geom_pool, pso_pool;
@@ -47,20 +52,19 @@ struct sgDevice {
     sg_geom *geoms;
     sg_pso *psos;
 
-    /* The open pass. */
+    /* The open pass: its targets, and what sgEndRenderPass does with them. */
     bool in_pass;
+    uint32_t pass_serial; /* counts passes, to tell which textures the open one samples */
     sgImage2D pass_color, pass_depth;
-    bool store_depth; /* the open pass writes its depth back at the end */
-    sg_fb fb;
-    size_t fb_color_capacity, fb_depth_capacity; /* in pixels */
+    sg_bin_pass pass;
 
-    /* Per-draw arenas, grown as needed and reused. */
+    /* Arenas, grown as needed and reused. */
     float (*clip)[4];
     uint32_t *outcodes;
     size_t vertex_capacity;
-    sg_binner binner; /* set-up triangles of the draw, by screen bin */
-    int *bin_jobs;    /* the non-empty bins of the draw */
-    int bin_jobs_capacity;
+    sg_binner binner;     /* set-up triangles of the open pass, by screen bin */
+    sg_draw_state *draws; /* the draws of the open pass */
+    size_t draw_count, draw_capacity;
 
     /* The raster threads (the calling thread is one of them). */
     sg_workers workers;

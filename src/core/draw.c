@@ -1,37 +1,106 @@
-/* draw.c - sgDraw: validates a draw, then runs the stages in order:
- * vertex (vertex.c) -> assembly, clipping, setup (assemble.c, clip.c, setup.c) -> raster
- * (rast_tile.c) with the pipeline's specialised shading (shade.c). */
+/* draw.c - sgDraw: validates a draw, then runs the front end:
+ * vertex (vertex.c) -> assembly, clipping, setup (assemble.c, clip.c, setup.c) -> screen bins
+ * (bin.c). The bins are rendered at sgEndRenderPass (rast_bin.c). */
 #include "core/device.h"
+
+#include <string.h>
 
 #include "pipeline/assemble.h"
 #include "pipeline/mat4.h"
 #include "pipeline/vertex.h"
 #include "raster/shade.h"
 
-/* Setup hands each triangle to the binner; the bins are rasterised once the draw's front end is
- * done. */
+/* Setup hands each triangle to the binner; the bins are rendered when the pass ends. */
 static void bin_emit(const sg_tri *tri, void *user) {
     sg_binner_add(user, tri);
 }
 
-typedef struct raster_job {
-    const sg_binner *binner;
-    const int *bins; /* the non-empty bins */
-    sg_tile_fn tile_fn;
-    const sg_shade_ctx *ctx;
-} raster_job;
+/* The front end of a large draw runs on all threads: each chunk of its primitives is assembled
+ * into its own reserved run of the pass's triangle array, and the runs are then listed in the
+ * bins in chunk order, so the bins hold exactly the sequence a single thread would give. A chunk
+ * gets room for twice its triangles; one that clips into more than that (rare) is redone on the
+ * calling thread, appended after the others and listed at its place in the order. */
+enum { FE_MIN_TRIANGLES = 4096, FE_MAX_CHUNKS = 64 };
 
-/* One bin: its triangles in submission order, clipped to the bin. Bins share no pixels, so the
- * result is the same whichever thread runs which bin. */
-static void raster_bin(void *vjob, int job) {
-    const raster_job *r = vjob;
-    int index = r->bins[job];
-    const sg_bin *bin = &r->binner->bins[index];
-    int x0 = (index % r->binner->bins_x) << SG_BIN_SHIFT;
-    int y0 = (index / r->binner->bins_x) << SG_BIN_SHIFT;
-    for (uint32_t i = 0; i < bin->count; i++)
-        sg_rast_triangle_in(&r->binner->tris[bin->tris[i]], x0, y0, x0 + SG_BIN_SIZE,
-                            y0 + SG_BIN_SIZE, r->tile_fn, r->ctx);
+typedef struct fe_chunk {
+    sg_assembly a;
+    sg_tri *out;
+    size_t base, count, capacity;
+    uint32_t draw;
+    bool overflow;
+} fe_chunk;
+
+static void fe_emit(const sg_tri *tri, void *user) {
+    fe_chunk *c = user;
+    if (c->count == c->capacity) {
+        c->overflow = true;
+        return;
+    }
+    c->out[c->count] = *tri;
+    c->out[c->count++].draw = c->draw;
+}
+
+static void fe_run(void *chunks, int index) {
+    fe_chunk *c = (fe_chunk *)chunks + index;
+    sg_assembly a = c->a;
+    a.emit = fe_emit;
+    a.user = c;
+    sg_assemble(&a);
+}
+
+/* Assembles a draw on every thread; false when it is too small to be worth it. */
+static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
+    int per = a->quads ? 4 : 3, tris_per = a->quads ? 2 : 1;
+    int prims = a->index_count / per;
+    if (dev->thread_count < 2 || prims * tris_per < FE_MIN_TRIANGLES) return false;
+    int n = 4 * dev->thread_count < FE_MAX_CHUNKS ? 4 * dev->thread_count : FE_MAX_CHUNKS;
+    fe_chunk chunks[FE_MAX_CHUNKS];
+    size_t total = 0;
+    for (int i = 0; i < n; i++) {
+        int p0 = (int)((int64_t)prims * i / n), p1 = (int)((int64_t)prims * (i + 1) / n);
+        chunks[i].a = *a;
+        chunks[i].a.indices = a->indices + (size_t)p0 * (size_t)per;
+        chunks[i].a.index_count = (p1 - p0) * per;
+        chunks[i].base = total;
+        chunks[i].count = 0;
+        chunks[i].capacity = 2 * (size_t)(p1 - p0) * (size_t)tris_per + 16;
+        chunks[i].draw = dev->binner.draw;
+        chunks[i].overflow = false;
+        total += chunks[i].capacity;
+    }
+    sg_binner *b = &dev->binner;
+    sg_tri *room = sg_binner_reserve(b, total);
+    if (!room) return true; /* out_of_memory is set: the draw fails */
+    for (int i = 0; i < n; i++) chunks[i].out = room + chunks[i].base;
+    size_t first = b->tri_count;
+    sg_workers_run(&dev->workers, n, fe_run, chunks);
+    b->tri_count += total;
+    for (int i = 0; i < n && !b->out_of_memory; i++) {
+        if (chunks[i].overflow) { /* again, on this thread, appended to the array */
+            sg_assembly redo = chunks[i].a;
+            redo.emit = bin_emit;
+            redo.user = b;
+            sg_assemble(&redo);
+            continue;
+        }
+        for (size_t k = 0; k < chunks[i].count; k++)
+            sg_binner_list(b, (uint32_t)(first + chunks[i].base + k));
+    }
+    return true;
+}
+
+/* Room for one more draw record in the open pass. */
+static bool grow_draws(sgDevice *dev) {
+    if (dev->draw_count < dev->draw_capacity) return true;
+    size_t cap = dev->draw_capacity ? 2 * dev->draw_capacity : 64;
+    sg_draw_state *d = sg_alloc(dev, cap * sizeof *d);
+    if (!d) return false;
+    if (dev->draw_count) memcpy(d, dev->draws, dev->draw_count * sizeof *d);
+    sg_free(dev, dev->draws);
+    dev->draws = d;
+    dev->draw_capacity = cap;
+    dev->pass.draws = d;
+    return true;
 }
 
 static bool grow_vertex_arenas(sgDevice *dev, size_t n) {
@@ -74,11 +143,12 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
             dev, SG_ERROR_MISSING_DEPTH,
             "sgDraw: the pipeline tests or writes depth but the pass has no depth target");
     sg_shade_ctx ctx = {0};
+    sg_image *tex = NULL;
     if (pso->desc.shade == SG_SHADE_TEXTURE_MODULATE) {
         if (!params->texture.id)
             return sg_error(dev, SG_ERROR_MISSING_TEXTURE,
                             "sgDraw: the pipeline samples a texture but params->texture is 0");
-        sg_image *tex = sg_lookup_image(dev, params->texture);
+        tex = sg_lookup_image(dev, params->texture);
         if (!tex)
             return sg_error(dev, SG_ERROR_INVALID_HANDLE,
                             "sgDraw: texture id 0x%08x is not a live image", params->texture.id);
@@ -101,29 +171,17 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %d vertices",
                         geom->vertex_count);
 
-    const sg_fb *fb = &dev->fb;
-    ctx.color = fb->color;
-    ctx.depth = dev->pass_depth.id ? fb->depth : NULL;
-    ctx.tiles_x = fb->tiles_x;
-    ctx.compare = pso->desc.depth.compare;
+    if (!grow_draws(dev))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for the draw list");
+    int width = dev->pass.width, height = dev->pass.height;
 
     float mvp[16];
     sg_mat4_mul(mvp, params->proj, params->world_view);
     sg_assembly a = {0};
-    a.guard = sg_guard_for_viewport(fb->width, fb->height);
+    a.guard = sg_guard_for_viewport(width, height);
     sg_vertex_transform(mvp, geom->positions, geom->vertex_count, dev->clip, dev->outcodes,
                         &a.guard);
 
-    if (!sg_binner_reset(&dev->binner, fb->width, fb->height))
-        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for screen bins");
-    int nbins = dev->binner.bins_x * dev->binner.bins_y;
-    if (nbins > dev->bin_jobs_capacity) {
-        int *jobs = sg_alloc(dev, (size_t)nbins * sizeof *jobs);
-        if (!jobs) return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for bins");
-        sg_free(dev, dev->bin_jobs);
-        dev->bin_jobs = jobs;
-        dev->bin_jobs_capacity = nbins;
-    }
     a.indices = geom->indices;
     a.index_count = geom->index_count;
     a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
@@ -133,26 +191,31 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.texcoords = geom->texcoords;
     a.rebase_texcoords =
         pso->desc.shade == SG_SHADE_TEXTURE_MODULATE && pso->desc.wrap == SG_WRAP_REPEAT;
-    a.setup.width = fb->width;
-    a.setup.height = fb->height;
+    a.setup.width = width;
+    a.setup.height = height;
     a.setup.rect_x0 = 0;
     a.setup.rect_y0 = 0;
-    a.setup.rect_x1 = fb->width;
-    a.setup.rect_y1 = fb->height;
+    a.setup.rect_x1 = width;
+    a.setup.rect_y1 = height;
     a.setup.cull = pso->desc.cull;
     a.setup.front_face = pso->desc.front_face;
     a.setup.nattr = pso->nattr;
     a.emit = bin_emit;
     a.user = &dev->binner;
-    sg_assemble(&a);
-    if (dev->binner.out_of_memory) /* nothing of the draw has reached the framebuffer yet */
-        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %zu triangles",
-                        dev->binner.tri_count);
-
-    int jobs = 0;
-    for (int i = 0; i < nbins; i++)
-        if (dev->binner.bins[i].count) dev->bin_jobs[jobs++] = i;
-    raster_job rj = {&dev->binner, dev->bin_jobs, pso->tile_fn, &ctx};
-    sg_workers_run(&dev->workers, jobs, raster_bin, &rj);
+    size_t first = dev->binner.tri_count;
+    dev->binner.draw = (uint32_t)dev->draw_count;
+    if (!assemble_parallel(dev, &a)) sg_assemble(&a);
+    if (dev->binner.out_of_memory) { /* the pass goes on without this draw */
+        size_t total = dev->binner.tri_count;
+        sg_binner_truncate(&dev->binner, first);
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgDraw: out of memory for %zu triangles in the pass", total);
+    }
+    sg_draw_state *ds = &dev->draws[dev->draw_count++];
+    ds->depth_fn = pso->depth_fn;
+    ds->shade_fn = pso->shade_fn;
+    ds->ctx = ctx;
+    ds->compare = pso->desc.depth.compare;
+    if (tex) tex->pass_use = dev->pass_serial;
     return SG_OK;
 }

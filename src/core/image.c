@@ -22,6 +22,12 @@ static bool is_pass_target(const sgDevice *dev, sgImage2D h) {
     return dev->in_pass && (dev->pass_color.id == h.id || dev->pass_depth.id == h.id);
 }
 
+/* Draws are rendered at sgEndRenderPass, so a texture a draw of the open pass samples must stay
+ * as it is until then. */
+static bool is_pass_texture(const sgDevice *dev, const sg_image *img) {
+    return dev->in_pass && img->pass_use == dev->pass_serial;
+}
+
 sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *out) {
     if (out) out->id = 0;
     if (!dev) return SG_ERROR_NULL_POINTER;
@@ -58,6 +64,7 @@ sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *ou
     img->format = desc->format;
     img->pixel_size = ps;
     img->data = data;
+    img->pass_use = 0;
     out->id = id;
     return SG_OK;
 }
@@ -71,6 +78,11 @@ sgResult sgDestroyImage2D(sgDevice *dev, sgImage2D h) {
     if (is_pass_target(dev, h))
         return sg_error(dev, SG_ERROR_IN_USE,
                         "sgDestroyImage2D: image 0x%08x is a target of the open render pass", h.id);
+    if (is_pass_texture(dev, img))
+        return sg_error(dev, SG_ERROR_IN_USE,
+                        "sgDestroyImage2D: image 0x%08x is sampled by a draw of the open render "
+                        "pass; destroy it after sgEndRenderPass",
+                        h.id);
     sg_image_release(dev, img);
     sg_pool_release(&dev->image_pool, h.id);
     return SG_OK;
@@ -93,6 +105,11 @@ static sgResult transfer(sgDevice *dev, const char *fn, sgImage2D h, const void 
         return sg_error(dev, SG_ERROR_IN_USE,
                         "%s: image 0x%08x is a target of the open render pass; its contents are "
                         "defined after sgEndRenderPass",
+                        fn, h.id);
+    if (src && is_pass_texture(dev, img))
+        return sg_error(dev, SG_ERROR_IN_USE,
+                        "%s: image 0x%08x is sampled by a draw of the open render pass, which is "
+                        "rendered at sgEndRenderPass; upload before the draw or after the pass",
                         fn, h.id);
     size_t pitch = row_pitch ? row_pitch : row;
     for (int y = 0; y < img->height; y++) {

@@ -41,6 +41,7 @@ typedef struct sg_tri {
      * it would only add rounding), and SG_FLAT_WHITE when that colour is opaque white. */
     int flat;
     float color[4];
+    uint32_t draw; /* which draw of the pass it belongs to (set by the binner) */
 } sg_tri;
 
 enum { SG_FLAT_NONE, SG_FLAT_COLOR, SG_FLAT_WHITE };

@@ -44,23 +44,47 @@ bool sg_binner_reset(sg_binner *b, int width, int height) {
 
 void sg_binner_add(sg_binner *b, const sg_tri *tri) {
     if (b->out_of_memory) return;
-    if (!grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + 1, sizeof *b->tris)) {
+    sg_tri *slot = sg_binner_reserve(b, 1);
+    if (!slot) return;
+    *slot = *tri;
+    slot->draw = b->draw;
+    sg_binner_list(b, (uint32_t)b->tri_count++);
+}
+
+sg_tri *sg_binner_reserve(sg_binner *b, size_t n) {
+    /* Ids are index + 1 in 32 bits (depth.h). */
+    if (b->out_of_memory || n > UINT32_MAX - 1 - b->tri_count ||
+        !grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + n, sizeof *b->tris)) {
         b->out_of_memory = true;
-        return;
+        return NULL;
     }
-    uint32_t index = (uint32_t)b->tri_count++;
-    b->tris[index] = *tri;
+    return b->tris + b->tri_count;
+}
+
+void sg_binner_list(sg_binner *b, uint32_t index) {
+    const sg_tri *tri = &b->tris[index];
     for (int y = tri->miny >> SG_BIN_SHIFT; y <= tri->maxy >> SG_BIN_SHIFT; y++)
         for (int x = tri->minx >> SG_BIN_SHIFT; x <= tri->maxx >> SG_BIN_SHIFT; x++) {
             sg_bin *bin = &b->bins[y * b->bins_x + x];
-            size_t cap = bin->capacity;
-            if (!grow(b, (void **)&bin->tris, &cap, bin->count + 1u, sizeof *bin->tris)) {
-                b->out_of_memory = true;
-                return;
+            if (bin->count == bin->capacity) {
+                size_t cap = bin->capacity;
+                if (!grow(b, (void **)&bin->tris, &cap, bin->count + 1u, sizeof *bin->tris)) {
+                    b->out_of_memory = true;
+                    return;
+                }
+                bin->capacity = (uint32_t)cap;
             }
-            bin->capacity = (uint32_t)cap;
             bin->tris[bin->count++] = index;
         }
+}
+
+void sg_binner_truncate(sg_binner *b, size_t count) {
+    for (int i = 0; i < b->bins_x * b->bins_y; i++) {
+        sg_bin *bin = &b->bins[i];
+        while (bin->count && bin->tris[bin->count - 1] >= count) bin->count--;
+    }
+    b->tri_count = count;
+    b->out_of_memory = false;
 }
 
 void sg_binner_release(sg_binner *b) {

@@ -1,5 +1,6 @@
-/* bin.h - screen bins: set-up triangles sorted into 64 x 64-pixel bins, in submission order, so
- * that bins can be rasterised on any thread in any order with the same result. */
+/* bin.h - screen bins: the set-up triangles of a whole render pass sorted into 64 x 64-pixel
+ * bins, in submission order, so that bins can be rendered on any thread in any order with the
+ * same result. */
 #ifndef SG_BIN_H
 #define SG_BIN_H
 
@@ -25,13 +26,21 @@ typedef struct sg_binner {
     size_t tri_count, tri_capacity;
     sg_bin *bins;
     int bins_x, bins_y, bin_capacity;
+    uint32_t draw;      /* stamped on each added triangle */
     bool out_of_memory; /* set when a list could not grow; the draw is then abandoned */
 } sg_binner;
 
 /** Empties every bin and sizes the grid for a width x height target. */
 bool sg_binner_reset(sg_binner *b, int width, int height);
-/** Stores a triangle and lists it in every bin its bounds touch. */
+/** Stores a triangle (stamped with b->draw) and lists it in every bin its bounds touch. */
 void sg_binner_add(sg_binner *b, const sg_tri *tri);
+/** Room for n more triangles at tris + tri_count (NULL, and out_of_memory, when there is none);
+ *  the caller fills them, then moves tri_count and lists each filled one with sg_binner_list. */
+sg_tri *sg_binner_reserve(sg_binner *b, size_t n);
+/** Lists a stored triangle in every bin its bounds touch (after those listed before it). */
+void sg_binner_list(sg_binner *b, uint32_t index);
+/** Forgets every triangle from index `count` on: undoes a draw that ran out of memory. */
+void sg_binner_truncate(sg_binner *b, size_t count);
 /** Frees everything the binner holds. */
 void sg_binner_release(sg_binner *b);
 

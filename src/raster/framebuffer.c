@@ -1,4 +1,4 @@
-/* framebuffer.c - clearing the tiled framebuffer and converting it to and from linear images. */
+/* framebuffer.c - filling tiled and linear pixels and converting between the two layouts. */
 #include "raster/framebuffer.h"
 
 #include <string.h>
@@ -19,8 +19,8 @@ void sg_fb_fill_depth(float *tiles, size_t pixels, float value) {
     for (size_t i = 0; i < pixels; i++) tiles[i] = value;
 }
 
-void sg_tile_from_linear_rgba8(uint32_t *tiles, const uint8_t *src, size_t pitch, int w, int h) {
-    int tx = tiles_of(w);
+void sg_tile_from_linear_rgba8(uint32_t *tiles, const uint8_t *src, size_t pitch, int w, int h,
+                               int tx) {
     for (int y = 0; y < h; y++) {
         const uint8_t *row = src + (size_t)y * pitch;
         for (int x = 0; x < w; x++) {
@@ -30,8 +30,8 @@ void sg_tile_from_linear_rgba8(uint32_t *tiles, const uint8_t *src, size_t pitch
     }
 }
 
-void sg_tile_to_linear_rgba8(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h) {
-    int tx = tiles_of(w);
+void sg_tile_to_linear_rgba8(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h,
+                             int tx) {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
     /* The packed pixel's bytes in memory already are R, G, B, A: a tile row is 16 bytes to copy. */
     int whole = w >> SG_TILE_SHIFT;
@@ -58,16 +58,15 @@ void sg_tile_to_linear_rgba8(uint8_t *dst, size_t pitch, const uint32_t *tiles, 
     }
 }
 
-void sg_tile_from_linear_f32(float *tiles, const float *src, size_t pitch, int w, int h) {
-    int tx = tiles_of(w);
+void sg_tile_from_linear_f32(float *tiles, const float *src, size_t pitch, int w, int h, int tx) {
     for (int y = 0; y < h; y++) {
         const float *row = (const float *)(const void *)((const uint8_t *)src + (size_t)y * pitch);
         for (int x = 0; x < w; x++) tiles[sg_fb_index(tx, x, y)] = row[x];
     }
 }
 
-void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, int h) {
-    int tx = tiles_of(w), whole = w >> SG_TILE_SHIFT;
+void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, int h, int tx) {
+    int whole = w >> SG_TILE_SHIFT;
     for (int y = 0; y < h; y++) {
         float *row = (float *)(void *)((uint8_t *)dst + (size_t)y * pitch);
         const float *src = tiles + sg_fb_index(tx, 0, y);
@@ -75,5 +74,12 @@ void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, 
             memcpy(row + (size_t)t * SG_TILE, src + (size_t)t * SG_TILE_PIXELS,
                    SG_TILE * sizeof(float));
         for (int x = whole << SG_TILE_SHIFT; x < w; x++) row[x] = tiles[sg_fb_index(tx, x, y)];
+    }
+}
+
+void sg_fill_linear_u32(void *dst, size_t pitch, int w, int h, uint32_t value) {
+    for (int y = 0; y < h; y++) {
+        uint32_t *row = (uint32_t *)(void *)((uint8_t *)dst + (size_t)y * pitch);
+        for (int x = 0; x < w; x++) row[x] = value;
     }
 }

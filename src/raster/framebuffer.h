@@ -1,4 +1,5 @@
-/* framebuffer.h - colour and depth stored in 4x4-pixel tiles.
+/* framebuffer.h - colour and depth stored in 4x4-pixel tiles, as each screen bin keeps them while
+ * it is rendered.
  *
  * A 4x4 tile is 16 consecutive pixels, row by row; tiles follow each other left to right, then top
  * to bottom. The raster touches a whole tile at once, so the 16 pixels it needs share two cache
@@ -40,13 +41,20 @@ size_t sg_fb_tiled_pixels(int width, int height);
 void sg_fb_fill_color(uint32_t *tiles, size_t pixels, uint32_t value);
 /** Fills every pixel (padding included) of the tiled depth array. */
 void sg_fb_fill_depth(float *tiles, size_t pixels, float value);
-/** Linear RGBA8 rows (top first) -> tiles. */
-void sg_tile_from_linear_rgba8(uint32_t *tiles, const uint8_t *src, size_t pitch, int w, int h);
-/** Tiles -> linear RGBA8 rows (top first). */
-void sg_tile_to_linear_rgba8(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h);
+/* The conversions copy w x h pixels between linear rows (top first, `pitch` bytes apart) and
+ * tiles laid out `tx` tiles to a row of tiles (tx >= w / 4 rounded up). */
+
+/** Linear RGBA8 rows -> tiles. */
+void sg_tile_from_linear_rgba8(uint32_t *tiles, const uint8_t *src, size_t pitch, int w, int h,
+                               int tx);
+/** Tiles -> linear RGBA8 rows. */
+void sg_tile_to_linear_rgba8(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h,
+                             int tx);
 /** Linear float rows -> tiles. */
-void sg_tile_from_linear_f32(float *tiles, const float *src, size_t pitch, int w, int h);
+void sg_tile_from_linear_f32(float *tiles, const float *src, size_t pitch, int w, int h, int tx);
 /** Tiles -> linear float rows. */
-void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, int h);
+void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, int h, int tx);
+/** Fills w x h 32-bit pixels of linear rows `pitch` bytes apart. */
+void sg_fill_linear_u32(void *dst, size_t pitch, int w, int h, uint32_t value);
 
 #endif

@@ -1,10 +1,13 @@
-/* shade.h - per-pixel work of a covered tile: depth test, perspective-correct interpolation,
- * texturing and the write to the tiled framebuffer.
+/* shade.h - per-pixel colour of a covered tile: perspective-correct interpolation, texturing and
+ * the conversion to RGBA8.
  *
- * One function is compiled for each combination of state that changes the inner loop (vertex
- * colour or texture with its filter and wrap; no depth, LESS, or any other compare; depth write on
- * or off), and a pipeline picks its function once, at creation. A vertex-colour draw therefore
- * never runs texture code, and a draw without depth never touches the depth buffer.
+ * Shading runs after visibility (depth.c) has decided, for every pixel of a screen bin, which
+ * triangle is seen there, so each pixel is shaded once whatever the overdraw. One function is
+ * compiled for each combination of state that changes the inner loop (vertex colour, or texture
+ * with its filter and wrap), and for each instruction set (portable scalar, SSE2, AVX2); a
+ * pipeline picks its function once, at creation, so a vertex-colour draw never runs texture code.
+ * Every instruction set computes the same IEEE operations in the same order, so all give the same
+ * bytes as the scalar reference.
  */
 #ifndef SG_SHADE_H
 #define SG_SHADE_H
@@ -12,23 +15,34 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "raster/rast_tile.h"
+#include "pipeline/setup.h"
 #include "sgapi/sgapi.h"
 #include "tex/sample.h"
 
 typedef struct sg_shade_ctx {
-    uint32_t *color; /* tiled colour of the open pass */
-    float *depth;    /* tiled depth, NULL when the pass has none */
-    int tiles_x;
     sg_texview tex; /* bound texture, when the pipeline samples one */
-    sgCompare compare;
 } sg_shade_ctx;
 
-/** The tile function specialised for a resolved pipeline state (no DEFAULT values). */
-sg_tile_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sgCompare compare,
-                           bool depth_write);
+/* Instruction sets with their own shading and visibility code. */
+typedef enum sg_isa { SG_ISA_SCALAR, SG_ISA_SSE2, SG_ISA_AVX2, SG_ISA_COUNT } sg_isa;
+
+/* Shades the pixels of `mask` (bit y * 4 + x) of the 4x4 tile whose top-left pixel is (x0, y0)
+ * and writes them as RGBA8 to dst[y * 4 + x]; other pixels of dst are left as they are. */
+typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, int y0, uint32_t mask,
+                            uint32_t *dst);
+
+/** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
+sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
+/** The scalar reference functions (the SSE2 and AVX2 tables are in shade_sse2.c, shade_avx2.c);
+ *  index: 0 vertex colour, 1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */
+sg_shade_fn sg_shade_scalar(int variant);
+sg_shade_fn sg_shade_sse2(int variant);
+sg_shade_fn sg_shade_avx2(int variant);
 /** Attributes a shading mode interpolates: r g b a, plus s t when textured. */
 int sg_shade_attr_count(sgShade shade);
+/** The best instruction set this CPU runs. */
+sg_isa sg_isa_detect(void);
+
 /** Float colour channel to unorm8, round to nearest, clamped to [0, 1] (NaN gives 0). */
 static inline uint32_t sg_to_unorm8(float v) {
     if (!(v > 0.0f)) return 0;

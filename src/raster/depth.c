@@ -1,0 +1,128 @@
+/* depth.c - the visibility tile functions (see depth.h): depth test and id write of one covered
+ * 4x4 tile, specialised for no test, LESS, or any other compare, with or without depth write, in
+ * portable C and in SSE2. Both compute z = (z0 + z_dx * dx) + z_dy * dy, clamped to [0, 1] with
+ * NaN kept, so they decide every pixel alike. */
+#include "raster/depth.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+enum { Z_NONE, Z_LESS, Z_ANY };
+
+static inline bool depth_passes(sgCompare op, float z, float d) {
+    switch (op) {
+    case SG_COMPARE_NEVER:
+        return false;
+    case SG_COMPARE_LESS:
+        return z < d;
+    case SG_COMPARE_EQUAL:
+        return z == d;
+    case SG_COMPARE_LESS_EQUAL:
+        return z <= d;
+    case SG_COMPARE_GREATER:
+        return z > d;
+    case SG_COMPARE_NOT_EQUAL:
+        return z != d;
+    case SG_COMPARE_GREATER_EQUAL:
+        return z >= d;
+    default:
+        return true;
+    }
+}
+
+static inline __attribute__((always_inline)) void vis_scalar(const void *vctx, const sg_tri *t,
+                                                             int x0, int y0, uint32_t mask,
+                                                             const int zmode, const int zwrite) {
+    const sg_vis_ctx *v = vctx;
+    int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    uint32_t *ids = v->ids + base;
+    if (zmode == Z_NONE && !zwrite) {
+        while (mask) {
+            ids[__builtin_ctz(mask)] = v->id;
+            mask &= mask - 1;
+        }
+        return;
+    }
+    float *dp = v->depth + base;
+    float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    while (mask) {
+        int bit = __builtin_ctz(mask);
+        mask &= mask - 1;
+        float dx = ox + (float)(bit & 3), dy = oy + (float)(bit >> 2);
+        float z = t->z + t->z_dx * dx + t->z_dy * dy;
+        z = z < 0.0f ? 0.0f : (z > 1.0f ? 1.0f : z); /* depth is clamped to the depth range */
+        if (zmode == Z_LESS && !(z < dp[bit])) continue;
+        if (zmode == Z_ANY && !depth_passes(v->compare, z, dp[bit])) continue;
+        if (zwrite) dp[bit] = z;
+        ids[bit] = v->id;
+    }
+}
+
+#define SG_VIS(name, zm, zw)                                                                       \
+    static void name(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {                 \
+        vis_scalar(c, t, x0, y0, m, zm, zw);                                                       \
+    }
+SG_VIS(vis_none_0, Z_NONE, 0)
+SG_VIS(vis_none_1, Z_NONE, 1)
+SG_VIS(vis_less_0, Z_LESS, 0)
+SG_VIS(vis_less_1, Z_LESS, 1)
+SG_VIS(vis_any_0, Z_ANY, 0)
+SG_VIS(vis_any_1, Z_ANY, 1)
+
+#if defined(__SSE2__)
+/* One row of 4 pixels at a time. `lanes` has the bit of each lane, to turn the 4 coverage bits
+ * of a row into a lane mask. MAXPS/MINPS return their second operand when one is NaN, so
+ * max(0, z) and min(1, .) keep a NaN z, as the scalar clamp does. */
+static inline __attribute__((always_inline)) void
+vis_sse2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const int zwrite) {
+    const sg_vis_ctx *v = vctx;
+    int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    uint32_t *ids = v->ids + base;
+    float *dp = v->depth + base;
+    const __m128i lanes = _mm_setr_epi32(1, 2, 4, 8);
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    __m128 dx = _mm_add_ps(_mm_set1_ps((float)(x0 - t->minx)), _mm_setr_ps(0.0f, 1.0f, 2.0f, 3.0f));
+    __m128 zx = _mm_add_ps(_mm_set1_ps(t->z), _mm_mul_ps(_mm_set1_ps(t->z_dx), dx));
+    __m128 zdy = _mm_set1_ps(t->z_dy);
+    __m128i id = _mm_set1_epi32((int)v->id);
+    float oy = (float)(y0 - t->miny);
+    for (int j = 0; j < 4; j++) {
+        uint32_t bits = (mask >> (4 * j)) & 15u;
+        if (!bits) continue;
+        __m128 z = _mm_add_ps(zx, _mm_mul_ps(zdy, _mm_set1_ps(oy + (float)j)));
+        z = _mm_min_ps(one, _mm_max_ps(zero, z));
+        __m128 d = _mm_load_ps(dp + 4 * j);
+        __m128i cov = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)bits), lanes), lanes);
+        __m128i pass = _mm_and_si128(cov, _mm_castps_si128(_mm_cmplt_ps(z, d)));
+        if (!_mm_movemask_epi8(pass)) continue;
+        if (zwrite)
+            _mm_store_ps(dp + 4 * j, _mm_or_ps(_mm_and_ps(_mm_castsi128_ps(pass), z),
+                                               _mm_andnot_ps(_mm_castsi128_ps(pass), d)));
+        __m128i old = _mm_load_si128((const __m128i *)(const void *)(ids + 4 * j));
+        _mm_store_si128((__m128i *)(void *)(ids + 4 * j),
+                        _mm_or_si128(_mm_and_si128(pass, id), _mm_andnot_si128(pass, old)));
+    }
+}
+
+static void vis_less_0_sse2(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
+    vis_sse2(c, t, x0, y0, m, 0);
+}
+static void vis_less_1_sse2(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
+    vis_sse2(c, t, x0, y0, m, 1);
+}
+#endif
+
+sg_tile_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
+    static const sg_tile_fn scalar[3][2] = {
+        {vis_none_0, vis_none_1}, {vis_less_0, vis_less_1}, {vis_any_0, vis_any_1}};
+    int zmode =
+        compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
+#if defined(__SSE2__)
+    if (isa >= SG_ISA_SSE2 && zmode == Z_LESS)
+        return depth_write ? vis_less_1_sse2 : vis_less_0_sse2;
+#else
+    (void)isa;
+#endif
+    return scalar[zmode][depth_write ? 1 : 0];
+}

@@ -1,0 +1,36 @@
+/* depth.h - visibility: which triangle is seen at each pixel of a screen bin.
+ *
+ * A bin's triangles are rasterised in submission order into the bin's depth and triangle-id
+ * buffers (no colour yet). A covered pixel that passes the pipeline's depth test takes the
+ * triangle's id (and its depth when the pipeline writes depth). With no blending, the colour a
+ * forward renderer would leave in a pixel is exactly the colour of the last triangle that passed
+ * there, so shading the surviving ids once (rast_bin.c) gives the same bytes at any overdraw.
+ */
+#ifndef SG_DEPTH_H
+#define SG_DEPTH_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "raster/rast_tile.h"
+#include "raster/shade.h"
+#include "sgapi/sgapi.h"
+
+/* The bin being rasterised: both buffers hold 64 x 64 pixels as 16 x 16 tiles of 4 x 4. */
+typedef struct sg_vis_ctx {
+    float *depth;  /* NULL when the pass has no depth target */
+    uint32_t *ids; /* 0: no triangle; else index + 1 of the triangle in the pass */
+    int bx0, by0;  /* the bin's top-left pixel */
+    uint32_t id;   /* id of the triangle being rasterised */
+    sgCompare compare;
+} sg_vis_ctx;
+
+/** The visibility tile function (its ctx is an sg_vis_ctx) for a resolved depth state. */
+sg_tile_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa);
+
+/** Offset of the tile holding pixel (x, y) in a bin's buffers, relative to the bin's origin. */
+static inline int sg_bin_tile_offset(int x, int y) {
+    return ((y >> 2) * 16 + (x >> 2)) * 16;
+}
+
+#endif

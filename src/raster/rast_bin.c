@@ -1,0 +1,98 @@
+/* rast_bin.c - one screen bin of a render pass, from clear to the target images (see
+ * rast_bin.h). */
+#include "raster/rast_bin.h"
+
+#include <string.h>
+
+#include "raster/depth.h"
+#include "raster/framebuffer.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+enum { BIN_TILES = SG_BIN_SIZE / SG_TILE, BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE };
+
+/* Shades the visible pixels of one tile: each run of pixels that see the same triangle is one
+ * call of that triangle's shading function. */
+static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
+#if defined(__SSE2__)
+    __m128i v = _mm_set1_epi32((int32_t)id);
+    uint32_t mask = 0;
+    for (int j = 0; j < 4; j++) {
+        __m128i row = _mm_load_si128((const __m128i *)(const void *)(ids + 4 * j));
+        mask |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(row, v))) << (4 * j);
+    }
+    return mask;
+#else
+    uint32_t mask = 0;
+    for (int i = 0; i < SG_TILE_PIXELS; i++) mask |= (uint32_t)(ids[i] == id) << i;
+    return mask;
+#endif
+}
+
+static void shade_tile(const sg_bin_pass *p, const uint32_t *ids, int x0, int y0, uint32_t *dst) {
+    uint32_t left = ~same_id(ids, 0) & 0xffffu;
+    while (left) {
+        uint32_t id = ids[__builtin_ctz(left)], mask = same_id(ids, id);
+        const sg_tri *t = &p->binner->tris[id - 1];
+        const sg_draw_state *d = &p->draws[t->draw];
+        d->shade_fn(&d->ctx, t, x0, y0, mask, dst);
+        left &= ~mask;
+    }
+}
+
+void sg_rast_bin(const sg_bin_pass *p, int index) {
+    const sg_binner *b = p->binner;
+    const sg_bin *bin = &b->bins[index];
+    int x0 = (index % b->bins_x) << SG_BIN_SHIFT, y0 = (index / b->bins_x) << SG_BIN_SHIFT;
+    int w = p->width - x0 < SG_BIN_SIZE ? p->width - x0 : SG_BIN_SIZE;
+    int h = p->height - y0 < SG_BIN_SIZE ? p->height - y0 : SG_BIN_SIZE;
+    size_t cpitch = (size_t)p->width * 4;
+    uint8_t *cimg = p->color + (size_t)y0 * cpitch + (size_t)x0 * 4;
+    float *dimg =
+        p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)y0 * cpitch) + x0 : NULL;
+    if (!bin->count) { /* nothing drawn here: the pass's load and clear are the result */
+        if (!p->load_color) sg_fill_linear_u32(cimg, cpitch, w, h, p->clear_color);
+        if (dimg && p->store_depth && !p->load_depth) {
+            uint32_t bits;
+            memcpy(&bits, &p->clear_depth, 4);
+            sg_fill_linear_u32(dimg, cpitch, w, h, bits);
+        }
+        return;
+    }
+
+    _Alignas(64) uint32_t color[BIN_PIXELS];
+    _Alignas(64) float depth[BIN_PIXELS];
+    _Alignas(64) uint32_t ids[BIN_PIXELS];
+    memset(ids, 0, sizeof ids);
+    if (dimg) {
+        if (p->load_depth)
+            sg_tile_from_linear_f32(depth, dimg, cpitch, w, h, BIN_TILES);
+        else
+            sg_fb_fill_depth(depth, BIN_PIXELS, p->clear_depth);
+    }
+    sg_vis_ctx vis = {dimg ? depth : NULL, ids, x0, y0, 0, SG_COMPARE_ALWAYS};
+    for (uint32_t i = 0; i < bin->count; i++) {
+        uint32_t ti = bin->tris[i];
+        const sg_tri *t = &b->tris[ti];
+        const sg_draw_state *d = &p->draws[t->draw];
+        vis.id = ti + 1;
+        vis.compare = d->compare;
+        sg_rast_triangle_in(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, d->depth_fn, &vis);
+    }
+
+    if (p->load_color)
+        sg_tile_from_linear_rgba8(color, cimg, cpitch, w, h, BIN_TILES);
+    else
+        sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
+    for (int ty = 0; ty < (h + SG_TILE - 1) >> SG_TILE_SHIFT; ty++)
+        for (int tx = 0; tx < (w + SG_TILE - 1) >> SG_TILE_SHIFT; tx++) {
+            int off = sg_bin_tile_offset(tx << SG_TILE_SHIFT, ty << SG_TILE_SHIFT);
+            shade_tile(p, ids + off, x0 + (tx << SG_TILE_SHIFT), y0 + (ty << SG_TILE_SHIFT),
+                       color + off);
+        }
+
+    sg_tile_to_linear_rgba8(cimg, cpitch, color, w, h, BIN_TILES);
+    if (dimg && p->store_depth) sg_tile_to_linear_f32(dimg, cpitch, depth, w, h, BIN_TILES);
+}

@@ -1,0 +1,44 @@
+/* rast_bin.h - the back end of a render pass: one screen bin from start to finish.
+ *
+ * sgDraw only runs the front end and bins the pass's triangles; sgEndRenderPass renders every bin
+ * on the device's threads. A bin keeps its colour, depth and triangle ids in 64 x 64-pixel
+ * buffers that stay in the core's cache: it starts from the pass's clear values (or the loaded
+ * images), finds the visible triangle of each pixel (depth.c), shades each pixel once (shade.c)
+ * and writes its pixels to the target images, once. Bins share no pixels, so the images are the
+ * same whichever thread renders which bin.
+ */
+#ifndef SG_RAST_BIN_H
+#define SG_RAST_BIN_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "raster/bin.h"
+#include "raster/rast_tile.h"
+#include "raster/shade.h"
+
+/* What the back end needs of one draw: its pipeline's functions and its bound texture. */
+typedef struct sg_draw_state {
+    sg_tile_fn depth_fn;
+    sg_shade_fn shade_fn;
+    sg_shade_ctx ctx;
+    sgCompare compare;
+} sg_draw_state;
+
+typedef struct sg_bin_pass {
+    const sg_binner *binner;
+    const sg_draw_state *draws; /* indexed by sg_tri.draw */
+    int width, height;
+    uint8_t *color;              /* linear RGBA8 target, `width * 4` bytes a row */
+    float *depth;                /* linear D32 target, or NULL */
+    bool load_color, load_depth; /* else cleared to: */
+    uint32_t clear_color;
+    float clear_depth;
+    bool store_depth;
+} sg_bin_pass;
+
+/** Renders bin `index` of the pass into its target images. */
+void sg_rast_bin(const sg_bin_pass *pass, int index);
+
+#endif

@@ -1,0 +1,271 @@
+/* shade_avx2.c - the shading functions of shade.h in AVX2 (this file alone is compiled with
+ * -mavx2; no FMA, which would round differently). A tile is shaded two rows at a time, eight pixels
+ * per __m256 (row r in the low half, row r + 1 in the high half) and a vector per channel: 1/q, the
+ * colours and the texture coordinates are the scalar reference's float operations (shade.c,
+ * sample.h) in the same order, so the bytes are the same. Texels are fetched with gathers and
+ * bilinear filtering is exact integer arithmetic on 16-bit lanes; pixels are written with a masked
+ * store. Without AVX2 (or off x86) every variant is NULL and the SSE2 or scalar code is used.
+ */
+#include "raster/shade.h"
+
+#include <float.h>
+
+/* FLT_EVAL_METHOD 0: the scalar code rounds each operation to float, as AVX does. */
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__AVX2__) && FLT_EVAL_METHOD == 0
+
+#include <immintrin.h>
+
+#include "raster/framebuffer.h"
+
+/* Texel rows and row * width are computed in 16-bit lanes (pmaddwd). */
+_Static_assert(SG_MAX_IMAGE_SIZE < 32768, "texture sides must fit signed 16 bits");
+
+#define INLINE static inline __attribute__((always_inline))
+
+/* The bound texture, broadcast; "scale" is the size the texcoord functions multiply by (n, or
+ * 256 n when bilinear) and "hi" the clamp's upper limit (n - 1 texels, or 256 (n + 1)). */
+typedef struct tex8 {
+    const int *texels;
+    __m256 scale_x, scale_y, hi_x, hi_y;
+    __m256i n_x, n_y, last_x, last_y; /* n and n - 1 */
+} tex8;
+
+/* sg_texcoord_repeat: vroundps is floorf exactly (NaN and infinities included), and max turns the
+ * NaN that NaN and infinite s give into 0, as the reference's x >= 0 test does. */
+INLINE __m256 coord_repeat(__m256 s, __m256 scale) {
+    __m256 x = _mm256_mul_ps(_mm256_sub_ps(s, _mm256_floor_ps(s)), scale);
+    return _mm256_max_ps(x, _mm256_setzero_ps());
+}
+
+/* Column (or row) of sg_sample_nearest. Repeat: x is in [0, n], so truncation is floor and only n
+ * wraps. Clamp: flooring then clamping to [0, n - 1] is clamping then truncating, and the clamp to
+ * [-1, 2] before the scaling changes nothing after it; max turns NaN into 0 as the reference does
+ * (NaN -> -1 -> -n -> 0). */
+INLINE __m256i nearest_index(__m256 s, __m256 scale, __m256 hi, __m256i n, __m256i last,
+                             const int repeat) {
+    if (repeat) {
+        __m256i i = _mm256_cvttps_epi32(coord_repeat(s, scale));
+        return _mm256_sub_epi32(i, _mm256_and_si256(_mm256_cmpgt_epi32(i, last), n));
+    }
+    __m256 x = _mm256_max_ps(_mm256_mul_ps(s, scale), _mm256_setzero_ps());
+    return _mm256_cvttps_epi32(_mm256_min_ps(x, hi));
+}
+
+/* Columns i0, i1 (wrapped) and 8-bit fraction of sg_sample_bilinear; (floor(x) - 128) >> 8 and
+ * & 255 are the reference's split without its +512. Clamp: the reference clamps s to [-1, 2] and
+ * then x to [-256, 256 (n + 1)], which is x = s * 256 n clamped to the latter alone (NaN -> -256
+ * with max). Repeat: x >= 0, i0 in [-1, n - 1], i1 in [0, n]. */
+INLINE void bilinear_index(__m256 s, __m256 scale, __m256 hi, __m256i n, __m256i last,
+                           const int repeat, __m256i *i0, __m256i *i1, __m256i *frac) {
+    __m256i fl;
+    if (repeat) {
+        fl = _mm256_cvttps_epi32(coord_repeat(s, scale)); /* x >= 0: truncation is floor */
+    } else {
+        __m256 x = _mm256_max_ps(_mm256_mul_ps(s, scale), _mm256_set1_ps(-256.0f));
+        /* Truncation, not floor: where they differ (x < 0) i0 and i1 both clamp to 0, and the
+         * fraction then only weighs a texel against itself. */
+        fl = _mm256_cvttps_epi32(_mm256_min_ps(x, hi));
+    }
+    __m256i g = _mm256_sub_epi32(fl, _mm256_set1_epi32(128));
+    __m256i a = _mm256_srai_epi32(g, 8), b = _mm256_add_epi32(a, _mm256_set1_epi32(1));
+    *frac = _mm256_and_si256(g, _mm256_set1_epi32(255));
+    if (repeat) {
+        a = _mm256_add_epi32(a, _mm256_and_si256(_mm256_srai_epi32(a, 31), n));
+        b = _mm256_sub_epi32(b, _mm256_and_si256(_mm256_cmpgt_epi32(b, last), n));
+    } else {
+        a = _mm256_min_epi32(_mm256_max_epi32(a, _mm256_setzero_si256()), last);
+        b = _mm256_min_epi32(_mm256_max_epi32(b, _mm256_setzero_si256()), last);
+    }
+    *i0 = a;
+    *i1 = b;
+}
+
+/* Index of the first texel of row j counted from the bottom (sg_texel_at): (n_y - 1 - j) * width
+ * with one pmaddwd (faster than pmulld), both factors being below 2^15 in the low half of a lane.
+ */
+INLINE __m256i row_start(__m256i j, const tex8 *tx) {
+    return _mm256_madd_epi16(_mm256_sub_epi32(tx->last_y, j), tx->n_x);
+}
+
+/* Every lane's index is inside the texture, whatever its coordinates, so lanes outside the mask
+ * need not be masked off. */
+INLINE __m256i fetch8(const tex8 *tx, __m256i idx) {
+    return _mm256_i32gather_epi32(tx->texels, idx, 4);
+}
+
+INLINE __m256i nearest8(const tex8 *tx, __m256 s, __m256 u, const int repeat) {
+    __m256i i = nearest_index(s, tx->scale_x, tx->hi_x, tx->n_x, tx->last_x, repeat);
+    __m256i j = nearest_index(u, tx->scale_y, tx->hi_y, tx->n_y, tx->last_y, repeat);
+    return fetch8(tx, _mm256_add_epi32(row_start(j, tx), i));
+}
+
+/* sg_sample_bilinear of eight pixels, planar: c[k] gets channel k of the eight pixels. Channels
+ * r, b and g, a are blended as pairs of 16-bit lanes. The vertical blends t0 (256 - fy) + t1 fy are
+ * at most 255 * 256, exact in unsigned 16 bits; biased by -32768 (the xor) they are signed, and the
+ * blends of columns i0 and i1 of a channel, put side by side in a 32-bit lane, go through pmaddwd
+ * with (256 - fx, fx), whose sum brings the bias back as 32768 * 256. That is the reference's
+ * four-weight sum exactly, then (sum + 32768) >> 16. No shuffles: all lanes stay in place. */
+INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m256i c[4]) {
+    __m256i i0, i1, fx, j0, j1, fy;
+    bilinear_index(s, tx->scale_x, tx->hi_x, tx->n_x, tx->last_x, repeat, &i0, &i1, &fx);
+    bilinear_index(u, tx->scale_y, tx->hi_y, tx->n_y, tx->last_y, repeat, &j0, &j1, &fy);
+    __m256i r0 = row_start(j0, tx), r1 = row_start(j1, tx);
+    __m256i t00 = fetch8(tx, _mm256_add_epi32(r0, i0));
+    __m256i t10 = fetch8(tx, _mm256_add_epi32(r0, i1));
+    __m256i t01 = fetch8(tx, _mm256_add_epi32(r1, i0));
+    __m256i t11 = fetch8(tx, _mm256_add_epi32(r1, i1));
+    const __m256i lo8 = _mm256_set1_epi32(0x00ff00ff);
+    const __m256i bias = _mm256_set1_epi32((int)0x80008000u);
+    __m256i fy2 = _mm256_or_si256(fy, _mm256_slli_epi32(fy, 16)); /* both 16-bit halves */
+    __m256i gy2 = _mm256_sub_epi16(_mm256_set1_epi16(256), fy2);
+    __m256i wx =
+        _mm256_or_si256(_mm256_sub_epi32(_mm256_set1_epi32(256), fx), _mm256_slli_epi32(fx, 16));
+#define SG_VBLEND(a, b)                                                                            \
+    _mm256_xor_si256(_mm256_add_epi16(_mm256_mullo_epi16(a, gy2), _mm256_mullo_epi16(b, fy2)), bias)
+    __m256i rb0 = SG_VBLEND(_mm256_and_si256(t00, lo8), _mm256_and_si256(t01, lo8));
+    __m256i rb1 = SG_VBLEND(_mm256_and_si256(t10, lo8), _mm256_and_si256(t11, lo8));
+    __m256i ga0 = SG_VBLEND(_mm256_srli_epi16(t00, 8), _mm256_srli_epi16(t01, 8));
+    __m256i ga1 = SG_VBLEND(_mm256_srli_epi16(t10, 8), _mm256_srli_epi16(t11, 8));
+#undef SG_VBLEND
+    const __m256i round = _mm256_set1_epi32(128 * 65536 + 32768);
+#define SG_HBLEND(v) _mm256_srli_epi32(_mm256_add_epi32(_mm256_madd_epi16(v, wx), round), 16)
+    c[0] = SG_HBLEND(_mm256_blend_epi16(rb0, _mm256_slli_epi32(rb1, 16), 0xaa));
+    c[1] = SG_HBLEND(_mm256_blend_epi16(ga0, _mm256_slli_epi32(ga1, 16), 0xaa));
+    c[2] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(rb0, 16), rb1, 0xaa));
+    c[3] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(ga0, 16), ga1, 0xaa));
+#undef SG_HBLEND
+}
+
+/* Eight RGBA8 texels to planar channels. */
+INLINE void unpack_texels(__m256i t, __m256i c[4]) {
+    const __m256i lo8 = _mm256_set1_epi32(255);
+    c[0] = _mm256_and_si256(t, lo8);
+    c[1] = _mm256_and_si256(_mm256_srli_epi32(t, 8), lo8);
+    c[2] = _mm256_and_si256(_mm256_srli_epi32(t, 16), lo8);
+    c[3] = _mm256_srli_epi32(t, 24);
+}
+
+/* sg_to_unorm8 of each lane: max puts NaN at 0, and clamping to [0, 1] first gives the
+ * reference's 0 and 255 through the same v * 255 + 0.5 truncation. */
+INLINE __m256i unorm8(__m256 v) {
+    v = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
+    return _mm256_cvttps_epi32(
+        _mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(255.0f)), _mm256_set1_ps(0.5f)));
+}
+
+/* Planar channels (0 .. 255) to RGBA8, sg_pack_rgba8. */
+INLINE __m256i pack8(const __m256i c[4]) {
+    return _mm256_or_si256(
+        _mm256_or_si256(c[0], _mm256_slli_epi32(c[1], 8)),
+        _mm256_or_si256(_mm256_slli_epi32(c[2], 16), _mm256_slli_epi32(c[3], 24)));
+}
+
+/* Writes the lanes of `m` (8 bits) of two rows; other pixels are not touched. */
+INLINE void store_rows(uint32_t *dst, __m256i v, unsigned m) {
+    if (m == 255) {
+        _mm256_storeu_si256((__m256i *)(void *)dst, v);
+        return;
+    }
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    __m256i sel = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)m), bits), bits);
+    _mm256_maskstore_epi32((int *)(void *)dst, sel, v);
+}
+
+/* The body of every variant, as shade_pixels in shade.c; the constant arguments fold away. */
+INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                       uint32_t *dst, const int textured, const int bilinear, const int repeat,
+                       const int flat) {
+    if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
+        uint32_t px = sg_pack_rgba8(sg_to_unorm8(t->color[0]), sg_to_unorm8(t->color[1]),
+                                    sg_to_unorm8(t->color[2]), sg_to_unorm8(t->color[3]));
+        for (int r = 0; r < 4; r += 2) {
+            unsigned m = (mask >> (4 * r)) & 255u;
+            if (m) store_rows(dst + 4 * r, _mm256_set1_epi32((int)px), m);
+        }
+        return;
+    }
+    const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    const __m256 dx = _mm256_add_ps(_mm256_set1_ps(ox),
+                                    _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
+    /* Everything but the a_dy * dy terms is the same on every row: q + q_dx dx and a + a_dx dx. */
+    const __m256 qx =
+        _mm256_add_ps(_mm256_set1_ps(t->q), _mm256_mul_ps(_mm256_set1_ps(t->q_dx), dx));
+    const int nattr = textured ? 6 : 4;
+    __m256 ax[6];
+    for (int k = 0; k < nattr; k++) {
+        if (k < 4 && flat != SG_FLAT_NONE)
+            ax[k] = _mm256_set1_ps(t->color[k]);
+        else
+            ax[k] = _mm256_add_ps(_mm256_set1_ps(t->a[k]),
+                                  _mm256_mul_ps(_mm256_set1_ps(t->a_dx[k]), dx));
+    }
+    tex8 tx;
+    if (textured) {
+        const int w = c->tex.width, h = c->tex.height;
+        const float sc = bilinear ? 256.0f : 1.0f;
+        tx.texels = (const int *)(const void *)c->tex.texels;
+        tx.scale_x = _mm256_set1_ps(sc * (float)w);
+        tx.scale_y = _mm256_set1_ps(sc * (float)h);
+        tx.hi_x = _mm256_set1_ps(bilinear ? 256.0f * (float)(w + 1) : (float)(w - 1));
+        tx.hi_y = _mm256_set1_ps(bilinear ? 256.0f * (float)(h + 1) : (float)(h - 1));
+        tx.n_x = _mm256_set1_epi32(w);
+        tx.n_y = _mm256_set1_epi32(h);
+        tx.last_x = _mm256_set1_epi32(w - 1);
+        tx.last_y = _mm256_set1_epi32(h - 1);
+    }
+    for (int r = 0; r < 4; r += 2) {
+        unsigned m = (mask >> (4 * r)) & 255u;
+        if (!m) continue;
+        /* dy of row r in the low half, of row r + 1 in the high half */
+        const __m256 dy =
+            _mm256_set_m128(_mm_set1_ps(oy + (float)(r + 1)), _mm_set1_ps(oy + (float)r));
+        const __m256 w = _mm256_div_ps(
+            _mm256_set1_ps(1.0f), _mm256_add_ps(qx, _mm256_mul_ps(_mm256_set1_ps(t->q_dy), dy)));
+        __m256 col[4];
+        for (int k = 0; k < 4; k++)
+            col[k] =
+                flat != SG_FLAT_NONE
+                    ? ax[k]
+                    : _mm256_mul_ps(
+                          _mm256_add_ps(ax[k], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[k]), dy)), w);
+        if (textured) {
+            __m256 s = _mm256_mul_ps(
+                _mm256_add_ps(ax[4], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[4]), dy)), w);
+            __m256 u = _mm256_mul_ps(
+                _mm256_add_ps(ax[5], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[5]), dy)), w);
+            __m256i tc[4];
+            if (bilinear) {
+                bilinear8(&tx, s, u, repeat, tc);
+                if (flat == SG_FLAT_WHITE) {
+                    store_rows(dst + 4 * r, pack8(tc), m);
+                    continue;
+                }
+            } else {
+                __m256i texel = nearest8(&tx, s, u, repeat);
+                if (flat == SG_FLAT_WHITE) { /* the texel is the colour, as in the reference */
+                    store_rows(dst + 4 * r, texel, m);
+                    continue;
+                }
+                unpack_texels(texel, tc);
+            }
+            for (int k = 0; k < 4; k++)
+                col[k] = _mm256_mul_ps(col[k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[k]),
+                                                             _mm256_set1_ps(1.0f / 255.0f)));
+        }
+        __m256i out[4];
+        for (int k = 0; k < 4; k++) out[k] = unorm8(col[k]);
+        store_rows(dst + 4 * r, pack8(out), m);
+    }
+}
+
+#define SG_SHADE_TABLE sg_shade_avx2
+#include "raster/shade_variants.h"
+
+#else
+
+sg_shade_fn sg_shade_avx2(int variant) {
+    (void)variant;
+    return NULL;
+}
+
+#endif

@@ -1,0 +1,333 @@
+/* test_shade_simd.c - the SSE2 and AVX2 shading functions give the scalar reference's bytes. For
+ * every variant and flat mode, many random cases: plausible and perspective plane equations, 1/q
+ * near 0, colours outside [0, 1], texture coordinates far outside [0, 1] (1e4, 1e30, infinite,
+ * NaN), random masks over a sentinel-filled tile, and textures from 1x1 to 16384 texels wide. The
+ * texels sit in exactly-sized allocations (a stray load shows under AddressSanitizer) and, where
+ * there is mmap, also right before or right after an inaccessible page, which catches stray reads
+ * in any build, AVX2 gathers (which AddressSanitizer does not see) included.
+ */
+#define _DEFAULT_SOURCE /* mmap, MAP_ANONYMOUS */
+#include "test_common.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#if defined(__unix__)
+#include <sys/mman.h>
+#include <unistd.h>
+#define HAVE_GUARD_PAGES 1
+#endif
+
+#include "raster/shade.h"
+
+enum { CASES_PER_FLAT = 70000, VARIANTS = 5, FLATS = 3 };
+
+static const char *const variant_names[VARIANTS] = {
+    "vertex colour", "nearest repeat", "nearest clamp", "bilinear repeat", "bilinear clamp"};
+static const char *const flat_names[FLATS] = {"NONE", "COLOR", "WHITE"};
+
+/* splitmix64: deterministic, the same cases on every run and platform. */
+typedef struct rng {
+    uint64_t s;
+} rng;
+
+static uint64_t next(rng *g) {
+    uint64_t z = (g->s += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    return z ^ (z >> 31);
+}
+
+static int irange(rng *g, int lo, int hi) { /* lo .. hi inclusive */
+    return lo + (int)(next(g) % (uint64_t)(hi - lo + 1));
+}
+
+static float frange(rng *g, float lo, float hi) {
+    return lo + (hi - lo) * (float)(next(g) >> 40) * (1.0f / 16777216.0f);
+}
+
+static int chance(rng *g, int percent) {
+    return irange(g, 0, 99) < percent;
+}
+
+/* A float of any kind: special values, extremes, or random bits (denormals, NaN payloads). */
+static float wild(rng *g) {
+    static const float special[] = {0.0f,  -0.0f,   1.0f,    -1.0f,        1e-30f,   -1e-30f,
+                                    1e30f, -1e30f,  1e4f,    -1e4f,        INFINITY, -INFINITY,
+                                    NAN,   -1e-10f, 8388608, 2147483648.0f};
+    if (chance(g, 60)) return special[irange(g, 0, (int)(sizeof special / sizeof *special) - 1)];
+    uint32_t bits = (uint32_t)next(g);
+    float f;
+    memcpy(&f, &bits, 4);
+    return f;
+}
+
+/* A value within a few ulps of (n + 0.5) / 255, where v * 255 + 0.5 is nearly an integer. */
+static float rounding_edge(rng *g) {
+    float v = ((float)irange(g, -1, 255) + 0.5f) / 255.0f;
+    for (int i = irange(g, -3, 3); i > 0; i--) v = nextafterf(v, INFINITY);
+    for (int i = irange(g, -3, 3); i > 0; i--) v = nextafterf(v, -INFINITY);
+    return v;
+}
+
+/* A texture coordinate at the tile: mostly near [0, 1], some far away or not finite. */
+static float coord(rng *g) {
+    switch (irange(g, 0, 9)) {
+    case 0:
+        return frange(g, -1e4f, 1e4f);
+    case 1:
+        return (chance(g, 50) ? 1.0f : -1.0f) * frange(g, 1e29f, 1e31f);
+    case 2:
+        return wild(g);
+    case 3:
+        return (float)irange(g, -4096, 4096) / 256.0f; /* on texel and half-texel edges */
+    case 4:
+        return -frange(g, 0.0f, 1e-6f); /* tiny negative: fraction rounds to 1 */
+    default:
+        return frange(g, -2.0f, 3.0f);
+    }
+}
+
+/* A random triangle setup for the tile at (x0, y0); the planes are built so that the values at
+ * the tile are the chosen ones (a = value * q), with gradients from none to steep. */
+static void random_tri(rng *g, sg_tri *t, int flat, int tw, int th, int *x0, int *y0) {
+    memset(t, 0, sizeof *t);
+    t->minx = irange(g, 0, 1000);
+    t->miny = irange(g, 0, 1000);
+    *x0 = chance(g, 70) ? (t->minx & ~3) + 4 * irange(g, 0, 40) : t->minx + irange(g, -3, 200);
+    *y0 = chance(g, 70) ? (t->miny & ~3) + 4 * irange(g, 0, 40) : t->miny + irange(g, -3, 200);
+    float ox = (float)(*x0 - t->minx), oy = (float)(*y0 - t->miny);
+    float q = 1.0f;
+    switch (irange(g, 0, 5)) {
+    case 0: /* affine: w = 1 exactly */
+        t->q = 1.0f;
+        break;
+    case 1: /* constant but not 1 */
+        t->q = q = frange(g, 0.01f, 4.0f);
+        break;
+    case 2: /* q near 0: w huge, or infinite at q == 0 */
+        q = chance(g, 30) ? 0.0f : frange(g, -1e-6f, 1e-6f);
+        t->q_dx = chance(g, 50) ? 0.0f : frange(g, -1e-7f, 1e-7f);
+        t->q_dy = chance(g, 50) ? 0.0f : frange(g, -1e-7f, 1e-7f);
+        t->q = q - t->q_dx * ox - t->q_dy * oy;
+        break;
+    case 3: /* anything */
+        t->q = wild(g);
+        t->q_dx = chance(g, 50) ? 0.0f : wild(g);
+        t->q_dy = chance(g, 50) ? 0.0f : wild(g);
+        break;
+    default: /* perspective */
+        q = frange(g, 0.02f, 2.0f);
+        t->q_dx = q * frange(g, -0.05f, 0.05f);
+        t->q_dy = q * frange(g, -0.05f, 0.05f);
+        t->q = q - t->q_dx * ox - t->q_dy * oy;
+        break;
+    }
+    for (int k = 0; k < 6; k++) {
+        float v, d;
+        if (k < 4) { /* colours, a few outside [0, 1], some on a rounding edge of unorm8 */
+            v = chance(g, 5) ? wild(g) : frange(g, -0.3f, 1.3f);
+            d = frange(g, -0.1f, 0.1f);
+            if (chance(g, 20)) {
+                v = rounding_edge(g);
+                d = chance(g, 50) ? 0.0f : d * 1e-6f;
+            }
+        } else {
+            int n = k == 4 ? tw : th;
+            v = coord(g);
+            d = chance(g, 20) ? 0.0f : frange(g, -3.0f, 3.0f) / (float)n;
+            if (chance(g, 10)) d = (float)irange(g, -64, 64) / 1024.0f;
+            if (chance(g, 3)) d = wild(g);
+        }
+        float dx = d * frange(g, -1.0f, 1.0f), dy = d * frange(g, -1.0f, 1.0f);
+        t->a_dx[k] = dx * q;
+        t->a_dy[k] = dy * q;
+        t->a[k] = v * q - t->a_dx[k] * ox - t->a_dy[k] * oy;
+        if (chance(g, 2)) t->a[k] = wild(g);
+    }
+    t->nattr = 6;
+    t->flat = flat;
+    for (int k = 0; k < 4; k++)
+        t->color[k] = flat == SG_FLAT_WHITE ? 1.0f
+                      : chance(g, 5)        ? wild(g)
+                      : chance(g, 20)       ? rounding_edge(g)
+                                            : frange(g, -0.2f, 1.2f);
+}
+
+static uint32_t random_mask(rng *g) {
+    switch (irange(g, 0, 5)) {
+    case 0:
+        return 0xffffu;
+    case 1:
+        return 1u << irange(g, 0, 15);
+    case 2:
+        return 0xfu << (4 * irange(g, 0, 3)); /* one row */
+    case 3:
+        return (uint32_t)next(g) & (uint32_t)next(g) & 0xffffu;
+    default:
+        return (uint32_t)next(g) & 0xffffu;
+    }
+}
+
+/* A texture and up to three placements of the same texels. */
+typedef struct texture {
+    int w, h;
+    uint8_t *heap; /* malloc of exactly w * h * 4 */
+#ifdef HAVE_GUARD_PAGES
+    uint8_t *map; /* [guard][texels, flush against both guards][guard] */
+    size_t map_size;
+    uint8_t *at_start, *at_end; /* the two guarded copies */
+#endif
+} texture;
+
+static void texture_make(texture *tex, rng *g, int w, int h) {
+    size_t size = (size_t)w * (size_t)h * 4;
+    tex->w = w;
+    tex->h = h;
+    tex->heap = malloc(size);
+    assert_non_null(tex->heap);
+    for (size_t i = 0; i < size; i++) tex->heap[i] = (uint8_t)next(g);
+#ifdef HAVE_GUARD_PAGES
+    size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    size_t body = (size + page - 1) / page * page;
+    tex->map_size = body + 2 * page;
+    tex->map =
+        mmap(NULL, tex->map_size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    assert_true(tex->map != MAP_FAILED);
+    assert_int_equal(mprotect(tex->map, page, PROT_NONE), 0);
+    assert_int_equal(mprotect(tex->map + page + body, page, PROT_NONE), 0);
+    tex->at_start = tex->map + page;
+    tex->at_end = tex->map + page + body - size;
+    memmove(tex->at_end, tex->heap, size);
+    if (tex->at_start != tex->at_end) memcpy(tex->at_start, tex->heap, size);
+#endif
+}
+
+/* The copy the next case reads: the heap one or a guarded one. Two copies overlap when the texture
+ * is a whole number of pages; both hold the same texels. */
+static const uint8_t *texture_pick(const texture *tex, rng *g) {
+#ifdef HAVE_GUARD_PAGES
+    int k = irange(g, 0, 2);
+    if (k == 1) return tex->at_start;
+    if (k == 2) return tex->at_end;
+#else
+    (void)g;
+#endif
+    return tex->heap;
+}
+
+static void texture_free(texture *tex) {
+    free(tex->heap);
+#ifdef HAVE_GUARD_PAGES
+    munmap(tex->map, tex->map_size);
+#endif
+}
+
+static void print_case(const char *isa, int variant, int flat, long n, const sg_tri *t, int x0,
+                       int y0, uint32_t mask, const sg_texview *tv, const uint32_t *ref,
+                       const uint32_t *got) {
+    printf("%s differs: variant %d (%s), flat %s, case %ld, tile (%d, %d), mask %04x, texture "
+           "%dx%d\n",
+           isa, variant, variant_names[variant], flat_names[flat], n, x0, y0, (unsigned)mask,
+           tv->width, tv->height);
+    printf("  min (%d, %d) q %a %a %a color %a %a %a %a\n", t->minx, t->miny, (double)t->q,
+           (double)t->q_dx, (double)t->q_dy, (double)t->color[0], (double)t->color[1],
+           (double)t->color[2], (double)t->color[3]);
+    for (int k = 0; k < 6; k++)
+        printf("  a[%d] %a %a %a\n", k, (double)t->a[k], (double)t->a_dx[k], (double)t->a_dy[k]);
+    for (int i = 0; i < 16; i++)
+        if (ref[i] != got[i])
+            printf("  pixel %2d%s: reference %08x, got %08x\n", i,
+                   mask >> i & 1 ? "" : " (outside the mask)", (unsigned)ref[i], (unsigned)got[i]);
+}
+
+/* Runs `fn` on the case and compares with the reference output; false (and a report) on any
+ * difference, inside or outside the mask. */
+static int same_as_reference(sg_shade_fn fn, const char *isa, const sg_shade_ctx *ctx,
+                             const sg_tri *t, int x0, int y0, uint32_t mask, uint32_t sentinel,
+                             const uint32_t *ref, int variant, int flat, long n) {
+    uint32_t got[16];
+    for (int i = 0; i < 16; i++) got[i] = sentinel;
+    fn(ctx, t, x0, y0, mask, got);
+    if (!memcmp(ref, got, sizeof got)) return 1;
+    print_case(isa, variant, flat, n, t, x0, y0, mask, &ctx->tex, ref, got);
+    return 0;
+}
+
+static void compare_variant(int variant) {
+    static const int sizes[][2] = {{1, 1},     {1, 7},     {3, 5}, {64, 64},
+                                   {256, 128}, {17, 300},  {7, 1}, {2048, 40},
+                                   {16384, 1}, {1, 16384}, {5, 3}, {33, 2}};
+    enum { NSIZES = sizeof sizes / sizeof *sizes };
+    rng g = {0x5eed0000u + (uint64_t)variant};
+    texture tex[NSIZES];
+    for (int i = 0; i < NSIZES; i++) texture_make(&tex[i], &g, sizes[i][0], sizes[i][1]);
+    const int textured = variant != 0;
+    sg_shade_fn scalar = sg_shade_scalar(variant), sse2 = sg_shade_sse2(variant),
+                avx2 = sg_isa_detect() == SG_ISA_AVX2 ? sg_shade_avx2(variant) : NULL;
+#if defined(__x86_64__)
+    assert_non_null(sse2); /* SSE2 is the x86-64 baseline */
+    if (sg_isa_detect() == SG_ISA_AVX2) assert_non_null(avx2);
+#endif
+    long failures = 0;
+    for (int flat = 0; flat < FLATS; flat++) {
+        for (long n = 0; n < CASES_PER_FLAT && failures < 5; n++) {
+            const texture *tx = &tex[n % NSIZES];
+            sg_shade_ctx ctx = {{texture_pick(tx, &g), tx->w, tx->h}};
+            if (!textured) ctx.tex.texels = NULL; /* a vertex-colour pipeline binds none */
+            sg_tri t;
+            int x0, y0;
+            random_tri(&g, &t, flat, tx->w, tx->h, &x0, &y0);
+            uint32_t mask = random_mask(&g), sentinel = (uint32_t)next(&g);
+            uint32_t ref[16];
+            for (int i = 0; i < 16; i++) ref[i] = sentinel;
+            scalar(&ctx, &t, x0, y0, mask, ref);
+            for (int i = 0; i < 16; i++)
+                if (!(mask >> i & 1)) assert_int_equal(ref[i], sentinel);
+            if (sse2 && !same_as_reference(sse2, "SSE2", &ctx, &t, x0, y0, mask, sentinel, ref,
+                                           variant, flat, n))
+                failures++;
+            if (avx2 && !same_as_reference(avx2, "AVX2", &ctx, &t, x0, y0, mask, sentinel, ref,
+                                           variant, flat, n))
+                failures++;
+        }
+    }
+    for (int i = 0; i < NSIZES; i++) texture_free(&tex[i]);
+    assert_int_equal(failures, 0);
+}
+
+static void vertex_colour(void **state) {
+    (void)state;
+    compare_variant(0);
+}
+
+static void nearest_repeat(void **state) {
+    (void)state;
+    compare_variant(1);
+}
+
+static void nearest_clamp(void **state) {
+    (void)state;
+    compare_variant(2);
+}
+
+static void bilinear_repeat(void **state) {
+    (void)state;
+    compare_variant(3);
+}
+
+static void bilinear_clamp(void **state) {
+    (void)state;
+    compare_variant(4);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(vertex_colour),  cmocka_unit_test(nearest_repeat),
+        cmocka_unit_test(nearest_clamp),  cmocka_unit_test(bilinear_repeat),
+        cmocka_unit_test(bilinear_clamp),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
