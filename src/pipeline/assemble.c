@@ -2,27 +2,78 @@
 #include "pipeline/assemble.h"
 
 #include <math.h>
+#include <string.h>
 
-static void fetch(const sg_assembly *a, uint32_t idx, sg_cvert *v) {
-    for (int k = 0; k < 4; k++) v->pos[k] = a->clip[idx][k];
-    if (a->colors) {
-        for (int k = 0; k < 4; k++) v->attr[k] = a->colors[(size_t)idx * 4 + (size_t)k];
-    } else {
-        for (int k = 0; k < 4; k++) v->attr[k] = 1.0f;
-    }
+/* What assembly keeps for one draw.
+ *
+ * Projected vertices, direct-mapped by index: a vertex is shared by about six triangles, mostly
+ * close together in the index stream (a grid reuses a row of vertices on the next row), so most
+ * projections are found here instead of being computed again. Projection is a pure function of
+ * the vertex, so a cached result is the one setup would compute. */
+#define SCREEN_CACHE_SIZE 1024 /* a power of two; 20 KiB of stack */
+
+typedef struct draw_state {
+    const sg_assembly *a;
+    /* The exponent bits (0x7f800000) of each attribute float the draw reads, 0 for the others,
+     * as three 8-byte words: colour 0-1, colour 2-3, texcoords. */
+    uint64_t exponents[3];
+    uint32_t mask;                     /* of the cache slots in use */
+    uint32_t index[SCREEN_CACHE_SIZE]; /* UINT32_MAX: empty (indices are below INT_MAX) */
+    sg_svert s[SCREEN_CACHE_SIZE];
+} draw_state;
+
+static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS]) {
+    static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    memcpy(attr, a->colors ? a->colors + (size_t)idx * 4 : white, 4 * sizeof(float));
     if (a->setup.nattr > 4) {
-        v->attr[4] = a->texcoords[(size_t)idx * 2];
-        v->attr[5] = a->texcoords[(size_t)idx * 2 + 1];
+        memcpy(attr + 4, a->texcoords + (size_t)idx * 2, 2 * sizeof(float));
+    } else { /* setup reads them all (see sg_setup_planes) */
+        attr[4] = 0.0f;
+        attr[5] = 0.0f;
     }
+}
+
+/* Two floats at once: one of those `exponents` selects is NaN or infinite (exponent all ones)
+ * exactly when adding 1 to its exponent carries into the sign bit of its half. */
+static uint64_t nonfinite_bits(const float *v, uint64_t exponents) {
+    uint64_t u;
+    memcpy(&u, v, sizeof u);
+    return ((u & exponents) + 0x0080000000800000u) & 0x8000000080000000u;
 }
 
 /* False when an attribute the draw reads is NaN or infinite: such a triangle is dropped whole,
  * as one with a non-finite position is, so it cannot paint garbage or sample out of range. */
-static bool attributes_finite(const sg_cvert *v, int nattr) {
-    for (int i = 0; i < 3; i++)
-        for (int k = 0; k < nattr; k++)
-            if (!isfinite(v[i].attr[k])) return false;
+static bool attributes_finite(const draw_state *d, uint32_t idx) {
+    const sg_assembly *a = d->a;
+    uint64_t bad = 0;
+    if (a->colors) { /* else opaque white */
+        const float *c = a->colors + (size_t)idx * 4;
+        bad |= nonfinite_bits(c, d->exponents[0]) | nonfinite_bits(c + 2, d->exponents[1]);
+    }
+    if (a->setup.nattr > 4) bad |= nonfinite_bits(a->texcoords + (size_t)idx * 2, d->exponents[2]);
+    return bad == 0;
+}
+
+/* The slow half of screen_vertex: project a vertex that is not in the cache. Such a vertex is
+ * only cached when the triangles that use it can be drawn (its projection succeeds and its
+ * attributes are finite), so a hit needs no further test. */
+static bool __attribute__((noinline)) screen_vertex_miss(draw_state *d, uint32_t idx, sg_svert *s) {
+    if (!sg_setup_project(&d->a->setup, d->a->clip[idx], s) || !attributes_finite(d, idx))
+        return false;
+    uint32_t slot = idx & d->mask;
+    d->index[slot] = idx;
+    d->s[slot] = *s;
     return true;
+}
+
+/* The projection of a vertex inside every clip plane; false: the triangles using it are dropped. */
+static inline bool screen_vertex(draw_state *d, uint32_t idx, sg_svert *s) {
+    uint32_t slot = idx & d->mask;
+    if (d->index[slot] == idx) {
+        *s = d->s[slot];
+        return true;
+    }
+    return screen_vertex_miss(d, idx, s);
 }
 
 /* Under repeat wrapping only the fraction of a texcoord matters, so shifting a whole triangle's
@@ -30,41 +81,89 @@ static bool attributes_finite(const sg_cvert *v, int nattr) {
  * interpolation keeps their full float precision: texcoords near 1e4 would otherwise be
  * interpolated with a resolution of 1e-3, a visible drift in the bilinear weights. The shift is
  * exact (the values are close to the integer), so the result does not depend on where the
- * texture's period starts. */
-static void rebase_texcoords(sg_cvert *v) {
+ * texture's period starts. attr[0] is the triangle's first vertex. */
+static void rebase_texcoords(float *const attr[3]) {
     for (int k = 4; k < 6; k++) {
-        float base = floorf(v[0].attr[k]);
-        for (int i = 0; i < 3; i++) v[i].attr[k] -= base;
+        float base = floorf(attr[0][k]);
+        for (int i = 0; i < 3; i++) attr[i][k] -= base;
     }
 }
 
-static void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint32_t i2) {
+/* A triangle that crosses a clip plane: clipped to a convex polygon, set up as a fan. Rare, and
+ * kept out of line so that it does not weigh on the common path. */
+static void __attribute__((noinline))
+clipped_triangle(const draw_state *d, const uint32_t idx[3], uint32_t planes) {
+    const sg_assembly *a = d->a;
+    sg_cvert poly[SG_CLIP_MAX_VERTS];
+    for (int i = 0; i < 3; i++) {
+        for (int k = 0; k < 4; k++) poly[i].pos[k] = a->clip[idx[i]][k];
+        if (!attributes_finite(d, idx[i])) return;
+        fetch_attributes(a, idx[i], poly[i].attr);
+    }
+    if (a->rebase_texcoords)
+        rebase_texcoords((float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
+    int n = sg_clip_polygon(poly, 3, planes, a->setup.nattr, &a->guard);
+    /* Each vertex is projected once, though the fan uses poly[0] in every triangle. */
+    sg_svert s[SG_CLIP_MAX_VERTS];
+    bool ok[SG_CLIP_MAX_VERTS];
+    for (int i = 0; i < n; i++) ok[i] = sg_setup_project(&a->setup, poly[i].pos, &s[i]);
+    for (int k = 1; k + 1 < n; k++) { /* a fan keeps the polygon's winding */
+        if (!ok[0] || !ok[k] || !ok[k + 1]) continue;
+        sg_svert t[3] = {s[0], s[k], s[k + 1]};
+        const float *attr[3] = {poly[0].attr, poly[k].attr, poly[k + 1].attr};
+        sg_tri tri;
+        if (!sg_setup_coverage(&a->setup, t, attr, &tri)) continue;
+        sg_setup_planes(&a->setup, t, attr, &tri);
+        a->emit(&tri, a->user);
+    }
+}
+
+static void triangle(draw_state *d, uint32_t i0, uint32_t i1, uint32_t i2) {
+    const sg_assembly *a = d->a;
     uint32_t c0 = a->outcodes[i0], c1 = a->outcodes[i1], c2 = a->outcodes[i2];
     /* Wholly outside one plane, or a NaN / infinite position: nothing of it is drawn. */
     if ((c0 & c1 & c2) || ((c0 | c1 | c2) & SG_CLIP_NONFINITE)) return;
-    sg_cvert poly[SG_CLIP_MAX_VERTS];
-    fetch(a, i0, &poly[0]);
-    fetch(a, i1, &poly[1]);
-    fetch(a, i2, &poly[2]);
-    if (!attributes_finite(poly, a->setup.nattr)) return;
-    if (a->rebase_texcoords) rebase_texcoords(poly);
-    int n = 3;
-    if (c0 | c1 | c2) n = sg_clip_polygon(poly, 3, c0 | c1 | c2, a->setup.nattr, &a->guard);
-    sg_tri tri;
-    for (int k = 1; k + 1 < n; k++) { /* a fan keeps the polygon's winding */
-        if (sg_setup_triangle(&a->setup, &poly[0], &poly[k], &poly[k + 1], &tri))
-            a->emit(&tri, a->user);
+    if (c0 | c1 | c2) {
+        clipped_triangle(d, (const uint32_t[3]){i0, i1, i2}, c0 | c1 | c2);
+        return;
     }
+    /* Inside every plane (the common case): no clipping, and the attributes are read only when
+     * the triangle survives culling. */
+    sg_svert s[3];
+    if (!screen_vertex(d, i0, &s[0]) || !screen_vertex(d, i1, &s[1]) ||
+        !screen_vertex(d, i2, &s[2]))
+        return;
+    float attr[3][SG_MAX_ATTRS];
+    const float *order[3] = {attr[0], attr[1], attr[2]}; /* reordered by coverage */
+    sg_tri tri;
+    if (!sg_setup_coverage(&a->setup, s, order, &tri)) return;
+    fetch_attributes(a, i0, attr[0]);
+    fetch_attributes(a, i1, attr[1]);
+    fetch_attributes(a, i2, attr[2]);
+    if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]});
+    sg_setup_planes(&a->setup, s, order, &tri);
+    a->emit(&tri, a->user);
 }
 
 void sg_assemble(const sg_assembly *a) {
+    draw_state d;
+    d.a = a;
+    uint32_t exponents[SG_MAX_ATTRS];
+    _Static_assert(sizeof exponents == sizeof d.exponents, "one exponent per attribute");
+    for (int k = 0; k < SG_MAX_ATTRS; k++) exponents[k] = k < a->setup.nattr ? 0x7f800000u : 0;
+    memcpy(d.exponents, exponents, sizeof d.exponents); /* float k lands on exponent k */
+    /* Only as much of the cache as the draw can use: small draws are common. */
+    d.mask = SCREEN_CACHE_SIZE - 1;
+    while (d.mask > 0 && (int)(d.mask >> 1) >= a->index_count) d.mask >>= 1;
+    for (uint32_t i = 0; i <= d.mask; i++) d.index[i] = UINT32_MAX;
+
     const uint32_t *ix = a->indices;
     if (a->quads) {
         for (int i = 0; i + 3 < a->index_count; i += 4) {
-            triangle(a, ix[i], ix[i + 1], ix[i + 2]);
-            triangle(a, ix[i], ix[i + 2], ix[i + 3]);
+            triangle(&d, ix[i], ix[i + 1], ix[i + 2]);
+            triangle(&d, ix[i], ix[i + 2], ix[i + 3]);
         }
     } else {
-        for (int i = 0; i + 2 < a->index_count; i += 3) triangle(a, ix[i], ix[i + 1], ix[i + 2]);
+        for (int i = 0; i + 2 < a->index_count; i += 3) triangle(&d, ix[i], ix[i + 1], ix[i + 2]);
     }
 }

@@ -1,57 +1,46 @@
-/* setup.c - from clipped triangles to raster-ready edge and plane equations (see setup.h). */
+/* setup.c - from clipped triangles to raster-ready edge and plane equations (see setup.h).
+ * Assembly runs the steps one by one (see assemble.h); sg_setup_triangle runs them all. */
 #include "pipeline/setup.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
-typedef struct screen_vert {
-    int32_t x, y; /* snapped, 1/256 pixel */
-    float z;      /* window depth */
-    float q;      /* 1 / w */
-    const float *attr;
-} screen_vert;
+#include "pipeline/assemble.h"
 
-/* Floor division by a positive constant, correct for negative numerators. */
-static int64_t floor_div(int64_t a, int64_t b) {
-    int64_t q = a / b;
-    return (a % b != 0 && a < 0) ? q - 1 : q;
+/* lrintf without the libm call: on x86 lrintf is CVTSS2SI, which rounds as the MXCSR says (to
+ * nearest even unless the caller changed it), so the two agree for every |f| < 2^31. */
+static int32_t round_to_int(float f) {
+#if defined(__SSE__)
+    return _mm_cvtss_si32(_mm_set_ss(f));
+#else
+    return (int32_t)lrintf(f);
+#endif
 }
 
-static bool to_screen(const sg_setup_params *p, const sg_cvert *v, screen_vert *s) {
-    float q = 1.0f / v->pos[3];
-    float xn = v->pos[0] * q, yn = v->pos[1] * q, zn = v->pos[2] * q;
+bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s) {
+    float q = 1.0f / pos[3];
+    float xn = pos[0] * q, yn = pos[1] * q, zn = pos[2] * q;
     float hw = 0.5f * (float)p->width, hh = 0.5f * (float)p->height;
     float xs = xn * hw + hw;
     float ys = hh - yn * hh; /* NDC y = +1 is the top row */
     float xf = xs * (float)SG_SUBPIXEL_ONE, yf = ys * (float)SG_SUBPIXEL_ONE;
-    /* The guard band keeps finite input far inside int32; NaN or inf fails these tests. */
-    if (!(fabsf(xf) < 2147483520.0f && fabsf(yf) < 2147483520.0f) || !isfinite(zn) || !isfinite(q))
-        return false;
-    s->x = (int32_t)lrintf(xf);
-    s->y = (int32_t)lrintf(yf);
+    /* The guard band keeps finite input far inside int32; NaN or inf fails these tests
+     * (|v| <= FLT_MAX is isfinite). One branch for all four: they almost never fail. */
+    bool ok = (fabsf(xf) < 2147483520.0f) & (fabsf(yf) < 2147483520.0f) & (fabsf(zn) <= FLT_MAX) &
+              (fabsf(q) <= FLT_MAX);
+    if (!ok) return false;
+    s->x = round_to_int(xf);
+    s->y = round_to_int(yf);
     s->z = zn * 0.5f + 0.5f;
     s->q = q;
-    s->attr = v->attr;
     return true;
 }
 
-/* Gradient of a value given at the three vertices, over the screen-space triangle. */
-static void plane(double f0, double f1, double f2, double e1x, double e1y, double e2x, double e2y,
-                  double inv_det, double ox, double oy, float *at, float *dx, float *dy) {
-    double d1 = f1 - f0, d2 = f2 - f0;
-    double gx = (d1 * e2y - d2 * e1y) * inv_det;
-    double gy = (d2 * e1x - d1 * e2x) * inv_det;
-    *at = (float)(f0 + gx * ox + gy * oy);
-    *dx = (float)gx;
-    *dy = (float)gy;
-}
-
-bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cvert *v1,
-                       const sg_cvert *v2, sg_tri *out) {
-    screen_vert s[3];
-    if (!to_screen(p, v0, &s[0]) || !to_screen(p, v1, &s[1]) || !to_screen(p, v2, &s[2]))
-        return false;
-
+bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out) {
     /* Twice the signed area in y-down pixel space: exact. Positive is clockwise on screen. */
     int64_t area = (int64_t)(s[1].x - s[0].x) * (s[2].y - s[0].y) -
                    (int64_t)(s[2].x - s[0].x) * (s[1].y - s[0].y);
@@ -60,13 +49,17 @@ bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cv
     bool front = (p->front_face == SG_FRONT_FACE_CW) ? !ccw : ccw;
     if ((p->cull == SG_CULL_BACK && !front) || (p->cull == SG_CULL_FRONT && front)) return false;
     if (area < 0) { /* one orientation for the edge functions below */
-        screen_vert t = s[1];
+        sg_svert t = s[1];
         s[1] = s[2];
         s[2] = t;
-        area = -area;
+        const float *ta = attr[1];
+        attr[1] = attr[2];
+        attr[2] = ta;
     }
 
-    /* Pixel bounds: pixel px is reachable when its centre 256 px + 128 lies within [min, max]. */
+    /* Pixel bounds: pixel px is reachable when its centre 256 px + 128 lies within [min, max],
+     * so minx = ceil((xmin - 128) / 256) and maxx = floor((xmax - 128) / 256). The shifts are
+     * floor divisions (arithmetic on signed values with gcc, clang and msvc). */
     int32_t xmin = s[0].x, xmax = s[0].x, ymin = s[0].y, ymax = s[0].y;
     for (int i = 1; i < 3; i++) {
         if (s[i].x < xmin) xmin = s[i].x;
@@ -75,8 +68,10 @@ bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cv
         if (s[i].y > ymax) ymax = s[i].y;
     }
     const int64_t one = SG_SUBPIXEL_ONE, half = SG_SUBPIXEL_ONE / 2;
-    int64_t minx = -floor_div(-(xmin - half), one), maxx = floor_div(xmax - half, one);
-    int64_t miny = -floor_div(-(ymin - half), one), maxy = floor_div(ymax - half, one);
+    int64_t minx = ((int64_t)xmin - half + one - 1) >> SG_SUBPIXEL_BITS;
+    int64_t maxx = ((int64_t)xmax - half) >> SG_SUBPIXEL_BITS;
+    int64_t miny = ((int64_t)ymin - half + one - 1) >> SG_SUBPIXEL_BITS;
+    int64_t maxy = ((int64_t)ymax - half) >> SG_SUBPIXEL_BITS;
     if (minx < p->rect_x0) minx = p->rect_x0;
     if (miny < p->rect_y0) miny = p->rect_y0;
     if (maxx > p->rect_x1 - 1) maxx = p->rect_x1 - 1;
@@ -92,37 +87,95 @@ bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cv
      * the -1 bias does in integer arithmetic. */
     int64_t ox = minx * one + half, oy = miny * one + half;
     for (int i = 0; i < 3; i++) {
-        const screen_vert *a = &s[i], *b = &s[(i + 1) % 3];
+        const sg_svert *a = &s[i], *b = &s[i == 2 ? 0 : i + 1];
         int64_t dx = (int64_t)b->x - a->x, dy = (int64_t)b->y - a->y;
         bool top_left = dy < 0 || (dy == 0 && dx > 0);
         out->edge[i] = dx * (oy - a->y) - dy * (ox - a->x) - (top_left ? 0 : 1);
         out->edge_dx[i] = -dy * one;
         out->edge_dy[i] = dx * one;
     }
+    return true;
+}
 
+/* The values interpolated: depth, 1/w, then attribute / w. */
+enum { PLANES = 2 + SG_MAX_ATTRS };
+
+static void plane_values(const sg_svert *s, const float *attr, double f[PLANES]) {
+    f[0] = s->z;
+    f[1] = s->q;
+    for (int k = 0; k < SG_MAX_ATTRS; k++) f[2 + k] = (double)attr[k] * s->q;
+}
+
+/* The first four floats (a colour) of a and b are the same bits, as memcmp would find. */
+static bool same_color(const float *a, const float *b) {
+    uint64_t x[2], y[2];
+    memcpy(x, a, sizeof x);
+    memcpy(y, b, sizeof y);
+    return ((x[0] ^ y[0]) | (x[1] ^ y[1])) == 0;
+}
+
+void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
+                     sg_tri *out) {
     /* Plane equations from the snapped positions, in double, relative to vertex 0. */
+    const int64_t one = SG_SUBPIXEL_ONE;
     double x0 = (double)s[0].x / one, y0 = (double)s[0].y / one;
     double e1x = (double)s[1].x / one - x0, e1y = (double)s[1].y / one - y0;
     double e2x = (double)s[2].x / one - x0, e2y = (double)s[2].y / one - y0;
     double inv_det = 1.0 / (e1x * e2y - e2x * e1y);
-    double pox = (double)minx + 0.5 - x0, poy = (double)miny + 0.5 - y0;
-    plane(s[0].z, s[1].z, s[2].z, e1x, e1y, e2x, e2y, inv_det, pox, poy, &out->z, &out->z_dx,
-          &out->z_dy);
-    plane(s[0].q, s[1].q, s[2].q, e1x, e1y, e2x, e2y, inv_det, pox, poy, &out->q, &out->q_dx,
-          &out->q_dy);
-    for (int k = 0; k < p->nattr; k++) {
-        plane((double)s[0].attr[k] * s[0].q, (double)s[1].attr[k] * s[1].q,
-              (double)s[2].attr[k] * s[2].q, e1x, e1y, e2x, e2y, inv_det, pox, poy, &out->a[k],
-              &out->a_dx[k], &out->a_dy[k]);
+    double pox = (double)out->minx + 0.5 - x0, poy = (double)out->miny + 0.5 - y0;
+
+    /* Each plane is the gradient of its value over the triangle, taken at the centre of pixel
+     * (minx, miny). The planes are independent, all with the same operations: one loop over
+     * arrays that the compiler turns into vector code, lane for lane the same IEEE results. */
+    double f0[PLANES], f1[PLANES], f2[PLANES];
+    plane_values(&s[0], attr[0], f0);
+    plane_values(&s[1], attr[1], f1);
+    plane_values(&s[2], attr[2], f2);
+    float at[PLANES], gx[PLANES], gy[PLANES];
+    for (int k = 0; k < PLANES; k++) {
+        double d1 = f1[k] - f0[k], d2 = f2[k] - f0[k];
+        double dx = (d1 * e2y - d2 * e1y) * inv_det;
+        double dy = (d2 * e1x - d1 * e2x) * inv_det;
+        at[k] = (float)(f0[k] + dx * pox + dy * poy);
+        gx[k] = (float)dx;
+        gy[k] = (float)dy;
+    }
+    out->z = at[0];
+    out->z_dx = gx[0];
+    out->z_dy = gy[0];
+    out->q = at[1];
+    out->q_dx = gx[1];
+    out->q_dy = gy[1];
+    /* All of them, as fixed-size copies: those past nattr are computed from zeros. */
+    for (int k = 0; k < SG_MAX_ATTRS; k++) {
+        out->a[k] = at[2 + k];
+        out->a_dx[k] = gx[2 + k];
+        out->a_dy[k] = gy[2 + k];
     }
     out->nattr = p->nattr;
     out->flat = SG_FLAT_NONE;
-    if (p->nattr >= 4 && memcmp(s[0].attr, s[1].attr, 4 * sizeof(float)) == 0 &&
-        memcmp(s[0].attr, s[2].attr, 4 * sizeof(float)) == 0) {
-        memcpy(out->color, s[0].attr, sizeof out->color);
-        bool white = true;
-        for (int k = 0; k < 4; k++) white &= out->color[k] == 1.0f;
-        out->flat = white ? SG_FLAT_WHITE : SG_FLAT_COLOR;
+    if (p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2])) {
+        memcpy(out->color, attr[0], sizeof out->color);
+        /* == 1.0f as bits: 1.0f has no other encoding. */
+        uint64_t c[2], white;
+        memcpy(c, out->color, sizeof c);
+        white = 0x3f8000003f800000u;
+        out->flat = c[0] == white && c[1] == white ? SG_FLAT_WHITE : SG_FLAT_COLOR;
     }
+}
+
+bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cvert *v1,
+                       const sg_cvert *v2, sg_tri *out) {
+    /* sg_setup_planes reads every attribute slot; the caller has set only nattr of them. */
+    const sg_cvert *v[3] = {v0, v1, v2};
+    float a[3][SG_MAX_ATTRS] = {{0}};
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < p->nattr; k++) a[i][k] = v[i]->attr[k];
+    const float *attr[3] = {a[0], a[1], a[2]};
+    sg_svert s[3];
+    for (int i = 0; i < 3; i++)
+        if (!sg_setup_project(p, v[i]->pos, &s[i])) return false;
+    if (!sg_setup_coverage(p, s, attr, out)) return false;
+    sg_setup_planes(p, s, attr, out);
     return true;
 }

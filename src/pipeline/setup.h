@@ -50,4 +50,26 @@ enum { SG_FLAT_NONE, SG_FLAT_COLOR, SG_FLAT_WHITE };
 bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cvert *v1,
                        const sg_cvert *v2, sg_tri *out);
 
+/* Triangle setup in steps (setup.c), for assembly: a vertex is projected once however many
+ * triangles share it, and a triangle is culled from its screen positions alone, before any of its
+ * attributes is read. sg_setup_triangle is these three steps in a row, with the same results. */
+
+/* A vertex after the perspective divide, the viewport transform and snapping. */
+typedef struct sg_svert {
+    int32_t x, y; /* snapped, 1/256 pixel */
+    float z;      /* window depth */
+    float q;      /* 1 / w */
+} sg_svert;
+
+/** Projects a clip-space position (w > 0); false: it does not fit the raster's range. */
+bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s);
+/** Area, culling, pixel bounds and edge functions. Puts s[] (and attr[] alongside) in the order
+ *  sg_setup_planes wants; false: nothing to draw. Reads no attribute: attr[] may still be empty. */
+bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out);
+/** Depth, 1/w and attribute plane equations and the flat colour of a triangle that passed
+ *  sg_setup_coverage, with the s[] and attr[] it reordered. Every attr[i] holds SG_MAX_ATTRS
+ *  values: the planes of those past nattr are computed too (no branches), then not used. */
+void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
+                     sg_tri *out);
+
 #endif
