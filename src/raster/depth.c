@@ -1,7 +1,7 @@
 /* depth.c - the visibility tile functions (see depth.h): depth test and id write of one covered
  * 4x4 tile, specialised for no test, LESS, or any other compare, with or without depth write, in
- * portable C and in SSE2. Both compute z = (z0 + z_dx * dx) + z_dy * dy, clamped to [0, 1] with
- * NaN kept, so they decide every pixel alike. */
+ * portable C and in SSE2 (AVX2 in depth_avx2.c). All compute z = (z0 + z_dx * dx) + z_dy * dy,
+ * clamped to [0, 1] with NaN kept, so they decide every pixel alike. */
 #include "raster/depth.h"
 
 #if defined(__SSE2__)
@@ -36,7 +36,7 @@ static inline __attribute__((always_inline)) void vis_scalar(const void *vctx, c
                                                              const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
-    uint32_t *ids = v->ids + base;
+    uint32_t *ids = sg_vis_tile_ids(v, base);
     if (zmode == Z_NONE && !zwrite) {
         while (mask) {
             ids[__builtin_ctz(mask)] = v->id;
@@ -78,7 +78,7 @@ static inline __attribute__((always_inline)) void
 vis_sse2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
-    uint32_t *ids = v->ids + base;
+    uint32_t *ids = sg_vis_tile_ids(v, base);
     float *dp = v->depth + base;
     const __m128i lanes = _mm_setr_epi32(1, 2, 4, 8);
     const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
@@ -118,6 +118,8 @@ sg_tile_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
         {vis_none_0, vis_none_1}, {vis_less_0, vis_less_1}, {vis_any_0, vis_any_1}};
     int zmode =
         compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
+    if (isa == SG_ISA_AVX2 && zmode == Z_LESS && sg_depth_less_avx2(depth_write))
+        return sg_depth_less_avx2(depth_write);
 #if defined(__SSE2__)
     if (isa >= SG_ISA_SSE2 && zmode == Z_LESS)
         return depth_write ? vis_less_1_sse2 : vis_less_0_sse2;

@@ -18,15 +18,32 @@
 
 /* The bin being rasterised: both buffers hold 64 x 64 pixels as 16 x 16 tiles of 4 x 4. */
 typedef struct sg_vis_ctx {
-    float *depth;  /* NULL when the pass has no depth target */
-    uint32_t *ids; /* 0: no triangle; else index + 1 of the triangle in the pass */
-    int bx0, by0;  /* the bin's top-left pixel */
-    uint32_t id;   /* id of the triangle being rasterised */
+    float *depth;      /* NULL when the pass has no depth target */
+    uint32_t *ids;     /* 0: no triangle; else index + 1 of the triangle in the pass */
+    uint64_t *touched; /* 256 bits, one a tile: its ids are valid (else not yet cleared) */
+    int bx0, by0;      /* the bin's top-left pixel */
+    uint32_t id;       /* id of the triangle being rasterised */
     sgCompare compare;
 } sg_vis_ctx;
 
 /** The visibility tile function (its ctx is an sg_vis_ctx) for a resolved depth state. */
 sg_tile_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa);
+
+/** The tile's ids in the bin, cleared when the tile is first reached: bins spend no time on
+ *  tiles no triangle reaches. */
+static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
+    int tile = base >> 4;
+    uint64_t bit = (uint64_t)1 << (tile & 63);
+    uint32_t *ids = v->ids + base;
+    if (!(v->touched[tile >> 6] & bit)) {
+        v->touched[tile >> 6] |= bit;
+        for (int i = 0; i < 16; i++) ids[i] = 0;
+    }
+    return ids;
+}
+
+/** The AVX2 LESS functions (depth_avx2.c); NULL where AVX2 code is not built. */
+sg_tile_fn sg_depth_less_avx2(bool depth_write);
 
 /** Offset of the tile holding pixel (x, y) in a bin's buffers, relative to the bin's origin. */
 static inline int sg_bin_tile_offset(int x, int y) {

@@ -65,14 +65,14 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     _Alignas(64) uint32_t color[BIN_PIXELS];
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
-    memset(ids, 0, sizeof ids);
+    uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
     if (dimg) {
         if (p->load_depth)
             sg_tile_from_linear_f32(depth, dimg, cpitch, w, h, BIN_TILES);
         else
             sg_fb_fill_depth(depth, BIN_PIXELS, p->clear_depth);
     }
-    sg_vis_ctx vis = {dimg ? depth : NULL, ids, x0, y0, 0, SG_COMPARE_ALWAYS};
+    sg_vis_ctx vis = {dimg ? depth : NULL, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS};
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
@@ -86,11 +86,13 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
         sg_tile_from_linear_rgba8(color, cimg, cpitch, w, h, BIN_TILES);
     else
         sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
-    for (int ty = 0; ty < (h + SG_TILE - 1) >> SG_TILE_SHIFT; ty++)
-        for (int tx = 0; tx < (w + SG_TILE - 1) >> SG_TILE_SHIFT; tx++) {
-            int off = sg_bin_tile_offset(tx << SG_TILE_SHIFT, ty << SG_TILE_SHIFT);
-            shade_tile(p, ids + off, x0 + (tx << SG_TILE_SHIFT), y0 + (ty << SG_TILE_SHIFT),
-                       color + off);
+    /* Only tiles some triangle reached hold ids (depth.h). */
+    for (int word = 0; word < BIN_TILES * BIN_TILES / 64; word++)
+        for (uint64_t left = touched[word]; left; left &= left - 1) {
+            int tile = word * 64 + __builtin_ctzll(left);
+            int tx = tile % BIN_TILES, ty = tile / BIN_TILES;
+            shade_tile(p, ids + tile * SG_TILE_PIXELS, x0 + (tx << SG_TILE_SHIFT),
+                       y0 + (ty << SG_TILE_SHIFT), color + tile * SG_TILE_PIXELS);
         }
 
     sg_tile_to_linear_rgba8(cimg, cpitch, color, w, h, BIN_TILES);
