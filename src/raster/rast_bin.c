@@ -31,13 +31,25 @@ static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
 #endif
 }
 
+static inline void shade_run(const sg_bin_pass *p, uint32_t id, int x0, int y0, uint32_t mask,
+                             uint32_t *dst) {
+    const sg_tri *t = &p->binner->tris[id - 1];
+    const sg_draw_state *d = &p->draws[t->draw];
+    d->shade_fn(&d->ctx, t, x0, y0, mask, dst);
+}
+
 static void shade_tile(const sg_bin_pass *p, const uint32_t *ids, int x0, int y0, uint32_t *dst) {
-    uint32_t left = ~same_id(ids, 0) & 0xffffu;
+    uint32_t left = 0xffffu;
+    if (ids[0]) { /* the first pixel's triangle first: often the tile's only one */
+        uint32_t mask = same_id(ids, ids[0]);
+        shade_run(p, ids[0], x0, y0, mask, dst);
+        left &= ~mask;
+        if (!left) return;
+    }
+    left &= ~same_id(ids, 0);
     while (left) {
         uint32_t id = ids[__builtin_ctz(left)], mask = same_id(ids, id);
-        const sg_tri *t = &p->binner->tris[id - 1];
-        const sg_draw_state *d = &p->draws[t->draw];
-        d->shade_fn(&d->ctx, t, x0, y0, mask, dst);
+        shade_run(p, id, x0, y0, mask, dst);
         left &= ~mask;
     }
 }

@@ -51,12 +51,11 @@ INLINE __m256i nearest_index(__m256 s, __m256 scale, __m256 hi, __m256i n, __m25
     return _mm256_cvttps_epi32(_mm256_min_ps(x, hi));
 }
 
-/* Columns i0, i1 (wrapped) and 8-bit fraction of sg_sample_bilinear; (floor(x) - 128) >> 8 and
- * & 255 are the reference's split without its +512. Clamp: the reference clamps s to [-1, 2] and
- * then x to [-256, 256 (n + 1)], which is x = s * 256 n clamped to the latter alone (NaN -> -256
- * with max). Repeat: x >= 0, i0 in [-1, n - 1], i1 in [0, n]. */
-INLINE void bilinear_index(__m256 s, __m256 scale, __m256 hi, __m256i n, __m256i last,
-                           const int repeat, __m256i *i0, __m256i *i1, __m256i *frac) {
+/* The split of sg_sample_bilinear: g = floor(x) - 128, whose low byte is the 8-bit fraction and
+ * g >> 8 the column (or row) i0, the reference's split without its +512. Clamp: the reference
+ * clamps s to [-1, 2] and then x to [-256, 256 (n + 1)], which is x = s * 256 n clamped to the
+ * latter alone (NaN -> -256 with max). */
+INLINE __m256i bilinear_split(__m256 s, __m256 scale, __m256 hi, const int repeat) {
     __m256i fl;
     if (repeat) {
         fl = _mm256_cvttps_epi32(coord_repeat(s, scale)); /* x >= 0: truncation is floor */
@@ -66,18 +65,28 @@ INLINE void bilinear_index(__m256 s, __m256 scale, __m256 hi, __m256i n, __m256i
          * fraction then only weighs a texel against itself. */
         fl = _mm256_cvttps_epi32(_mm256_min_ps(x, hi));
     }
-    __m256i g = _mm256_sub_epi32(fl, _mm256_set1_epi32(128));
+    return _mm256_sub_epi32(fl, _mm256_set1_epi32(128));
+}
+
+/* i0 and i1 = i0 + 1 of a split, wrapped. Repeat: x >= 0, so i0 is in [-1, n - 1] and i1 in
+ * [0, n]; an unsigned min with i0 + n (i1 - n) wraps -1 (n) and keeps the rest. */
+INLINE void bilinear_wrap(__m256i g, __m256i n, __m256i last, const int repeat, __m256i *i0,
+                          __m256i *i1) {
     __m256i a = _mm256_srai_epi32(g, 8), b = _mm256_add_epi32(a, _mm256_set1_epi32(1));
-    *frac = _mm256_and_si256(g, _mm256_set1_epi32(255));
     if (repeat) {
-        a = _mm256_add_epi32(a, _mm256_and_si256(_mm256_srai_epi32(a, 31), n));
-        b = _mm256_sub_epi32(b, _mm256_and_si256(_mm256_cmpgt_epi32(b, last), n));
+        *i0 = _mm256_min_epu32(a, _mm256_add_epi32(a, n));
+        *i1 = _mm256_min_epu32(b, _mm256_sub_epi32(b, n));
     } else {
-        a = _mm256_min_epi32(_mm256_max_epi32(a, _mm256_setzero_si256()), last);
-        b = _mm256_min_epi32(_mm256_max_epi32(b, _mm256_setzero_si256()), last);
+        *i0 = _mm256_min_epi32(_mm256_max_epi32(a, _mm256_setzero_si256()), last);
+        *i1 = _mm256_min_epi32(_mm256_max_epi32(b, _mm256_setzero_si256()), last);
     }
-    *i0 = a;
-    *i1 = b;
+}
+
+/* The fraction of a split (the low byte of g) in both 16-bit halves of its lane. */
+INLINE __m256i frac2(__m256i g) {
+    const __m256i dup = _mm256_setr_epi8(0, -1, 0, -1, 4, -1, 4, -1, 8, -1, 8, -1, 12, -1, 12, -1,
+                                         0, -1, 0, -1, 4, -1, 4, -1, 8, -1, 8, -1, 12, -1, 12, -1);
+    return _mm256_shuffle_epi8(g, dup);
 }
 
 /* Index of the first texel of row j counted from the bottom (sg_texel_at): (n_y - 1 - j) * width
@@ -99,16 +108,19 @@ INLINE __m256i nearest8(const tex8 *tx, __m256 s, __m256 u, const int repeat) {
     return fetch8(tx, _mm256_add_epi32(row_start(j, tx), i));
 }
 
-/* sg_sample_bilinear of eight pixels, planar: c[k] gets channel k of the eight pixels. Channels
- * r, b and g, a are blended as pairs of 16-bit lanes. The vertical blends t0 (256 - fy) + t1 fy are
- * at most 255 * 256, exact in unsigned 16 bits; biased by -32768 (the xor) they are signed, and the
- * blends of columns i0 and i1 of a channel, put side by side in a 32-bit lane, go through pmaddwd
- * with (256 - fx, fx), whose sum brings the bias back as 32768 * 256. That is the reference's
- * four-weight sum exactly, then (sum + 32768) >> 16. No shuffles: all lanes stay in place. */
-INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m256i c[4]) {
-    __m256i i0, i1, fx, j0, j1, fy;
-    bilinear_index(s, tx->scale_x, tx->hi_x, tx->n_x, tx->last_x, repeat, &i0, &i1, &fx);
-    bilinear_index(u, tx->scale_y, tx->hi_y, tx->n_y, tx->last_y, repeat, &j0, &j1, &fy);
+/* sg_sample_bilinear of eight pixels, planar: x[k] gets channel k of the eight pixels in bits 16
+ * to 23 of each lane, zeros above. Channels r, b and g, a are blended as pairs of 16-bit lanes. The
+ * vertical blends t0 (256 - fy) + t1 fy are at most 255 * 256, exact in unsigned 16 bits; biased
+ * by -32768 (the xor) they are signed, and the blends of columns i0 and i1 of a channel, put side
+ * by side in a 32-bit lane, go through pmaddwd with (256 - fx, fx), whose sum brings the bias back
+ * as 32768 * 256. That is the reference's four-weight sum exactly, plus 32768: its >> 16 is the
+ * reference's result. No shuffles: all lanes stay in place. */
+INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m256i x[4]) {
+    __m256i i0, i1, j0, j1;
+    __m256i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
+    __m256i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
+    bilinear_wrap(gx, tx->n_x, tx->last_x, repeat, &i0, &i1);
+    bilinear_wrap(gy, tx->n_y, tx->last_y, repeat, &j0, &j1);
     __m256i r0 = row_start(j0, tx), r1 = row_start(j1, tx);
     __m256i t00 = fetch8(tx, _mm256_add_epi32(r0, i0));
     __m256i t10 = fetch8(tx, _mm256_add_epi32(r0, i1));
@@ -116,10 +128,11 @@ INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m2
     __m256i t11 = fetch8(tx, _mm256_add_epi32(r1, i1));
     const __m256i lo8 = _mm256_set1_epi32(0x00ff00ff);
     const __m256i bias = _mm256_set1_epi32((int)0x80008000u);
-    __m256i fy2 = _mm256_or_si256(fy, _mm256_slli_epi32(fy, 16)); /* both 16-bit halves */
-    __m256i gy2 = _mm256_sub_epi16(_mm256_set1_epi16(256), fy2);
-    __m256i wx =
-        _mm256_or_si256(_mm256_sub_epi32(_mm256_set1_epi32(256), fx), _mm256_slli_epi32(fx, 16));
+    const __m256i w256 = _mm256_set1_epi16(256);
+    const __m256i round = _mm256_set1_epi32(128 * 65536 + 32768);
+    __m256i fy2 = frac2(gy), fx2 = frac2(gx);
+    __m256i gy2 = _mm256_sub_epi16(w256, fy2);
+    __m256i wx = _mm256_blend_epi16(_mm256_sub_epi16(w256, fx2), fx2, 0xaa); /* 256 - fx, fx */
 #define SG_VBLEND(a, b)                                                                            \
     _mm256_xor_si256(_mm256_add_epi16(_mm256_mullo_epi16(a, gy2), _mm256_mullo_epi16(b, fy2)), bias)
     __m256i rb0 = SG_VBLEND(_mm256_and_si256(t00, lo8), _mm256_and_si256(t01, lo8));
@@ -127,13 +140,19 @@ INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m2
     __m256i ga0 = SG_VBLEND(_mm256_srli_epi16(t00, 8), _mm256_srli_epi16(t01, 8));
     __m256i ga1 = SG_VBLEND(_mm256_srli_epi16(t10, 8), _mm256_srli_epi16(t11, 8));
 #undef SG_VBLEND
-    const __m256i round = _mm256_set1_epi32(128 * 65536 + 32768);
-#define SG_HBLEND(v) _mm256_srli_epi32(_mm256_add_epi32(_mm256_madd_epi16(v, wx), round), 16)
-    c[0] = SG_HBLEND(_mm256_blend_epi16(rb0, _mm256_slli_epi32(rb1, 16), 0xaa));
-    c[1] = SG_HBLEND(_mm256_blend_epi16(ga0, _mm256_slli_epi32(ga1, 16), 0xaa));
-    c[2] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(rb0, 16), rb1, 0xaa));
-    c[3] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(ga0, 16), ga1, 0xaa));
+#define SG_HBLEND(v) _mm256_add_epi32(_mm256_madd_epi16(v, wx), round)
+    x[0] = SG_HBLEND(_mm256_blend_epi16(rb0, _mm256_slli_epi32(rb1, 16), 0xaa));
+    x[1] = SG_HBLEND(_mm256_blend_epi16(ga0, _mm256_slli_epi32(ga1, 16), 0xaa));
+    x[2] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(rb0, 16), rb1, 0xaa));
+    x[3] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(ga0, 16), ga1, 0xaa));
 #undef SG_HBLEND
+}
+
+/* Four channels in bits 16 to 23 of their lanes, zeros above, to RGBA8 (sg_pack_rgba8). */
+INLINE __m256i pack_hi8(const __m256i x[4]) {
+    __m256i rb = _mm256_blend_epi16(_mm256_srli_epi32(x[0], 16), x[2], 0xaa);
+    __m256i ga = _mm256_blend_epi16(_mm256_srli_epi32(x[1], 16), x[3], 0xaa);
+    return _mm256_or_si256(rb, _mm256_slli_epi32(ga, 8));
 }
 
 /* Eight RGBA8 texels to planar channels. */
@@ -145,19 +164,24 @@ INLINE void unpack_texels(__m256i t, __m256i c[4]) {
     c[3] = _mm256_srli_epi32(t, 24);
 }
 
-/* sg_to_unorm8 of each lane: max puts NaN at 0, and clamping to [0, 1] first gives the
- * reference's 0 and 255 through the same v * 255 + 0.5 truncation. */
+/* sg_to_unorm8 of each lane but its clamp to [0, 255], left to pack_unorm8: min puts v above 1 at
+ * 1 and keeps NaN, whose conversion gives INT_MIN, as v far below 0 does; every v <= 0 gives a
+ * value <= 0 (-0 and tiny v: 0), every other v its unorm8. */
 INLINE __m256i unorm8(__m256 v) {
-    v = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
+    v = _mm256_min_ps(_mm256_set1_ps(1.0f), v); /* the second operand, v, when it is NaN */
     return _mm256_cvttps_epi32(
         _mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(255.0f)), _mm256_set1_ps(0.5f)));
 }
 
-/* Planar channels (0 .. 255) to RGBA8, sg_pack_rgba8. */
-INLINE __m256i pack8(const __m256i c[4]) {
-    return _mm256_or_si256(
-        _mm256_or_si256(c[0], _mm256_slli_epi32(c[1], 8)),
-        _mm256_or_si256(_mm256_slli_epi32(c[2], 16), _mm256_slli_epi32(c[3], 24)));
+/* Planar float colours to RGBA8 (sg_to_unorm8, sg_pack_rgba8): the saturating packs clamp to
+ * [0, 255], then a byte shuffle turns the 4x4 blocks of channel bytes of each 128-bit half into
+ * pixels. */
+INLINE __m256i pack_unorm8(const __m256 col[4]) {
+    __m256i p01 = _mm256_packs_epi32(unorm8(col[0]), unorm8(col[1]));
+    __m256i p23 = _mm256_packs_epi32(unorm8(col[2]), unorm8(col[3]));
+    const __m256i tr = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4,
+                                        8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+    return _mm256_shuffle_epi8(_mm256_packus_epi16(p01, p23), tr);
 }
 
 /* Writes the lanes of `m` (8 bits) of two rows; other pixels are not touched. */
@@ -235,11 +259,13 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
                 _mm256_add_ps(ax[5], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[5]), dy)), w);
             __m256i tc[4];
             if (bilinear) {
-                bilinear8(&tx, s, u, repeat, tc);
+                __m256i x[4];
+                bilinear8(&tx, s, u, repeat, x);
                 if (flat == SG_FLAT_WHITE) {
-                    store_rows(dst + 4 * r, pack8(tc), m);
+                    store_rows(dst + 4 * r, pack_hi8(x), m);
                     continue;
                 }
+                for (int k = 0; k < 4; k++) tc[k] = _mm256_srli_epi32(x[k], 16);
             } else {
                 __m256i texel = nearest8(&tx, s, u, repeat);
                 if (flat == SG_FLAT_WHITE) { /* the texel is the colour, as in the reference */
@@ -252,9 +278,7 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
                 col[k] = _mm256_mul_ps(col[k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[k]),
                                                              _mm256_set1_ps(1.0f / 255.0f)));
         }
-        __m256i out[4];
-        for (int k = 0; k < 4; k++) out[k] = unorm8(col[k]);
-        store_rows(dst + 4 * r, pack8(out), m);
+        store_rows(dst + 4 * r, pack_unorm8(col), m);
     }
 }
 
