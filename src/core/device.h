@@ -32,8 +32,8 @@ typedef struct sg_geom {
 } sg_geom;
 
 typedef struct sg_pso {
-    sgPipelineDesc desc; /* every DEFAULT resolved */
-    sg_tile_fn depth_fn; /* visibility (depth.c) */
+    sgPipelineDesc desc;    /* every DEFAULT resolved */
+    sg_raster_fn raster_fn; /* coverage and visibility (depth.c) */
     sg_shade_fn shade_fn;
     int nattr;
     bool uses_depth;

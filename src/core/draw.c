@@ -212,7 +212,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                         "sgDraw: out of memory for %zu triangles in the pass", total);
     }
     sg_draw_state *ds = &dev->draws[dev->draw_count++];
-    ds->depth_fn = pso->depth_fn;
+    ds->raster_fn = pso->raster_fn;
     ds->shade_fn = pso->shade_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;

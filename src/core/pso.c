@@ -41,7 +41,7 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     if (!d->cull) d->cull = SG_CULL_NONE;
     if (!d->front_face) d->front_face = SG_FRONT_FACE_CCW;
     if (!d->blend) d->blend = SG_BLEND_OPAQUE;
-    p.depth_fn = sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
+    p.raster_fn = sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
     p.shade_fn = sg_shade_select(d->shade, d->filter, d->wrap, dev->isa);
     p.nattr = sg_shade_attr_count(d->shade);
     p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;

@@ -4,6 +4,8 @@
  * clamped to [0, 1] with NaN kept, so they decide every pixel alike. */
 #include "raster/depth.h"
 
+#include "raster/rast_walk.h"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -59,9 +61,13 @@ static inline __attribute__((always_inline)) void vis_scalar(const void *vctx, c
     }
 }
 
+/* A tile function and the walk with it inlined. */
 #define SG_VIS(name, zm, zw)                                                                       \
-    static void name(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {                 \
+    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
         vis_scalar(c, t, x0, y0, m, zm, zw);                                                       \
+    }                                                                                              \
+    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
+        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
     }
 SG_VIS(vis_none_0, Z_NONE, 0)
 SG_VIS(vis_none_1, Z_NONE, 1)
@@ -105,16 +111,24 @@ vis_sse2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const
     }
 }
 
-static void vis_less_0_sse2(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
+static inline void vis_less_0_sse2_tile(const void *c, const sg_tri *t, int x0, int y0,
+                                        uint32_t m) {
     vis_sse2(c, t, x0, y0, m, 0);
 }
-static void vis_less_1_sse2(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
+static inline void vis_less_1_sse2_tile(const void *c, const sg_tri *t, int x0, int y0,
+                                        uint32_t m) {
     vis_sse2(c, t, x0, y0, m, 1);
+}
+static void vis_less_0_sse2(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
+    sg_rast_walk(t, x0, y0, x1, y1, vis_less_0_sse2_tile, c);
+}
+static void vis_less_1_sse2(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
+    sg_rast_walk(t, x0, y0, x1, y1, vis_less_1_sse2_tile, c);
 }
 #endif
 
-sg_tile_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
-    static const sg_tile_fn scalar[3][2] = {
+sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
+    static const sg_raster_fn scalar[3][2] = {
         {vis_none_0, vis_none_1}, {vis_less_0, vis_less_1}, {vis_any_0, vis_any_1}};
     int zmode =
         compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);

@@ -26,8 +26,12 @@ typedef struct sg_vis_ctx {
     sgCompare compare;
 } sg_vis_ctx;
 
-/** The visibility tile function (its ctx is an sg_vis_ctx) for a resolved depth state. */
-sg_tile_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa);
+/* Rasterises a triangle's part in the rectangle [x0, x1) x [y0, y1) into the bin's buffers (ctx:
+ * an sg_vis_ctx): the walk of rast_walk.h with one visibility tile function inlined. */
+typedef void (*sg_raster_fn)(const sg_tri *t, int x0, int y0, int x1, int y1, const void *ctx);
+
+/** The visibility function for a resolved depth state. */
+sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa);
 
 /** The tile's ids in the bin, cleared when the tile is first reached: bins spend no time on
  *  tiles no triangle reaches. */
@@ -43,7 +47,7 @@ static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
 }
 
 /** The AVX2 LESS functions (depth_avx2.c); NULL where AVX2 code is not built. */
-sg_tile_fn sg_depth_less_avx2(bool depth_write);
+sg_raster_fn sg_depth_less_avx2(bool depth_write);
 
 /** Offset of the tile holding pixel (x, y) in a bin's buffers, relative to the bin's origin. */
 static inline int sg_bin_tile_offset(int x, int y) {

@@ -2,6 +2,8 @@
  * vector, the same z = (z0 + z_dx * dx) + z_dy * dy and clamp as the scalar and SSE2 ones. */
 #include "raster/depth.h"
 
+#include "raster/rast_walk.h"
+
 #if defined(__AVX2__)
 #include <immintrin.h>
 
@@ -39,20 +41,27 @@ vis_avx2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const
     }
 }
 
-static void vis_less_0_avx2(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
+static inline void vis_less_0_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
     vis_avx2(c, t, x0, y0, m, 0);
 }
-static void vis_less_1_avx2(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
+static inline void vis_less_1_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
     vis_avx2(c, t, x0, y0, m, 1);
 }
+/* The walk with the tile function inlined (rast_walk.h). */
+static void vis_less_0_avx2(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
+    sg_rast_walk(t, x0, y0, x1, y1, vis_less_0_tile, c);
+}
+static void vis_less_1_avx2(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
+    sg_rast_walk(t, x0, y0, x1, y1, vis_less_1_tile, c);
+}
 
-sg_tile_fn sg_depth_less_avx2(bool depth_write) {
+sg_raster_fn sg_depth_less_avx2(bool depth_write) {
     return depth_write ? vis_less_1_avx2 : vis_less_0_avx2;
 }
 
 #else
 
-sg_tile_fn sg_depth_less_avx2(bool depth_write) {
+sg_raster_fn sg_depth_less_avx2(bool depth_write) {
     (void)depth_write;
     return NULL;
 }

@@ -91,7 +91,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
         const sg_draw_state *d = &p->draws[t->draw];
         vis.id = ti + 1;
         vis.compare = d->compare;
-        sg_rast_triangle_in(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, d->depth_fn, &vis);
+        d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
     }
 
     if (p->load_color)

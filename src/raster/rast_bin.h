@@ -15,12 +15,13 @@
 #include <stdint.h>
 
 #include "raster/bin.h"
+#include "raster/depth.h"
 #include "raster/rast_tile.h"
 #include "raster/shade.h"
 
 /* What the back end needs of one draw: its pipeline's functions and its bound texture. */
 typedef struct sg_draw_state {
-    sg_tile_fn depth_fn;
+    sg_raster_fn raster_fn; /* coverage and visibility (depth.h) */
     sg_shade_fn shade_fn;
     sg_shade_ctx ctx;
     sgCompare compare;

@@ -1,0 +1,232 @@
+/* rast_walk.h - the tile walk of rast_tile.c as always-inline code (see rast_tile.c for how it
+ * works). Code that walks with one fixed tile function (the visibility functions of depth.c)
+ * includes it and calls sg_rast_walk with that function, so the compiler inlines the tile
+ * function into the walk: no call per tile.
+ */
+#ifndef SG_RAST_WALK_H
+#define SG_RAST_WALK_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "raster/framebuffer.h"
+#include "raster/rast_tile.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#define SG_WALK_INLINE static inline __attribute__((always_inline))
+
+/* Mask of the pixels of a tile at (x0, y0) inside the triangle's pixel bounds (which overlap the
+ * tile): columns lo..hi of rows lo..hi. */
+SG_WALK_INLINE uint32_t bounds_mask(const sg_tri *t, int x0, int y0) {
+    int cl = t->minx - x0 > 0 ? t->minx - x0 : 0, ch = t->maxx - x0 < 3 ? t->maxx - x0 : 3;
+    int rl = t->miny - y0 > 0 ? t->miny - y0 : 0, rh = t->maxy - y0 < 3 ? t->maxy - y0 : 3;
+    uint32_t cols = (2u << ch) - (1u << cl);
+    uint32_t rows = (1u << (4 * rh + 4)) - (1u << (4 * rl));
+    return cols * 0x1111u & rows;
+}
+
+/* Offsets from a square's first pixel centre to the corner where each edge is largest (hi, for
+ * rejection) and smallest (lo, for acceptance), for a square of `span` + 1 pixels a side. */
+SG_WALK_INLINE void corners(const sg_tri *t, int64_t span, int64_t hi[3], int64_t lo[3]) {
+    for (int e = 0; e < 3; e++) {
+        int64_t ax = span * t->edge_dx[e], ay = span * t->edge_dy[e];
+        hi[e] = (ax > 0 ? ax : 0) + (ay > 0 ? ay : 0);
+        lo[e] = (ax < 0 ? ax : 0) + (ay < 0 ? ay : 0);
+    }
+}
+
+/* The prepared triangle: corner offsets and, for narrow triangles, the 32-bit offset of each
+ * pixel of a tile from its first pixel, per edge. */
+typedef struct walk {
+    const sg_tri *t;
+    int64_t hi[3], lo[3];   /* 4x4 tile */
+    int64_t bhi[3], blo[3]; /* 16x16 block */
+    bool narrow;
+#if defined(__SSE2__)
+    __m128i lane[3], step[3]; /* per edge: 0, dx, 2 dx, 3 dx; and dy, in 32 bits */
+#else
+    int32_t offs[3][SG_TILE_PIXELS];
+#endif
+} walk;
+
+/* Covered pixels of a tile some edge crosses; e0: edge values at its first pixel. */
+SG_WALK_INLINE uint32_t crossed_mask(const walk *w, const int64_t e0[3]) {
+    const sg_tri *t = w->t;
+    uint32_t mask = 0xffffu;
+    if (w->narrow) {
+#if defined(__SSE2__)
+        for (int e = 0; e < 3; e++) {
+            if (e0[e] + w->lo[e] >= 0) continue; /* this edge holds the whole tile */
+            /* Exact: every value fits in int32, so wrapping 32-bit sums give it. */
+            __m128i v =
+                _mm_add_epi32(_mm_set1_epi32((int32_t)(uint32_t)(uint64_t)e0[e]), w->lane[e]);
+            uint32_t out = 0;
+            for (int j = 0; j < SG_TILE; j++) {
+                out |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(v)) << (4 * j);
+                v = _mm_add_epi32(v, w->step[e]);
+            }
+            mask &= ~out; /* sign bit set: outside */
+        }
+        return mask;
+#else
+        for (int e = 0; e < 3; e++) {
+            if (e0[e] + w->lo[e] >= 0) continue;
+            uint32_t base = (uint32_t)(uint64_t)e0[e];
+            for (int i = 0; i < SG_TILE_PIXELS; i++)
+                if ((int32_t)(base + (uint32_t)w->offs[e][i]) < 0) mask &= ~(1u << i);
+        }
+        return mask;
+#endif
+    }
+    for (int i = 0; i < SG_TILE_PIXELS; i++) {
+        int64_t ox = i & 3, oy = i >> 2;
+        for (int e = 0; e < 3; e++)
+            if (e0[e] + ox * t->edge_dx[e] + oy * t->edge_dy[e] < 0) mask &= ~(1u << i);
+    }
+    return mask;
+}
+
+SG_WALK_INLINE int64_t edge_at(const sg_tri *t, int e, int x, int y) {
+    return t->edge[e] + (int64_t)(x - t->minx) * t->edge_dx[e] +
+           (int64_t)(y - t->miny) * t->edge_dy[e];
+}
+
+/* Whether a tile at (x0, y0) lies inside the triangle's pixel bounds. */
+SG_WALK_INLINE bool inner_tile(const sg_tri *t, int x0, int y0) {
+    return x0 >= t->minx && x0 + SG_TILE - 1 <= t->maxx && y0 >= t->miny &&
+           y0 + SG_TILE - 1 <= t->maxy;
+}
+
+/* The tiles tx0..tx1, ty0..ty1 of a block the triangle covers whole: no edge to test. */
+SG_WALK_INLINE void accepted_tiles(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
+                                   sg_tile_fn fn, const void *ctx) {
+    for (int ty = ty0; ty <= ty1; ty++)
+        for (int tx = tx0; tx <= tx1; tx++) {
+            int x0 = tx << SG_TILE_SHIFT, y0 = ty << SG_TILE_SHIFT;
+            uint32_t mask = inner_tile(t, x0, y0) ? 0xffffu : bounds_mask(t, x0, y0);
+            if (mask) fn(ctx, t, x0, y0, mask);
+        }
+}
+
+/* The tiles tx0..tx1, ty0..ty1 of a block some edge crosses. */
+SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1, sg_tile_fn fn,
+                               const void *ctx) {
+    const sg_tri *t = w->t;
+    for (int ty = ty0; ty <= ty1; ty++) {
+        int y0 = ty << SG_TILE_SHIFT;
+        int64_t row[3];
+        for (int e = 0; e < 3; e++) row[e] = edge_at(t, e, tx0 << SG_TILE_SHIFT, y0);
+        for (int tx = tx0; tx <= tx1; tx++) {
+            int x0 = tx << SG_TILE_SHIFT;
+            int64_t e0[3];
+            bool reject = false, accept = true;
+            for (int e = 0; e < 3; e++) {
+                e0[e] = row[e];
+                row[e] += SG_TILE * t->edge_dx[e];
+                if (e0[e] + w->hi[e] < 0) reject = true;
+                if (e0[e] + w->lo[e] < 0) accept = false;
+            }
+            if (reject) continue;
+            uint32_t mask = accept ? 0xffffu : crossed_mask(w, e0);
+            /* Tiles on the bounds also hold pixels outside the target or scissor rectangle. */
+            if (!inner_tile(t, x0, y0)) mask &= bounds_mask(t, x0, y0);
+            if (mask) fn(ctx, t, x0, y0, mask);
+        }
+    }
+}
+
+#if defined(__SSE2__)
+/* Triangles within 2 x 2 tiles (most of a dense mesh's): the 8 x 8 pixels of the four tiles are
+ * tested at once, 32-bit edge values four pixels a vector, when every edge's values over the 8 x 8
+ * square fit in int32 (they are linear, so the square's corners bound them). False: not taken. */
+SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
+                                   sg_tile_fn fn, const void *ctx) {
+    int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
+    int64_t hi[3], lo[3];
+    corners(t, 2 * SG_TILE - 1, hi, lo);
+    __m128i v[3], step[3], four[3];
+    for (int e = 0; e < 3; e++) {
+        int64_t e0 = edge_at(t, e, x0, y0);
+        if (e0 + hi[e] < 0) return true; /* the whole square is outside this edge */
+        if (e0 + lo[e] < INT32_MIN || e0 + hi[e] > INT32_MAX) return false;
+        int32_t dx = (int32_t)t->edge_dx[e], dy = (int32_t)t->edge_dy[e];
+        v[e] = _mm_add_epi32(_mm_set1_epi32((int32_t)e0), _mm_setr_epi32(0, dx, 2 * dx, 3 * dx));
+        step[e] = _mm_set1_epi32(dy);
+        four[e] = _mm_set1_epi32(4 * dx);
+    }
+    uint32_t masks[4] = {0, 0, 0, 0}; /* tiles (0,0) (1,0) (0,1) (1,1) */
+    for (int j = 0; j < 2 * SG_TILE; j++) {
+        __m128i out_l = _mm_setzero_si128(), out_r = _mm_setzero_si128();
+        for (int e = 0; e < 3; e++) { /* sign bit: outside */
+            out_l = _mm_or_si128(out_l, v[e]);
+            out_r = _mm_or_si128(out_r, _mm_add_epi32(v[e], four[e]));
+            v[e] = _mm_add_epi32(v[e], step[e]);
+        }
+        int shift = 4 * (j & 3), half = (j >> 2) * 2;
+        masks[half] |= (uint32_t)(~_mm_movemask_ps(_mm_castsi128_ps(out_l)) & 15) << shift;
+        masks[half + 1] |= (uint32_t)(~_mm_movemask_ps(_mm_castsi128_ps(out_r)) & 15) << shift;
+    }
+    for (int k = 0; k < 4; k++) {
+        int tx = tx0 + (k & 1), ty = ty0 + (k >> 1);
+        if (tx > tx1 || ty > ty1 || !masks[k]) continue;
+        int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
+        uint32_t mask = masks[k] & bounds_mask(t, tx_px, ty_px);
+        if (mask) fn(ctx, t, tx_px, ty_px, mask);
+    }
+    return true;
+}
+#endif
+
+SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
+                                 const void *ctx) {
+    int tx0 = (t->minx > rx0 ? t->minx : rx0) >> SG_TILE_SHIFT;
+    int ty0 = (t->miny > ry0 ? t->miny : ry0) >> SG_TILE_SHIFT;
+    int tx1 = (t->maxx < rx1 - 1 ? t->maxx : rx1 - 1) >> SG_TILE_SHIFT;
+    int ty1 = (t->maxy < ry1 - 1 ? t->maxy : ry1 - 1) >> SG_TILE_SHIFT;
+    if (tx0 > tx1 || ty0 > ty1) return;
+#if defined(__SSE2__)
+    if (tx1 - tx0 < 2 && ty1 - ty0 < 2 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
+#endif
+    walk w;
+    w.t = t;
+    corners(t, SG_TILE - 1, w.hi, w.lo);
+    w.narrow = true;
+    for (int e = 0; e < 3; e++) w.narrow &= w.hi[e] - w.lo[e] < ((int64_t)1 << 31);
+    if (w.narrow) /* then 3 |dx| and 3 |dy| fit in int32 too */
+        for (int e = 0; e < 3; e++) {
+            int32_t dx = (int32_t)t->edge_dx[e], dy = (int32_t)t->edge_dy[e];
+#if defined(__SSE2__)
+            w.lane[e] = _mm_setr_epi32(0, dx, 2 * dx, 3 * dx);
+            w.step[e] = _mm_set1_epi32(dy);
+#else
+            for (int i = 0; i < SG_TILE_PIXELS; i++) w.offs[e][i] = (i & 3) * dx + (i >> 2) * dy;
+#endif
+        }
+    /* Small triangles: one block at most, so go straight to the tiles. */
+    if (tx1 - tx0 < 4 && ty1 - ty0 < 4) {
+        walk_tiles(&w, tx0, ty0, tx1, ty1, fn, ctx);
+        return;
+    }
+    corners(t, 4 * SG_TILE - 1, w.bhi, w.blo);
+    for (int by = ty0 & ~3; by <= ty1; by += 4)
+        for (int bx = tx0 & ~3; bx <= tx1; bx += 4) {
+            bool reject = false, accept = true;
+            for (int e = 0; e < 3; e++) {
+                int64_t v = edge_at(t, e, bx << SG_TILE_SHIFT, by << SG_TILE_SHIFT);
+                if (v + w.bhi[e] < 0) reject = true;
+                if (v + w.blo[e] < 0) accept = false;
+            }
+            if (reject) continue;
+            int x0 = bx > tx0 ? bx : tx0, y0 = by > ty0 ? by : ty0;
+            int x1 = bx + 3 < tx1 ? bx + 3 : tx1, y1 = by + 3 < ty1 ? by + 3 : ty1;
+            if (accept)
+                accepted_tiles(t, x0, y0, x1, y1, fn, ctx);
+            else
+                walk_tiles(&w, x0, y0, x1, y1, fn, ctx);
+        }
+}
+
+#endif
