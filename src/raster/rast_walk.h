@@ -158,11 +158,13 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         four[e] = _mm_set1_epi32(4 * dx);
     }
     uint32_t masks[4] = {0, 0, 0, 0}; /* tiles (0,0) (1,0) (0,1) (1,1) */
-    for (int j = 0; j < 2 * SG_TILE; j++) {
+    int rows = (ty1 - ty0 + 1) * SG_TILE; /* only the tiles of the range */
+    bool right = tx1 > tx0;
+    for (int j = 0; j < rows; j++) {
         __m128i out_l = _mm_setzero_si128(), out_r = _mm_setzero_si128();
         for (int e = 0; e < 3; e++) { /* sign bit: outside */
             out_l = _mm_or_si128(out_l, v[e]);
-            out_r = _mm_or_si128(out_r, _mm_add_epi32(v[e], four[e]));
+            if (right) out_r = _mm_or_si128(out_r, _mm_add_epi32(v[e], four[e]));
             v[e] = _mm_add_epi32(v[e], step[e]);
         }
         int shift = 4 * (j & 3), half = (j >> 2) * 2;
@@ -171,7 +173,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
     }
     for (int k = 0; k < 4; k++) {
         int tx = tx0 + (k & 1), ty = ty0 + (k >> 1);
-        if (tx > tx1 || ty > ty1 || !masks[k]) continue;
+        if (tx > tx1 || ty > ty1 || !masks[k]) continue; /* tiles past tx1 or ty1 are not looked at */
         int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
         uint32_t mask = masks[k] & bounds_mask(t, tx_px, ty_px);
         if (mask) fn(ctx, t, tx_px, ty_px, mask);
