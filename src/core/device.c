@@ -176,6 +176,7 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->threads);
     sg_binner_release(&dev->binner);
     sg_free(dev, dev->draws);
+    sg_free(dev, dev->bin_order);
     if (dev->images)
         for (int i = 0; i < dev->image_pool.capacity; i++)
             if (dev->image_pool.live[i]) sg_image_release(dev, &dev->images[i]);

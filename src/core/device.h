@@ -64,6 +64,8 @@ struct sgDevice {
     size_t vertex_capacity;
     sg_binner binner;     /* set-up triangles of the open pass, by screen bin */
     sg_draw_state *draws; /* the draws of the open pass */
+    uint64_t *bin_order;  /* the bins, busiest first, for sgEndRenderPass (pass.c) */
+    int bin_order_capacity;
     size_t draw_count, draw_capacity;
 
     /* The raster threads (the calling thread is one of them). */

@@ -89,6 +89,31 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     return true;
 }
 
+/* The vertex stage of a large geom, in chunks of vertices on all threads. */
+typedef struct vs_job {
+    const float *mvp, *positions;
+    float (*clip)[4];
+    uint32_t *outcodes;
+    const sg_guard *guard;
+    int count, chunks;
+} vs_job;
+
+static void vs_run(void *vjob, int index) {
+    const vs_job *j = vjob;
+    int v0 = (int)((int64_t)j->count * index / j->chunks);
+    int v1 = (int)((int64_t)j->count * (index + 1) / j->chunks);
+    sg_vertex_transform(j->mvp, j->positions + (size_t)v0 * 4, v1 - v0, j->clip + v0,
+                        j->outcodes + v0, j->guard);
+}
+
+static void transform_vertices(sgDevice *dev, const float *mvp, const sg_geom *geom,
+                               const sg_guard *guard) {
+    vs_job job = {mvp, geom->positions, dev->clip, dev->outcodes, guard, geom->vertex_count, 1};
+    if (dev->thread_count > 1 && geom->vertex_count >= FE_MIN_TRIANGLES)
+        job.chunks = 2 * dev->thread_count;
+    sg_workers_run(&dev->workers, job.chunks, vs_run, &job);
+}
+
 /* Room for one more draw record in the open pass. */
 static bool grow_draws(sgDevice *dev) {
     if (dev->draw_count < dev->draw_capacity) return true;
@@ -179,8 +204,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     sg_mat4_mul(mvp, params->proj, params->world_view);
     sg_assembly a = {0};
     a.guard = sg_guard_for_viewport(width, height);
-    sg_vertex_transform(mvp, geom->positions, geom->vertex_count, dev->clip, dev->outcodes,
-                        &a.guard);
+    transform_vertices(dev, mvp, geom, &a.guard);
 
     a.indices = geom->indices;
     a.index_count = geom->index_count;

@@ -3,6 +3,7 @@
 #include "core/device.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "raster/shade.h"
@@ -11,8 +12,29 @@ static bool unit_range(float v) {
     return v >= 0.0f && v <= 1.0f;
 } /* false for NaN */
 
-static void render_bin(void *pass, int index) {
-    sg_rast_bin(pass, index);
+typedef struct bin_jobs {
+    const sg_bin_pass *pass;
+    const uint64_t *order;
+} bin_jobs;
+
+static void render_bin(void *vjobs, int job) {
+    const bin_jobs *j = vjobs;
+    sg_rast_bin(j->pass, (int)(j->order[job] & 0xffffffffu));
+}
+
+static int cmp_u64(const void *a, const void *b) {
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Bins with more triangles first (ties by index, so the order is always the same): the threads
+ * start on the long jobs and end on the short ones, instead of one thread being left with a busy
+ * bin at the end. Which thread renders a bin never changes its pixels. */
+static void busiest_first(const sg_binner *b, uint64_t *order) {
+    int n = b->bins_x * b->bins_y;
+    for (int i = 0; i < n; i++)
+        order[i] = (uint64_t)(UINT32_MAX - b->bins[i].count) << 32 | (uint64_t)i;
+    qsort(order, (size_t)n, sizeof *order, cmp_u64);
 }
 
 sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
@@ -67,6 +89,18 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                         "sgBeginRenderPass: out of memory for the screen bins of a %dx%d target",
                         color->width, color->height);
+    int nbins = dev->binner.bins_x * dev->binner.bins_y;
+    if (nbins > dev->bin_order_capacity) {
+        uint64_t *order = sg_alloc(dev, (size_t)nbins * sizeof *order);
+        if (!order)
+            return sg_error(
+                dev, SG_ERROR_OUT_OF_MEMORY,
+                "sgBeginRenderPass: out of memory for the screen bins of a %dx%d target",
+                color->width, color->height);
+        sg_free(dev, dev->bin_order);
+        dev->bin_order = order;
+        dev->bin_order_capacity = nbins;
+    }
     const float *c = pass->clear_color;
     sg_bin_pass *p = &dev->pass;
     memset(p, 0, sizeof *p);
@@ -100,7 +134,9 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                         "sgEndRenderPass: targets (color 0x%08x, depth 0x%08x) differ from those "
                         "of sgBeginRenderPass (color 0x%08x, depth 0x%08x)",
                         pass->color.id, pass->depth.id, dev->pass_color.id, dev->pass_depth.id);
-    sg_workers_run(&dev->workers, dev->binner.bins_x * dev->binner.bins_y, render_bin, &dev->pass);
+    busiest_first(&dev->binner, dev->bin_order);
+    bin_jobs jobs = {&dev->pass, dev->bin_order};
+    sg_workers_run(&dev->workers, dev->binner.bins_x * dev->binner.bins_y, render_bin, &jobs);
     dev->in_pass = false;
     dev->pass_color.id = 0;
     dev->pass_depth.id = 0;
