@@ -1,10 +1,11 @@
-/* test_shade_simd.c - the SSE2 and AVX2 shading functions give the scalar reference's bytes. For
- * every variant and flat mode, many random cases: plausible and perspective plane equations, 1/q
- * near 0, colours outside [0, 1], texture coordinates far outside [0, 1] (1e4, 1e30, infinite,
- * NaN), random masks over a sentinel-filled tile, and textures from 1x1 to 16384 texels wide. The
- * texels sit in exactly-sized allocations (a stray load shows under AddressSanitizer) and, where
- * there is mmap, also right before or right after an inaccessible page, which catches stray reads
- * in any build, AVX2 gathers (which AddressSanitizer does not see) included.
+/* test_shade_simd.c - the SSE2, AVX2 and AVX-512 shading functions give the scalar reference's
+ * bytes. For every variant and flat mode, many random cases: plausible and perspective plane
+ * equations, 1/q near 0, colours outside [0, 1], texture coordinates far outside [0, 1] (1e4, 1e30,
+ * infinite, NaN), random masks over a sentinel-filled tile, and textures from 1x1 to 16384 texels
+ * wide. The texels sit in exactly-sized allocations (a stray load shows under AddressSanitizer)
+ * and, where there is mmap, also right before or right after an inaccessible page, which catches
+ * stray reads in any build, AVX2 and AVX-512 gathers (which AddressSanitizer does not see)
+ * included.
  */
 #define _DEFAULT_SOURCE /* mmap, MAP_ANONYMOUS */
 #include "test_common.h"
@@ -265,11 +266,14 @@ static void compare_variant(int variant) {
     texture tex[NSIZES];
     for (int i = 0; i < NSIZES; i++) texture_make(&tex[i], &g, sizes[i][0], sizes[i][1]);
     const int textured = variant != 0;
+    const sg_isa isa = sg_isa_detect();
     sg_shade_fn scalar = sg_shade_scalar(variant), sse2 = sg_shade_sse2(variant),
-                avx2 = sg_isa_detect() == SG_ISA_AVX2 ? sg_shade_avx2(variant) : NULL;
+                avx2 = isa >= SG_ISA_AVX2 ? sg_shade_avx2(variant) : NULL,
+                avx512 = isa >= SG_ISA_AVX512 ? sg_shade_avx512(variant) : NULL;
 #if defined(__x86_64__)
     assert_non_null(sse2); /* SSE2 is the x86-64 baseline */
-    if (sg_isa_detect() == SG_ISA_AVX2) assert_non_null(avx2);
+    if (isa >= SG_ISA_AVX2) assert_non_null(avx2);
+    if (isa >= SG_ISA_AVX512) assert_non_null(avx512);
 #endif
     long failures = 0;
     for (int flat = 0; flat < FLATS; flat++) {
@@ -291,6 +295,9 @@ static void compare_variant(int variant) {
                 failures++;
             if (avx2 && !same_as_reference(avx2, "AVX2", &ctx, &t, x0, y0, mask, sentinel, ref,
                                            variant, flat, n))
+                failures++;
+            if (avx512 && !same_as_reference(avx512, "AVX-512", &ctx, &t, x0, y0, mask, sentinel,
+                                             ref, variant, flat, n))
                 failures++;
         }
     }

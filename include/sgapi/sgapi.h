@@ -108,6 +108,7 @@ typedef enum sgSimd {
     SG_SIMD_SCALAR,      /* portable C, the reference the others are tested against */
     SG_SIMD_SSE2,        /* x86-64 baseline */
     SG_SIMD_AVX2,        /* x86-64 with AVX2 */
+    SG_SIMD_AVX512,      /* x86-64 with AVX-512 F/BW/VL/DQ */
 } sgSimd;
 
 typedef struct sgDeviceDesc {

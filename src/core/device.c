@@ -9,6 +9,11 @@
 #include <stdint.h>
 #include <unistd.h>
 
+/* Names of the instruction sets, for messages. */
+static const char *const isa_names[SG_ISA_COUNT] = {"scalar", "SSE2", "AVX2", "AVX-512"};
+/* An sgSimd past DEFAULT is an sg_isa offset by SG_SIMD_SCALAR. */
+_Static_assert(SG_SIMD_AVX512 - SG_SIMD_SCALAR == SG_ISA_AVX512, "sgSimd and sg_isa out of step");
+
 static void *default_alloc(size_t size, void *user) {
     (void)user;
     return malloc(size);
@@ -117,7 +122,7 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
         return sg_error(&tmp, SG_ERROR_INVALID_COUNT,
                         "sgCreateDevice: thread_count must be >= 0 (0: all cores), got %d",
                         d.thread_count);
-    if ((int)d.simd < SG_SIMD_DEFAULT || d.simd > SG_SIMD_AVX2)
+    if ((int)d.simd < SG_SIMD_DEFAULT || d.simd > SG_SIMD_AVX512)
         return sg_error(&tmp, SG_ERROR_INVALID_ENUM, "sgCreateDevice: simd %d is not an sgSimd",
                         (int)d.simd);
     sg_isa best = sg_isa_detect();
@@ -126,8 +131,7 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
         return sg_error(&tmp, SG_ERROR_UNSUPPORTED,
                         "sgCreateDevice: simd %s is not supported by this CPU (the best it runs "
                         "is %s)",
-                        d.simd == SG_SIMD_AVX2 ? "AVX2" : "SSE2",
-                        best == SG_ISA_AVX2 ? "AVX2" : (best == SG_ISA_SSE2 ? "SSE2" : "scalar"));
+                        isa_names[isa], isa_names[best]);
     sgAllocator a = d.allocator;
     if (!a.alloc) {
         a.alloc = default_alloc;

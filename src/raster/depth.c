@@ -1,7 +1,8 @@
 /* depth.c - the visibility tile functions (see depth.h): depth test and id write of one covered
  * 4x4 tile, specialised for no test, LESS, or any other compare, with or without depth write, in
- * portable C and in SSE2 (AVX2 in depth_avx2.c). All compute z = (z0 + z_dx * dx) + z_dy * dy,
- * clamped to [0, 1] with NaN kept, so they decide every pixel alike. */
+ * portable C and in SSE2 (AVX2 and AVX-512 in depth_avx2.c, depth_avx512.c). All compute
+ * z = (z0 + z_dx * dx) + z_dy * dy, clamped to [0, 1] with NaN kept, so they decide every pixel
+ * alike. */
 #include "raster/depth.h"
 
 #include "raster/rast_walk.h"
@@ -132,7 +133,10 @@ sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
         {vis_none_0, vis_none_1}, {vis_less_0, vis_less_1}, {vis_any_0, vis_any_1}};
     int zmode =
         compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
-    if (isa == SG_ISA_AVX2 && zmode == Z_LESS && sg_depth_less_avx2(depth_write))
+    /* The best set the ISA allows that is built: AVX-512, AVX2, SSE2, scalar. */
+    if (isa >= SG_ISA_AVX512 && zmode == Z_LESS && sg_depth_less_avx512(depth_write))
+        return sg_depth_less_avx512(depth_write);
+    if (isa >= SG_ISA_AVX2 && zmode == Z_LESS && sg_depth_less_avx2(depth_write))
         return sg_depth_less_avx2(depth_write);
 #if defined(__SSE2__)
     if (isa >= SG_ISA_SSE2 && zmode == Z_LESS)

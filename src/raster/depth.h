@@ -48,6 +48,8 @@ static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
 
 /** The AVX2 LESS functions (depth_avx2.c); NULL where AVX2 code is not built. */
 sg_raster_fn sg_depth_less_avx2(bool depth_write);
+/** The AVX-512 LESS functions (depth_avx512.c); NULL where AVX-512 code is not built. */
+sg_raster_fn sg_depth_less_avx512(bool depth_write);
 
 /** Offset of the tile holding pixel (x, y) in a bin's buffers, relative to the bin's origin. */
 static inline int sg_bin_tile_offset(int x, int y) {

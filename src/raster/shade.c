@@ -45,7 +45,9 @@ sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa 
     if (shade == SG_SHADE_TEXTURE_MODULATE)
         variant = 1 + (filter == SG_FILTER_BILINEAR ? 2 : 0) + (wrap == SG_WRAP_REPEAT ? 0 : 1);
     sg_shade_fn fn = NULL;
-    if (isa == SG_ISA_AVX2) fn = sg_shade_avx2(variant);
+    /* The best set the ISA allows that is built: AVX-512, AVX2, SSE2, scalar. */
+    if (isa >= SG_ISA_AVX512) fn = sg_shade_avx512(variant);
+    if (!fn && isa >= SG_ISA_AVX2) fn = sg_shade_avx2(variant);
     if (!fn && isa >= SG_ISA_SSE2) fn = sg_shade_sse2(variant);
     return fn ? fn : sg_shade_scalar(variant);
 }
@@ -57,6 +59,10 @@ int sg_shade_attr_count(sgShade shade) {
 sg_isa sg_isa_detect(void) {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_cpu_init();
+    /* libgcc and compiler-rt also check that the OS saves the AVX-512 state. */
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq"))
+        return SG_ISA_AVX512;
     if (__builtin_cpu_supports("avx2")) return SG_ISA_AVX2;
     if (__builtin_cpu_supports("sse2")) return SG_ISA_SSE2;
 #endif

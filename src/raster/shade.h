@@ -4,7 +4,7 @@
  * Shading runs after visibility (depth.c) has decided, for every pixel of a screen bin, which
  * triangle is seen there, so each pixel is shaded once whatever the overdraw. One function is
  * compiled for each combination of state that changes the inner loop (vertex colour, or texture
- * with its filter and wrap), and for each instruction set (portable scalar, SSE2, AVX2); a
+ * with its filter and wrap), and for each instruction set (portable scalar, SSE2, AVX2, AVX-512); a
  * pipeline picks its function once, at creation, so a vertex-colour draw never runs texture code.
  * Every instruction set computes the same IEEE operations in the same order, so all give the same
  * bytes as the scalar reference.
@@ -24,7 +24,13 @@ typedef struct sg_shade_ctx {
 } sg_shade_ctx;
 
 /* Instruction sets with their own shading and visibility code. */
-typedef enum sg_isa { SG_ISA_SCALAR, SG_ISA_SSE2, SG_ISA_AVX2, SG_ISA_COUNT } sg_isa;
+typedef enum sg_isa {
+    SG_ISA_SCALAR,
+    SG_ISA_SSE2,
+    SG_ISA_AVX2,
+    SG_ISA_AVX512, /* AVX-512 F, BW, VL and DQ */
+    SG_ISA_COUNT
+} sg_isa;
 
 /* Shades the pixels of `mask` (bit y * 4 + x) of the 4x4 tile whose top-left pixel is (x0, y0)
  * and writes them as RGBA8 to dst[y * 4 + x]; other pixels of dst are left as they are. */
@@ -33,11 +39,13 @@ typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, in
 
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
-/** The scalar reference functions (the SSE2 and AVX2 tables are in shade_sse2.c, shade_avx2.c);
+/** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,
+ *  shade_avx2.c, shade_avx512.c; NULL where not built);
  *  index: 0 vertex colour, 1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */
 sg_shade_fn sg_shade_scalar(int variant);
 sg_shade_fn sg_shade_sse2(int variant);
 sg_shade_fn sg_shade_avx2(int variant);
+sg_shade_fn sg_shade_avx512(int variant);
 /** Attributes a shading mode interpolates: r g b a, plus s t when textured. */
 int sg_shade_attr_count(sgShade shade);
 /** The best instruction set this CPU runs. */
