@@ -21,6 +21,7 @@
 
 #include "pipeline/assemble.h"
 #include "pipeline/vertex.h"
+#include "raster/depth.h"
 #include "raster/rast_tile.h"
 
 #define W        256
@@ -30,6 +31,7 @@
 typedef struct counter {
     uint8_t hits[H][W];
     int overflows;
+    sg_walk_fn walk; /* the tile walk under test */
 } counter;
 
 static void count_tile(const void *ctx, const sg_tri *t, int x0, int y0, uint32_t mask) {
@@ -46,7 +48,8 @@ static void count_tile(const void *ctx, const sg_tri *t, int x0, int y0, uint32_
 }
 
 static void emit(const sg_tri *tri, void *user) {
-    sg_rast_triangle(tri, count_tile, user);
+    const counter *c = user;
+    c->walk(tri, 0, 0, tri->maxx + 1, tri->maxy + 1, count_tile, user);
 }
 
 typedef struct rng {
@@ -147,15 +150,23 @@ static void random_meshes_cover_each_pixel_once(void **state) {
     uint32_t *idx = calloc((size_t)MAX_GRID * MAX_GRID * 6, sizeof *idx);
     assert_non_null(c);
     assert_non_null(idx);
-    rng r = {20261121};
-    long drawn = 0, meshes = 0;
-    while (drawn < target) {
-        drawn += one_mesh(&r, c, pos, clip, codes, idx);
-        meshes++;
+    /* The walk as compiled for each instruction set this CPU runs (its edge tests differ). */
+    const char *names[SG_ISA_COUNT] = {"scalar/SSE2", "SSE2", "AVX2", "AVX-512"};
+    for (sg_isa isa = SG_ISA_SCALAR; isa <= sg_isa_detect(); isa++) {
+        if (isa == SG_ISA_SSE2) continue; /* the baseline walk, already run as "scalar/SSE2" */
+        c->walk = sg_walk_select(isa);
+        c->overflows = 0;
+        rng r = {20261121};
+        long drawn = 0, meshes = 0;
+        while (drawn < target) {
+            drawn += one_mesh(&r, c, pos, clip, codes, idx);
+            meshes++;
+        }
+        assert_int_equal(c->overflows, 0);
+        printf("watertight (%s walk): %ld triangles in %ld meshes, every pixel covered exactly "
+               "once\n",
+               names[isa], drawn, meshes);
     }
-    assert_int_equal(c->overflows, 0);
-    printf("watertight: %ld triangles in %ld meshes, every pixel covered exactly once\n", drawn,
-           meshes);
     free(c);
     free(pos);
     free(clip);

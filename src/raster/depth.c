@@ -146,3 +146,10 @@ sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
 #endif
     return scalar[zmode][depth_write ? 1 : 0];
 }
+
+sg_walk_fn sg_walk_select(sg_isa isa) {
+    sg_walk_fn fn = NULL;
+    if (isa == SG_ISA_AVX512) fn = sg_walk_avx512();
+    if (!fn && isa >= SG_ISA_AVX2) fn = sg_walk_avx2();
+    return fn ? fn : sg_rast_triangle_in;
+}

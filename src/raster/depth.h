@@ -30,6 +30,15 @@ typedef struct sg_vis_ctx {
  * an sg_vis_ctx): the walk of rast_walk.h with one visibility tile function inlined. */
 typedef void (*sg_raster_fn)(const sg_tri *t, int x0, int y0, int x1, int y1, const void *ctx);
 
+/* The walk of rast_walk.h as compiled for one instruction set, with any tile function: the
+ * coverage tests (test_watertight) run every set's walk. */
+typedef void (*sg_walk_fn)(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
+                           const void *ctx);
+/** The walk compiled for `isa` (the baseline one when that set's code is not built). */
+sg_walk_fn sg_walk_select(sg_isa isa);
+sg_walk_fn sg_walk_avx2(void);
+sg_walk_fn sg_walk_avx512(void);
+
 /** The visibility function for a resolved depth state. */
 sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa);
 

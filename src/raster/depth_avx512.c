@@ -48,10 +48,23 @@ sg_raster_fn sg_depth_less_avx512(bool depth_write) {
     return depth_write ? vis_less_1_avx512 : vis_less_0_avx512;
 }
 
+static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
+                     const void *ctx) {
+    sg_rast_walk(t, x0, y0, x1, y1, fn, ctx);
+}
+
+sg_walk_fn sg_walk_avx512(void) {
+    return walk_any;
+}
+
 #else
 
 sg_raster_fn sg_depth_less_avx512(bool depth_write) {
     (void)depth_write;
+    return NULL;
+}
+
+sg_walk_fn sg_walk_avx512(void) {
     return NULL;
 }
 

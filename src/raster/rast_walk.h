@@ -12,11 +12,24 @@
 #include "raster/framebuffer.h"
 #include "raster/rast_tile.h"
 
-#if defined(__SSE2__)
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
 #define SG_WALK_INLINE static inline __attribute__((always_inline))
+
+#if defined(__AVX512F__)
+/* i dx + j dy for the 16 pixels (i, j) of a tile, in wrapping 32-bit arithmetic (callers make
+ * sure the true values fit). */
+SG_WALK_INLINE __m512i sg_walk_offsets(uint32_t dx, uint32_t dy) {
+    const __m512i i = _mm512_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3);
+    const __m512i j = _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3);
+    return _mm512_add_epi32(_mm512_mullo_epi32(_mm512_set1_epi32((int32_t)dx), i),
+                            _mm512_mullo_epi32(_mm512_set1_epi32((int32_t)dy), j));
+}
+#endif
 
 /* Mask of the pixels of a tile at (x0, y0) inside the triangle's pixel bounds (which overlap the
  * tile): columns lo..hi of rows lo..hi. */
@@ -45,7 +58,9 @@ typedef struct walk {
     int64_t hi[3], lo[3];   /* 4x4 tile */
     int64_t bhi[3], blo[3]; /* 16x16 block */
     bool narrow;
-#if defined(__SSE2__)
+#if defined(__AVX512F__)
+    __m512i offs[3]; /* per edge: i dx + j dy of pixel (i, j) of a tile, in 32 bits */
+#elif defined(__SSE2__)
     __m128i lane[3], step[3]; /* per edge: 0, dx, 2 dx, 3 dx; and dy, in 32 bits */
 #else
     int32_t offs[3][SG_TILE_PIXELS];
@@ -57,7 +72,19 @@ SG_WALK_INLINE uint32_t crossed_mask(const walk *w, const int64_t e0[3]) {
     const sg_tri *t = w->t;
     uint32_t mask = 0xffffu;
     if (w->narrow) {
-#if defined(__SSE2__)
+#if defined(__AVX512F__)
+        /* A whole tile a vector: an add and a compare per edge the tile straddles (only there
+         * do the values fit in int32). */
+        __mmask16 in = 0xffff;
+        for (int e = 0; e < 3; e++) {
+            if (e0[e] + w->lo[e] >= 0) continue;
+            in = _mm512_mask_cmpge_epi32_mask(
+                in,
+                _mm512_add_epi32(_mm512_set1_epi32((int32_t)(uint32_t)(uint64_t)e0[e]), w->offs[e]),
+                _mm512_setzero_si512());
+        }
+        return in;
+#elif defined(__SSE2__)
         for (int e = 0; e < 3; e++) {
             if (e0[e] + w->lo[e] >= 0) continue; /* this edge holds the whole tile */
             /* Exact: every value fits in int32, so wrapping 32-bit sums give it. */
@@ -147,6 +174,36 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
     int64_t hi[3], lo[3];
     corners(t, 2 * SG_TILE - 1, hi, lo);
+#if defined(__AVX512F__)
+    /* A tile a vector: its first pixel's value plus i dx + j dy, per edge. */
+    uint32_t e32[3], dx32[3], dy32[3]; /* wrapping sums: the true values fit in int32 */
+    __m512i offs[3];
+    for (int e = 0; e < 3; e++) {
+        int64_t e0 = edge_at(t, e, x0, y0);
+        if (e0 + hi[e] < 0) return true;
+        if (e0 + lo[e] < INT32_MIN || e0 + hi[e] > INT32_MAX) return false;
+        e32[e] = (uint32_t)(uint64_t)e0;
+        dx32[e] = (uint32_t)(uint64_t)t->edge_dx[e];
+        dy32[e] = (uint32_t)(uint64_t)t->edge_dy[e];
+        offs[e] = sg_walk_offsets(dx32[e], dy32[e]);
+    }
+    for (int k = 0; k < 4; k++) {
+        int tx = tx0 + (k & 1), ty = ty0 + (k >> 1);
+        if (tx > tx1 || ty > ty1) continue;
+        __mmask16 in = 0xffff;
+        for (int e = 0; e < 3; e++) {
+            uint32_t base =
+                e32[e] + (uint32_t)(4 * (k & 1)) * dx32[e] + (uint32_t)(4 * (k >> 1)) * dy32[e];
+            in = _mm512_mask_cmpge_epi32_mask(
+                in, _mm512_add_epi32(_mm512_set1_epi32((int32_t)base), offs[e]),
+                _mm512_setzero_si512());
+        }
+        int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
+        uint32_t mask = in ? in & bounds_mask(t, tx_px, ty_px) : 0;
+        if (mask) fn(ctx, t, tx_px, ty_px, mask);
+    }
+    return true;
+#else
     __m128i v[3], step[3], four[3];
     for (int e = 0; e < 3; e++) {
         int64_t e0 = edge_at(t, e, x0, y0);
@@ -157,7 +214,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         step[e] = _mm_set1_epi32(dy);
         four[e] = _mm_set1_epi32(4 * dx);
     }
-    uint32_t masks[4] = {0, 0, 0, 0}; /* tiles (0,0) (1,0) (0,1) (1,1) */
+    uint32_t masks[4] = {0, 0, 0, 0};     /* tiles (0,0) (1,0) (0,1) (1,1) */
     int rows = (ty1 - ty0 + 1) * SG_TILE; /* only the tiles of the range */
     bool right = tx1 > tx0;
     for (int j = 0; j < rows; j++) {
@@ -173,12 +230,14 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
     }
     for (int k = 0; k < 4; k++) {
         int tx = tx0 + (k & 1), ty = ty0 + (k >> 1);
-        if (tx > tx1 || ty > ty1 || !masks[k]) continue; /* tiles past tx1 or ty1 are not looked at */
+        if (tx > tx1 || ty > ty1 || !masks[k])
+            continue; /* tiles past tx1 or ty1 are not looked at */
         int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
         uint32_t mask = masks[k] & bounds_mask(t, tx_px, ty_px);
         if (mask) fn(ctx, t, tx_px, ty_px, mask);
     }
     return true;
+#endif
 }
 #endif
 
@@ -200,7 +259,9 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
     if (w.narrow) /* then 3 |dx| and 3 |dy| fit in int32 too */
         for (int e = 0; e < 3; e++) {
             int32_t dx = (int32_t)t->edge_dx[e], dy = (int32_t)t->edge_dy[e];
-#if defined(__SSE2__)
+#if defined(__AVX512F__)
+            w.offs[e] = sg_walk_offsets((uint32_t)dx, (uint32_t)dy);
+#elif defined(__SSE2__)
             w.lane[e] = _mm_setr_epi32(0, dx, 2 * dx, 3 * dx);
             w.step[e] = _mm_set1_epi32(dy);
 #else
