@@ -166,16 +166,17 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
 }
 
 #if defined(__SSE2__)
-/* Triangles within 2 x 2 tiles (most of a dense mesh's): the 8 x 8 pixels of the four tiles are
- * tested at once, 32-bit edge values four pixels a vector, when every edge's values over the 8 x 8
- * square fit in int32 (they are linear, so the square's corners bound them). False: not taken. */
+/* Triangles within 2 x 2 tiles (4 x 4 with AVX-512; most of a dense mesh's): the pixels of those
+ * tiles are tested at once in 32-bit edge values, four pixels a vector (a tile with AVX-512),
+ * when every edge's values over the square fit in int32 (they are linear, so the square's corners
+ * bound them). False: not taken. */
 SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
                                    sg_tile_fn fn, const void *ctx) {
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
     int64_t hi[3], lo[3];
-    corners(t, 2 * SG_TILE - 1, hi, lo);
 #if defined(__AVX512F__)
-    /* A tile a vector: its first pixel's value plus i dx + j dy, per edge. */
+    /* A tile a vector: its first pixel's value plus i dx + j dy, per edge; up to 4 x 4 tiles. */
+    corners(t, 4 * SG_TILE - 1, hi, lo);
     uint32_t e32[3], dx32[3], dy32[3]; /* wrapping sums: the true values fit in int32 */
     __m512i offs[3];
     for (int e = 0; e < 3; e++) {
@@ -187,23 +188,24 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         dy32[e] = (uint32_t)(uint64_t)t->edge_dy[e];
         offs[e] = sg_walk_offsets(dx32[e], dy32[e]);
     }
-    for (int k = 0; k < 4; k++) {
-        int tx = tx0 + (k & 1), ty = ty0 + (k >> 1);
-        if (tx > tx1 || ty > ty1) continue;
-        __mmask16 in = 0xffff;
-        for (int e = 0; e < 3; e++) {
-            uint32_t base =
-                e32[e] + (uint32_t)(4 * (k & 1)) * dx32[e] + (uint32_t)(4 * (k >> 1)) * dy32[e];
-            in = _mm512_mask_cmpge_epi32_mask(
-                in, _mm512_add_epi32(_mm512_set1_epi32((int32_t)base), offs[e]),
-                _mm512_setzero_si512());
+    for (int ty = ty0; ty <= ty1; ty++)
+        for (int tx = tx0; tx <= tx1; tx++) {
+            __mmask16 in = 0xffff;
+            for (int e = 0; e < 3; e++) {
+                uint32_t base = e32[e] + (uint32_t)(4 * (tx - tx0)) * dx32[e] +
+                                (uint32_t)(4 * (ty - ty0)) * dy32[e];
+                in = _mm512_mask_cmpge_epi32_mask(
+                    in, _mm512_add_epi32(_mm512_set1_epi32((int32_t)base), offs[e]),
+                    _mm512_setzero_si512());
+            }
+            if (!in) continue;
+            int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
+            uint32_t mask = in & bounds_mask(t, tx_px, ty_px);
+            if (mask) fn(ctx, t, tx_px, ty_px, mask);
         }
-        int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
-        uint32_t mask = in ? in & bounds_mask(t, tx_px, ty_px) : 0;
-        if (mask) fn(ctx, t, tx_px, ty_px, mask);
-    }
     return true;
 #else
+    corners(t, 2 * SG_TILE - 1, hi, lo);
     __m128i v[3], step[3], four[3];
     for (int e = 0; e < 3; e++) {
         int64_t e0 = edge_at(t, e, x0, y0);
@@ -248,7 +250,9 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
     int tx1 = (t->maxx < rx1 - 1 ? t->maxx : rx1 - 1) >> SG_TILE_SHIFT;
     int ty1 = (t->maxy < ry1 - 1 ? t->maxy : ry1 - 1) >> SG_TILE_SHIFT;
     if (tx0 > tx1 || ty0 > ty1) return;
-#if defined(__SSE2__)
+#if defined(__AVX512F__)
+    if (tx1 - tx0 < 4 && ty1 - ty0 < 4 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
+#elif defined(__SSE2__)
     if (tx1 - tx0 < 2 && ty1 - ty0 < 2 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
 #endif
     walk w;
