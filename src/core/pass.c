@@ -12,14 +12,25 @@ static bool unit_range(float v) {
     return v >= 0.0f && v <= 1.0f;
 } /* false for NaN */
 
+/* The jobs of sgEndRenderPass: first one run of the empty bins per thread, each a band of the
+ * image that the same thread tends to write every frame (they are taken in order, and the
+ * calling thread starts at once), so its cache lines do not move between cores; then the other
+ * bins one at a time, busiest first. */
 typedef struct bin_jobs {
     const sg_bin_pass *pass;
-    const uint64_t *order;
+    const uint64_t *order; /* busy bins first (see busiest_first), then the empty ones */
+    int busy, empty, runs;
 } bin_jobs;
 
 static void render_bin(void *vjobs, int job) {
     const bin_jobs *j = vjobs;
-    sg_rast_bin(j->pass, (int)(j->order[job] & 0xffffffffu));
+    if (job < j->runs) {
+        int first = j->busy + (int)((int64_t)j->empty * job / j->runs);
+        int end = j->busy + (int)((int64_t)j->empty * (job + 1) / j->runs);
+        for (int i = first; i < end; i++) sg_rast_bin(j->pass, (int)(j->order[i] & 0xffffffffu));
+        return;
+    }
+    sg_rast_bin(j->pass, (int)(j->order[job - j->runs] & 0xffffffffu));
 }
 
 static int cmp_u64(const void *a, const void *b) {
@@ -135,8 +146,11 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                         "of sgBeginRenderPass (color 0x%08x, depth 0x%08x)",
                         pass->color.id, pass->depth.id, dev->pass_color.id, dev->pass_depth.id);
     busiest_first(&dev->binner, dev->bin_order);
-    bin_jobs jobs = {&dev->pass, dev->bin_order};
-    sg_workers_run(&dev->workers, dev->binner.bins_x * dev->binner.bins_y, render_bin, &jobs);
+    int nbins = dev->binner.bins_x * dev->binner.bins_y, busy = 0;
+    while (busy < nbins && dev->binner.bins[dev->bin_order[busy] & 0xffffffffu].count) busy++;
+    bin_jobs jobs = {&dev->pass, dev->bin_order, busy, nbins - busy, 0};
+    jobs.runs = jobs.empty < dev->thread_count ? jobs.empty : dev->thread_count;
+    sg_workers_run(&dev->workers, jobs.runs + busy, render_bin, &jobs);
     dev->in_pass = false;
     dev->pass_color.id = 0;
     dev->pass_depth.id = 0;
