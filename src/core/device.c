@@ -176,6 +176,11 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
 
 void sgDestroyDevice(sgDevice *dev) {
     if (!dev) return;
+#if defined(SG_STAGE_TIMES)
+    static const char *const stages[SG_STAGE_COUNT] = {"front-end", "bin-start", "visibility",
+                                                       "shading", "bin-write"};
+    sg_stage_print(&dev->stage_times, stages, SG_STAGE_COUNT);
+#endif
     if (dev->workers_started) sg_workers_stop(&dev->workers);
     sg_free(dev, dev->threads);
     sg_binner_release(&dev->binner);

@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "core/pool.h"
+#include "core/stage_times.h"
 #include "core/workers.h"
 #include "raster/bin.h"
 #include "raster/framebuffer.h"
@@ -72,6 +73,9 @@ struct sgDevice {
     sg_workers workers;
     pthread_t *threads;
     bool workers_started;
+#if defined(SG_STAGE_TIMES)
+    sg_stage_times stage_times;
+#endif
 };
 
 /** Records an error message for sgGetLastError, passes it to the log callback, returns `result`. */

@@ -151,6 +151,7 @@ static bool grow_vertex_arenas(sgDevice *dev, size_t n) {
 sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                 const sgDrawParams *params) {
     if (!dev) return SG_ERROR_NULL_POINTER;
+    SG_STAGE_START(clock);
     if (!params) return sg_error(dev, SG_ERROR_NULL_POINTER, "sgDraw: params is NULL");
     if (!dev->in_pass)
         return sg_error(dev, SG_ERROR_NOT_IN_PASS,
@@ -241,5 +242,6 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
     if (tex) tex->pass_use = dev->pass_serial;
+    SG_STAGE_ADD(dev->pass.stage_times, SG_STAGE_FRONT, clock);
     return SG_OK;
 }

@@ -127,6 +127,10 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                                    sg_to_unorm8(c[3]));
     p->clear_depth = pass->depth_load == SG_LOAD_CLEAR ? pass->clear_depth : 1.0f;
     p->store_depth = pass->depth_store != SG_STORE_DONT_CARE;
+#if defined(SG_STAGE_TIMES)
+    p->stage_times = &dev->stage_times;
+    dev->stage_times.passes++;
+#endif
     dev->draw_count = 0;
     dev->pass_serial++;
     dev->in_pass = true;

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "raster/depth.h"
+#include "core/stage_times.h"
 #include "raster/framebuffer.h"
 
 #if defined(__SSE2__)
@@ -64,6 +65,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     uint8_t *cimg = p->color + (size_t)y0 * cpitch + (size_t)x0 * 4;
     float *dimg =
         p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)y0 * cpitch) + x0 : NULL;
+    SG_STAGE_START(clock);
     if (!bin->count) { /* nothing drawn here: the pass's load and clear are the result */
         if (!p->load_color) sg_fill_linear_u32(cimg, cpitch, w, h, p->clear_color);
         if (dimg && p->store_depth && !p->load_depth) {
@@ -71,6 +73,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
             memcpy(&bits, &p->clear_depth, 4);
             sg_fill_linear_u32(dimg, cpitch, w, h, bits);
         }
+        SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
         return;
     }
 
@@ -84,6 +87,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
         else
             sg_fb_fill_depth(depth, BIN_PIXELS, p->clear_depth);
     }
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     sg_vis_ctx vis = {dimg ? depth : NULL, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS};
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
@@ -93,11 +97,13 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
         vis.compare = d->compare;
         d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
     }
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
 
     if (p->load_color)
         sg_tile_from_linear_rgba8(color, cimg, cpitch, w, h, BIN_TILES);
     else
         sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     /* Only tiles some triangle reached hold ids (depth.h). */
     for (int word = 0; word < BIN_TILES * BIN_TILES / 64; word++)
         for (uint64_t left = touched[word]; left; left &= left - 1) {
@@ -107,6 +113,8 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
                        y0 + (ty << SG_TILE_SHIFT), color + tile * SG_TILE_PIXELS);
         }
 
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
     sg_tile_to_linear_rgba8(cimg, cpitch, color, w, h, BIN_TILES);
     if (dimg && p->store_depth) sg_tile_to_linear_f32(dimg, cpitch, depth, w, h, BIN_TILES);
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }

@@ -27,6 +27,16 @@ typedef struct sg_draw_state {
     sgCompare compare;
 } sg_draw_state;
 
+/* Stages of a pass whose wall time a build with SGAPI_STAGE_TIMES adds up (stage_times.h). */
+enum {
+    SG_STAGE_FRONT,
+    SG_STAGE_BIN_START,
+    SG_STAGE_VISIBILITY,
+    SG_STAGE_SHADE,
+    SG_STAGE_BIN_WRITE,
+    SG_STAGE_COUNT
+};
+
 typedef struct sg_bin_pass {
     const sg_binner *binner;
     const sg_draw_state *draws; /* indexed by sg_tri.draw */
@@ -37,6 +47,7 @@ typedef struct sg_bin_pass {
     uint32_t clear_color;
     float clear_depth;
     bool store_depth;
+    void *stage_times; /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 
 /** Renders bin `index` of the pass into its target images. */
