@@ -63,7 +63,7 @@ static double uniform(rng *r) {
 
 /* One random mesh: returns the number of triangles drawn and checks every pixel. */
 static long one_mesh(rng *r, counter *c, float (*pos)[4], float (*clip)[4], uint32_t *codes,
-                     uint32_t *idx) {
+                     sg_svert *screen, uint8_t *ok, uint32_t *idx) {
     int nx = 2 + (int)(uniform(r) * (MAX_GRID - 1)), ny = 2 + (int)(uniform(r) * (MAX_GRID - 1));
     double x0 = -40 + uniform(r) * 200, y0 = -40 + uniform(r) * 200;
     double cw = 0.3 + uniform(r) * 6, ch = 0.3 + uniform(r) * 6;
@@ -115,6 +115,10 @@ static long one_mesh(rng *r, counter *c, float (*pos)[4], float (*clip)[4], uint
     as.setup.rect_y1 = H;
     as.setup.cull = SG_CULL_NONE;
     as.setup.front_face = SG_FRONT_FACE_CCW;
+    sg_vertex_project(&as.setup, (const float(*)[4])clip, codes, (nx + 1) * (ny + 1), screen, ok);
+    sg_vertex_check_attributes(NULL, NULL, 0, (nx + 1) * (ny + 1), ok);
+    as.screen = screen;
+    as.screen_ok = ok;
     as.emit = emit;
     as.user = c;
     memset(c->hits, 0, sizeof c->hits);
@@ -147,6 +151,8 @@ static void random_meshes_cover_each_pixel_once(void **state) {
     float(*pos)[4] = calloc(nv, sizeof *pos);
     float(*clip)[4] = calloc(nv, sizeof *clip);
     uint32_t *codes = calloc(nv, sizeof *codes);
+    sg_svert *screen = calloc(nv, sizeof *screen);
+    uint8_t *ok = calloc(nv, sizeof *ok);
     uint32_t *idx = calloc((size_t)MAX_GRID * MAX_GRID * 6, sizeof *idx);
     assert_non_null(c);
     assert_non_null(idx);
@@ -159,7 +165,7 @@ static void random_meshes_cover_each_pixel_once(void **state) {
         rng r = {20261121};
         long drawn = 0, meshes = 0;
         while (drawn < target) {
-            drawn += one_mesh(&r, c, pos, clip, codes, idx);
+            drawn += one_mesh(&r, c, pos, clip, codes, screen, ok, idx);
             meshes++;
         }
         assert_int_equal(c->overflows, 0);
@@ -171,6 +177,8 @@ static void random_meshes_cover_each_pixel_once(void **state) {
     free(pos);
     free(clip);
     free(codes);
+    free(screen);
+    free(ok);
     free(idx);
 }
 

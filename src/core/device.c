@@ -197,6 +197,8 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->psos);
     sg_free(dev, dev->clip);
     sg_free(dev, dev->outcodes);
+    sg_free(dev, dev->screen);
+    sg_free(dev, dev->screen_ok);
     dev->allocator.free(dev, dev->allocator.user_data);
 }
 

@@ -62,6 +62,8 @@ struct sgDevice {
     /* Arenas, grown as needed and reused. */
     float (*clip)[4];
     uint32_t *outcodes;
+    sg_svert *screen;   /* projections of the vertices inside every clip plane */
+    uint8_t *screen_ok; /* 1: that projection fits the raster's range */
     size_t vertex_capacity;
     sg_binner binner;     /* set-up triangles of the open pass, by screen bin */
     sg_draw_state *draws; /* the draws of the open pass */

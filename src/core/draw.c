@@ -91,10 +91,10 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
 
 /* The vertex stage of a large geom, in chunks of vertices on all threads. */
 typedef struct vs_job {
-    const float *mvp, *positions;
-    float (*clip)[4];
-    uint32_t *outcodes;
+    const float *mvp, *positions, *colors, *texcoords;
+    const sgDevice *dev;
     const sg_guard *guard;
+    const sg_setup_params *setup;
     int count, chunks;
 } vs_job;
 
@@ -102,13 +102,21 @@ static void vs_run(void *vjob, int index) {
     const vs_job *j = vjob;
     int v0 = (int)((int64_t)j->count * index / j->chunks);
     int v1 = (int)((int64_t)j->count * (index + 1) / j->chunks);
-    sg_vertex_transform(j->mvp, j->positions + (size_t)v0 * 4, v1 - v0, j->clip + v0,
-                        j->outcodes + v0, j->guard);
+    const sgDevice *dev = j->dev;
+    sg_vertex_transform(j->mvp, j->positions + (size_t)v0 * 4, v1 - v0, dev->clip + v0,
+                        dev->outcodes + v0, j->guard);
+    sg_vertex_project(j->setup, (const float(*)[4])dev->clip + v0, dev->outcodes + v0, v1 - v0,
+                      dev->screen + v0, dev->screen_ok + v0);
+    sg_vertex_check_attributes(j->colors ? j->colors + (size_t)v0 * 4 : NULL,
+                               j->texcoords ? j->texcoords + (size_t)v0 * 2 : NULL, j->setup->nattr,
+                               v1 - v0, dev->screen_ok + v0);
 }
 
 static void transform_vertices(sgDevice *dev, const float *mvp, const sg_geom *geom,
-                               const sg_guard *guard) {
-    vs_job job = {mvp, geom->positions, dev->clip, dev->outcodes, guard, geom->vertex_count, 1};
+                               const sg_guard *guard, const sg_setup_params *setup) {
+    vs_job job = {mvp, geom->positions, geom->colors, geom->texcoords,
+                  dev, guard,           setup,        geom->vertex_count,
+                  1};
     if (dev->thread_count > 1 && geom->vertex_count >= FE_MIN_TRIANGLES)
         job.chunks = 2 * dev->thread_count;
     sg_workers_run(&dev->workers, job.chunks, vs_run, &job);
@@ -134,13 +142,21 @@ static bool grow_vertex_arenas(sgDevice *dev, size_t n) {
     while (cap < n) cap *= 2;
     sg_free(dev, dev->clip);
     sg_free(dev, dev->outcodes);
+    sg_free(dev, dev->screen);
+    sg_free(dev, dev->screen_ok);
     dev->clip = sg_alloc(dev, cap * sizeof *dev->clip);
     dev->outcodes = sg_alloc(dev, cap * sizeof *dev->outcodes);
-    if (!dev->clip || !dev->outcodes) {
+    dev->screen = sg_alloc(dev, cap * sizeof *dev->screen);
+    dev->screen_ok = sg_alloc(dev, cap * sizeof *dev->screen_ok);
+    if (!dev->clip || !dev->outcodes || !dev->screen || !dev->screen_ok) {
         sg_free(dev, dev->clip);
         sg_free(dev, dev->outcodes);
+        sg_free(dev, dev->screen);
+        sg_free(dev, dev->screen_ok);
         dev->clip = NULL;
         dev->outcodes = NULL;
+        dev->screen = NULL;
+        dev->screen_ok = NULL;
         dev->vertex_capacity = 0;
         return false;
     }
@@ -205,8 +221,6 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     sg_mat4_mul(mvp, params->proj, params->world_view);
     sg_assembly a = {0};
     a.guard = sg_guard_for_viewport(width, height);
-    transform_vertices(dev, mvp, geom, &a.guard);
-
     a.indices = geom->indices;
     a.index_count = geom->index_count;
     a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
@@ -225,6 +239,9 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.setup.cull = pso->desc.cull;
     a.setup.front_face = pso->desc.front_face;
     a.setup.nattr = pso->nattr;
+    transform_vertices(dev, mvp, geom, &a.guard, &a.setup);
+    a.screen = dev->screen;
+    a.screen_ok = dev->screen_ok;
     a.emit = bin_emit;
     a.user = &dev->binner;
     size_t first = dev->binner.tri_count;

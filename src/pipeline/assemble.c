@@ -4,22 +4,12 @@
 #include <math.h>
 #include <string.h>
 
-/* What assembly keeps for one draw.
- *
- * Projected vertices, direct-mapped by index: a vertex is shared by about six triangles, mostly
- * close together in the index stream (a grid reuses a row of vertices on the next row), so most
- * projections are found here instead of being computed again. Projection is a pure function of
- * the vertex, so a cached result is the one setup would compute. */
-#define SCREEN_CACHE_SIZE 1024 /* a power of two; 20 KiB of stack */
-
+/* What assembly keeps for one draw. */
 typedef struct draw_state {
     const sg_assembly *a;
     /* The exponent bits (0x7f800000) of each attribute float the draw reads, 0 for the others,
      * as three 8-byte words: colour 0-1, colour 2-3, texcoords. */
     uint64_t exponents[3];
-    uint32_t mask;                     /* of the cache slots in use */
-    uint32_t index[SCREEN_CACHE_SIZE]; /* UINT32_MAX: empty (indices are below INT_MAX) */
-    sg_svert s[SCREEN_CACHE_SIZE];
 } draw_state;
 
 static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS]) {
@@ -54,26 +44,13 @@ static bool attributes_finite(const draw_state *d, uint32_t idx) {
     return bad == 0;
 }
 
-/* The slow half of screen_vertex: project a vertex that is not in the cache. Such a vertex is
- * only cached when the triangles that use it can be drawn (its projection succeeds and its
- * attributes are finite), so a hit needs no further test. */
-static bool __attribute__((noinline)) screen_vertex_miss(draw_state *d, uint32_t idx, sg_svert *s) {
-    if (!sg_setup_project(&d->a->setup, d->a->clip[idx], s) || !attributes_finite(d, idx))
-        return false;
-    uint32_t slot = idx & d->mask;
-    d->index[slot] = idx;
-    d->s[slot] = *s;
+/* The projection of a vertex inside every clip plane (made once by the vertex stage); false: the
+ * triangles using it are dropped (it does not fit the raster's range, or an attribute the draw
+ * reads is NaN or infinite: the vertex stage checked both). */
+static inline bool screen_vertex(const draw_state *d, uint32_t idx, sg_svert *s) {
+    if (!d->a->screen_ok[idx]) return false;
+    *s = d->a->screen[idx];
     return true;
-}
-
-/* The projection of a vertex inside every clip plane; false: the triangles using it are dropped. */
-static inline bool screen_vertex(draw_state *d, uint32_t idx, sg_svert *s) {
-    uint32_t slot = idx & d->mask;
-    if (d->index[slot] == idx) {
-        *s = d->s[slot];
-        return true;
-    }
-    return screen_vertex_miss(d, idx, s);
 }
 
 /* Under repeat wrapping only the fraction of a texcoord matters, so shifting a whole triangle's
@@ -118,7 +95,7 @@ clipped_triangle(const draw_state *d, const uint32_t idx[3], uint32_t planes) {
     }
 }
 
-static void triangle(draw_state *d, uint32_t i0, uint32_t i1, uint32_t i2) {
+static void triangle(const draw_state *d, uint32_t i0, uint32_t i1, uint32_t i2) {
     const sg_assembly *a = d->a;
     uint32_t c0 = a->outcodes[i0], c1 = a->outcodes[i1], c2 = a->outcodes[i2];
     /* Wholly outside one plane, or a NaN / infinite position: nothing of it is drawn. */
@@ -152,10 +129,6 @@ void sg_assemble(const sg_assembly *a) {
     _Static_assert(sizeof exponents == sizeof d.exponents, "one exponent per attribute");
     for (int k = 0; k < SG_MAX_ATTRS; k++) exponents[k] = k < a->setup.nattr ? 0x7f800000u : 0;
     memcpy(d.exponents, exponents, sizeof d.exponents); /* float k lands on exponent k */
-    /* Only as much of the cache as the draw can use: small draws are common. */
-    d.mask = SCREEN_CACHE_SIZE - 1;
-    while (d.mask > 0 && (int)(d.mask >> 1) >= a->index_count) d.mask >>= 1;
-    for (uint32_t i = 0; i <= d.mask; i++) d.index[i] = UINT32_MAX;
 
     const uint32_t *ix = a->indices;
     if (a->quads) {

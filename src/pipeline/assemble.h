@@ -12,9 +12,11 @@ typedef struct sg_assembly {
     int quads;              /* 4 indices a primitive (a b c d -> a b c, a c d), else 3 */
     const float (*clip)[4]; /* transformed positions, from the vertex stage */
     const uint32_t *outcodes;
-    const float *colors;    /* 4 floats a vertex, NULL: opaque white */
-    const float *texcoords; /* 2 floats a vertex, read when setup.nattr > 4 */
-    int rebase_texcoords;   /* repeat wrapping: move each triangle's texcoords next to 0 */
+    const sg_svert *screen;   /* projections of the vertices inside every plane (vertex stage) */
+    const uint8_t *screen_ok; /* 1: that projection fits and the attributes read are finite */
+    const float *colors;      /* 4 floats a vertex, NULL: opaque white */
+    const float *texcoords;   /* 2 floats a vertex, read when setup.nattr > 4 */
+    int rebase_texcoords;     /* repeat wrapping: move each triangle's texcoords next to 0 */
     sg_guard guard;
     sg_setup_params setup;
     /* Receives every triangle that survives, in submission order. */

@@ -3,9 +3,15 @@
 #include "pipeline/vertex.h"
 
 #include "pipeline/mat4.h"
+
+#include <float.h>
+#include <string.h>
 /* SSE lanes only where SSE also does scalar float maths: then they round as the scalar code. */
 #if defined(__SSE_MATH__)
 #include <xmmintrin.h>
+#endif
+#if defined(__SSE2__) && defined(__SSE_MATH__)
+#include <emmintrin.h>
 #endif
 
 void sg_vertex_transform(const float mvp[16], const float *positions, int count, float (*clip)[4],
@@ -32,4 +38,66 @@ void sg_vertex_transform(const float mvp[16], const float *positions, int count,
         outcodes[i] = sg_clip_outcode(clip[i], guard);
     }
 #endif
+}
+
+void sg_vertex_project(const sg_setup_params *p, const float (*clip)[4], const uint32_t *outcodes,
+                       int count, sg_svert *screen, uint8_t *ok) {
+    int i = 0;
+#if defined(__SSE2__) && defined(__SSE_MATH__)
+    /* Four vertices at a time, lane for lane the operations of sg_setup_project in its order (a
+     * true division; cvtps2dq rounds to nearest even as its cvtss2si does), so the same bits. */
+    const __m128 hw = _mm_set1_ps(0.5f * (float)p->width),
+                 hh = _mm_set1_ps(0.5f * (float)p->height);
+    const __m128 sub = _mm_set1_ps((float)SG_SUBPIXEL_ONE), half = _mm_set1_ps(0.5f);
+    const __m128 lim = _mm_set1_ps(2147483520.0f), fmax = _mm_set1_ps(FLT_MAX);
+    const __m128 sign = _mm_set1_ps(-0.0f), one = _mm_set1_ps(1.0f);
+    for (; i + 4 <= count; i += 4) {
+        __m128 x = _mm_loadu_ps(clip[i]), y = _mm_loadu_ps(clip[i + 1]);
+        __m128 z = _mm_loadu_ps(clip[i + 2]), w = _mm_loadu_ps(clip[i + 3]);
+        _MM_TRANSPOSE4_PS(x, y, z, w);
+        __m128 q = _mm_div_ps(one, w);
+        __m128 xn = _mm_mul_ps(x, q), yn = _mm_mul_ps(y, q), zn = _mm_mul_ps(z, q);
+        __m128 xf = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(xn, hw), hw), sub);
+        __m128 yf = _mm_mul_ps(_mm_sub_ps(hh, _mm_mul_ps(yn, hh)), sub);
+        __m128 fits = _mm_and_ps(_mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(sign, xf), lim),
+                                            _mm_cmplt_ps(_mm_andnot_ps(sign, yf), lim)),
+                                 _mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, zn), fmax),
+                                            _mm_cmple_ps(_mm_andnot_ps(sign, q), fmax)));
+        __m128i inside = _mm_cmpeq_epi32(
+            _mm_loadu_si128((const __m128i *)(const void *)(outcodes + i)), _mm_setzero_si128());
+        int good = _mm_movemask_ps(_mm_and_ps(fits, _mm_castsi128_ps(inside)));
+        /* sg_svert is {int32 x, y; float z, q}: four lanes back to four records. */
+        __m128 sx = _mm_castsi128_ps(_mm_cvtps_epi32(xf)),
+               sy = _mm_castsi128_ps(_mm_cvtps_epi32(yf));
+        __m128 sz = _mm_add_ps(_mm_mul_ps(zn, half), half), sq = q;
+        _MM_TRANSPOSE4_PS(sx, sy, sz, sq);
+        _mm_storeu_ps((float *)(void *)&screen[i], sx);
+        _mm_storeu_ps((float *)(void *)&screen[i + 1], sy);
+        _mm_storeu_ps((float *)(void *)&screen[i + 2], sz);
+        _mm_storeu_ps((float *)(void *)&screen[i + 3], sq);
+        for (int k = 0; k < 4; k++) ok[i + k] = (uint8_t)((good >> k) & 1);
+    }
+#endif
+    for (; i < count; i++) ok[i] = outcodes[i] == 0 && sg_setup_project(p, clip[i], &screen[i]);
+}
+
+/* NaN or infinite: all exponent bits set. */
+static inline bool finite_bits(const float *v, int n) {
+    uint32_t bad = 0;
+    for (int k = 0; k < n; k++) {
+        uint32_t u;
+        memcpy(&u, &v[k], sizeof u);
+        bad |= (uint32_t)((u & 0x7f800000u) == 0x7f800000u);
+    }
+    return !bad;
+}
+
+void sg_vertex_check_attributes(const float *colors, const float *texcoords, int nattr, int count,
+                                uint8_t *ok) {
+    for (int i = 0; i < count; i++) {
+        if (!ok[i]) continue;
+        bool good = !colors || finite_bits(colors + (size_t)i * 4, 4);
+        if (nattr > 4) good = good && finite_bits(texcoords + (size_t)i * 2, 2);
+        ok[i] = (uint8_t)good;
+    }
 }

@@ -92,6 +92,10 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
+        if (i + 2 < bin->count) { /* a triangle is four cache lines, often not in cache */
+            const char *next = (const char *)&b->tris[bin->tris[i + 2]];
+            for (size_t off = 0; off < sizeof(sg_tri); off += 64) __builtin_prefetch(next + off);
+        }
         const sg_draw_state *d = &p->draws[t->draw];
         vis.id = ti + 1;
         vis.compare = d->compare;
