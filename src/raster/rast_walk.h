@@ -20,6 +20,11 @@
 
 #define SG_WALK_INLINE static inline __attribute__((always_inline))
 
+/* With AVX-512, triangles whose tiles fit a square of this many tiles a side (a whole bin) are
+ * tested a tile at a time without the 64-bit walk, when their edge values there fit in int32
+ * (see small_triangle): a masked compare per edge and tile is cheaper than the walk's tests. */
+#define SG_SMALL_TILES 16
+
 #if defined(__AVX512F__)
 /* i dx + j dy for the 16 pixels (i, j) of a tile, in wrapping 32-bit arithmetic (callers make
  * sure the true values fit). */
@@ -166,17 +171,17 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
 }
 
 #if defined(__SSE2__)
-/* Triangles within 2 x 2 tiles (4 x 4 with AVX-512; most of a dense mesh's): the pixels of those
- * tiles are tested at once in 32-bit edge values, four pixels a vector (a tile with AVX-512),
- * when every edge's values over the square fit in int32 (they are linear, so the square's corners
- * bound them). False: not taken. */
+/* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512; most of a mesh's): the pixels
+ * of those tiles are tested at once in 32-bit edge values, four pixels a vector (a tile with
+ * AVX-512), when every edge's values over the square fit in int32 (they are linear, so the
+ * square's corners bound them). False: not taken. */
 SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
                                    sg_tile_fn fn, const void *ctx) {
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
     int64_t hi[3], lo[3];
 #if defined(__AVX512F__)
-    /* A tile a vector: its first pixel's value plus i dx + j dy, per edge; up to 4 x 4 tiles. */
-    corners(t, 4 * SG_TILE - 1, hi, lo);
+    /* A tile a vector: its first pixel's value plus i dx + j dy, per edge. */
+    corners(t, SG_SMALL_TILES * SG_TILE - 1, hi, lo);
     uint32_t e32[3], dx32[3], dy32[3]; /* wrapping sums: the true values fit in int32 */
     __m512i offs[3];
     for (int e = 0; e < 3; e++) {
@@ -251,7 +256,9 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
     int ty1 = (t->maxy < ry1 - 1 ? t->maxy : ry1 - 1) >> SG_TILE_SHIFT;
     if (tx0 > tx1 || ty0 > ty1) return;
 #if defined(__AVX512F__)
-    if (tx1 - tx0 < 4 && ty1 - ty0 < 4 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
+    if (tx1 - tx0 < SG_SMALL_TILES && ty1 - ty0 < SG_SMALL_TILES &&
+        small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx))
+        return;
 #elif defined(__SSE2__)
     if (tx1 - tx0 < 2 && ty1 - ty0 < 2 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
 #endif
