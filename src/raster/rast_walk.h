@@ -182,32 +182,37 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
 #if defined(__AVX512F__)
     /* A tile a vector: its first pixel's value plus i dx + j dy, per edge. */
     corners(t, SG_SMALL_TILES * SG_TILE - 1, hi, lo);
-    uint32_t e32[3], dx32[3], dy32[3]; /* wrapping sums: the true values fit in int32 */
-    __m512i offs[3];
+    /* Per edge: the values of the current tile, and the steps to the next tile across and down,
+     * in wrapping 32-bit lanes (the true values fit in int32). */
+    __m512i row[3], across[3], down[3];
     for (int e = 0; e < 3; e++) {
         int64_t e0 = edge_at(t, e, x0, y0);
         if (e0 + hi[e] < 0) return true;
         if (e0 + lo[e] < INT32_MIN || e0 + hi[e] > INT32_MAX) return false;
-        e32[e] = (uint32_t)(uint64_t)e0;
-        dx32[e] = (uint32_t)(uint64_t)t->edge_dx[e];
-        dy32[e] = (uint32_t)(uint64_t)t->edge_dy[e];
-        offs[e] = sg_walk_offsets(dx32[e], dy32[e]);
+        uint32_t dx = (uint32_t)(uint64_t)t->edge_dx[e], dy = (uint32_t)(uint64_t)t->edge_dy[e];
+        row[e] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)(uint32_t)(uint64_t)e0),
+                                  sg_walk_offsets(dx, dy));
+        across[e] = _mm512_set1_epi32((int32_t)(4 * dx));
+        down[e] = _mm512_set1_epi32((int32_t)(4 * dy));
     }
-    for (int ty = ty0; ty <= ty1; ty++)
+    const __m512i zero = _mm512_setzero_si512();
+    for (int ty = ty0; ty <= ty1; ty++) {
+        __m512i v0 = row[0], v1 = row[1], v2 = row[2];
+        int ty_px = ty << SG_TILE_SHIFT;
         for (int tx = tx0; tx <= tx1; tx++) {
-            __mmask16 in = 0xffff;
-            for (int e = 0; e < 3; e++) {
-                uint32_t base = e32[e] + (uint32_t)(4 * (tx - tx0)) * dx32[e] +
-                                (uint32_t)(4 * (ty - ty0)) * dy32[e];
-                in = _mm512_mask_cmpge_epi32_mask(
-                    in, _mm512_add_epi32(_mm512_set1_epi32((int32_t)base), offs[e]),
-                    _mm512_setzero_si512());
-            }
+            __mmask16 in = _mm512_mask_cmpge_epi32_mask(
+                _mm512_mask_cmpge_epi32_mask(_mm512_cmpge_epi32_mask(v0, zero), v1, zero), v2,
+                zero);
+            v0 = _mm512_add_epi32(v0, across[0]);
+            v1 = _mm512_add_epi32(v1, across[1]);
+            v2 = _mm512_add_epi32(v2, across[2]);
             if (!in) continue;
-            int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
-            uint32_t mask = in & bounds_mask(t, tx_px, ty_px);
+            int tx_px = tx << SG_TILE_SHIFT;
+            uint32_t mask = inner_tile(t, tx_px, ty_px) ? in : in & bounds_mask(t, tx_px, ty_px);
             if (mask) fn(ctx, t, tx_px, ty_px, mask);
         }
+        for (int e = 0; e < 3; e++) row[e] = _mm512_add_epi32(row[e], down[e]);
+    }
     return true;
 #else
     corners(t, 2 * SG_TILE - 1, hi, lo);
