@@ -3,6 +3,7 @@
 #define SG_WORKERS_H
 
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdbool.h>
 
 typedef void (*sg_job_fn)(void *ctx, int job);
@@ -15,9 +16,11 @@ typedef struct sg_workers {
     /* The batch being run. */
     sg_job_fn fn;
     void *ctx;
-    int jobs, next, finished, generation;
-    int busy; /* workers still inside the current batch */
-    bool quit;
+    int jobs, next;
+    /* Written under the lock; read without it by threads that spin briefly before sleeping. */
+    atomic_int finished, generation;
+    atomic_int busy; /* workers still inside the current batch */
+    atomic_bool quit;
 } sg_workers;
 
 /** Starts count - 1 threads (none when count is 1). */
