@@ -20,7 +20,7 @@
 typedef struct sg_vis_ctx {
     float *depth;      /* NULL when the pass has no depth target */
     uint32_t *ids;     /* 0: no triangle; else index + 1 of the triangle in the pass */
-    uint64_t *touched; /* 256 bits, one a tile: its ids are valid (else not yet cleared) */
+    uint64_t *touched; /* 256 bits, one a tile: some triangle reached it */
     int bx0, by0;      /* the bin's top-left pixel */
     uint32_t id;       /* id of the triangle being rasterised */
     sgCompare compare;
@@ -42,17 +42,13 @@ sg_walk_fn sg_walk_avx512(void);
 /** The visibility function for a resolved depth state. */
 sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa);
 
-/** The tile's ids in the bin, cleared when the tile is first reached: bins spend no time on
- *  tiles no triangle reaches. */
+/** The tile's ids in the bin, the tile marked as reached: shading visits only reached tiles.
+ *  (No branch on a first visit: one that mispredicts once per tile costs more than clearing the
+ *  bin's ids up front.) */
 static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
     int tile = base >> 4;
-    uint64_t bit = (uint64_t)1 << (tile & 63);
-    uint32_t *ids = v->ids + base;
-    if (!(v->touched[tile >> 6] & bit)) {
-        v->touched[tile >> 6] |= bit;
-        for (int i = 0; i < 16; i++) ids[i] = 0;
-    }
-    return ids;
+    v->touched[tile >> 6] |= (uint64_t)1 << (tile & 63);
+    return v->ids + base;
 }
 
 /** The AVX2 LESS functions (depth_avx2.c); NULL where AVX2 code is not built. */

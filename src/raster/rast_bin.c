@@ -81,6 +81,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
     uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
+    memset(ids, 0, sizeof ids);
     if (dimg) {
         if (p->load_depth)
             sg_tile_from_linear_f32(depth, dimg, cpitch, w, h, BIN_TILES);

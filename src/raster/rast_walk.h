@@ -208,8 +208,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
             v2 = _mm512_add_epi32(v2, across[2]);
             if (!in) continue;
             int tx_px = tx << SG_TILE_SHIFT;
-            uint32_t mask = inner_tile(t, tx_px, ty_px) ? in : in & bounds_mask(t, tx_px, ty_px);
-            if (mask) fn(ctx, t, tx_px, ty_px, mask);
+            fn(ctx, t, tx_px, ty_px, in & bounds_mask(t, tx_px, ty_px)); /* fewer branches */
         }
         for (int e = 0; e < 3; e++) row[e] = _mm512_add_epi32(row[e], down[e]);
     }
