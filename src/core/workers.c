@@ -57,8 +57,11 @@ static void *worker_main(void *arg) {
 bool sg_workers_start(sg_workers *w, int count, pthread_t *threads) {
     w->count = count < 1 ? 1 : count;
     w->threads = threads;
-    w->jobs = w->next = w->finished = w->generation = w->busy = 0;
-    w->quit = false;
+    w->jobs = w->next = 0;
+    atomic_init(&w->finished, 0);
+    atomic_init(&w->generation, 0);
+    atomic_init(&w->busy, 0);
+    atomic_init(&w->quit, false);
     if (pthread_mutex_init(&w->lock, NULL) != 0) return false;
     pthread_cond_init(&w->start, NULL);
     pthread_cond_init(&w->done, NULL);
@@ -79,8 +82,9 @@ void sg_workers_run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx) {
     w->fn = fn;
     w->ctx = ctx;
     w->jobs = jobs;
-    w->next = w->finished = 0;
-    w->generation++;
+    w->next = 0;
+    atomic_store(&w->finished, 0);
+    atomic_fetch_add(&w->generation, 1);
     pthread_cond_broadcast(&w->start);
     drain(w);
     if (w->finished < w->jobs || w->busy > 0) { /* others are still on the last jobs */
