@@ -32,6 +32,7 @@ typedef struct counter {
     uint8_t hits[H][W];
     int overflows;
     sg_walk_fn walk; /* the tile walk under test */
+    sg_tri tri;      /* where assembly builds each triangle */
 } counter;
 
 static void count_tile(const void *ctx, const sg_tri *t, int x0, int y0, uint32_t mask) {
@@ -47,9 +48,13 @@ static void count_tile(const void *ctx, const sg_tri *t, int x0, int y0, uint32_
         }
 }
 
-static void emit(const sg_tri *tri, void *user) {
+static sg_tri *slot(void *user) {
+    return &((counter *)user)->tri;
+}
+
+static void emit(void *user) {
     const counter *c = user;
-    c->walk(tri, 0, 0, tri->maxx + 1, tri->maxy + 1, count_tile, user);
+    c->walk(&c->tri, 0, 0, c->tri.maxx + 1, c->tri.maxy + 1, count_tile, user);
 }
 
 typedef struct rng {
@@ -119,6 +124,7 @@ static long one_mesh(rng *r, counter *c, float (*pos)[4], float (*clip)[4], uint
     sg_vertex_check_attributes(NULL, NULL, 0, (nx + 1) * (ny + 1), ok);
     as.screen = screen;
     as.screen_ok = ok;
+    as.slot = slot;
     as.emit = emit;
     as.user = c;
     memset(c->hits, 0, sizeof c->hits);

@@ -10,9 +10,13 @@
 #include "pipeline/vertex.h"
 #include "raster/shade.h"
 
-/* Setup hands each triangle to the binner; the bins are rendered when the pass ends. */
-static void bin_emit(const sg_tri *tri, void *user) {
-    sg_binner_add(user, tri);
+/* Setup builds each triangle in the binner's array; the bins are rendered when the pass ends. */
+static sg_tri *bin_slot(void *user) {
+    return sg_binner_reserve(user, 1);
+}
+
+static void bin_emit(void *user) {
+    sg_binner_commit(user);
 }
 
 /* The front end of a large draw runs on all threads: each chunk of its primitives is assembled
@@ -30,19 +34,22 @@ typedef struct fe_chunk {
     bool overflow;
 } fe_chunk;
 
-static void fe_emit(const sg_tri *tri, void *user) {
+static sg_tri *fe_slot(void *user) {
     fe_chunk *c = user;
-    if (c->count == c->capacity) {
-        c->overflow = true;
-        return;
-    }
-    c->out[c->count] = *tri;
+    if (c->count < c->capacity) return &c->out[c->count];
+    c->overflow = true;
+    return NULL;
+}
+
+static void fe_emit(void *user) {
+    fe_chunk *c = user;
     c->out[c->count++].draw = c->draw;
 }
 
 static void fe_run(void *chunks, int index) {
     fe_chunk *c = (fe_chunk *)chunks + index;
     sg_assembly a = c->a;
+    a.slot = fe_slot;
     a.emit = fe_emit;
     a.user = c;
     sg_assemble(&a);
@@ -78,6 +85,7 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     for (int i = 0; i < n && !b->out_of_memory; i++) {
         if (chunks[i].overflow) { /* again, on this thread, appended to the array */
             sg_assembly redo = chunks[i].a;
+            redo.slot = bin_slot;
             redo.emit = bin_emit;
             redo.user = b;
             sg_assemble(&redo);
@@ -242,6 +250,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     transform_vertices(dev, mvp, geom, &a.guard, &a.setup);
     a.screen = dev->screen;
     a.screen_ok = dev->screen_ok;
+    a.slot = bin_slot;
     a.emit = bin_emit;
     a.user = &dev->binner;
     size_t first = dev->binner.tri_count;

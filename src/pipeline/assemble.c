@@ -88,10 +88,11 @@ clipped_triangle(const draw_state *d, const uint32_t idx[3], uint32_t planes) {
         if (!ok[0] || !ok[k] || !ok[k + 1]) continue;
         sg_svert t[3] = {s[0], s[k], s[k + 1]};
         const float *attr[3] = {poly[0].attr, poly[k].attr, poly[k + 1].attr};
-        sg_tri tri;
-        if (!sg_setup_coverage(&a->setup, t, attr, &tri)) continue;
-        sg_setup_planes(&a->setup, t, attr, &tri);
-        a->emit(&tri, a->user);
+        sg_tri *tri = a->slot(a->user);
+        if (!tri) return;
+        if (!sg_setup_coverage(&a->setup, t, attr, tri)) continue;
+        sg_setup_planes(&a->setup, t, attr, tri);
+        a->emit(a->user);
     }
 }
 
@@ -112,14 +113,14 @@ static void triangle(const draw_state *d, uint32_t i0, uint32_t i1, uint32_t i2)
         return;
     float attr[3][SG_MAX_ATTRS];
     const float *order[3] = {attr[0], attr[1], attr[2]}; /* reordered by coverage */
-    sg_tri tri;
-    if (!sg_setup_coverage(&a->setup, s, order, &tri)) return;
+    sg_tri *tri = a->slot(a->user);
+    if (!tri || !sg_setup_coverage(&a->setup, s, order, tri)) return;
     fetch_attributes(a, i0, attr[0]);
     fetch_attributes(a, i1, attr[1]);
     fetch_attributes(a, i2, attr[2]);
     if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]});
-    sg_setup_planes(&a->setup, s, order, &tri);
-    a->emit(&tri, a->user);
+    sg_setup_planes(&a->setup, s, order, tri);
+    a->emit(a->user);
 }
 
 void sg_assemble(const sg_assembly *a) {

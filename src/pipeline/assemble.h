@@ -20,7 +20,10 @@ typedef struct sg_assembly {
     sg_guard guard;
     sg_setup_params setup;
     /* Receives every triangle that survives, in submission order. */
-    void (*emit)(const sg_tri *tri, void *user);
+    /* Where the next triangle is set up (NULL: no room, it is dropped), then emit when it
+     * survives: triangles are built in place, in submission order. */
+    sg_tri *(*slot)(void *user);
+    void (*emit)(void *user);
     void *user;
 } sg_assembly;
 

@@ -42,12 +42,8 @@ bool sg_binner_reset(sg_binner *b, int width, int height) {
     return true;
 }
 
-void sg_binner_add(sg_binner *b, const sg_tri *tri) {
-    if (b->out_of_memory) return;
-    sg_tri *slot = sg_binner_reserve(b, 1);
-    if (!slot) return;
-    *slot = *tri;
-    slot->draw = b->draw;
+void sg_binner_commit(sg_binner *b) {
+    b->tris[b->tri_count].draw = b->draw;
     sg_binner_list(b, (uint32_t)b->tri_count++);
 }
 

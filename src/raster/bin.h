@@ -32,11 +32,12 @@ typedef struct sg_binner {
 
 /** Empties every bin and sizes the grid for a width x height target. */
 bool sg_binner_reset(sg_binner *b, int width, int height);
-/** Stores a triangle (stamped with b->draw) and lists it in every bin its bounds touch. */
-void sg_binner_add(sg_binner *b, const sg_tri *tri);
 /** Room for n more triangles at tris + tri_count (NULL, and out_of_memory, when there is none);
  *  the caller fills them, then moves tri_count and lists each filled one with sg_binner_list. */
 sg_tri *sg_binner_reserve(sg_binner *b, size_t n);
+/** The triangle just built at tris + tri_count (sg_binner_reserve) is kept: stamped with
+ *  b->draw and listed. */
+void sg_binner_commit(sg_binner *b);
 /** Lists a stored triangle in every bin its bounds touch (after those listed before it). */
 void sg_binner_list(sg_binner *b, uint32_t index);
 /** Forgets every triangle from index `count` on: undoes a draw that ran out of memory. */

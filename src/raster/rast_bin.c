@@ -4,8 +4,8 @@
 
 #include <string.h>
 
-#include "raster/depth.h"
 #include "core/stage_times.h"
+#include "raster/depth.h"
 #include "raster/framebuffer.h"
 
 #if defined(__SSE2__)
@@ -14,8 +14,7 @@
 
 enum { BIN_TILES = SG_BIN_SIZE / SG_TILE, BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE };
 
-/* Shades the visible pixels of one tile: each run of pixels that see the same triangle is one
- * call of that triangle's shading function. */
+/* Mask of the pixels of a tile (16 ids) that see triangle `id`. */
 static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
 #if defined(__SSE2__)
     __m128i v = _mm_set1_epi32((int32_t)id);
@@ -39,6 +38,8 @@ static inline void shade_run(const sg_bin_pass *p, uint32_t id, int x0, int y0, 
     d->shade_fn(&d->ctx, t, x0, y0, mask, dst);
 }
 
+/* Shades the visible pixels of one tile: each run of pixels that see the same triangle is one
+ * call of that triangle's shading function. */
 static void shade_tile(const sg_bin_pass *p, const uint32_t *ids, int x0, int y0, uint32_t *dst) {
     uint32_t left = 0xffffu;
     if (ids[0]) { /* the first pixel's triangle first: often the tile's only one */
