@@ -186,6 +186,7 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_binner_release(&dev->binner);
     sg_free(dev, dev->draws);
     sg_free(dev, dev->bin_order);
+    sg_free(dev, dev->fe_counts);
     if (dev->images)
         for (int i = 0; i < dev->image_pool.capacity; i++)
             if (dev->image_pool.live[i]) sg_image_release(dev, &dev->images[i]);

@@ -68,6 +68,8 @@ struct sgDevice {
     sg_binner binner;     /* set-up triangles of the open pass, by screen bin */
     sg_draw_state *draws; /* the draws of the open pass */
     uint64_t *bin_order;  /* the bins, busiest first, for sgEndRenderPass (pass.c) */
+    uint32_t *fe_counts;  /* per front-end chunk and bin: triangles, then write positions */
+    size_t fe_counts_capacity;
     int bin_order_capacity;
     size_t draw_count, draw_capacity;
 

@@ -55,6 +55,46 @@ static void fe_run(void *chunks, int index) {
     sg_assemble(&a);
 }
 
+/* Lists the chunks' triangles in the bins on every thread (sg_binner_count, _make_room, _fill):
+ * the same lists, in the same order, as listing them one by one. False: no room for the counts
+ * (the caller then lists them itself). */
+typedef struct fe_list {
+    sg_binner *b;
+    const fe_chunk *chunks;
+    size_t first;
+    uint32_t *counts;
+    int nbins;
+} fe_list;
+
+static void fe_count(void *vjob, int i) {
+    const fe_list *j = vjob;
+    sg_binner_count(j->b, j->first + j->chunks[i].base, j->chunks[i].count,
+                    j->counts + (size_t)i * (size_t)j->nbins);
+}
+
+static void fe_fill(void *vjob, int i) {
+    const fe_list *j = vjob;
+    sg_binner_fill(j->b, j->first + j->chunks[i].base, j->chunks[i].count,
+                   j->counts + (size_t)i * (size_t)j->nbins);
+}
+
+static bool list_parallel(sgDevice *dev, const fe_chunk *chunks, int n, size_t first) {
+    sg_binner *b = &dev->binner;
+    int nbins = b->bins_x * b->bins_y;
+    size_t need = (size_t)n * (size_t)nbins;
+    if (need > dev->fe_counts_capacity) {
+        uint32_t *c = sg_alloc(dev, need * sizeof *c);
+        if (!c) return false;
+        sg_free(dev, dev->fe_counts);
+        dev->fe_counts = c;
+        dev->fe_counts_capacity = need;
+    }
+    fe_list job = {b, chunks, first, dev->fe_counts, nbins};
+    sg_workers_run(&dev->workers, n, fe_count, &job);
+    if (sg_binner_make_room(b, dev->fe_counts, n)) sg_workers_run(&dev->workers, n, fe_fill, &job);
+    return true;
+}
+
 /* Assembles a draw on every thread; false when it is too small to be worth it. */
 static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     int per = a->quads ? 4 : 3, tris_per = a->quads ? 2 : 1;
@@ -82,6 +122,9 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     size_t first = b->tri_count;
     sg_workers_run(&dev->workers, n, fe_run, chunks);
     b->tri_count += total;
+    bool overflow = false;
+    for (int i = 0; i < n; i++) overflow |= chunks[i].overflow;
+    if (!overflow && list_parallel(dev, chunks, n, first)) return true;
     for (int i = 0; i < n && !b->out_of_memory; i++) {
         if (chunks[i].overflow) { /* again, on this thread, appended to the array */
             sg_assembly redo = chunks[i].a;

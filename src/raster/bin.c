@@ -74,6 +74,52 @@ void sg_binner_list(sg_binner *b, uint32_t index) {
         }
 }
 
+void sg_binner_count(const sg_binner *b, size_t first, size_t n, uint32_t *counts) {
+    memset(counts, 0, (size_t)(b->bins_x * b->bins_y) * sizeof *counts);
+    for (size_t i = first; i < first + n; i++) {
+        const sg_tri *t = &b->tris[i];
+        for (int y = t->miny >> SG_BIN_SHIFT; y <= t->maxy >> SG_BIN_SHIFT; y++)
+            for (int x = t->minx >> SG_BIN_SHIFT; x <= t->maxx >> SG_BIN_SHIFT; x++)
+                counts[y * b->bins_x + x]++;
+    }
+}
+
+bool sg_binner_make_room(sg_binner *b, uint32_t *counts, int runs) {
+    int nbins = b->bins_x * b->bins_y;
+    for (int i = 0; i < nbins; i++) {
+        sg_bin *bin = &b->bins[i];
+        uint64_t need = bin->count;
+        for (int r = 0; r < runs; r++) need += counts[(size_t)r * (size_t)nbins + (size_t)i];
+        size_t cap = bin->capacity;
+        if (need > UINT32_MAX ||
+            !grow(b, (void **)&bin->tris, &cap, (size_t)need, sizeof *bin->tris)) {
+            b->out_of_memory = true;
+            return false;
+        }
+        bin->capacity = (uint32_t)cap;
+    }
+    for (int i = 0; i < nbins; i++) { /* then no list changes unless all could grow */
+        sg_bin *bin = &b->bins[i];
+        for (int r = 0; r < runs; r++) {
+            uint32_t *c = &counts[(size_t)r * (size_t)nbins + (size_t)i], k = *c;
+            *c = bin->count;
+            bin->count += k;
+        }
+    }
+    return true;
+}
+
+void sg_binner_fill(const sg_binner *b, size_t first, size_t n, uint32_t *at) {
+    for (size_t i = first; i < first + n; i++) {
+        const sg_tri *t = &b->tris[i];
+        for (int y = t->miny >> SG_BIN_SHIFT; y <= t->maxy >> SG_BIN_SHIFT; y++)
+            for (int x = t->minx >> SG_BIN_SHIFT; x <= t->maxx >> SG_BIN_SHIFT; x++) {
+                int bin = y * b->bins_x + x;
+                b->bins[bin].tris[at[bin]++] = (uint32_t)i;
+            }
+    }
+}
+
 void sg_binner_truncate(sg_binner *b, size_t count) {
     for (int i = 0; i < b->bins_x * b->bins_y; i++) {
         sg_bin *bin = &b->bins[i];
