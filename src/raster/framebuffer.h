@@ -16,13 +16,6 @@
 #define SG_TILE_MASK   3
 #define SG_TILE_PIXELS 16
 
-typedef struct sg_fb {
-    int width, height;    /* in pixels */
-    int tiles_x, tiles_y; /* width and height rounded up to whole tiles */
-    uint32_t *color;      /* RGBA8 packed R | G << 8 | B << 16 | A << 24 */
-    float *depth;
-} sg_fb;
-
 /** Index of pixel (x, y) in the tiled arrays. */
 static inline size_t sg_fb_index(int tiles_x, int x, int y) {
     return ((size_t)(y >> SG_TILE_SHIFT) * (size_t)tiles_x + (size_t)(x >> SG_TILE_SHIFT)) *
