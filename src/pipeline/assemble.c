@@ -1,16 +1,10 @@
 /* assemble.c - builds triangles from indices and sends them through clipping and setup. */
 #include "pipeline/assemble.h"
 
+#include "pipeline/vertex.h"
+
 #include <math.h>
 #include <string.h>
-
-/* What assembly keeps for one draw. */
-typedef struct draw_state {
-    const sg_assembly *a;
-    /* The exponent bits (0x7f800000) of each attribute float the draw reads, 0 for the others,
-     * as three 8-byte words: colour 0-1, colour 2-3, texcoords. */
-    uint64_t exponents[3];
-} draw_state;
 
 static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS]) {
     static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
@@ -23,33 +17,19 @@ static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_M
     }
 }
 
-/* Two floats at once: one of those `exponents` selects is NaN or infinite (exponent all ones)
- * exactly when adding 1 to its exponent carries into the sign bit of its half. */
-static uint64_t nonfinite_bits(const float *v, uint64_t exponents) {
-    uint64_t u;
-    memcpy(&u, v, sizeof u);
-    return ((u & exponents) + 0x0080000000800000u) & 0x8000000080000000u;
-}
-
 /* False when an attribute the draw reads is NaN or infinite: such a triangle is dropped whole,
- * as one with a non-finite position is, so it cannot paint garbage or sample out of range. */
-static bool attributes_finite(const draw_state *d, uint32_t idx) {
-    const sg_assembly *a = d->a;
-    uint64_t bad = 0;
-    if (a->colors) { /* else opaque white */
-        const float *c = a->colors + (size_t)idx * 4;
-        bad |= nonfinite_bits(c, d->exponents[0]) | nonfinite_bits(c + 2, d->exponents[1]);
-    }
-    if (a->setup.nattr > 4) bad |= nonfinite_bits(a->texcoords + (size_t)idx * 2, d->exponents[2]);
-    return bad == 0;
+ * as one with a non-finite position is, so it cannot paint garbage or sample out of range. (The
+ * vertex stage makes the same check for vertices inside every clip plane.) */
+static bool attributes_finite(const sg_assembly *a, uint32_t idx) {
+    return sg_vertex_attributes_finite(a->colors, a->texcoords, a->setup.nattr, idx);
 }
 
 /* The projection of a vertex inside every clip plane (made once by the vertex stage); false: the
  * triangles using it are dropped (it does not fit the raster's range, or an attribute the draw
  * reads is NaN or infinite: the vertex stage checked both). */
-static inline bool screen_vertex(const draw_state *d, uint32_t idx, sg_svert *s) {
-    if (!d->a->screen_ok[idx]) return false;
-    *s = d->a->screen[idx];
+static inline bool screen_vertex(const sg_assembly *a, uint32_t idx, sg_svert *s) {
+    if (!a->screen_ok[idx]) return false;
+    *s = a->screen[idx];
     return true;
 }
 
@@ -69,12 +49,11 @@ static void rebase_texcoords(float *const attr[3]) {
 /* A triangle that crosses a clip plane: clipped to a convex polygon, set up as a fan. Rare, and
  * kept out of line so that it does not weigh on the common path. */
 static void __attribute__((noinline))
-clipped_triangle(const draw_state *d, const uint32_t idx[3], uint32_t planes) {
-    const sg_assembly *a = d->a;
+clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
     sg_cvert poly[SG_CLIP_MAX_VERTS];
     for (int i = 0; i < 3; i++) {
         for (int k = 0; k < 4; k++) poly[i].pos[k] = a->clip[idx[i]][k];
-        if (!attributes_finite(d, idx[i])) return;
+        if (!attributes_finite(a, idx[i])) return;
         fetch_attributes(a, idx[i], poly[i].attr);
     }
     if (a->rebase_texcoords)
@@ -96,20 +75,19 @@ clipped_triangle(const draw_state *d, const uint32_t idx[3], uint32_t planes) {
     }
 }
 
-static void triangle(const draw_state *d, uint32_t i0, uint32_t i1, uint32_t i2) {
-    const sg_assembly *a = d->a;
+static void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint32_t i2) {
     uint32_t c0 = a->outcodes[i0], c1 = a->outcodes[i1], c2 = a->outcodes[i2];
     /* Wholly outside one plane, or a NaN / infinite position: nothing of it is drawn. */
     if ((c0 & c1 & c2) || ((c0 | c1 | c2) & SG_CLIP_NONFINITE)) return;
     if (c0 | c1 | c2) {
-        clipped_triangle(d, (const uint32_t[3]){i0, i1, i2}, c0 | c1 | c2);
+        clipped_triangle(a, (const uint32_t[3]){i0, i1, i2}, c0 | c1 | c2);
         return;
     }
     /* Inside every plane (the common case): no clipping, and the attributes are read only when
      * the triangle survives culling. */
     sg_svert s[3];
-    if (!screen_vertex(d, i0, &s[0]) || !screen_vertex(d, i1, &s[1]) ||
-        !screen_vertex(d, i2, &s[2]))
+    if (!screen_vertex(a, i0, &s[0]) || !screen_vertex(a, i1, &s[1]) ||
+        !screen_vertex(a, i2, &s[2]))
         return;
     float attr[3][SG_MAX_ATTRS];
     const float *order[3] = {attr[0], attr[1], attr[2]}; /* reordered by coverage */
@@ -124,20 +102,13 @@ static void triangle(const draw_state *d, uint32_t i0, uint32_t i1, uint32_t i2)
 }
 
 void sg_assemble(const sg_assembly *a) {
-    draw_state d;
-    d.a = a;
-    uint32_t exponents[SG_MAX_ATTRS];
-    _Static_assert(sizeof exponents == sizeof d.exponents, "one exponent per attribute");
-    for (int k = 0; k < SG_MAX_ATTRS; k++) exponents[k] = k < a->setup.nattr ? 0x7f800000u : 0;
-    memcpy(d.exponents, exponents, sizeof d.exponents); /* float k lands on exponent k */
-
     const uint32_t *ix = a->indices;
     if (a->quads) {
         for (int i = 0; i + 3 < a->index_count; i += 4) {
-            triangle(&d, ix[i], ix[i + 1], ix[i + 2]);
-            triangle(&d, ix[i], ix[i + 2], ix[i + 3]);
+            triangle(a, ix[i], ix[i + 1], ix[i + 2]);
+            triangle(a, ix[i], ix[i + 2], ix[i + 3]);
         }
     } else {
-        for (int i = 0; i + 2 < a->index_count; i += 3) triangle(&d, ix[i], ix[i + 1], ix[i + 2]);
+        for (int i = 0; i + 2 < a->index_count; i += 3) triangle(a, ix[i], ix[i + 1], ix[i + 2]);
     }
 }

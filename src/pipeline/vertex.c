@@ -81,23 +81,9 @@ void sg_vertex_project(const sg_setup_params *p, const float (*clip)[4], const u
     for (; i < count; i++) ok[i] = outcodes[i] == 0 && sg_setup_project(p, clip[i], &screen[i]);
 }
 
-/* NaN or infinite: all exponent bits set. */
-static inline bool finite_bits(const float *v, int n) {
-    uint32_t bad = 0;
-    for (int k = 0; k < n; k++) {
-        uint32_t u;
-        memcpy(&u, &v[k], sizeof u);
-        bad |= (uint32_t)((u & 0x7f800000u) == 0x7f800000u);
-    }
-    return !bad;
-}
-
 void sg_vertex_check_attributes(const float *colors, const float *texcoords, int nattr, int count,
                                 uint8_t *ok) {
-    for (int i = 0; i < count; i++) {
-        if (!ok[i]) continue;
-        bool good = !colors || finite_bits(colors + (size_t)i * 4, 4);
-        if (nattr > 4) good = good && finite_bits(texcoords + (size_t)i * 2, 2);
-        ok[i] = (uint8_t)good;
-    }
+    for (int i = 0; i < count; i++)
+        if (ok[i])
+            ok[i] = (uint8_t)sg_vertex_attributes_finite(colors, texcoords, nattr, (size_t)i);
 }

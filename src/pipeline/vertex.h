@@ -2,7 +2,9 @@
 #ifndef SG_VERTEX_H
 #define SG_VERTEX_H
 
+#include <stdbool.h>
 #include <stddef.h>
+#include <string.h>
 #include <stdint.h>
 
 #include "pipeline/clip.h"
@@ -16,6 +18,19 @@ void sg_vertex_transform(const float mvp[16], const float *positions, int count,
  *  = 1 when it fits the raster's range (else 0; also 0 for vertices outside some plane). */
 void sg_vertex_project(const sg_setup_params *p, const float (*clip)[4], const uint32_t *outcodes,
                        int count, sg_svert *screen, uint8_t *ok);
+/** Whether the attributes a draw reads of vertex i are all finite (colour: 4 floats a vertex,
+ *  NULL for none; texcoords: 2 floats a vertex, read when nattr > 4). A NaN or infinity has all
+ *  exponent bits set. */
+static inline bool sg_vertex_attributes_finite(const float *colors, const float *texcoords,
+                                               int nattr, size_t i) {
+    uint32_t u[6] = {0, 0, 0, 0, 0, 0};
+    if (colors) memcpy(u, colors + i * 4, 4 * sizeof(float));
+    if (nattr > 4) memcpy(u + 4, texcoords + i * 2, 2 * sizeof(float));
+    uint32_t bad = 0;
+    for (int k = 0; k < 6; k++) bad |= (uint32_t)((u[k] & 0x7f800000u) == 0x7f800000u);
+    return !bad;
+}
+
 /** Clears ok[i] of the vertices with a NaN or infinite attribute the draw reads (colour: 4 floats
  *  a vertex, NULL for none; texcoords: 2 floats a vertex, read when nattr > 4). */
 void sg_vertex_check_attributes(const float *colors, const float *texcoords, int nattr, int count,
