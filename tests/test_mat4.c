@@ -1,6 +1,8 @@
 /* test_mat4.c - the vertex stage's matrix maths and its row-major convention. */
 #include "test_common.h"
 
+#include <math.h>
+
 #include "pipeline/mat4.h"
 #include "pipeline/vertex.h"
 
@@ -52,11 +54,46 @@ static void vertex_stage_transforms_each_vertex_once(void **state) {
     assert_int_equal(codes[2], SG_CLIP_NEAR);
 }
 
+/* The vertex stage works four vertices at a time: its outcodes and attribute checks must be those
+ * of the one-vertex functions, for values on every plane, just off it, and non-finite. */
+static void vertex_stage_matches_one_vertex_functions(void **state) {
+    (void)state;
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const float vals[] = {0.0f,      -0.0f,   1.0f,      -1.0f,     1e-9f,  2e-9f,
+                          1e-10f,    1000.0f, -1000.0f,  1e30f,     -1e30f, INFINITY,
+                          -INFINITY, NAN,     0.999999f, -1.000001f};
+    enum { NV = sizeof vals / sizeof vals[0], N = 4099 }; /* not a multiple of 4: a tail too */
+    static float pos[N * 4], clip[N][4], colors[N * 4], tex[N * 2];
+    static uint32_t codes[N];
+    static uint8_t ok[N];
+    unsigned seed = 12345;
+    for (int i = 0; i < N * 4; i++) {
+        seed = seed * 1103515245u + 12345u;
+        pos[i] = vals[(seed >> 16) % NV];
+        colors[i] = (seed >> 8) % 97 == 0 ? vals[(seed >> 4) % NV] : 0.5f;
+        if (i < N * 2) tex[i] = (seed >> 9) % 89 == 0 ? vals[(seed >> 3) % NV] : 1.5f;
+    }
+    for (int i = 0; i < N; i++) pos[i * 4 + 3] = i % 3 ? pos[i * 4 + 3] : fabsf(pos[i * 4 + 3]);
+    sg_guard g = sg_guard_for_viewport(1024, 768);
+    sg_vertex_transform(id, pos, N, clip, codes, &g);
+    for (int i = 0; i < N; i++) assert_int_equal(codes[i], sg_clip_outcode(clip[i], &g));
+    for (int nattr = 4; nattr <= 6; nattr += 2)
+        for (int with_colors = 0; with_colors < 2; with_colors++) {
+            const float *c = with_colors ? colors : NULL;
+            for (int i = 0; i < N; i++) ok[i] = (uint8_t)(i % 5 != 0);
+            sg_vertex_check_attributes(c, tex, nattr, N, ok);
+            for (int i = 0; i < N; i++)
+                assert_int_equal(ok[i], i % 5 != 0 &&
+                                            sg_vertex_attributes_finite(c, tex, nattr, (size_t)i));
+        }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(mul_is_row_major_product),
         cmocka_unit_test(perspective_gives_w_equal_minus_z),
         cmocka_unit_test(vertex_stage_transforms_each_vertex_once),
+        cmocka_unit_test(vertex_stage_matches_one_vertex_functions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

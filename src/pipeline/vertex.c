@@ -14,8 +14,32 @@
 #include <emmintrin.h>
 #endif
 
+#if defined(__SSE2__) && defined(__SSE_MATH__)
+/* sg_clip_outcode of four positions, lane for lane: the same sums in the same order (a - b is
+ * exactly a + (-b)), so the same codes. */
+static inline __m128i outcodes4(__m128 x, __m128 y, __m128 z, __m128 w, const sg_guard *guard) {
+    const __m128 sign = _mm_set1_ps(-0.0f), fmax = _mm_set1_ps(FLT_MAX), zero = _mm_setzero_ps();
+    __m128 finite = _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, x), fmax),
+                                          _mm_cmple_ps(_mm_andnot_ps(sign, y), fmax)),
+                               _mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, z), fmax),
+                                          _mm_cmple_ps(_mm_andnot_ps(sign, w), fmax)));
+    __m128 gxw = _mm_mul_ps(_mm_set1_ps(guard->gx), w), gyw = _mm_mul_ps(_mm_set1_ps(guard->gy), w);
+    const __m128 d[SG_CLIP_PLANE_COUNT] = {
+        _mm_add_ps(z, w),   _mm_sub_ps(w, z),   _mm_sub_ps(w, _mm_set1_ps(SG_CLIP_W_MIN)),
+        _mm_add_ps(x, gxw), _mm_sub_ps(gxw, x), _mm_add_ps(y, gyw),
+        _mm_sub_ps(gyw, y)};
+    __m128i code = _mm_setzero_si128();
+    for (int k = 0; k < SG_CLIP_PLANE_COUNT; k++) /* outside: !(d >= 0), so NaN is outside */
+        code = _mm_or_si128(code, _mm_and_si128(_mm_castps_si128(_mm_cmpnge_ps(d[k], zero)),
+                                                _mm_set1_epi32(1 << k)));
+    const __m128i all = _mm_set1_epi32(SG_CLIP_NONFINITE | ((1 << SG_CLIP_PLANE_COUNT) - 1));
+    return _mm_or_si128(code, _mm_andnot_si128(_mm_castps_si128(finite), all));
+}
+#endif
+
 void sg_vertex_transform(const float mvp[16], const float *positions, int count, float (*clip)[4],
                          uint32_t *outcodes, const sg_guard *guard) {
+    int i = 0;
 #if defined(__SSE_MATH__)
     /* The matrix columns in SSE lanes: lane r computes ((m[r][0] x + m[r][1] y) + m[r][2] z) +
      * m[r][3] w, the products and sums of sg_mat4_transform in its order, so the same bits. */
@@ -23,17 +47,33 @@ void sg_vertex_transform(const float mvp[16], const float *positions, int count,
     const __m128 c1 = _mm_setr_ps(mvp[1], mvp[5], mvp[9], mvp[13]);
     const __m128 c2 = _mm_setr_ps(mvp[2], mvp[6], mvp[10], mvp[14]);
     const __m128 c3 = _mm_setr_ps(mvp[3], mvp[7], mvp[11], mvp[15]);
-    for (int i = 0; i < count; i++) {
+#define SG_TRANSFORM(v)                                                                            \
+    _mm_add_ps(                                                                                    \
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0))),       \
+                              _mm_mul_ps(c1, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1)))),      \
+                   _mm_mul_ps(c2, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2)))),                 \
+        _mm_mul_ps(c3, _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3))))
+#if defined(__SSE2__)
+    for (; i + 4 <= count; i += 4) { /* four vertices, then their outcodes four lanes wide */
+        __m128 r[4];
+        for (int k = 0; k < 4; k++) {
+            __m128 v = _mm_loadu_ps(positions + (size_t)(i + k) * 4);
+            r[k] = SG_TRANSFORM(v);
+            _mm_storeu_ps(clip[i + k], r[k]);
+        }
+        _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
+        _mm_storeu_si128((__m128i *)(void *)(outcodes + i),
+                         outcodes4(r[0], r[1], r[2], r[3], guard));
+    }
+#endif
+    for (; i < count; i++) {
         __m128 v = _mm_loadu_ps(positions + (size_t)i * 4);
-        __m128 r = _mm_mul_ps(c0, _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0)));
-        r = _mm_add_ps(r, _mm_mul_ps(c1, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1))));
-        r = _mm_add_ps(r, _mm_mul_ps(c2, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2))));
-        r = _mm_add_ps(r, _mm_mul_ps(c3, _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3))));
-        _mm_storeu_ps(clip[i], r);
+        _mm_storeu_ps(clip[i], SG_TRANSFORM(v));
         outcodes[i] = sg_clip_outcode(clip[i], guard);
     }
+#undef SG_TRANSFORM
 #else
-    for (int i = 0; i < count; i++) {
+    for (; i < count; i++) {
         sg_mat4_transform(clip[i], mvp, positions + (size_t)i * 4);
         outcodes[i] = sg_clip_outcode(clip[i], guard);
     }
@@ -83,7 +123,33 @@ void sg_vertex_project(const sg_setup_params *p, const float (*clip)[4], const u
 
 void sg_vertex_check_attributes(const float *colors, const float *texcoords, int nattr, int count,
                                 uint8_t *ok) {
+#if defined(__SSE2__)
+    /* Whole arrays at once, as in sg_vertex_attributes_finite: all exponent bits set is bad. */
+    const __m128i exp = _mm_set1_epi32(0x7f800000);
+    const bool tex = nattr > 4;
+    if (colors || tex) {
+        for (int i = 0; i < count; i++) {
+            __m128i bad = _mm_setzero_si128();
+            if (colors)
+                bad = _mm_cmpeq_epi32(
+                    _mm_and_si128(
+                        _mm_loadu_si128((const __m128i *)(const void *)(colors + 4 * (size_t)i)),
+                        exp),
+                    exp);
+            if (tex)
+                bad = _mm_or_si128(
+                    bad, _mm_cmpeq_epi32(
+                             _mm_and_si128(
+                                 _mm_loadl_epi64(
+                                     (const __m128i *)(const void *)(texcoords + 2 * (size_t)i)),
+                                 exp),
+                             exp));
+            ok[i] &= (uint8_t)(_mm_movemask_epi8(bad) == 0);
+        }
+    }
+#else
     for (int i = 0; i < count; i++)
         if (ok[i])
             ok[i] = (uint8_t)sg_vertex_attributes_finite(colors, texcoords, nattr, (size_t)i);
+#endif
 }
