@@ -97,14 +97,8 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
     return true;
 }
 
-/* The values interpolated: depth, 1/w, then attribute / w. */
+/* At most: depth, 1/w and every attribute / w. */
 enum { PLANES = 2 + SG_MAX_ATTRS };
-
-static void plane_values(const sg_svert *s, const float *attr, double f[PLANES]) {
-    f[0] = s->z;
-    f[1] = s->q;
-    for (int k = 0; k < SG_MAX_ATTRS; k++) f[2 + k] = (double)attr[k] * s->q;
-}
 
 /* The first four floats (a colour) of a and b are the same bits, as memcmp would find. */
 static bool same_color(const float *a, const float *b) {
@@ -116,6 +110,17 @@ static bool same_color(const float *a, const float *b) {
 
 void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
                      sg_tri *out) {
+    out->nattr = p->nattr;
+    out->flat = SG_FLAT_NONE;
+    if (p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2])) {
+        memcpy(out->color, attr[0], sizeof out->color);
+        /* == 1.0f as bits: 1.0f has no other encoding. */
+        uint64_t c[2], white;
+        memcpy(c, out->color, sizeof c);
+        white = 0x3f8000003f800000u;
+        out->flat = c[0] == white && c[1] == white ? SG_FLAT_WHITE : SG_FLAT_COLOR;
+    }
+
     /* Plane equations from the snapped positions, in double, relative to vertex 0. */
     const int64_t one = SG_SUBPIXEL_ONE;
     double x0 = (double)s[0].x / one, y0 = (double)s[0].y / one;
@@ -124,15 +129,23 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     double inv_det = 1.0 / (e1x * e2y - e2x * e1y);
     double pox = (double)out->minx + 0.5 - x0, poy = (double)out->miny + 0.5 - y0;
 
+    /* The values to interpolate, packed: depth, 1/w, then each attribute / w the shading reads
+     * (not a flat colour, which it takes as it is). Attribute slot[k] is value k. */
+    double f0[PLANES], f1[PLANES], f2[PLANES];
+    int slot[PLANES], n = 2;
+    f0[0] = s[0].z, f1[0] = s[1].z, f2[0] = s[2].z;
+    f0[1] = s[0].q, f1[1] = s[1].q, f2[1] = s[2].q;
+    for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < p->nattr; k++, n++) {
+        slot[n] = k;
+        f0[n] = (double)attr[0][k] * s[0].q;
+        f1[n] = (double)attr[1][k] * s[1].q;
+        f2[n] = (double)attr[2][k] * s[2].q;
+    }
     /* Each plane is the gradient of its value over the triangle, taken at the centre of pixel
      * (minx, miny). The planes are independent, all with the same operations: one loop over
      * arrays that the compiler turns into vector code, lane for lane the same IEEE results. */
-    double f0[PLANES], f1[PLANES], f2[PLANES];
-    plane_values(&s[0], attr[0], f0);
-    plane_values(&s[1], attr[1], f1);
-    plane_values(&s[2], attr[2], f2);
     float at[PLANES], gx[PLANES], gy[PLANES];
-    for (int k = 0; k < PLANES; k++) {
+    for (int k = 0; k < n; k++) {
         double d1 = f1[k] - f0[k], d2 = f2[k] - f0[k];
         double dx = (d1 * e2y - d2 * e1y) * inv_det;
         double dy = (d2 * e1x - d1 * e2x) * inv_det;
@@ -146,21 +159,14 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     out->q = at[1];
     out->q_dx = gx[1];
     out->q_dy = gy[1];
-    /* All of them, as fixed-size copies: those past nattr are computed from zeros. */
-    for (int k = 0; k < SG_MAX_ATTRS; k++) {
-        out->a[k] = at[2 + k];
-        out->a_dx[k] = gx[2 + k];
-        out->a_dy[k] = gy[2 + k];
-    }
-    out->nattr = p->nattr;
-    out->flat = SG_FLAT_NONE;
-    if (p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2])) {
-        memcpy(out->color, attr[0], sizeof out->color);
-        /* == 1.0f as bits: 1.0f has no other encoding. */
-        uint64_t c[2], white;
-        memcpy(c, out->color, sizeof c);
-        white = 0x3f8000003f800000u;
-        out->flat = c[0] == white && c[1] == white ? SG_FLAT_WHITE : SG_FLAT_COLOR;
+    /* Planes not computed are zero: never read, but every byte of a triangle is defined. */
+    memset(out->a, 0, sizeof out->a);
+    memset(out->a_dx, 0, sizeof out->a_dx);
+    memset(out->a_dy, 0, sizeof out->a_dy);
+    for (int k = 2; k < n; k++) {
+        out->a[slot[k]] = at[k];
+        out->a_dx[slot[k]] = gx[k];
+        out->a_dy[slot[k]] = gy[k];
     }
 }
 
