@@ -40,6 +40,10 @@ typedef struct sg_tri {
     /* The three vertex colours are equal: the colour is `color` everywhere, exactly (interpolating
      * it would only add rounding), and SG_FLAT_WHITE when that colour is opaque white. */
     int flat;
+    /* The pixel bounds were cut to the setup rectangle. When not, the edge functions alone
+     * exclude every pixel outside the bounds (none lies inside the triangle), so the raster
+     * need not mask them. */
+    int rect_cut;
     float color[4];
     uint32_t draw; /* which draw of the pass it belongs to (set by the binner) */
 } sg_tri;

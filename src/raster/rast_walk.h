@@ -138,7 +138,8 @@ SG_WALK_INLINE void accepted_tiles(const sg_tri *t, int tx0, int ty0, int tx1, i
     for (int ty = ty0; ty <= ty1; ty++)
         for (int tx = tx0; tx <= tx1; tx++) {
             int x0 = tx << SG_TILE_SHIFT, y0 = ty << SG_TILE_SHIFT;
-            uint32_t mask = inner_tile(t, x0, y0) ? 0xffffu : bounds_mask(t, x0, y0);
+            uint32_t mask =
+                !t->rect_cut || inner_tile(t, x0, y0) ? 0xffffu : bounds_mask(t, x0, y0);
             if (mask) fn(ctx, t, x0, y0, mask);
         }
 }
@@ -163,8 +164,8 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
             }
             if (reject) continue;
             uint32_t mask = accept ? 0xffffu : crossed_mask(w, e0);
-            /* Tiles on the bounds also hold pixels outside the target or scissor rectangle. */
-            if (!inner_tile(t, x0, y0)) mask &= bounds_mask(t, x0, y0);
+            /* Tiles on cut bounds also hold pixels outside the setup rectangle. */
+            if (t->rect_cut && !inner_tile(t, x0, y0)) mask &= bounds_mask(t, x0, y0);
             if (mask) fn(ctx, t, x0, y0, mask);
         }
     }
@@ -180,37 +181,53 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
     int64_t hi[3], lo[3];
 #if defined(__AVX512F__)
-    /* A tile a vector: its first pixel's value plus i dx + j dy, per edge. */
+    /* A tile a vector: its first pixel's value plus i dx + j dy. A row of up to 16 tiles is first
+     * tested a tile a lane, each tile by its largest value (the corner of corners()): only the
+     * tiles that may hold covered pixels are then tested pixel by pixel, and visited. */
     corners(t, SG_SMALL_TILES * SG_TILE - 1, hi, lo);
-    /* Per edge: the values of the current tile, and the steps to the next tile across and down,
-     * in wrapping 32-bit lanes (the true values fit in int32). */
-    __m512i row[3], across[3], down[3];
+    int64_t thi[3], tlo[3];
+    corners(t, SG_TILE - 1, thi, tlo);
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    /* Per edge, in wrapping 32-bit lanes (the true values fit in int32): the pixels of tile
+     * (tx0, ty0), each tile's largest value along the row, and the steps across and down. */
+    __m512i first[3], best[3], down[3];
+    int32_t across[3];
     for (int e = 0; e < 3; e++) {
         int64_t e0 = edge_at(t, e, x0, y0);
         if (e0 + hi[e] < 0) return true;
         if (e0 + lo[e] < INT32_MIN || e0 + hi[e] > INT32_MAX) return false;
         uint32_t dx = (uint32_t)(uint64_t)t->edge_dx[e], dy = (uint32_t)(uint64_t)t->edge_dy[e];
-        row[e] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)(uint32_t)(uint64_t)e0),
-                                  sg_walk_offsets(dx, dy));
-        across[e] = _mm512_set1_epi32((int32_t)(4 * dx));
+        first[e] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)(uint32_t)(uint64_t)e0),
+                                    sg_walk_offsets(dx, dy));
+        best[e] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)(uint32_t)(uint64_t)(e0 + thi[e])),
+                                   _mm512_mullo_epi32(_mm512_set1_epi32((int32_t)(4 * dx)), lane));
+        across[e] = (int32_t)(4 * dx);
         down[e] = _mm512_set1_epi32((int32_t)(4 * dy));
     }
     const __m512i zero = _mm512_setzero_si512();
+    const __mmask16 cols = (__mmask16)((2u << (tx1 - tx0)) - 1);
     for (int ty = ty0; ty <= ty1; ty++) {
-        __m512i v0 = row[0], v1 = row[1], v2 = row[2];
+        unsigned cand = _mm512_mask_cmpge_epi32_mask(
+            _mm512_mask_cmpge_epi32_mask(_mm512_mask_cmpge_epi32_mask(cols, best[0], zero), best[1],
+                                         zero),
+            best[2], zero);
         int ty_px = ty << SG_TILE_SHIFT;
-        for (int tx = tx0; tx <= tx1; tx++) {
-            __mmask16 in = _mm512_mask_cmpge_epi32_mask(
-                _mm512_mask_cmpge_epi32_mask(_mm512_cmpge_epi32_mask(v0, zero), v1, zero), v2,
-                zero);
-            v0 = _mm512_add_epi32(v0, across[0]);
-            v1 = _mm512_add_epi32(v1, across[1]);
-            v2 = _mm512_add_epi32(v2, across[2]);
-            if (!in) continue;
-            int tx_px = tx << SG_TILE_SHIFT;
-            fn(ctx, t, tx_px, ty_px, in & bounds_mask(t, tx_px, ty_px)); /* fewer branches */
+        while (cand) {
+            int k = __builtin_ctz(cand);
+            cand &= cand - 1;
+            __mmask16 in = 0xffff;
+            for (int e = 0; e < 3; e++)
+                in = _mm512_mask_cmpge_epi32_mask(
+                    in, _mm512_add_epi32(first[e], _mm512_set1_epi32(k * across[e])), zero);
+            int tx_px = (tx0 + k) << SG_TILE_SHIFT;
+            uint32_t mask = in;
+            if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
+            if (mask) fn(ctx, t, tx_px, ty_px, mask);
         }
-        for (int e = 0; e < 3; e++) row[e] = _mm512_add_epi32(row[e], down[e]);
+        for (int e = 0; e < 3; e++) {
+            first[e] = _mm512_add_epi32(first[e], down[e]);
+            best[e] = _mm512_add_epi32(best[e], down[e]);
+        }
     }
     return true;
 #else
@@ -244,7 +261,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         if (tx > tx1 || ty > ty1 || !masks[k])
             continue; /* tiles past tx1 or ty1 are not looked at */
         int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
-        uint32_t mask = masks[k] & bounds_mask(t, tx_px, ty_px);
+        uint32_t mask = t->rect_cut ? masks[k] & bounds_mask(t, tx_px, ty_px) : masks[k];
         if (mask) fn(ctx, t, tx_px, ty_px, mask);
     }
     return true;
