@@ -9,12 +9,7 @@
 static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS]) {
     static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     memcpy(attr, a->colors ? a->colors + (size_t)idx * 4 : white, 4 * sizeof(float));
-    if (a->setup.nattr > 4) {
-        memcpy(attr + 4, a->texcoords + (size_t)idx * 2, 2 * sizeof(float));
-    } else { /* setup reads them all (see sg_setup_planes) */
-        attr[4] = 0.0f;
-        attr[5] = 0.0f;
-    }
+    if (a->setup.nattr > 4) memcpy(attr + 4, a->texcoords + (size_t)idx * 2, 2 * sizeof(float));
 }
 
 /* False when an attribute the draw reads is NaN or infinite: such a triangle is dropped whole,

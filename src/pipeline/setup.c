@@ -99,8 +99,24 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
     return true;
 }
 
-/* At most: depth, 1/w and every attribute / w. */
-enum { PLANES = 2 + SG_MAX_ATTRS };
+/* What every plane of a triangle shares: its edges from vertex 0, 1 / their determinant, and
+ * the offset from vertex 0 to the centre of pixel (minx, miny). */
+typedef struct plane_basis {
+    double e1x, e1y, e2x, e2y, inv_det, pox, poy;
+} plane_basis;
+
+/* The plane of a value with f0, f1, f2 at the vertices: its gradient over the triangle and its
+ * value at the centre of pixel (minx, miny). Scalar doubles from registers: a vector version
+ * would gather its lanes through memory, and stall on it. */
+static inline void plane(const plane_basis *b, double f0, double f1, double f2, float *at,
+                         float *gx, float *gy) {
+    double d1 = f1 - f0, d2 = f2 - f0;
+    double dx = (d1 * b->e2y - d2 * b->e1y) * b->inv_det;
+    double dy = (d2 * b->e1x - d1 * b->e2x) * b->inv_det;
+    *at = (float)(f0 + dx * b->pox + dy * b->poy);
+    *gx = (float)dx;
+    *gy = (float)dy;
+}
 
 /* The first four floats (a colour) of a and b are the same bits, as memcmp would find. */
 static bool same_color(const float *a, const float *b) {
@@ -131,55 +147,23 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     double inv_det = 1.0 / (e1x * e2y - e2x * e1y);
     double pox = (double)out->minx + 0.5 - x0, poy = (double)out->miny + 0.5 - y0;
 
-    /* The values to interpolate, packed: depth, 1/w, then each attribute / w the shading reads
-     * (not a flat colour, which it takes as it is). Attribute slot[k] is value k. */
-    double f0[PLANES], f1[PLANES], f2[PLANES];
-    int slot[PLANES], n = 2;
-    f0[0] = s[0].z, f1[0] = s[1].z, f2[0] = s[2].z;
-    f0[1] = s[0].q, f1[1] = s[1].q, f2[1] = s[2].q;
-    for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < p->nattr; k++, n++) {
-        slot[n] = k;
-        f0[n] = (double)attr[0][k] * s[0].q;
-        f1[n] = (double)attr[1][k] * s[1].q;
-        f2[n] = (double)attr[2][k] * s[2].q;
-    }
-    /* Each plane is the gradient of its value over the triangle, taken at the centre of pixel
-     * (minx, miny). The planes are independent, all with the same operations: one loop over
-     * arrays that the compiler turns into vector code, lane for lane the same IEEE results. */
-    float at[PLANES], gx[PLANES], gy[PLANES];
-    for (int k = 0; k < n; k++) {
-        double d1 = f1[k] - f0[k], d2 = f2[k] - f0[k];
-        double dx = (d1 * e2y - d2 * e1y) * inv_det;
-        double dy = (d2 * e1x - d1 * e2x) * inv_det;
-        at[k] = (float)(f0[k] + dx * pox + dy * poy);
-        gx[k] = (float)dx;
-        gy[k] = (float)dy;
-    }
-    out->z = at[0];
-    out->z_dx = gx[0];
-    out->z_dy = gy[0];
-    out->q = at[1];
-    out->q_dx = gx[1];
-    out->q_dy = gy[1];
-    /* Planes not computed are zero: never read, but every byte of a triangle is defined. */
+    /* Depth, 1/w, then each attribute / w the shading reads (not a flat colour, which it takes
+     * as it is); the others stay zero: never read, but every byte of a triangle is defined. */
+    const plane_basis b = {e1x, e1y, e2x, e2y, inv_det, pox, poy};
+    plane(&b, s[0].z, s[1].z, s[2].z, &out->z, &out->z_dx, &out->z_dy);
+    plane(&b, s[0].q, s[1].q, s[2].q, &out->q, &out->q_dx, &out->q_dy);
     memset(out->a, 0, sizeof out->a);
     memset(out->a_dx, 0, sizeof out->a_dx);
     memset(out->a_dy, 0, sizeof out->a_dy);
-    for (int k = 2; k < n; k++) {
-        out->a[slot[k]] = at[k];
-        out->a_dx[slot[k]] = gx[k];
-        out->a_dy[slot[k]] = gy[k];
-    }
+    for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < p->nattr; k++)
+        plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
+              (double)attr[2][k] * s[2].q, &out->a[k], &out->a_dx[k], &out->a_dy[k]);
 }
 
 bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cvert *v1,
                        const sg_cvert *v2, sg_tri *out) {
-    /* sg_setup_planes reads every attribute slot; the caller has set only nattr of them. */
     const sg_cvert *v[3] = {v0, v1, v2};
-    float a[3][SG_MAX_ATTRS] = {{0}};
-    for (int i = 0; i < 3; i++)
-        for (int k = 0; k < p->nattr; k++) a[i][k] = v[i]->attr[k];
-    const float *attr[3] = {a[0], a[1], a[2]};
+    const float *attr[3] = {v0->attr, v1->attr, v2->attr};
     sg_svert s[3];
     for (int i = 0; i < 3; i++)
         if (!sg_setup_project(p, v[i]->pos, &s[i])) return false;

@@ -71,8 +71,8 @@ bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s)
  *  sg_setup_planes wants; false: nothing to draw. Reads no attribute: attr[] may still be empty. */
 bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out);
 /** Depth, 1/w and attribute plane equations and the flat colour of a triangle that passed
- *  sg_setup_coverage, with the s[] and attr[] it reordered. Every attr[i] holds SG_MAX_ATTRS
- *  values: the planes of those past nattr are computed too (no branches), then not used. */
+ *  sg_setup_coverage, with the s[] and attr[] it reordered (each attr[i] holds nattr values).
+ *  Only the planes the shading reads are computed; the others are zero. */
 void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
                      sg_tri *out);
 
