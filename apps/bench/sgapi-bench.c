@@ -5,11 +5,14 @@
  *
  * For every scene of the files it measures:
  *   - sgapi's steady-state time per frame at 1 and at T threads (one device per thread count):
- *     3 warm-up frames, then the median of N frames, each timed from sgBeginRenderPass to the
- *     return of sgEndRenderPass (loading, uploads and pipeline creation are not counted);
+ *     3 warm-up frames, then the median of N frames (default 100), each timed from
+ * sgBeginRenderPass to the return of sgEndRenderPass (loading, uploads and pipeline creation are
+ * not counted);
  *   - lavapipe's, at 1 and T threads, by running sgapi-ref (found beside this program) on the
  *     scene and reading the time it prints;
  *   - the error of sgapi's T-thread image against lavapipe's: PSNR and % of pixels over 2/255.
+ * A scene's lavapipe and sgapi times are taken back to back, scene after scene, so that a drift
+ * of the machine's speed during the run does not favour either side.
  * It prints a markdown table, the geometric mean of the sgapi/lavapipe ratios, and the floor of
  * the machine: one 1024x1024 colour + depth frame cleared and written by sgapi with no draws.
  *
@@ -45,6 +48,7 @@
 
 #define WARMUP_FRAMES 3
 #define MIN_FRAMES    20     /* fewer gives no steady-state median */
+#define FRAMES        100    /* the default: a median that a busy moment moves little */
 #define MAX_FRAMES    100000 /* sgapi-ref's limit */
 #define QUICK_FRAMES  2
 #define MAX_THREADS   1024 /* sgapi-ref's limit */
@@ -100,7 +104,7 @@ static void usage(FILE *f) {
             "                  nothing\n"
             "  --ref PATH      the sgapi-ref program (default: the one beside sgapi-bench)\n"
             "  -h, --help      show this help\n",
-            FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, MIN_FRAMES, WARMUP_FRAMES, QUICK_FRAMES);
+            FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, FRAMES, WARMUP_FRAMES, QUICK_FRAMES);
 }
 
 static int default_threads(void) {
@@ -111,7 +115,7 @@ static int default_threads(void) {
 /* 0: parsed; 1: help was printed; 2: bad arguments (already reported). */
 static int parse_args(int argc, char **argv, options *o) {
     bool frames_given = false;
-    o->frames = MIN_FRAMES;
+    o->frames = FRAMES;
     o->warmup = WARMUP_FRAMES;
     o->threads = default_threads();
     o->files = calloc((size_t)argc, sizeof *o->files);
@@ -442,40 +446,34 @@ typedef struct result {
     sc_diff setting_diff[SETTING_COUNT]; /* against lp_image; [0] is the main table's */
 } result;
 
-/* Runs lavapipe on every scene at 1 and T threads and keeps its image. */
-static bool measure_lavapipe(const options *o, const char *ref, const char *tmpdir, result *res,
-                             size_t count) {
-    for (size_t i = 0; i < count; i++) {
-        result *x = &res[i];
-        const sc_scene *s = x->scene;
-        if (i == 0 || strcmp(res[i - 1].file, x->file))
-            fprintf(stderr, "sgapi-bench: %s: lavapipe...\n", x->file);
-        char *png = concat3(tmpdir, "/", s->name);
-        char *path = png ? concat3(png, ".png", "") : NULL;
-        free(png);
-        if (!path) {
-            fprintf(stderr, "sgapi-bench: out of memory\n");
-            return false;
-        }
-        /* lavapipe draws the same image at any thread count: the last run's is kept. */
-        bool ok = run_lavapipe(o, ref, x->file, s->name, 1, tmpdir, &x->lp_ms[0]);
-        if (ok && o->threads == 1)
-            x->lp_ms[1] = x->lp_ms[0];
-        else if (ok)
-            ok = run_lavapipe(o, ref, x->file, s->name, o->threads, tmpdir, &x->lp_ms[1]);
-        char err[1024];
-        if (ok && !sc_image_load(path, &x->lp_image, err, sizeof err)) {
-            fprintf(stderr, "sgapi-bench: lavapipe's image of '%s': %s\n", s->name, err);
-            ok = false;
-        }
-        remove(path); /* so the temporary folder is empty at the end, whatever happened */
-        free(path);
-        if (!ok) return false;
-        if (x->lp_image.width != s->width || x->lp_image.height != s->height) {
-            fprintf(stderr, "sgapi-bench: lavapipe's image of '%s' is %dx%d, the scene %dx%d\n",
-                    s->name, x->lp_image.width, x->lp_image.height, s->width, s->height);
-            return false;
-        }
+/* Runs lavapipe on one scene at 1 and T threads and keeps its image. */
+static bool measure_lavapipe(const options *o, const char *ref, const char *tmpdir, result *x) {
+    const sc_scene *s = x->scene;
+    char *png = concat3(tmpdir, "/", s->name);
+    char *path = png ? concat3(png, ".png", "") : NULL;
+    free(png);
+    if (!path) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return false;
+    }
+    /* lavapipe draws the same image at any thread count: the last run's is kept. */
+    bool ok = run_lavapipe(o, ref, x->file, s->name, 1, tmpdir, &x->lp_ms[0]);
+    if (ok && o->threads == 1)
+        x->lp_ms[1] = x->lp_ms[0];
+    else if (ok)
+        ok = run_lavapipe(o, ref, x->file, s->name, o->threads, tmpdir, &x->lp_ms[1]);
+    char err[1024];
+    if (ok && !sc_image_load(path, &x->lp_image, err, sizeof err)) {
+        fprintf(stderr, "sgapi-bench: lavapipe's image of '%s': %s\n", s->name, err);
+        ok = false;
+    }
+    remove(path); /* so the temporary folder is empty at the end, whatever happened */
+    free(path);
+    if (!ok) return false;
+    if (x->lp_image.width != s->width || x->lp_image.height != s->height) {
+        fprintf(stderr, "sgapi-bench: lavapipe's image of '%s' is %dx%d, the scene %dx%d\n",
+                s->name, x->lp_image.width, x->lp_image.height, s->width, s->height);
+        return false;
     }
     return true;
 }
@@ -504,62 +502,91 @@ static bool create_device(int threads, const sc_file *files, int file_count, sgD
     return true;
 }
 
-/* Measures every scene on one device of `threads` threads into slot (0: 1 thread, 1: T
- * threads), and the floor into *floor_ms. With `compare`, also every setting in use, each
- * compared with lavapipe's image. */
-static bool measure_sgapi(const options *o, const sc_file *files, result *res, int threads,
-                          int slot, bool compare, double *floor_ms) {
-    sgDevice *dev = NULL;
-    ss_pso_cache cache = {0};
-    ss_uploads u = {0};
-    unsigned char *pixels = NULL;
-    bool ok = create_device(threads, files, o->file_count, &dev);
+/* sgapi at one thread count: its device, pipelines and the current file's uploads. */
+typedef struct side {
+    int threads;
+    sgDevice *dev;
+    ss_pso_cache cache;
+    ss_uploads uploads;
+} side;
+
+static void side_close(side *sd) {
+    if (sd->dev) {
+        ss_destroy_uploads(sd->dev, &sd->uploads);
+        sgDestroyDevice(sd->dev); /* also destroys the cached pipelines */
+    }
+    ss_pso_cache_free(&sd->cache);
+    memset(sd, 0, sizeof *sd);
+}
+
+/* Measures one scene (of the file uploaded to sd) into slot (0: 1 thread, 1: T threads). With
+ * `compare`, also every setting in use, each compared with lavapipe's image. */
+static bool measure_sgapi(const options *o, side *sd, const sc_file *f, result *x, int slot,
+                          bool compare) {
+    const sc_scene *s = x->scene;
     int nsettings = compare && o->pareto ? SETTING_COUNT : 1;
+    unsigned char *pixels = compare ? malloc((size_t)s->width * (size_t)s->height * 4) : NULL;
+    if (compare && !pixels) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return false;
+    }
+    unsigned char bg[4];
+    for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
+    bool ok = true;
+    for (int k = 0; ok && k < nsettings; k++) {
+        double ms;
+        ok = measure_scene(sd->dev, &sd->cache, f, s, &sd->uploads, &settings[k], o, &ms, pixels);
+        if (!ok) {
+            fprintf(stderr, "sgapi-bench: in %s, scene '%s', setting '%s', %d thread(s)\n", f->path,
+                    s->name, settings[k].name, sd->threads);
+            break;
+        }
+        if (k == 0) x->sg_ms[slot] = ms;
+        if (compare) {
+            x->setting_ms[k] = ms;
+            x->setting_diff[k] =
+                sc_image_diff(pixels, x->lp_image.pixels, s->width, s->height, bg, NULL);
+        }
+    }
+    free(pixels);
+    return ok;
+}
+
+/* Every scene, one at a time: lavapipe at 1 and T threads, then sgapi at 1 and T threads, so
+ * the four times of a scene are taken close together (a shared machine's speed drifts over a
+ * run, and a ratio should not take that drift). Then the floor at both thread counts. */
+static bool measure_all(const options *o, const char *ref, const char *tmpdir, const sc_file *files,
+                        result *res, double floor_ms[2]) {
+    side sides[2] = {{.threads = 1}, {.threads = o->threads}};
+    int nsides = o->threads == 1 ? 1 : 2;
+    bool ok = true;
+    for (int k = 0; ok && k < nsides; k++)
+        ok = create_device(sides[k].threads, files, o->file_count, &sides[k].dev);
     size_t first = 0; /* the first result of the current file */
     for (int fi = 0; ok && fi < o->file_count; fi++) {
         const sc_file *f = &files[fi];
-        fprintf(stderr, "sgapi-bench: %s: sgapi, %d thread%s...\n", f->path, threads,
-                threads == 1 ? "" : "s");
-        ok = ss_upload(PROG, dev, f, &u);
+        fprintf(stderr, "sgapi-bench: %s: lavapipe and sgapi, scene by scene...\n", f->path);
+        for (int k = 0; ok && k < nsides; k++)
+            ok = ss_upload(PROG, sides[k].dev, f, &sides[k].uploads);
         for (size_t si = 0; ok && si < f->scene_count; si++) {
             result *x = &res[first + si];
-            const sc_scene *s = x->scene;
-            free(pixels);
-            pixels = compare ? malloc((size_t)s->width * (size_t)s->height * 4) : NULL;
-            if (compare && !pixels) {
-                fprintf(stderr, "sgapi-bench: out of memory\n");
-                ok = false;
-                break;
-            }
-            unsigned char bg[4];
-            for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
-            for (int k = 0; ok && k < nsettings; k++) {
-                double ms;
-                ok = measure_scene(dev, &cache, f, s, &u, &settings[k], o, &ms, pixels);
-                if (!ok) {
-                    fprintf(stderr, "sgapi-bench: in %s, scene '%s', setting '%s'\n", f->path,
-                            s->name, settings[k].name);
-                    break;
-                }
-                if (k == 0) x->sg_ms[slot] = ms;
-                if (compare) {
-                    x->setting_ms[k] = ms;
-                    x->setting_diff[k] =
-                        sc_image_diff(pixels, x->lp_image.pixels, s->width, s->height, bg, NULL);
-                }
-            }
+            ok = measure_lavapipe(o, ref, tmpdir, x);
+            /* The main table's error is that of the T-thread image (the same at 1 thread). */
+            for (int k = 0; ok && k < nsides; k++)
+                ok = measure_sgapi(o, &sides[k], f, x, k, k == nsides - 1);
+            if (ok && nsides == 1) x->sg_ms[1] = x->sg_ms[0];
         }
-        ss_destroy_uploads(dev, &u);
+        for (int k = 0; k < nsides; k++)
+            if (sides[k].dev) ss_destroy_uploads(sides[k].dev, &sides[k].uploads);
         first += f->scene_count;
     }
-    if (ok) {
-        /* No draws: neither the file nor the uploads are looked at. */
-        sc_scene empty = {.name = "floor", .width = FLOOR_SIZE, .height = FLOOR_SIZE};
-        ok = measure_scene(dev, &cache, NULL, &empty, &u, &settings[0], o, floor_ms, NULL);
-    }
-    free(pixels);
-    sgDestroyDevice(dev); /* also destroys the cached pipelines */
-    ss_pso_cache_free(&cache);
+    /* No draws: neither a file nor the uploads are looked at. */
+    sc_scene empty = {.name = "floor", .width = FLOOR_SIZE, .height = FLOOR_SIZE};
+    for (int k = 0; ok && k < nsides; k++)
+        ok = measure_scene(sides[k].dev, &sides[k].cache, NULL, &empty, &sides[k].uploads,
+                           &settings[0], o, &floor_ms[k], NULL);
+    if (ok && nsides == 1) floor_ms[1] = floor_ms[0];
+    for (int k = 0; k < nsides; k++) side_close(&sides[k]);
     return ok;
 }
 
@@ -856,18 +883,7 @@ int main(int argc, char **argv) {
         fprintf(stderr, "sgapi-bench: --quick: %d frames, no warm-up: the times mean nothing\n",
                 o.frames);
 
-    /* lavapipe first: it fails fastest when missing, and its images are needed to compare
-     * sgapi's as they are made. */
-    if (!measure_lavapipe(&o, ref, tmpdir, res, count)) goto done;
-    if (o.threads == 1) {
-        if (!measure_sgapi(&o, files, res, 1, 0, true, &floor_ms[0])) goto done;
-        for (size_t i = 0; i < count; i++) res[i].sg_ms[1] = res[i].sg_ms[0];
-        floor_ms[1] = floor_ms[0];
-    } else {
-        if (!measure_sgapi(&o, files, res, 1, 0, false, &floor_ms[0]) ||
-            !measure_sgapi(&o, files, res, o.threads, 1, true, &floor_ms[1]))
-            goto done;
-    }
+    if (!measure_all(&o, ref, tmpdir, files, res, floor_ms)) goto done;
 
     print_table(&o, res, count, floor_ms);
     if (csv) write_csv(csv, res, count);
