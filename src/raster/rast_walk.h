@@ -191,7 +191,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
     /* Per edge, in wrapping 32-bit lanes (the true values fit in int32): the pixels of tile
      * (tx0, ty0), each tile's largest value along the row, and the steps across and down. */
     __m512i first[3], best[3], down[3];
-    int32_t across[3];
+    uint32_t across[3]; /* unsigned: k * across wraps, as the lanes do */
     for (int e = 0; e < 3; e++) {
         int64_t e0 = edge_at(t, e, x0, y0);
         if (e0 + hi[e] < 0) return true;
@@ -201,7 +201,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
                                     sg_walk_offsets(dx, dy));
         best[e] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)(uint32_t)(uint64_t)(e0 + thi[e])),
                                    _mm512_mullo_epi32(_mm512_set1_epi32((int32_t)(4 * dx)), lane));
-        across[e] = (int32_t)(4 * dx);
+        across[e] = 4 * dx;
         down[e] = _mm512_set1_epi32((int32_t)(4 * dy));
     }
     const __m512i zero = _mm512_setzero_si512();
@@ -218,7 +218,10 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
             __mmask16 in = 0xffff;
             for (int e = 0; e < 3; e++)
                 in = _mm512_mask_cmpge_epi32_mask(
-                    in, _mm512_add_epi32(first[e], _mm512_set1_epi32(k * across[e])), zero);
+                    in,
+                    _mm512_add_epi32(first[e],
+                                     _mm512_set1_epi32((int32_t)((uint32_t)k * across[e]))),
+                    zero);
             int tx_px = (tx0 + k) << SG_TILE_SHIFT;
             uint32_t mask = in;
             if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
