@@ -4,10 +4,6 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
-/* SSE lanes only where SSE also does scalar float maths: then they round as the scalar code. */
-#if defined(__SSE_MATH__)
-#include <xmmintrin.h>
-#endif
 
 sg_guard sg_guard_for_viewport(int width, int height) {
     /* x_screen = (x_ndc + 1) * W / 2 stays in [-G, G] when |x_ndc| <= 2G / W - 1. */
@@ -38,22 +34,10 @@ static float plane_dist(uint32_t plane, const float p[4], const sg_guard *g) {
 }
 
 uint32_t sg_clip_outcode(const float pos[4], const sg_guard *guard) {
-#if defined(__SSE_MATH__)
-    const __m128 p = _mm_loadu_ps(pos);
-    /* isfinite: |v| <= FLT_MAX, false for NaN and infinity. */
-    const __m128 mag = _mm_andnot_ps(_mm_set1_ps(-0.0f), p);
-    if (_mm_movemask_ps(_mm_cmple_ps(mag, _mm_set1_ps(FLT_MAX))) != 15)
-        return SG_CLIP_NONFINITE | ((1u << SG_CLIP_PLANE_COUNT) - 1);
-    /* The seven distances of plane_dist, in bit order, as the lanes of two sums: a - b is exactly
-     * a + (-b), so every lane rounds as plane_dist does. The eighth lane is 0 + 0: inside. */
-    float x = pos[0], y = pos[1], z = pos[2], w = pos[3];
-    float gxw = guard->gx * w, gyw = guard->gy * w;
-    __m128 d0 = _mm_add_ps(_mm_setr_ps(z, w, w, x), _mm_setr_ps(w, -z, -SG_CLIP_W_MIN, gxw));
-    __m128 d1 = _mm_add_ps(_mm_setr_ps(gxw, y, gyw, 0.0f), _mm_setr_ps(-x, gyw, -y, 0.0f));
-    /* Outside: !(d >= 0), as in the scalar code below. */
-    const __m128 zero = _mm_setzero_ps();
-    return (uint32_t)(_mm_movemask_ps(_mm_cmpnge_ps(d0, zero)) |
-                      _mm_movemask_ps(_mm_cmpnge_ps(d1, zero)) << 4);
+#if defined(__SSE2__) && defined(__SSE_MATH__)
+    /* The vertex stage's four-lane classification, on one position in every lane. */
+    return (uint32_t)_mm_cvtsi128_si32(sg_clip_outcode4(
+        _mm_set1_ps(pos[0]), _mm_set1_ps(pos[1]), _mm_set1_ps(pos[2]), _mm_set1_ps(pos[3]), guard));
 #else
     if (!isfinite(pos[0]) || !isfinite(pos[1]) || !isfinite(pos[2]) || !isfinite(pos[3]))
         return SG_CLIP_NONFINITE | ((1u << SG_CLIP_PLANE_COUNT) - 1);

@@ -44,6 +44,34 @@ typedef struct sg_guard {
     float gx, gy; /* |x| <= gx * w and |y| <= gy * w keep a vertex inside the guard band */
 } sg_guard;
 
+#if defined(__SSE2__) && defined(__SSE_MATH__)
+#include <emmintrin.h>
+#include <float.h>
+
+/** sg_clip_outcode of four positions, one a lane (x, y, z, w each a vector): the plane distances
+ *  of clip.c in their order (a - b is exactly a + (-b)), so the same codes. Outside is
+ *  !(d >= 0), so NaN is outside. */
+static inline __m128i sg_clip_outcode4(__m128 x, __m128 y, __m128 z, __m128 w,
+                                       const sg_guard *guard) {
+    const __m128 sign = _mm_set1_ps(-0.0f), fmax = _mm_set1_ps(FLT_MAX), zero = _mm_setzero_ps();
+    __m128 finite = _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, x), fmax),
+                                          _mm_cmple_ps(_mm_andnot_ps(sign, y), fmax)),
+                               _mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, z), fmax),
+                                          _mm_cmple_ps(_mm_andnot_ps(sign, w), fmax)));
+    __m128 gxw = _mm_mul_ps(_mm_set1_ps(guard->gx), w), gyw = _mm_mul_ps(_mm_set1_ps(guard->gy), w);
+    const __m128 d[SG_CLIP_PLANE_COUNT] = {
+        _mm_add_ps(z, w),   _mm_sub_ps(w, z),   _mm_sub_ps(w, _mm_set1_ps(SG_CLIP_W_MIN)),
+        _mm_add_ps(x, gxw), _mm_sub_ps(gxw, x), _mm_add_ps(y, gyw),
+        _mm_sub_ps(gyw, y)};
+    __m128i code = _mm_setzero_si128();
+    for (int k = 0; k < SG_CLIP_PLANE_COUNT; k++)
+        code = _mm_or_si128(code, _mm_and_si128(_mm_castps_si128(_mm_cmpnge_ps(d[k], zero)),
+                                                _mm_set1_epi32(1 << k)));
+    const __m128i all = _mm_set1_epi32(SG_CLIP_NONFINITE | ((1 << SG_CLIP_PLANE_COUNT) - 1));
+    return _mm_or_si128(code, _mm_andnot_si128(_mm_castps_si128(finite), all));
+}
+#endif
+
 /** Guard-band factors for a viewport of the given size. */
 sg_guard sg_guard_for_viewport(int width, int height);
 /** The set of planes a clip-space position is outside of (0: inside all); a non-finite

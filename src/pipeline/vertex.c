@@ -14,29 +14,6 @@
 #include <emmintrin.h>
 #endif
 
-#if defined(__SSE2__) && defined(__SSE_MATH__)
-/* sg_clip_outcode of four positions, lane for lane: the same sums in the same order (a - b is
- * exactly a + (-b)), so the same codes. */
-static inline __m128i outcodes4(__m128 x, __m128 y, __m128 z, __m128 w, const sg_guard *guard) {
-    const __m128 sign = _mm_set1_ps(-0.0f), fmax = _mm_set1_ps(FLT_MAX), zero = _mm_setzero_ps();
-    __m128 finite = _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, x), fmax),
-                                          _mm_cmple_ps(_mm_andnot_ps(sign, y), fmax)),
-                               _mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, z), fmax),
-                                          _mm_cmple_ps(_mm_andnot_ps(sign, w), fmax)));
-    __m128 gxw = _mm_mul_ps(_mm_set1_ps(guard->gx), w), gyw = _mm_mul_ps(_mm_set1_ps(guard->gy), w);
-    const __m128 d[SG_CLIP_PLANE_COUNT] = {
-        _mm_add_ps(z, w),   _mm_sub_ps(w, z),   _mm_sub_ps(w, _mm_set1_ps(SG_CLIP_W_MIN)),
-        _mm_add_ps(x, gxw), _mm_sub_ps(gxw, x), _mm_add_ps(y, gyw),
-        _mm_sub_ps(gyw, y)};
-    __m128i code = _mm_setzero_si128();
-    for (int k = 0; k < SG_CLIP_PLANE_COUNT; k++) /* outside: !(d >= 0), so NaN is outside */
-        code = _mm_or_si128(code, _mm_and_si128(_mm_castps_si128(_mm_cmpnge_ps(d[k], zero)),
-                                                _mm_set1_epi32(1 << k)));
-    const __m128i all = _mm_set1_epi32(SG_CLIP_NONFINITE | ((1 << SG_CLIP_PLANE_COUNT) - 1));
-    return _mm_or_si128(code, _mm_andnot_si128(_mm_castps_si128(finite), all));
-}
-#endif
-
 void sg_vertex_transform(const float mvp[16], const float *positions, int count, float (*clip)[4],
                          uint32_t *outcodes, const sg_guard *guard) {
     int i = 0;
@@ -63,7 +40,7 @@ void sg_vertex_transform(const float mvp[16], const float *positions, int count,
         }
         _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
         _mm_storeu_si128((__m128i *)(void *)(outcodes + i),
-                         outcodes4(r[0], r[1], r[2], r[3], guard));
+                         sg_clip_outcode4(r[0], r[1], r[2], r[3], guard));
     }
 #endif
     for (; i < count; i++) {
