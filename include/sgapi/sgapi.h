@@ -56,7 +56,7 @@ typedef enum sgResult {
     SG_ERROR_NULL_POINTER,       /* a required pointer argument or descriptor field is NULL */
     SG_ERROR_INVALID_ENUM,       /* an enum field holds an unknown value */
     SG_ERROR_INVALID_HANDLE,     /* zero, destroyed, of another kind, or of another device */
-    SG_ERROR_INVALID_VALUE,      /* a clear value is outside [0, 1] or NaN */
+    SG_ERROR_INVALID_VALUE,      /* a clear value or colour is outside [0, 1] or NaN */
     SG_ERROR_INVALID_SIZE,       /* image side outside 1..SG_MAX_IMAGE_SIZE, sizes differ, or a row
                                     pitch shorter than a row */
     SG_ERROR_INVALID_COUNT,      /* a count below 1, an index count not a multiple of the
@@ -243,7 +243,10 @@ typedef enum sgFrontFace {
 typedef enum sgBlend {
     SG_BLEND_DEFAULT = 0, /* opaque */
     SG_BLEND_OPAQUE,      /* the fragment replaces the pixel */
-    SG_BLEND_ALPHA, /* src * a + dst * (1 - a): reserved, creation returns SG_ERROR_UNSUPPORTED */
+    /* out = src * src_alpha + dst * (1 - src_alpha) on R, G, B and A (OpenGL's
+     * glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)), in 8-bit arithmetic (docs/accuracy.md).
+     * Each pixel blends the draws of a pass, and the triangles of a draw, in submission order. */
+    SG_BLEND_ALPHA,
 } sgBlend;
 
 typedef struct sgPipelineDesc {
@@ -290,10 +293,30 @@ typedef struct sgPassDesc {
     sgStoreOp depth_store; /* whether the depth target receives the pass's depth */
 } sgPassDesc;
 
+/* An RGBA colour, each channel in [0, 1]. */
+typedef struct sgColor {
+    float r, g, b, a;
+} sgColor;
+
+/* Order of a draw's triangles. */
+typedef enum sgSort {
+    SG_SORT_DEFAULT = 0, /* none */
+    SG_SORT_NONE,        /* as the indices list them */
+    /* Farthest first: by the view-space z of each triangle's centroid (the mean of the z of its
+     * three worldView * position, each divided by its w when w != 1), smallest z first; triangles
+     * with equal keys keep their order. Quads are split into their two triangles first. For
+     * transparent non-convex meshes; the order is the same for any thread count. */
+    SG_SORT_BACK_TO_FRONT,
+} sgSort;
+
 typedef struct sgDrawParams {
     float world_view[16]; /* row-major */
     float proj[16];       /* row-major */
     sgImage2D texture;    /* required by SG_SHADE_TEXTURE_MODULATE, ignored otherwise */
+    /* Optional: a constant colour that multiplies every vertex colour (alpha included), each
+     * channel in [0, 1]. NULL: opaque white, the vertex colours as they are. */
+    const sgColor *color;
+    sgSort sort;
 } sgDrawParams;
 
 /** Opens a render pass on the given targets, clearing or loading them. */
