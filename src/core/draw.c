@@ -7,6 +7,7 @@
 
 #include "pipeline/assemble.h"
 #include "pipeline/mat4.h"
+#include "pipeline/sort.h"
 #include "pipeline/vertex.h"
 #include "raster/shade.h"
 
@@ -215,6 +216,33 @@ static bool grow_vertex_arenas(sgDevice *dev, size_t n) {
     return true;
 }
 
+/* A back-to-front draw's triangles, sorted into the device's scratch (sort.h): a.indices then
+ * lists them as plain triangles. False: out of memory. */
+static bool sort_triangles(sgDevice *dev, const sg_geom *geom, const float world_view[16],
+                           sg_assembly *a) {
+    size_t tris = (size_t)(geom->index_count / (a->quads ? 4 : 3)) * (a->quads ? 2u : 1u);
+    size_t scratch = sg_sort_scratch_size(geom->vertex_count, tris);
+    size_t need = scratch + 3 * tris * sizeof(uint32_t);
+    if (need > dev->sort_scratch_capacity) {
+        void *p = sg_alloc(dev, need);
+        if (!p) return false;
+        sg_free(dev, dev->sort_scratch);
+        dev->sort_scratch = p;
+        dev->sort_scratch_capacity = need;
+    }
+    uint32_t *out = (uint32_t *)(void *)((char *)dev->sort_scratch + scratch);
+    sg_sort_back_to_front(world_view, geom->positions, geom->vertex_count, geom->indices,
+                          geom->index_count, a->quads, dev->sort_scratch, out);
+    a->indices = out;
+    a->index_count = (int)(3 * tris);
+    a->quads = 0;
+    return true;
+}
+
+static bool unit_range(float v) {
+    return v >= 0.0f && v <= 1.0f; /* false for NaN */
+}
+
 sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                 const sgDrawParams *params) {
     if (!dev) return SG_ERROR_NULL_POINTER;
@@ -231,6 +259,22 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     if (!geom)
         return sg_error(dev, SG_ERROR_INVALID_HANDLE, "sgDraw: geom id 0x%08x is not a live geom",
                         geom_h.id);
+    if ((int)params->sort < SG_SORT_DEFAULT || params->sort > SG_SORT_BACK_TO_FRONT)
+        return sg_error(dev, SG_ERROR_INVALID_ENUM, "sgDraw: params->sort = %d is not an sgSort",
+                        (int)params->sort);
+    float tint[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    if (params->color) {
+        const sgColor *c = params->color;
+        const float v[4] = {c->r, c->g, c->b, c->a};
+        for (int k = 0; k < 4; k++) {
+            if (!unit_range(v[k]))
+                return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                                "sgDraw: params->color.%c = %g is outside [0, 1]", "rgba"[k],
+                                (double)v[k]);
+            tint[k] = v[k];
+        }
+    }
+    bool tinted = tint[0] != 1.0f || tint[1] != 1.0f || tint[2] != 1.0f || tint[3] != 1.0f;
     if (pso->uses_depth && !dev->pass_depth.id)
         return sg_error(
             dev, SG_ERROR_MISSING_DEPTH,
@@ -279,6 +323,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.outcodes = dev->outcodes;
     a.colors = geom->colors;
     a.texcoords = geom->texcoords;
+    a.tint = tinted ? tint : NULL; /* white multiplies nothing */
     a.rebase_texcoords =
         pso->desc.shade == SG_SHADE_TEXTURE_MODULATE && pso->desc.wrap == SG_WRAP_REPEAT;
     a.setup.width = width;
@@ -290,6 +335,10 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.setup.cull = pso->desc.cull;
     a.setup.front_face = pso->desc.front_face;
     a.setup.nattr = pso->nattr;
+    if (params->sort == SG_SORT_BACK_TO_FRONT && !sort_triangles(dev, geom, params->world_view, &a))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgDraw: out of memory to sort %d indices back to front",
+                        geom->index_count);
     transform_vertices(dev, mvp, geom, &a.guard, &a.setup);
     a.screen = dev->screen;
     a.screen_ok = dev->screen_ok;
@@ -310,6 +359,8 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     ds->shade_fn = pso->shade_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
+    ds->blend = pso->desc.blend == SG_BLEND_ALPHA;
+    dev->pass.any_blend |= ds->blend;
     if (tex) tex->pass_use = dev->pass_serial;
     SG_STAGE_ADD(dev->pass.stage_times, SG_STAGE_FRONT, clock);
     return SG_OK;

@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "raster/blend.h"
 #include "raster/depth.h"
 #include "raster/shade.h"
 
@@ -26,9 +27,6 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     CHECK_ENUM(cull, SG_CULL_DEFAULT, SG_CULL_FRONT, "sgCull")
     CHECK_ENUM(front_face, SG_FRONT_FACE_DEFAULT, SG_FRONT_FACE_CW, "sgFrontFace")
     CHECK_ENUM(blend, SG_BLEND_DEFAULT, SG_BLEND_ALPHA, "sgBlend")
-    if (desc->blend == SG_BLEND_ALPHA)
-        return sg_error(dev, SG_ERROR_UNSUPPORTED,
-                        "sgCreatePipelineStateObject: alpha blending is not implemented yet");
 
     sg_pso p;
     memset(&p, 0, sizeof p);
@@ -41,7 +39,10 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     if (!d->cull) d->cull = SG_CULL_NONE;
     if (!d->front_face) d->front_face = SG_FRONT_FACE_CCW;
     if (!d->blend) d->blend = SG_BLEND_OPAQUE;
-    p.raster_fn = sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
+    /* Opaque draws find the visible triangle first; blended ones blend as they go (blend.h). */
+    p.raster_fn = d->blend == SG_BLEND_ALPHA
+                      ? sg_blend_select(d->depth.compare, d->depth.write, dev->isa)
+                      : sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
     p.shade_fn = sg_shade_select(d->shade, d->filter, d->wrap, dev->isa);
     p.nattr = sg_shade_attr_count(d->shade);
     p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;

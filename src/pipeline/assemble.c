@@ -9,6 +9,8 @@
 static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS]) {
     static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     memcpy(attr, a->colors ? a->colors + (size_t)idx * 4 : white, 4 * sizeof(float));
+    if (a->tint)
+        for (int k = 0; k < 4; k++) attr[k] *= a->tint[k];
     if (a->setup.nattr > 4) memcpy(attr + 4, a->texcoords + (size_t)idx * 2, 2 * sizeof(float));
 }
 

@@ -16,6 +16,7 @@ typedef struct sg_assembly {
     const uint8_t *screen_ok; /* 1: that projection fits and the attributes read are finite */
     const float *colors;      /* 4 floats a vertex, NULL: opaque white */
     const float *texcoords;   /* 2 floats a vertex, read when setup.nattr > 4 */
+    const float *tint;        /* r g b a multiplying every vertex colour, or NULL */
     int rebase_texcoords;     /* repeat wrapping: move each triangle's texcoords next to 0 */
     sg_guard guard;
     sg_setup_params setup;

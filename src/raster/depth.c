@@ -13,27 +13,6 @@
 
 enum { Z_NONE, Z_LESS, Z_ANY };
 
-static inline bool depth_passes(sgCompare op, float z, float d) {
-    switch (op) {
-    case SG_COMPARE_NEVER:
-        return false;
-    case SG_COMPARE_LESS:
-        return z < d;
-    case SG_COMPARE_EQUAL:
-        return z == d;
-    case SG_COMPARE_LESS_EQUAL:
-        return z <= d;
-    case SG_COMPARE_GREATER:
-        return z > d;
-    case SG_COMPARE_NOT_EQUAL:
-        return z != d;
-    case SG_COMPARE_GREATER_EQUAL:
-        return z >= d;
-    default:
-        return true;
-    }
-}
-
 static inline __attribute__((always_inline)) void vis_scalar(const void *vctx, const sg_tri *t,
                                                              int x0, int y0, uint32_t mask,
                                                              const int zmode, const int zwrite) {
@@ -53,10 +32,9 @@ static inline __attribute__((always_inline)) void vis_scalar(const void *vctx, c
         int bit = __builtin_ctz(mask);
         mask &= mask - 1;
         float dx = ox + (float)(bit & 3), dy = oy + (float)(bit >> 2);
-        float z = t->z + t->z_dx * dx + t->z_dy * dy;
-        z = z < 0.0f ? 0.0f : (z > 1.0f ? 1.0f : z); /* depth is clamped to the depth range */
+        float z = sg_tri_depth(t, dx, dy);
         if (zmode == Z_LESS && !(z < dp[bit])) continue;
-        if (zmode == Z_ANY && !depth_passes(v->compare, z, dp[bit])) continue;
+        if (zmode == Z_ANY && !sg_depth_passes(v->compare, z, dp[bit])) continue;
         if (zwrite) dp[bit] = z;
         ids[bit] = v->id;
     }

@@ -24,6 +24,10 @@ typedef struct sg_vis_ctx {
     int bx0, by0;      /* the bin's top-left pixel */
     uint32_t id;       /* id of the triangle being rasterised */
     sgCompare compare;
+    /* Blended draws only (blend.c): they shade and blend into the bin's colour at once. */
+    uint32_t *color;
+    sg_shade_fn shade;
+    const sg_shade_ctx *shade_ctx;
 } sg_vis_ctx;
 
 /* Rasterises a triangle's part in the rectangle [x0, x1) x [y0, y1) into the bin's buffers (ctx:
@@ -41,6 +45,35 @@ sg_walk_fn sg_walk_avx512(void);
 
 /** The visibility function for a resolved depth state. */
 sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa);
+
+/** Window depth of a triangle at (dx, dy) pixels from its bounds' first pixel, clamped to the
+ *  depth range [0, 1] (a NaN stays NaN): every visibility function computes it this way. */
+static inline float sg_tri_depth(const sg_tri *t, float dx, float dy) {
+    float z = t->z + t->z_dx * dx + t->z_dy * dy;
+    return z < 0.0f ? 0.0f : (z > 1.0f ? 1.0f : z);
+}
+
+/** Whether depth z passes the compare against the stored d. */
+static inline bool sg_depth_passes(sgCompare op, float z, float d) {
+    switch (op) {
+    case SG_COMPARE_NEVER:
+        return false;
+    case SG_COMPARE_LESS:
+        return z < d;
+    case SG_COMPARE_EQUAL:
+        return z == d;
+    case SG_COMPARE_LESS_EQUAL:
+        return z <= d;
+    case SG_COMPARE_GREATER:
+        return z > d;
+    case SG_COMPARE_NOT_EQUAL:
+        return z != d;
+    case SG_COMPARE_GREATER_EQUAL:
+        return z >= d;
+    default:
+        return true;
+    }
+}
 
 /** The tile's ids in the bin, the tile marked as reached: shading visits only reached tiles.
  *  (No branch on a first visit: one that mispredicts once per tile costs more than clearing the

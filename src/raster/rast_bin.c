@@ -56,6 +56,53 @@ static void shade_tile(const sg_bin_pass *p, const uint32_t *ids, int x0, int y0
     }
 }
 
+/* Shades the visible ids of every reached tile into the colour. With `forget`, also sets them back
+ * to 0 and the tiles to unreached: what visibility decided so far is final before a blended
+ * triangle reads the colour. */
+static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pass *p, uint32_t *ids,
+                                                                uint64_t *touched, int x0, int y0,
+                                                                uint32_t *color,
+                                                                const bool forget) {
+    for (int word = 0; word < BIN_TILES * BIN_TILES / 64; word++) {
+        for (uint64_t left = touched[word]; left; left &= left - 1) {
+            int tile = word * 64 + __builtin_ctzll(left);
+            int tx = tile % BIN_TILES, ty = tile / BIN_TILES;
+            uint32_t *tids = ids + tile * SG_TILE_PIXELS;
+            shade_tile(p, tids, x0 + (tx << SG_TILE_SHIFT), y0 + (ty << SG_TILE_SHIFT),
+                       color + tile * SG_TILE_PIXELS);
+            if (forget) memset(tids, 0, SG_TILE_PIXELS * sizeof *tids);
+        }
+        if (forget) touched[word] = 0;
+    }
+}
+
+/* A bin of a pass with blended draws: the colour starts from the pass's load or clear, opaque
+ * triangles go through visibility as usual, and before each run of blended triangles the visible
+ * ids so far are shaded (shade_reached), so every pixel sees the triangles in submission order. */
+static void blended_bin(const sg_bin_pass *p, const sg_bin *bin, int x0, int y0, uint32_t *color,
+                        float *depth, uint32_t *ids, uint64_t *touched) {
+    const sg_binner *b = p->binner;
+    sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, color, NULL, NULL};
+    bool pending = false; /* ids hold opaque triangles not shaded yet */
+    for (uint32_t i = 0; i < bin->count; i++) {
+        uint32_t ti = bin->tris[i];
+        const sg_tri *t = &b->tris[ti];
+        const sg_draw_state *d = &p->draws[t->draw];
+        vis.id = ti + 1;
+        vis.compare = d->compare;
+        if (d->blend) {
+            if (pending) shade_reached(p, ids, touched, x0, y0, color, true);
+            pending = false;
+            vis.shade = d->shade_fn;
+            vis.shade_ctx = &d->ctx;
+        } else {
+            pending = true;
+        }
+        d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
+    }
+    if (pending) shade_reached(p, ids, touched, x0, y0, color, true);
+}
+
 void sg_rast_bin(const sg_bin_pass *p, int index) {
     const sg_binner *b = p->binner;
     const sg_bin *bin = &b->bins[index];
@@ -90,7 +137,20 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
             sg_fb_fill_depth(depth, BIN_PIXELS, p->clear_depth);
     }
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
-    sg_vis_ctx vis = {dimg ? depth : NULL, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS};
+    if (p->any_blend) {
+        if (p->load_color)
+            sg_tile_from_linear_rgba8(color, cimg, cpitch, w, h, BIN_TILES);
+        else
+            sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
+        blended_bin(p, bin, x0, y0, color, dimg ? depth : NULL, ids, touched);
+        SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
+        sg_tile_to_linear_rgba8(cimg, cpitch, color, w, h, BIN_TILES);
+        if (dimg && p->store_depth) sg_tile_to_linear_f32(dimg, cpitch, depth, w, h, BIN_TILES);
+        SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
+        return;
+    }
+    sg_vis_ctx vis = {dimg ? depth : NULL, ids,  touched, x0,  y0, 0,
+                      SG_COMPARE_ALWAYS,   NULL, NULL,    NULL};
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
@@ -111,13 +171,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
         sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     /* Only tiles some triangle reached hold ids (depth.h). */
-    for (int word = 0; word < BIN_TILES * BIN_TILES / 64; word++)
-        for (uint64_t left = touched[word]; left; left &= left - 1) {
-            int tile = word * 64 + __builtin_ctzll(left);
-            int tx = tile % BIN_TILES, ty = tile / BIN_TILES;
-            shade_tile(p, ids + tile * SG_TILE_PIXELS, x0 + (tx << SG_TILE_SHIFT),
-                       y0 + (ty << SG_TILE_SHIFT), color + tile * SG_TILE_PIXELS);
-        }
+    shade_reached(p, ids, touched, x0, y0, color, false);
 
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
     sg_tile_to_linear_rgba8(cimg, cpitch, color, w, h, BIN_TILES);

@@ -25,6 +25,7 @@ typedef struct sg_draw_state {
     sg_shade_fn shade_fn;
     sg_shade_ctx ctx;
     sgCompare compare;
+    bool blend; /* raster_fn blends into the colour as it goes (blend.h) */
 } sg_draw_state;
 
 /* Stages of a pass whose wall time a build with SGAPI_STAGE_TIMES adds up (stage_times.h). */
@@ -47,6 +48,7 @@ typedef struct sg_bin_pass {
     uint32_t clear_color;
     float clear_depth;
     bool store_depth;
+    bool any_blend;    /* some draw blends: bins take the ordered path (rast_bin.c) */
     void *stage_times; /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 
