@@ -14,10 +14,13 @@ build: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Renders the default scenes to $(OUT)/ and prints, per scene, the time per frame next to the
+# The project's scene files: the eight default scenes, then one file per feature.
+SCENES = scenes/default.json scenes/transparency.json
+
+# Renders the project's scenes to $(OUT)/ and prints, per scene, the time per frame next to the
 # error against its golden (lavapipe) image; heat maps go to $(OUT)/<scene>-heat.png.
 demo: build
-	$(BUILD)/apps/sgapi-render scenes/default.json -o $(OUT) --frames 5 --compare golden
+	$(BUILD)/apps/sgapi-render $(SCENES) -o $(OUT) --frames 5 --compare golden
 
 # Every test; then the suite again, built with clang under ASan + UBSan in build-asan/ (without the
 # live lavapipe checks, see tools/sanitize.sh); then the default scenes under valgrind memcheck.

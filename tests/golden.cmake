@@ -1,6 +1,7 @@
 # Image regression against the lavapipe reference, with the targets of golden/thresholds.csv:
-# - default scenes against the committed lavapipe renders in golden/ (golden_<scene>);
-# - default scenes against a live lavapipe render (live_<scene>);
+# - the project's scene files (suite = file stem: scenes/<suite>.json, e.g. default,
+#   transparency) against the committed lavapipe renders in golden/ (golden_<scene>);
+# - the same scenes against a live lavapipe render (live_<scene>);
 # - the hard cases of scenes/hard/ against a live lavapipe render (hard_<scene>); where a scene
 #   has a twin <scene>.reference.json, lavapipe renders the twin (the same image in exact
 #   arithmetic, without a precision problem of lavapipe's: docs/accuracy.md);
@@ -8,13 +9,19 @@
 #   render (gapi_<scene>).
 # Each check renders its scene with sgapi-render --compare, which also writes a heat map.
 set(CHECK_OUT ${CMAKE_CURRENT_BINARY_DIR}/image_checks)
-set(DEFAULT_SCENES ${PROJECT_SOURCE_DIR}/scenes/default.json)
 set(GAPI_TASK ${PROJECT_SOURCE_DIR}/../shared/gapi-task/scenes.json)
 set(HARD_DIR ${PROJECT_SOURCE_DIR}/scenes/hard)
 
 file(STRINGS ${PROJECT_SOURCE_DIR}/golden/thresholds.csv ROWS REGEX "^[^#]")
 set(HARD_REF_FILES)
+set(SUITES)
 foreach(row ${ROWS})
+  if(row MATCHES "^([^,]+),")
+    set(suite ${CMAKE_MATCH_1})
+    if(NOT suite STREQUAL "hard" AND NOT suite STREQUAL "gapi-task" AND NOT suite IN_LIST SUITES)
+      list(APPEND SUITES ${suite})
+    endif()
+  endif()
   if(row MATCHES "^hard,([^,]+),")
     set(file ${HARD_DIR}/${CMAKE_MATCH_1}.json)
     if(EXISTS ${HARD_DIR}/${CMAKE_MATCH_1}.reference.json)
@@ -27,8 +34,11 @@ endforeach()
 # The live checks need sgapi-ref; without it (-DSGAPI_BUILD_REFERENCE=OFF, as in the sanitizer
 # build, where Mesa is not instrumented) only the checks against golden/ remain.
 if(TARGET sgapi-ref)
-  add_test(NAME ref_default_scenes COMMAND sgapi-ref ${DEFAULT_SCENES} -o ${CHECK_OUT}/ref_default)
-  set_tests_properties(ref_default_scenes PROPERTIES FIXTURES_SETUP ref_default)
+  foreach(suite ${SUITES})
+    add_test(NAME ref_${suite}_scenes
+      COMMAND sgapi-ref ${PROJECT_SOURCE_DIR}/scenes/${suite}.json -o ${CHECK_OUT}/ref_${suite})
+    set_tests_properties(ref_${suite}_scenes PROPERTIES FIXTURES_SETUP ref_${suite})
+  endforeach()
   if(EXISTS ${GAPI_TASK})
     add_test(NAME ref_gapi_task COMMAND sgapi-ref ${GAPI_TASK} -o ${CHECK_OUT}/ref_gapi_task)
     set_tests_properties(ref_gapi_task PROPERTIES FIXTURES_SETUP ref_gapi_task)
@@ -54,12 +64,13 @@ foreach(row ${ROWS})
   list(GET f 2 psnr)
   list(GET f 3 over2)
   list(GET f 4 cov)
-  if(suite STREQUAL "default")
-    sg_image_check(golden_${scene} ${DEFAULT_SCENES} ${scene} ${PROJECT_SOURCE_DIR}/golden
+  if(suite IN_LIST SUITES)
+    set(file ${PROJECT_SOURCE_DIR}/scenes/${suite}.json)
+    sg_image_check(golden_${scene} ${file} ${scene} ${PROJECT_SOURCE_DIR}/golden
                    ${CHECK_OUT}/golden "" ${psnr} ${over2} ${cov})
     if(TARGET sgapi-ref)
-      sg_image_check(live_${scene} ${DEFAULT_SCENES} ${scene} ${CHECK_OUT}/ref_default
-                     ${CHECK_OUT}/live ref_default ${psnr} ${over2} ${cov})
+      sg_image_check(live_${scene} ${file} ${scene} ${CHECK_OUT}/ref_${suite}
+                     ${CHECK_OUT}/live ref_${suite} ${psnr} ${over2} ${cov})
     endif()
   elseif(suite STREQUAL "hard")
     if(TARGET sgapi-ref)

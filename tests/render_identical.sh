@@ -1,5 +1,5 @@
 #!/bin/sh
-# Renders the default scenes and the hard cases once for each value of one sgapi-render option
+# Renders every scene file of scenes/ and the hard cases once for each value of one sgapi-render option
 # and requires every image to be identical byte for byte to the first value's.
 #   render_identical.sh RENDER_BINARY SOURCE_DIR WORK_DIR OPTION VALUE...
 # --threads 1 2 3 5: bins share no pixels and keep submission order, so the thread count must
@@ -24,7 +24,10 @@ done
 first=
 for v in $values; do
     [ -z "$first" ] && first=$v
-    "$render" "$src/scenes/default.json" -o "$work/$v/default" "$option" "$v" >/dev/null
+    for f in "$src"/scenes/*.json; do
+        name=$(basename "$f" .json)
+        "$render" "$f" -o "$work/$v/$name" "$option" "$v" >/dev/null
+    done
     for f in "$src"/scenes/hard/*.json; do
         "$render" "$f" -o "$work/$v/hard" "$option" "$v" >/dev/null
     done

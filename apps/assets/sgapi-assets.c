@@ -456,6 +456,40 @@ static bool make_brick(const char *path) {
     return ok;
 }
 
+/* RGBA: a round lattice window. Its bars are opaque and shaded by hue; the panes are cut out
+ * (alpha 0) in a ring and glazed with alpha falling from 0.9 at the top to 0.1 at the bottom
+ * elsewhere, so one texture shows a hard cut-out edge and a smooth alpha gradient. */
+static bool make_cutout(const char *path) {
+    enum { N = 256, CELL = 32, BAR = 5 };
+    image im = image_new(N, N, 4);
+    for (int y = 0; y < N; y++) {
+        for (int x = 0; x < N; x++) {
+            unsigned char *p = im.px + ((size_t)y * N + (size_t)x) * 4;
+            double u = (x + 0.5) / N - 0.5, v = (y + 0.5) / N - 0.5;
+            double r = sqrt(u * u + v * v);
+            int mx = x % CELL, my = y % CELL;
+            bool bar = mx < BAR || my < BAR || r > 0.47;
+            vec3 c;
+            double alpha;
+            if (bar) {
+                c = v3_scale(hsv(0.08 + 0.5 * r, 0.55, 0.85), 0.75 + 0.5 * (0.5 - v) * 0.5);
+                alpha = 1.0;
+            } else if (r > 0.28 && r < 0.38) {
+                c = v3(0, 0, 0);
+                alpha = 0.0;
+            } else {
+                c = hsv(0.55 + 0.25 * u, 0.6, 0.95);
+                alpha = 0.1 + 0.8 * (1.0 - (y + 0.5) / N);
+            }
+            put_rgb(&im, x, y, c);
+            p[3] = to_u8(alpha);
+        }
+    }
+    bool ok = image_write(&im, path);
+    free(im.px);
+    return ok;
+}
+
 enum { HEIGHT_N = 256, TERRAIN_COLOR_N = 512 };
 
 /* Ridged octave noise: 1 - |2n - 1| per octave turns smooth bumps into sharp crests. Each octave's
@@ -1127,7 +1161,13 @@ typedef struct draw {
     bool textured;       /* "mode": "texture" */
     const char *texture; /* NULL writes null (vertex colour) */
     bool nearest, clamp;
-    const char *cull; /* NULL: the default, none */
+    const char *cull;          /* NULL: the default, none */
+    const char *depth_compare; /* NULL: the default, less */
+    bool no_depth_write;
+    bool blend; /* "blend": "alpha" */
+    bool sort;  /* "sort": "back_to_front" */
+    bool has_color;
+    double color[4]; /* "color", when has_color */
     mat4 world_view, proj;
 } draw;
 
@@ -1194,6 +1234,17 @@ static void write_scene(FILE *f, const scene *s, bool last) {
             fprintf(f, "          \"mode\": \"vertex_color\",\n");
         }
         if (d->cull) fprintf(f, "          \"cull\": \"%s\",\n", d->cull);
+        if (d->depth_compare)
+            fprintf(f, "          \"depth_compare\": \"%s\",\n", d->depth_compare);
+        if (d->no_depth_write) fprintf(f, "          \"depth_write\": false,\n");
+        if (d->blend) fprintf(f, "          \"blend\": \"alpha\",\n");
+        if (d->sort) fprintf(f, "          \"sort\": \"back_to_front\",\n");
+        if (d->has_color) {
+            fprintf(f, "          \"color\": [");
+            for (int k = 0; k < 4; k++)
+                fprintf(f, "%s%s", k ? ", " : "", fmt_num(a, sizeof a, d->color[k], 4));
+            fprintf(f, "],\n");
+        }
         fprintf(f, "          ");
         write_matrix(f, "worldView", d->world_view);
         fprintf(f, ",\n          ");
@@ -1218,6 +1269,7 @@ static void write_scene(FILE *f, const scene *s, bool last) {
 #define A_BRICK        "assets/brick.png"
 #define A_HEIGHT       "assets/height.png"
 #define A_TERRAIN      "assets/terrain_color.png"
+#define A_CUTOUT       "assets/cutout.png"
 
 /* Model transform T x Ry(yaw) x Rx(pitch) x Rz(roll) x S: scaled first, then rolled, pitched and
  * turned about the vertical last, then placed. */
@@ -1404,6 +1456,140 @@ static void scene_08(scene *s, mat4 proj) {
 }
 
 /* ---------------------------------------------------------------------------------------------
+ * Transparency scenes (transparency.json).
+ */
+
+static void set_color(draw *d, double r, double g, double b, double a) {
+    d->has_color = true;
+    d->color[0] = r, d->color[1] = g, d->color[2] = b, d->color[3] = a;
+}
+
+/* Convex transparent cubes over a checkered floor, each drawn the classic way: back faces first
+ * (cull front), then front faces (cull back), without depth writes, farthest cube first. One
+ * cube is textured, the texel times a translucent tint. */
+static void scene_alpha_cubes(scene *s, mat4 proj) {
+    static const struct {
+        double x, z, yaw, size, c[4];
+        bool textured;
+    } cubes[] = {
+        {-1.3, -1.6, 20, 0.75, {0.95, 0.25, 0.2, 0.45}, false},
+        {1.4, -1.2, -35, 0.7, {1, 1, 1, 0.6}, true},
+        {-0.2, 0.6, 50, 0.65, {0.2, 0.45, 0.95, 0.5}, false},
+        {1.2, 1.5, 10, 0.45, {0.25, 0.85, 0.3, 0.55}, false},
+    };
+    s->name = "alpha_cubes";
+    mat4 view = mat_look_at(v3(0, 4.2, 6.2), v3(0, 0.3, 0), v3(0, 1, 0));
+    draw *d = scene_add(s);
+    d->mesh = A_PLANE;
+    d->textured = true;
+    d->texture = A_CHECKER;
+    d->proj = proj;
+    d->world_view = mat_mul(view, mat_scale(4, 4, 4));
+    for (size_t i = 0; i < sizeof cubes / sizeof cubes[0]; i++) {
+        mat4 wv = mat_mul(view, model(v3(cubes[i].x, cubes[i].size, cubes[i].z), cubes[i].yaw, 0, 0,
+                                      cubes[i].size));
+        for (int pass = 0; pass < 2; pass++) {
+            d = scene_add(s);
+            d->mesh = A_CUBE;
+            d->textured = cubes[i].textured;
+            d->texture = cubes[i].textured ? A_MOSAIC : NULL;
+            d->cull = pass == 0 ? "front" : "back";
+            d->no_depth_write = true;
+            d->blend = true;
+            set_color(d, cubes[i].c[0], cubes[i].c[1], cubes[i].c[2], cubes[i].c[3]);
+            d->proj = proj;
+            d->world_view = wv;
+        }
+    }
+}
+
+/* A translucent teapot on the brick floor, its own faces blended over each other without depth
+ * writes: sorted back to front it reads correctly; unsorted the order of the patches shows. */
+static void scene_alpha_teapot(scene *s, mat4 proj, const mesh *teapot, bool sorted) {
+    s->name = sorted ? "alpha_teapot_sorted" : "alpha_teapot_unsorted";
+    mat4 view = mat_look_at(v3(0, 1.55, 2.9), v3(0, 0.32, 0), v3(0, 1, 0));
+    draw *d = scene_add(s);
+    d->mesh = A_PLANE;
+    d->textured = true;
+    d->texture = A_BRICK;
+    d->proj = proj;
+    d->world_view = mat_mul(view, mat_scale(2.5, 2.5, 2.5));
+    mat4 pose = model(v3(0, 0, 0), -28, 0, 0, 1.0);
+    d = scene_add(s);
+    d->mesh = A_TEAPOT;
+    d->textured = true;
+    d->texture = A_CHECKER;
+    d->no_depth_write = true;
+    d->blend = true;
+    d->sort = sorted;
+    set_color(d, 1.0, 0.9, 0.75, 0.45);
+    d->proj = proj;
+    d->world_view = mat_mul(view, mat_mul(mat_translate(0, -mesh_min_y(teapot, pose), 0), pose));
+}
+
+/* Window panes with a cut-out ring and an alpha gradient, standing on the checkered floor at
+ * different depths and angles, drawn farthest first. */
+static void scene_alpha_cutout(scene *s, mat4 proj) {
+    static const struct {
+        double x, z, yaw, size;
+    } panes[] = {{-1.2, -2.0, 25, 1.0}, {1.3, -1.2, -30, 0.9}, {-0.3, 0.4, 10, 0.8}};
+    s->name = "alpha_cutout";
+    mat4 view = mat_look_at(v3(0, 2.0, 5.5), v3(0, 0.7, 0), v3(0, 1, 0));
+    draw *d = scene_add(s);
+    d->mesh = A_PLANE;
+    d->textured = true;
+    d->texture = A_CHECKER;
+    d->proj = proj;
+    d->world_view = mat_mul(view, mat_scale(4, 4, 4));
+    for (size_t i = 0; i < sizeof panes / sizeof panes[0]; i++) {
+        d = scene_add(s);
+        d->mesh = A_QUAD;
+        d->textured = true;
+        d->texture = A_CUTOUT;
+        d->clamp = true;
+        d->no_depth_write = true;
+        d->blend = true;
+        d->proj = proj;
+        d->world_view = mat_mul(view, model(v3(panes[i].x, panes[i].size, panes[i].z), panes[i].yaw,
+                                            0, 0, panes[i].size));
+    }
+}
+
+/* Stacks of coloured squares in screen space over a grey ground: one column per alpha (0, 0.25,
+ * 0.5, 1), each square half over the one before, six deep; and a row of sixteen layers of the
+ * same colour at alpha 0.25, where the 8-bit rounding of each blend accumulates. */
+static void scene_alpha_stack(scene *s) {
+    static const double clear[4] = {0.5, 0.5, 0.5, 1.0};
+    static const double alphas[4] = {0.0, 0.25, 0.5, 1.0};
+    s->name = "alpha_stack";
+    s->clear = clear;
+    for (int col = 0; col < 4; col++) {
+        for (int k = 0; k < 6; k++) {
+            draw *d = scene_add(s);
+            d->mesh = A_QUAD;
+            d->depth_compare = "always";
+            d->no_depth_write = true;
+            d->blend = true;
+            vec3 c = hsv(k / 6.0, 0.8, 0.95);
+            set_color(d, c.x, c.y, c.z, alphas[col]);
+            double x = -0.82 + 0.46 * col + 0.045 * k, y = 0.72 - 0.075 * k;
+            d->world_view = mat_mul(mat_translate(x, y, 0), mat_scale(0.12, 0.12, 1));
+        }
+    }
+    for (int k = 0; k < 16; k++) {
+        draw *d = scene_add(s);
+        d->mesh = A_QUAD;
+        d->depth_compare = "always";
+        d->no_depth_write = true;
+        d->blend = true;
+        set_color(d, 0.9, 0.35, 0.1, 0.25);
+        double x0 = -0.9 + 0.1 * k;
+        d->world_view =
+            mat_mul(mat_translate((x0 + 0.9) / 2, -0.45, 0), mat_scale((0.9 - x0) / 2, 0.2, 1));
+    }
+}
+
+/* ---------------------------------------------------------------------------------------------
  * Output.
  */
 
@@ -1416,6 +1602,96 @@ static bool make_dir(const char *path) {
 static const char *join(char *buf, const char *dir, const char *rel) {
     snprintf(buf, PATH_CAP, "%s/%s", dir, rel);
     return buf;
+}
+
+/* The scenes of each file, in order. */
+enum {
+    S_01,
+    S_02,
+    S_03,
+    S_04,
+    S_05,
+    S_06,
+    S_07,
+    S_08,
+    S_ALPHA_CUBES,
+    S_ALPHA_TEAPOT_SORTED,
+    S_ALPHA_TEAPOT_UNSORTED,
+    S_ALPHA_CUTOUT,
+    S_ALPHA_STACK,
+    S_END = -1
+};
+static const int DEFAULT_SCENES[] = {S_01, S_02, S_03, S_04, S_05, S_06, S_07, S_08, S_END};
+static const int TRANSPARENCY_SCENES[] = {S_ALPHA_CUBES,           S_ALPHA_TEAPOT_SORTED,
+                                          S_ALPHA_TEAPOT_UNSORTED, S_ALPHA_CUTOUT,
+                                          S_ALPHA_STACK,           S_END};
+
+static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
+    switch (which) {
+    case S_01:
+        scene_01(s);
+        break;
+    case S_02:
+        scene_02(s);
+        break;
+    case S_03:
+        scene_03(s, proj);
+        break;
+    case S_04:
+        scene_04(s, proj);
+        break;
+    case S_05:
+        scene_05(s, proj);
+        break;
+    case S_06:
+        scene_06(s, proj, teapot);
+        break;
+    case S_07:
+        scene_07(s, proj, teapot);
+        break;
+    case S_08:
+        scene_08(s, proj);
+        break;
+    case S_ALPHA_CUBES:
+        scene_alpha_cubes(s, proj);
+        break;
+    case S_ALPHA_TEAPOT_SORTED:
+        scene_alpha_teapot(s, proj, teapot, true);
+        break;
+    case S_ALPHA_TEAPOT_UNSORTED:
+        scene_alpha_teapot(s, proj, teapot, false);
+        break;
+    case S_ALPHA_CUTOUT:
+        scene_alpha_cutout(s, proj);
+        break;
+    default:
+        scene_alpha_stack(s);
+        break;
+    }
+}
+
+/* Writes a scene file of 1024 x 1024 scenes cleared to transparent black unless they say
+ * otherwise. */
+static bool write_scene_file(const char *path, const int *which, mat4 proj, const mesh *teapot) {
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        fprintf(stderr, "sgapi-assets: cannot write %s: %s\n", path, strerror(errno));
+        return false;
+    }
+    scene *s = xmalloc(sizeof *s);
+    fprintf(f, "{\n  \"width\": 1024,\n  \"height\": 1024,\n  \"clear_color\": [0, 0, 0, 0],\n"
+               "  \"scenes\": [\n");
+    for (int i = 0; which[i] != S_END; i++) {
+        memset(s, 0, sizeof *s);
+        build_scene(s, which[i], proj, teapot);
+        write_scene(f, s, which[i + 1] == S_END);
+    }
+    fprintf(f, "  ]\n}\n");
+    free(s);
+    bool ok = !ferror(f);
+    if (fclose(f) != 0) ok = false;
+    if (!ok) fprintf(stderr, "sgapi-assets: error writing %s\n", path);
+    return ok;
 }
 
 typedef void (*mesh_builder)(mesh *m);
@@ -1500,58 +1776,14 @@ int main(int argc, char **argv) {
     bool ok = make_checker(join(path, out, A_CHECKER)) && make_mosaic(join(path, out, A_MOSAIC)) &&
               make_brick(join(path, out, A_BRICK)) &&
               make_height(join(path, out, A_HEIGHT), height) &&
-              make_terrain_color(join(path, out, A_TERRAIN), height);
+              make_terrain_color(join(path, out, A_TERRAIN), height) &&
+              make_cutout(join(path, out, A_CUTOUT));
     free(height);
 
-    FILE *f = NULL;
-    if (ok) {
-        f = fopen(join(path, out, "default.json"), "wb");
-        if (!f) {
-            fprintf(stderr, "sgapi-assets: cannot write %s: %s\n", path, strerror(errno));
-            ok = false;
-        }
-    }
-    if (ok) {
-        const mat4 proj = mat_perspective(45.0, 1.0, 0.1, 100.0);
-        scene *s = xmalloc(sizeof *s);
-        fprintf(f, "{\n  \"width\": 1024,\n  \"height\": 1024,\n  \"clear_color\": [0, 0, 0, 0],\n"
-                   "  \"scenes\": [\n");
-        for (int i = 1; i <= 8; i++) {
-            memset(s, 0, sizeof *s);
-            switch (i) {
-            case 1:
-                scene_01(s);
-                break;
-            case 2:
-                scene_02(s);
-                break;
-            case 3:
-                scene_03(s, proj);
-                break;
-            case 4:
-                scene_04(s, proj);
-                break;
-            case 5:
-                scene_05(s, proj);
-                break;
-            case 6:
-                scene_06(s, proj, &teapot);
-                break;
-            case 7:
-                scene_07(s, proj, &teapot);
-                break;
-            default:
-                scene_08(s, proj);
-                break;
-            }
-            write_scene(f, s, i == 8);
-        }
-        fprintf(f, "  ]\n}\n");
-        free(s);
-        ok = !ferror(f);
-        if (fclose(f) != 0) ok = false;
-        if (!ok) fprintf(stderr, "sgapi-assets: error writing default.json\n");
-    }
+    const mat4 proj = mat_perspective(45.0, 1.0, 0.1, 100.0);
+    ok = ok && write_scene_file(join(path, out, "default.json"), DEFAULT_SCENES, proj, &teapot);
+    ok = ok &&
+         write_scene_file(join(path, out, "transparency.json"), TRANSPARENCY_SCENES, proj, &teapot);
     mesh_free(&teapot);
     return ok ? 0 : 1;
 }
