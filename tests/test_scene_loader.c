@@ -110,6 +110,43 @@ static void obj_colour_extension(void **state) {
     sc_mesh_free(&m);
 }
 
+/* "v x y z r g b a": the colour's alpha reaches the mesh; lines without one keep alpha 1. */
+static void obj_colour_with_alpha(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    if (!parse_obj("v 0 0 0 1 0 0 0.25\nv 1 0 0 0 1 0\nv 0 1 0 2\nf 1 2 3\n", &m, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(m.vertex_count, 3);
+    const float pos[12] = {0, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1}; /* the weight 2 is ignored */
+    const float col[12] = {1, 0, 0, 0.25f, 0, 1, 0, 1, 1, 1, 1, 1};
+    assert_floats(m.positions, pos, 12);
+    assert_floats(m.colors, col, 12);
+    sc_mesh_free(&m);
+}
+
+/* A 'v' line is 3 or 4 numbers (position, weight), 6 (rgb) or 7 (rgba); other counts name the
+ * line. */
+static void obj_bad_position_count(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    static const struct {
+        const char *text, *want1, *want2;
+    } cases[] = {
+        {"v 0 0 0\nv 1 0 0 1 0\nv 0 1 0\nf 1 2 3\n", "test.obj:2:", "got 5 numbers"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0 1 1 1 1 1\nf 1 2 3\n", "test.obj:3:", "too many numbers"},
+        {"v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "test.obj:1:", "got 2 numbers"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        memset(err, 0, sizeof err);
+        assert_false(parse_obj(cases[i].text, &m, err, sizeof err));
+        if (!strstr(err, cases[i].want1) || !strstr(err, cases[i].want2))
+            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, err, cases[i].want1, cases[i].want2);
+        assert_null(m.positions);
+    }
+}
+
 static void obj_fan_split(void **state) {
     (void)state;
     char err[256];
@@ -532,6 +569,8 @@ static void scene_errors(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(obj_colour_extension),
+        cmocka_unit_test(obj_colour_with_alpha),
+        cmocka_unit_test(obj_bad_position_count),
         cmocka_unit_test(obj_fan_split),
         cmocka_unit_test(obj_negative_indices),
         cmocka_unit_test(obj_position_and_normal),
