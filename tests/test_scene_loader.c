@@ -425,6 +425,9 @@ static void scene_defaults(void **state) {
     assert_int_equal(d->front_face, SC_FRONT_FACE_CCW);
     assert_int_equal(d->depth_compare, SC_COMPARE_LESS);
     assert_true(d->depth_write);
+    assert_int_equal(d->blend, SC_BLEND_OPAQUE);
+    for (int i = 0; i < 4; i++) assert_float_equal(d->color[i], 1.0f, 0);
+    assert_int_equal(d->sort, SC_SORT_NONE);
     assert_float_equal(d->world_view[0], 1.0f, 0);
     assert_float_equal(d->proj[15], 1.0f, 0);
     sc_free(&f);
@@ -500,6 +503,32 @@ static void scene_texture_null(void **state) {
     sc_free(&f);
 }
 
+/* The transparency keys: blend, a constant colour and the triangle order. */
+static void scene_transparency(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    if (!load_scene(t, "transparency.json",
+                    "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"t\", \"draws\": ["
+                    "{\"mesh\": \"tri.obj\", \"blend\": \"alpha\", \"color\": [0.5, 0.25, 0, 0.75],"
+                    " \"sort\": \"back_to_front\", \"depth_write\": false, " MATRICES "},"
+                    "{\"mesh\": \"tri.obj\", \"blend\": \"opaque\", \"color\": [1, 1, 1, 1],"
+                    " \"sort\": \"none\", " MATRICES "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    const sc_draw *d = &f.scenes[0].draws[0];
+    assert_int_equal(d->blend, SC_BLEND_ALPHA);
+    const float color[4] = {0.5f, 0.25f, 0.0f, 0.75f};
+    assert_floats(d->color, color, 4);
+    assert_int_equal(d->sort, SC_SORT_BACK_TO_FRONT);
+    assert_false(d->depth_write);
+    d = &f.scenes[0].draws[1];
+    assert_int_equal(d->blend, SC_BLEND_OPAQUE);
+    for (int i = 0; i < 4; i++) assert_float_equal(d->color[i], 1.0f, 0);
+    assert_int_equal(d->sort, SC_SORT_NONE);
+    sc_free(&f);
+}
+
 /* Scene files that must fail, each with words its message must contain. */
 static void scene_errors(void **state) {
     tmp_dir *t = *state;
@@ -549,6 +578,35 @@ static void scene_errors(void **state) {
         {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
          "{\"heightmap\": \"red.png\"}, " MATRICES "}]}]}",
          "draws[0]", "2x2"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"blend\": \"additive\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]", "'blend' must be one of opaque, alpha (got 'additive')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"blend\": true, " MATRICES "}]}]}",
+         "draws[0]", "'blend' must be a string, one of opaque, alpha"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"sort\": \"front_to_back\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]",
+         "'sort' must be one of none, back_to_front (got 'front_to_back')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", " MATRICES
+         "}, {\"mesh\": \"tri.obj\", \"color\": [1, 0.5, 0, 1.5], " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[1]", "'color'[3] = 1.5 is out of range (0..1)"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": [-0.25, 0, 0, 1], " MATRICES "}]}]}",
+         "draws[0]", "'color'[0] = -0.25 is out of range"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": [1, 1, 1], " MATRICES "}]}]}",
+         "draws[0]", "'color' must be an array of 4 numbers"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": [1, 1, 1, 1, 1], " MATRICES "}]}]}",
+         "draws[0]", "'color' must be an array of 4 numbers"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": [1, 1, \"1\", 1], " MATRICES "}]}]}",
+         "draws[0]", "'color'[2] is not a number"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": 1, " MATRICES "}]}]}",
+         "draws[0]", "'color' must be an array of 4 numbers"},
         {"{\n\"width\": 4,\n\"height\": x\n}", "invalid JSON", "line 3"},
         {"[1, 2]", "errors.json", "top level"},
     };
@@ -582,6 +640,7 @@ int main(void) {
         cmocka_unit_test(scene_defaults),
         cmocka_unit_test(scene_overrides),
         cmocka_unit_test(scene_texture_null),
+        cmocka_unit_test(scene_transparency),
         cmocka_unit_test(scene_errors),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
