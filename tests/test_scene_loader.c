@@ -1,4 +1,5 @@
-/* test_scene_loader.c - the API-neutral loaders: OBJ meshes, heightmap meshes and scene files.
+/* test_scene_loader.c - the API-neutral loaders: OBJ meshes, heightmap meshes and scene files; and
+ * the back-to-front triangle order of the scene format.
  *
  * Every input file is written by the test itself into a fresh temporary folder.
  */
@@ -11,6 +12,7 @@
 
 #include "test_common.h"
 
+#include "depth_sort.h"
 #include "image_io.h"
 #include "obj.h"
 #include "scene.h"
@@ -624,6 +626,85 @@ static void scene_errors(void **state) {
     }
 }
 
+/* ---- back-to-front order --------------------------------------------------------------------- */
+
+/* Three triangles whose vertices all share one position: the key is that position's view z. */
+static void sort_order_and_ties(void **state) {
+    (void)state;
+    const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    /* Vertex z: -1, -3, -2, then -0 and +0 (a tie). */
+    const float pos[5 * 4] = {0, 0, -1, 1, 0, 0, -3, 1, 0, 0, -2, 1, 0, 0, -0.0f, 1, 0, 0, 0, 1};
+    const uint32_t idx[15] = {0, 0, 0, 4, 4, 4, 1, 1, 1, 3, 3, 3, 2, 2, 2};
+    uint32_t out[15];
+    assert_true(sc_sort_back_to_front(pos, idx, 15, identity, out));
+    const uint32_t want[15] = {1, 1, 1, 2, 2, 2, 0, 0, 0, 4, 4, 4, 3, 3, 3};
+    for (int i = 0; i < 15; i++) assert_int_equal(out[i], want[i]);
+
+    /* Row 3 of worldView gives w = x: z is divided by it unless it is 1. Keys -4 / 1, -6 / 2,
+     * -20 / 4: without the division the order would be C, B, A. */
+    const float wx[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0};
+    const float pos2[3 * 4] = {1, 0, -4, 1, 2, 0, -6, 1, 4, 0, -20, 1};
+    const uint32_t idx2[9] = {0, 0, 0, 1, 1, 1, 2, 2, 2};
+    uint32_t out2[9];
+    assert_true(sc_sort_back_to_front(pos2, idx2, 9, wx, out2));
+    const uint32_t want2[9] = {2, 2, 2, 0, 0, 0, 1, 1, 1};
+    for (int i = 0; i < 9; i++) assert_int_equal(out2[i], want2[i]);
+
+    /* No triangle at all, and one alone. */
+    assert_true(sc_sort_back_to_front(pos, idx, 0, identity, out));
+    assert_true(sc_sort_back_to_front(pos, idx, 3, identity, out));
+    assert_int_equal(out[0], 0);
+}
+
+/* Many triangles with few distinct keys: the result is the stable order, whatever the merge
+ * sort's run boundaries. */
+static void sort_stable_at_scale(void **state) {
+    (void)state;
+    enum { TRIS = 1001, VERTS = 7 };
+    const float m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0.5f, 0, 1, -3, 0, 0, 0, 1};
+    float pos[VERTS * 4];
+    for (int v = 0; v < VERTS; v++) {
+        pos[v * 4] = (float)(v % 3);
+        pos[v * 4 + 1] = 0.0f;
+        pos[v * 4 + 2] = (float)-v;
+        pos[v * 4 + 3] = 1.0f;
+    }
+    uint32_t *idx = malloc(TRIS * 3 * sizeof *idx), *out = malloc(TRIS * 3 * sizeof *out);
+    float *key = malloc(TRIS * sizeof *key);
+    assert_non_null(idx);
+    assert_non_null(out);
+    assert_non_null(key);
+    uint32_t seed = 7;
+    for (int i = 0; i < TRIS * 3; i++) {
+        seed = seed * 1664525u + 1013904223u;
+        idx[i] = (seed >> 16) % VERTS;
+    }
+    for (int t = 0; t < TRIS; t++) {
+        float z[3];
+        for (int k = 0; k < 3; k++) {
+            const float *p = pos + 4 * idx[3 * t + k];
+            z[k] = ((m[8] * p[0] + m[9] * p[1]) + m[10] * p[2]) + m[11] * p[3];
+        }
+        key[t] = ((z[0] + z[1]) + z[2]) / 3.0f;
+    }
+    assert_true(sc_sort_back_to_front(pos, idx, TRIS * 3, m, out));
+    /* The expected order by insertion sort, stable by construction. */
+    int order[TRIS];
+    for (int t = 0; t < TRIS; t++) {
+        int j = t;
+        while (j > 0 && key[order[j - 1]] > key[t]) {
+            order[j] = order[j - 1];
+            j--;
+        }
+        order[j] = t;
+    }
+    for (int t = 0; t < TRIS; t++)
+        for (int k = 0; k < 3; k++) assert_int_equal(out[3 * t + k], idx[3 * order[t] + k]);
+    free(idx);
+    free(out);
+    free(key);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(obj_colour_extension),
@@ -642,6 +723,8 @@ int main(void) {
         cmocka_unit_test(scene_texture_null),
         cmocka_unit_test(scene_transparency),
         cmocka_unit_test(scene_errors),
+        cmocka_unit_test(sort_order_and_ties),
+        cmocka_unit_test(sort_stable_at_scale),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }
