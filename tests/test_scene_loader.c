@@ -1,4 +1,5 @@
-/* test_scene_loader.c - the API-neutral loaders: OBJ meshes, heightmap meshes and scene files.
+/* test_scene_loader.c - the API-neutral loaders: OBJ meshes, heightmap meshes and scene files; and
+ * the back-to-front triangle order of the scene format.
  *
  * Every input file is written by the test itself into a fresh temporary folder.
  */
@@ -11,6 +12,7 @@
 
 #include "test_common.h"
 
+#include "depth_sort.h"
 #include "image_io.h"
 #include "obj.h"
 #include "scene.h"
@@ -108,6 +110,43 @@ static void obj_colour_extension(void **state) {
     const uint32_t idx[3] = {0, 1, 2};
     assert_indices(&m, idx, 3);
     sc_mesh_free(&m);
+}
+
+/* "v x y z r g b a": the colour's alpha reaches the mesh; lines without one keep alpha 1. */
+static void obj_colour_with_alpha(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    if (!parse_obj("v 0 0 0 1 0 0 0.25\nv 1 0 0 0 1 0\nv 0 1 0 2\nf 1 2 3\n", &m, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(m.vertex_count, 3);
+    const float pos[12] = {0, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1}; /* the weight 2 is ignored */
+    const float col[12] = {1, 0, 0, 0.25f, 0, 1, 0, 1, 1, 1, 1, 1};
+    assert_floats(m.positions, pos, 12);
+    assert_floats(m.colors, col, 12);
+    sc_mesh_free(&m);
+}
+
+/* A 'v' line is 3 or 4 numbers (position, weight), 6 (rgb) or 7 (rgba); other counts name the
+ * line. */
+static void obj_bad_position_count(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    static const struct {
+        const char *text, *want1, *want2;
+    } cases[] = {
+        {"v 0 0 0\nv 1 0 0 1 0\nv 0 1 0\nf 1 2 3\n", "test.obj:2:", "got 5 numbers"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0 1 1 1 1 1\nf 1 2 3\n", "test.obj:3:", "too many numbers"},
+        {"v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "test.obj:1:", "got 2 numbers"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        memset(err, 0, sizeof err);
+        assert_false(parse_obj(cases[i].text, &m, err, sizeof err));
+        if (!strstr(err, cases[i].want1) || !strstr(err, cases[i].want2))
+            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, err, cases[i].want1, cases[i].want2);
+        assert_null(m.positions);
+    }
 }
 
 static void obj_fan_split(void **state) {
@@ -388,6 +427,9 @@ static void scene_defaults(void **state) {
     assert_int_equal(d->front_face, SC_FRONT_FACE_CCW);
     assert_int_equal(d->depth_compare, SC_COMPARE_LESS);
     assert_true(d->depth_write);
+    assert_int_equal(d->blend, SC_BLEND_OPAQUE);
+    for (int i = 0; i < 4; i++) assert_float_equal(d->color[i], 1.0f, 0);
+    assert_int_equal(d->sort, SC_SORT_NONE);
     assert_float_equal(d->world_view[0], 1.0f, 0);
     assert_float_equal(d->proj[15], 1.0f, 0);
     sc_free(&f);
@@ -463,6 +505,32 @@ static void scene_texture_null(void **state) {
     sc_free(&f);
 }
 
+/* The transparency keys: blend, a constant colour and the triangle order. */
+static void scene_transparency(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    if (!load_scene(t, "transparency.json",
+                    "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"t\", \"draws\": ["
+                    "{\"mesh\": \"tri.obj\", \"blend\": \"alpha\", \"color\": [0.5, 0.25, 0, 0.75],"
+                    " \"sort\": \"back_to_front\", \"depth_write\": false, " MATRICES "},"
+                    "{\"mesh\": \"tri.obj\", \"blend\": \"opaque\", \"color\": [1, 1, 1, 1],"
+                    " \"sort\": \"none\", " MATRICES "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    const sc_draw *d = &f.scenes[0].draws[0];
+    assert_int_equal(d->blend, SC_BLEND_ALPHA);
+    const float color[4] = {0.5f, 0.25f, 0.0f, 0.75f};
+    assert_floats(d->color, color, 4);
+    assert_int_equal(d->sort, SC_SORT_BACK_TO_FRONT);
+    assert_false(d->depth_write);
+    d = &f.scenes[0].draws[1];
+    assert_int_equal(d->blend, SC_BLEND_OPAQUE);
+    for (int i = 0; i < 4; i++) assert_float_equal(d->color[i], 1.0f, 0);
+    assert_int_equal(d->sort, SC_SORT_NONE);
+    sc_free(&f);
+}
+
 /* Scene files that must fail, each with words its message must contain. */
 static void scene_errors(void **state) {
     tmp_dir *t = *state;
@@ -512,6 +580,35 @@ static void scene_errors(void **state) {
         {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
          "{\"heightmap\": \"red.png\"}, " MATRICES "}]}]}",
          "draws[0]", "2x2"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"blend\": \"additive\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]", "'blend' must be one of opaque, alpha (got 'additive')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"blend\": true, " MATRICES "}]}]}",
+         "draws[0]", "'blend' must be a string, one of opaque, alpha"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"sort\": \"front_to_back\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]",
+         "'sort' must be one of none, back_to_front (got 'front_to_back')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", " MATRICES
+         "}, {\"mesh\": \"tri.obj\", \"color\": [1, 0.5, 0, 1.5], " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[1]", "'color'[3] = 1.5 is out of range (0..1)"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": [-0.25, 0, 0, 1], " MATRICES "}]}]}",
+         "draws[0]", "'color'[0] = -0.25 is out of range"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": [1, 1, 1], " MATRICES "}]}]}",
+         "draws[0]", "'color' must be an array of 4 numbers"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": [1, 1, 1, 1, 1], " MATRICES "}]}]}",
+         "draws[0]", "'color' must be an array of 4 numbers"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": [1, 1, \"1\", 1], " MATRICES "}]}]}",
+         "draws[0]", "'color'[2] is not a number"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"color\": 1, " MATRICES "}]}]}",
+         "draws[0]", "'color' must be an array of 4 numbers"},
         {"{\n\"width\": 4,\n\"height\": x\n}", "invalid JSON", "line 3"},
         {"[1, 2]", "errors.json", "top level"},
     };
@@ -529,9 +626,90 @@ static void scene_errors(void **state) {
     }
 }
 
+/* ---- back-to-front order --------------------------------------------------------------------- */
+
+/* Three triangles whose vertices all share one position: the key is that position's view z. */
+static void sort_order_and_ties(void **state) {
+    (void)state;
+    const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    /* Vertex z: -1, -3, -2, then -0 and +0 (a tie). */
+    const float pos[5 * 4] = {0, 0, -1, 1, 0, 0, -3, 1, 0, 0, -2, 1, 0, 0, -0.0f, 1, 0, 0, 0, 1};
+    const uint32_t idx[15] = {0, 0, 0, 4, 4, 4, 1, 1, 1, 3, 3, 3, 2, 2, 2};
+    uint32_t out[15];
+    assert_true(sc_sort_back_to_front(pos, idx, 15, identity, out));
+    const uint32_t want[15] = {1, 1, 1, 2, 2, 2, 0, 0, 0, 4, 4, 4, 3, 3, 3};
+    for (int i = 0; i < 15; i++) assert_int_equal(out[i], want[i]);
+
+    /* Row 3 of worldView gives w = x: z is divided by it unless it is 1. Keys -4 / 1, -6 / 2,
+     * -20 / 4: without the division the order would be C, B, A. */
+    const float wx[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0};
+    const float pos2[3 * 4] = {1, 0, -4, 1, 2, 0, -6, 1, 4, 0, -20, 1};
+    const uint32_t idx2[9] = {0, 0, 0, 1, 1, 1, 2, 2, 2};
+    uint32_t out2[9];
+    assert_true(sc_sort_back_to_front(pos2, idx2, 9, wx, out2));
+    const uint32_t want2[9] = {2, 2, 2, 0, 0, 0, 1, 1, 1};
+    for (int i = 0; i < 9; i++) assert_int_equal(out2[i], want2[i]);
+
+    /* No triangle at all, and one alone. */
+    assert_true(sc_sort_back_to_front(pos, idx, 0, identity, out));
+    assert_true(sc_sort_back_to_front(pos, idx, 3, identity, out));
+    assert_int_equal(out[0], 0);
+}
+
+/* Many triangles with few distinct keys: the result is the stable order, whatever the merge
+ * sort's run boundaries. */
+static void sort_stable_at_scale(void **state) {
+    (void)state;
+    enum { TRIS = 1001, VERTS = 7 };
+    const float m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0.5f, 0, 1, -3, 0, 0, 0, 1};
+    float pos[VERTS * 4];
+    for (int v = 0; v < VERTS; v++) {
+        pos[v * 4] = (float)(v % 3);
+        pos[v * 4 + 1] = 0.0f;
+        pos[v * 4 + 2] = (float)-v;
+        pos[v * 4 + 3] = 1.0f;
+    }
+    uint32_t *idx = malloc(TRIS * 3 * sizeof *idx), *out = malloc(TRIS * 3 * sizeof *out);
+    float *key = malloc(TRIS * sizeof *key);
+    assert_non_null(idx);
+    assert_non_null(out);
+    assert_non_null(key);
+    uint32_t seed = 7;
+    for (int i = 0; i < TRIS * 3; i++) {
+        seed = seed * 1664525u + 1013904223u;
+        idx[i] = (seed >> 16) % VERTS;
+    }
+    for (int t = 0; t < TRIS; t++) {
+        float z[3];
+        for (int k = 0; k < 3; k++) {
+            const float *p = pos + 4 * idx[3 * t + k];
+            z[k] = ((m[8] * p[0] + m[9] * p[1]) + m[10] * p[2]) + m[11] * p[3];
+        }
+        key[t] = ((z[0] + z[1]) + z[2]) / 3.0f;
+    }
+    assert_true(sc_sort_back_to_front(pos, idx, TRIS * 3, m, out));
+    /* The expected order by insertion sort, stable by construction. */
+    int order[TRIS];
+    for (int t = 0; t < TRIS; t++) {
+        int j = t;
+        while (j > 0 && key[order[j - 1]] > key[t]) {
+            order[j] = order[j - 1];
+            j--;
+        }
+        order[j] = t;
+    }
+    for (int t = 0; t < TRIS; t++)
+        for (int k = 0; k < 3; k++) assert_int_equal(out[3 * t + k], idx[3 * order[t] + k]);
+    free(idx);
+    free(out);
+    free(key);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(obj_colour_extension),
+        cmocka_unit_test(obj_colour_with_alpha),
+        cmocka_unit_test(obj_bad_position_count),
         cmocka_unit_test(obj_fan_split),
         cmocka_unit_test(obj_negative_indices),
         cmocka_unit_test(obj_position_and_normal),
@@ -543,7 +721,10 @@ int main(void) {
         cmocka_unit_test(scene_defaults),
         cmocka_unit_test(scene_overrides),
         cmocka_unit_test(scene_texture_null),
+        cmocka_unit_test(scene_transparency),
         cmocka_unit_test(scene_errors),
+        cmocka_unit_test(sort_order_and_ties),
+        cmocka_unit_test(sort_stable_at_scale),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -1,4 +1,4 @@
-/* obj.c - Wavefront OBJ loader: positions (with the "v x y z r g b" colour extension), texture
+/* obj.c - Wavefront OBJ loader: positions (with the "v x y z r g b [a]" colour extension), texture
  * coordinates, normals and polygonal faces, turned into an indexed triangle list.
  *
  * Input is untrusted: every index is checked, every size is checked against overflow, and any
@@ -26,7 +26,7 @@ typedef struct parser {
     char *err;
     size_t errlen;
 
-    float *v; /* 6 floats per position: x, y, z, r, g, b */
+    float *v; /* 7 floats per position: x, y, z, r, g, b, a */
     size_t nv, capv;
     float *vt; /* 2 per texture coordinate */
     size_t nvt, capvt;
@@ -135,18 +135,22 @@ static bool add_position(parser *p, const char *s, const char *e) {
     float f[7] = {0};
     int n = 0;
     if (!parse_floats(p, s, e, f, 7, &n, "v")) return false;
-    if (n != 3 && n != 4 && n != 6)
-        return fail(p, "'v' needs x y z, optionally followed by w or by r g b (got %d numbers)", n);
+    if (n != 3 && n != 4 && n != 6 && n != 7)
+        return fail(p,
+                    "'v' needs x y z, optionally followed by w, by r g b or by r g b a (got %d "
+                    "numbers)",
+                    n);
     if (p->nv >= SC_MESH_MAX_COUNT) return fail(p, "too many positions");
-    if (!grow((void **)&p->v, &p->capv, p->nv + 1, 6 * sizeof(float)))
+    if (!grow((void **)&p->v, &p->capv, p->nv + 1, 7 * sizeof(float)))
         return fail(p, "out of memory");
-    float *d = p->v + p->nv * 6;
+    float *d = p->v + p->nv * 7;
     d[0] = f[0], d[1] = f[1], d[2] = f[2];
     /* The fourth number of the OBJ spec is a weight for rational curves: not a colour, unused. */
-    bool rgb = n == 6;
+    bool rgb = n >= 6;
     d[3] = rgb ? f[3] : 1.0f;
     d[4] = rgb ? f[4] : 1.0f;
     d[5] = rgb ? f[5] : 1.0f;
+    d[6] = n == 7 ? f[6] : 1.0f;
     p->nv++;
     return true;
 }
@@ -351,10 +355,10 @@ static bool finish(parser *p, sc_mesh *out) {
     }
     for (size_t i = 0; i < n; i++) {
         const key3 k = p->keys[i];
-        const float *v = p->v + (size_t)k.v * 6;
+        const float *v = p->v + (size_t)k.v * 7;
         float *pos = m.positions + i * 4, *col = m.colors + i * 4;
         pos[0] = v[0], pos[1] = v[1], pos[2] = v[2], pos[3] = 1.0f;
-        col[0] = v[3], col[1] = v[4], col[2] = v[5], col[3] = 1.0f;
+        col[0] = v[3], col[1] = v[4], col[2] = v[5], col[3] = v[6];
         /* A face vertex without one, in a mesh where others have one, gets zeros. */
         if (any_vt) {
             m.texcoords[i * 2] = k.vt != NONE ? p->vt[(size_t)k.vt * 2] : 0.0f;

@@ -16,7 +16,7 @@
 typedef struct sc_mesh {
     uint32_t vertex_count;
     float *positions; /* vertex_count * 4: x, y, z, w (w = 1) */
-    float *colors;    /* vertex_count * 4: r, g, b, a (a = 1; white when the file has none) */
+    float *colors;    /* vertex_count * 4: r, g, b, a (a = 1 unless given; white when none) */
     float *texcoords; /* vertex_count * 2: s, t, or NULL when no face uses a texture coordinate */
     float *normals;   /* vertex_count * 3, or NULL when no face uses a normal */
     uint32_t index_count; /* a multiple of 3, >= 3 */

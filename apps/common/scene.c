@@ -176,6 +176,11 @@ static const enum_name compares[] = {{"less", SC_COMPARE_LESS},
                                      {"always", SC_COMPARE_ALWAYS},
                                      {NULL, 0}};
 
+static const enum_name blends[] = {
+    {"opaque", SC_BLEND_OPAQUE}, {"alpha", SC_BLEND_ALPHA}, {NULL, 0}};
+static const enum_name sorts[] = {
+    {"none", SC_SORT_NONE}, {"back_to_front", SC_SORT_BACK_TO_FRONT}, {NULL, 0}};
+
 /* A string naming one of the table's values; absent keeps *out (the default). */
 static bool get_enum(ctx *c, const loc *l, const cJSON *obj, const char *key,
                      const enum_name *table, int *out) {
@@ -437,11 +442,13 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     int mode = d->texture >= 0 ? SC_MODE_TEXTURE : SC_MODE_VERTEX_COLOR;
     int filter = SC_FILTER_BILINEAR, wrap = SC_WRAP_REPEAT, cull = SC_CULL_NONE;
     int front = SC_FRONT_FACE_CCW, compare = SC_COMPARE_LESS;
+    int blend = SC_BLEND_OPAQUE, sort = SC_SORT_NONE;
     if (!get_enum(c, l, v, "mode", modes, &mode) ||
         !get_enum(c, l, v, "filter", filters, &filter) ||
         !get_enum(c, l, v, "wrap", wraps, &wrap) || !get_enum(c, l, v, "cull", culls, &cull) ||
         !get_enum(c, l, v, "front_face", front_faces, &front) ||
-        !get_enum(c, l, v, "depth_compare", compares, &compare))
+        !get_enum(c, l, v, "depth_compare", compares, &compare) ||
+        !get_enum(c, l, v, "blend", blends, &blend) || !get_enum(c, l, v, "sort", sorts, &sort))
         return false;
     d->mode = (sc_mode)mode;
     d->filter = (sc_filter)filter;
@@ -449,12 +456,16 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     d->cull = (sc_cull)cull;
     d->front_face = (sc_front_face)front;
     d->depth_compare = (sc_compare)compare;
+    d->blend = (sc_blend)blend;
+    d->sort = (sc_sort)sort;
 
     const cJSON *dw = cJSON_GetObjectItemCaseSensitive(v, "depth_write");
     if (dw && !cJSON_IsBool(dw)) return fail(c, l, "'depth_write' must be true or false");
     d->depth_write = !dw || cJSON_IsTrue(dw);
 
     bool present;
+    for (int i = 0; i < 4; i++) d->color[i] = 1.0f;
+    if (!get_floats(c, l, v, "color", 4, 0.0, 1.0, d->color, &present)) return false;
     if (!get_floats(c, l, v, "worldView", 16, -HUGE_VAL, HUGE_VAL, d->world_view, &present))
         return false;
     if (!present) return fail(c, l, "missing 'worldView' (16 numbers, row-major)");

@@ -41,6 +41,16 @@ typedef enum sc_compare {
     SC_COMPARE_ALWAYS,
 } sc_compare;
 
+typedef enum sc_blend {
+    SC_BLEND_OPAQUE, /* the fragment replaces the pixel */
+    SC_BLEND_ALPHA,  /* src * src_alpha + dst * (1 - src_alpha), alpha channel included */
+} sc_blend;
+
+typedef enum sc_sort {
+    SC_SORT_NONE,          /* triangles in index order */
+    SC_SORT_BACK_TO_FRONT, /* by view-space centroid z, farthest first (docs/scene-format.md) */
+} sc_sort;
+
 /* One draw call. */
 typedef struct sc_draw {
     int mesh;    /* index into sc_file.meshes */
@@ -52,6 +62,9 @@ typedef struct sc_draw {
     sc_front_face front_face;
     sc_compare depth_compare;
     bool depth_write;
+    sc_blend blend;
+    float color[4]; /* r, g, b, a in [0, 1], times every vertex colour; default 1, 1, 1, 1 */
+    sc_sort sort;
     float world_view[16]; /* row-major: elements 0..3 are the first row */
     float proj[16];       /* row-major; clip = proj * world_view * position */
 } sc_draw;

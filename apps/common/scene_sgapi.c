@@ -38,7 +38,7 @@ sgPipelineDesc ss_pipeline_desc(const sc_draw *d) {
              : d->cull == SC_CULL_FRONT ? SG_CULL_FRONT
                                         : SG_CULL_NONE;
     p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
-    p.blend = SG_BLEND_OPAQUE;
+    p.blend = d->blend == SC_BLEND_ALPHA ? SG_BLEND_ALPHA : SG_BLEND_OPAQUE;
     return p;
 }
 
@@ -155,6 +155,11 @@ bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *f, const sc_s
         memcpy(params.world_view, d->world_view, sizeof params.world_view);
         memcpy(params.proj, d->proj, sizeof params.proj);
         if (d->texture >= 0) params.texture = u->images[d->texture];
+        /* NULL for the default white keeps such draws on the path without a colour multiply. */
+        sgColor color = {d->color[0], d->color[1], d->color[2], d->color[3]};
+        bool white = color.r == 1.0f && color.g == 1.0f && color.b == 1.0f && color.a == 1.0f;
+        params.color = white ? NULL : &color;
+        params.sort = d->sort == SC_SORT_BACK_TO_FRONT ? SG_SORT_BACK_TO_FRONT : SG_SORT_NONE;
         r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
         if (r != SG_OK) {
             ss_fail(prog, dev, r, "scene '%s', draw %zu (%s): sgDraw", s->name, i,

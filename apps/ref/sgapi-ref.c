@@ -5,8 +5,10 @@
  *
  * Same scene loader, same conventions as sgapi-render (see docs/reference.md): OpenGL clip space
  * mapped to Vulkan's in the vertex shader, texture rows uploaded bottom first so t = 0 is the
- * bottom row, RGBA8 unorm colour, D32 float depth, no mipmaps. Writes DIR/<scene>.png and prints
- * the time per frame (submit to fence, median of N). --threads sets LP_NUM_THREADS.
+ * bottom row, RGBA8 unorm colour, D32 float depth, no mipmaps; alpha blending is pipeline state,
+ * the draw colour a uniform the vertex shader multiplies by, back-to-front sorting done on the CPU.
+ * Writes DIR/<scene>.png and prints the time per frame (submit to fence, median of N). --threads
+ * sets LP_NUM_THREADS.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -22,6 +24,7 @@
 #include <vulkan/vulkan.h>
 
 #include "cli.h"
+#include "depth_sort.h"
 #include "image_io.h"
 #include "scene.h"
 #include "spv_color_frag.h"
@@ -58,10 +61,12 @@ typedef struct ref {
     VkCommandPool cmd_pool;
     VkCommandBuffer cmd;
     VkFence fence;
-    VkShaderModule modules[4]; /* color.vert, color.frag, texture.vert, texture.frag */
-    VkDescriptorSetLayout set_layout;
+    VkShaderModule modules[4];            /* color.vert, color.frag, texture.vert, texture.frag */
+    VkDescriptorSetLayout color_layout;   /* set 0: the draws' constant colours, dynamic offset */
+    VkDescriptorSetLayout texture_layout; /* set 1: the texture and its sampler */
     VkPipelineLayout layout_color, layout_texture;
-    VkSampler samplers[4]; /* [filter bilinear?][wrap clamp?] */
+    VkDeviceSize color_stride; /* bytes between draws in a scene's colour buffer */
+    VkSampler samplers[4];     /* [filter bilinear?][wrap clamp?] */
     VkRenderPass render_pass;
     pipeline_entry pipelines[MAX_PIPELINES];
     int pipeline_count;
@@ -126,6 +131,11 @@ static bool create_instance(ref *r) {
 
 static bool create_device(ref *r) {
     vkGetPhysicalDeviceMemoryProperties(r->phys, &r->mem);
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(r->phys, &props);
+    /* One vec4 per draw, each at an offset the device accepts for a dynamic uniform buffer. */
+    VkDeviceSize align = props.limits.minUniformBufferOffsetAlignment;
+    r->color_stride = align > 16 ? (16 + align - 1) / align * align : 16;
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(r->phys, &n, NULL);
     VkQueueFamilyProperties qf[16];
@@ -172,22 +182,31 @@ static bool create_shaders_and_layouts(ref *r) {
                                         .pCode = code[i]};
         VK_CHECK(r, vkCreateShaderModule(r->device, &smi, NULL, &r->modules[i]));
     }
-    VkDescriptorSetLayoutBinding b = {.binding = 0,
-                                      .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                      .descriptorCount = 1,
-                                      .stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT};
+    VkDescriptorSetLayoutBinding cb = {.binding = 0,
+                                       .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
+                                       .descriptorCount = 1,
+                                       .stageFlags = VK_SHADER_STAGE_VERTEX_BIT};
     VkDescriptorSetLayoutCreateInfo dli = {.sType =
                                                VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                            .bindingCount = 1,
-                                           .pBindings = &b};
-    VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &dli, NULL, &r->set_layout));
+                                           .pBindings = &cb};
+    VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &dli, NULL, &r->color_layout));
+    VkDescriptorSetLayoutBinding tb = {.binding = 0,
+                                       .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                       .descriptorCount = 1,
+                                       .stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT};
+    dli.pBindings = &tb;
+    VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &dli, NULL, &r->texture_layout));
+    /* 128 bytes, the two matrices: the least every Vulkan device offers, and lavapipe's limit. */
     VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_VERTEX_BIT, .size = 128};
+    VkDescriptorSetLayout sets[2] = {r->color_layout, r->texture_layout};
     VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                      .setLayoutCount = 1,
+                                      .pSetLayouts = sets,
                                       .pushConstantRangeCount = 1,
                                       .pPushConstantRanges = &pcr};
     VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_color));
-    pli.setLayoutCount = 1;
-    pli.pSetLayouts = &r->set_layout;
+    pli.setLayoutCount = 2;
     VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_texture));
     for (int f = 0; f < 2; f++)
         for (int w = 0; w < 2; w++) {
@@ -240,7 +259,8 @@ static bool create_shaders_and_layouts(ref *r) {
 /* The pipeline state a draw needs, packed into a key. */
 static uint32_t pipeline_key(const sc_draw *d, bool textured) {
     return (uint32_t)textured | (uint32_t)d->cull << 1 | (uint32_t)d->front_face << 3 |
-           (uint32_t)d->depth_compare << 4 | (uint32_t)d->depth_write << 8;
+           (uint32_t)d->depth_compare << 4 | (uint32_t)d->depth_write << 8 |
+           (uint32_t)d->blend << 9;
 }
 
 static const VkCompareOp compare_ops[] = {
@@ -309,6 +329,17 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *ou
         .depthWriteEnable = d->depth_write ? VK_TRUE : VK_FALSE,
         .depthCompareOp = compare_ops[d->depth_compare]};
     VkPipelineColorBlendAttachmentState cba = {.colorWriteMask = 0xf};
+    if (d->blend == SC_BLEND_ALPHA) {
+        /* src * src_alpha + dst * (1 - src_alpha) on all four channels, as sgapi's
+         * SG_BLEND_ALPHA and OpenGL's glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA). */
+        cba.blendEnable = VK_TRUE;
+        cba.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+        cba.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        cba.colorBlendOp = VK_BLEND_OP_ADD;
+        cba.srcAlphaBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+        cba.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        cba.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     VkPipelineColorBlendStateCreateInfo cb = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
         .attachmentCount = 1,
@@ -532,7 +563,8 @@ static int cmp_double(const void *a, const void *b) {
 /* Records one scene: clear, every draw, copy of the colour image to `readback`. */
 static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          VkFramebuffer fb, VkImage color, const buffer *readback,
-                         VkDescriptorSet *sets) {
+                         VkDescriptorSet color_set, const VkDescriptorSet *sets,
+                         const buffer *sorted) {
     if (!begin_commands(r)) return false;
     VkClearValue clear[2];
     memcpy(clear[0].color.float32, s->clear_color, sizeof s->clear_color);
@@ -561,8 +593,11 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         memcpy(pc, d->world_view, 64);
         memcpy(pc + 16, d->proj, 64);
         vkCmdPushConstants(r->cmd, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 128, pc);
+        uint32_t color_offset = (uint32_t)(i * r->color_stride);
+        vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &color_set,
+                                1, &color_offset);
         if (textured)
-            vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &sets[i],
+            vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &sets[i],
                                     0, NULL);
         const sc_mesh *m = &f->meshes[d->mesh];
         VkDeviceSize n = m->vertex_count;
@@ -570,7 +605,9 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
                           u->vertex[d->mesh].buffer};
         VkDeviceSize off[3] = {0, n * 16, n * 32};
         vkCmdBindVertexBuffers(r->cmd, 0, textured ? 3 : 2, vb, off);
-        vkCmdBindIndexBuffer(r->cmd, u->index[d->mesh].buffer, 0, VK_INDEX_TYPE_UINT32);
+        /* A sorted draw has its own index buffer: the mesh's is shared with other draws. */
+        VkBuffer ib = sorted[i].buffer ? sorted[i].buffer : u->index[d->mesh].buffer;
+        vkCmdBindIndexBuffer(r->cmd, ib, 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(r->cmd, m->index_count, 1, 0, 0, 0);
     }
     vkCmdEndRenderPass(r->cmd);
@@ -582,16 +619,44 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     return true;
 }
 
+/* The per-draw data of a scene: each draw's constant colour, at color_stride bytes apart, and for
+ * each draw sorted back to front its own index buffer, in that order. */
+static bool prepare_draws(ref *r, const sc_file *f, const sc_scene *s, buffer *colors,
+                          buffer *sorted) {
+    if (s->draw_count > UINT32_MAX / r->color_stride)
+        return fail(r, "too many draws (%zu)", s->draw_count);
+    VkDeviceSize stride = r->color_stride;
+    if (!create_buffer(r, (VkDeviceSize)s->draw_count * stride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                       colors))
+        return false;
+    for (size_t i = 0; i < s->draw_count; i++) {
+        const sc_draw *d = &s->draws[i];
+        memcpy((uint8_t *)colors->mapped + i * stride, d->color, sizeof d->color);
+        if (d->sort != SC_SORT_BACK_TO_FRONT) continue;
+        const sc_mesh *m = &f->meshes[d->mesh];
+        if (!create_buffer(r, (VkDeviceSize)m->index_count * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                           &sorted[i]))
+            return false;
+        if (!sc_sort_back_to_front(m->positions, m->indices, m->index_count, d->world_view,
+                                   sorted[i].mapped))
+            return fail(r, "out of memory sorting draw %zu", i);
+    }
+    return true;
+}
+
 static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          const char *out_dir, int frames) {
     texture color = {0}, depth = {0};
-    buffer readback = {0};
+    buffer readback = {0}, colors = {0};
     VkFramebuffer fb = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet color_set = VK_NULL_HANDLE;
     VkDescriptorSet *sets = calloc(s->draw_count + 1, sizeof *sets);
+    buffer *sorted = calloc(s->draw_count + 1, sizeof *sorted);
     double *times = calloc((size_t)frames, sizeof *times);
-    bool ok = sets && times;
+    bool ok = sets && sorted && times;
     if (!ok) fail(r, "out of memory");
+    ok = ok && prepare_draws(r, f, s, &colors, sorted);
     ok = ok &&
          create_image(r, s->width, s->height, VK_FORMAT_R8G8B8A8_UNORM,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -614,14 +679,31 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
              fail(r, "vkCreateFramebuffer failed");
     }
     if (ok && s->draw_count) {
-        VkDescriptorPoolSize ps = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                   (uint32_t)s->draw_count};
+        VkDescriptorPoolSize ps[2] = {
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, (uint32_t)s->draw_count},
+            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1}};
         VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-                                          .maxSets = (uint32_t)s->draw_count,
-                                          .poolSizeCount = 1,
-                                          .pPoolSizes = &ps};
+                                          .maxSets = (uint32_t)s->draw_count + 1,
+                                          .poolSizeCount = 2,
+                                          .pPoolSizes = ps};
         ok = vkCreateDescriptorPool(r->device, &dpi, NULL, &pool) == VK_SUCCESS ||
              fail(r, "vkCreateDescriptorPool failed");
+        /* One set for every draw's colour: each draw binds it at its own dynamic offset. */
+        VkDescriptorSetAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                           .descriptorPool = pool,
+                                           .descriptorSetCount = 1,
+                                           .pSetLayouts = &r->color_layout};
+        ok = ok && (vkAllocateDescriptorSets(r->device, &cai, &color_set) == VK_SUCCESS ||
+                    fail(r, "vkAllocateDescriptorSets failed"));
+        if (ok) {
+            VkDescriptorBufferInfo bi = {.buffer = colors.buffer, .offset = 0, .range = 16};
+            VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                      .dstSet = color_set,
+                                      .descriptorCount = 1,
+                                      .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
+                                      .pBufferInfo = &bi};
+            vkUpdateDescriptorSets(r->device, 1, &w, 0, NULL);
+        }
         for (size_t i = 0; ok && i < s->draw_count; i++) {
             const sc_draw *d = &s->draws[i];
             if (d->mode != SC_MODE_TEXTURE || d->texture < 0) continue;
@@ -629,7 +711,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
                                                    VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
                                                .descriptorPool = pool,
                                                .descriptorSetCount = 1,
-                                               .pSetLayouts = &r->set_layout};
+                                               .pSetLayouts = &r->texture_layout};
             ok = vkAllocateDescriptorSets(r->device, &dai, &sets[i]) == VK_SUCCESS ||
                  fail(r, "vkAllocateDescriptorSets failed");
             if (!ok) break;
@@ -646,7 +728,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
             vkUpdateDescriptorSets(r->device, 1, &w, 0, NULL);
         }
     }
-    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, sets);
+    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, color_set, sets, sorted);
     for (int i = 0; ok && i < frames; i++) {
         double t0 = now_ms();
         ok = submit_and_wait(r);
@@ -677,9 +759,12 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     if (pool) vkDestroyDescriptorPool(r->device, pool, NULL);
     if (fb) vkDestroyFramebuffer(r->device, fb, NULL);
     destroy_buffer(r, &readback);
+    destroy_buffer(r, &colors);
+    for (size_t i = 0; sorted && i < s->draw_count; i++) destroy_buffer(r, &sorted[i]);
     destroy_image(r, &color);
     destroy_image(r, &depth);
     free(sets);
+    free(sorted);
     free(times);
     return ok;
 }
@@ -696,7 +781,8 @@ static void destroy_ref(ref *r) {
         }
         if (r->layout_color) vkDestroyPipelineLayout(r->device, r->layout_color, NULL);
         if (r->layout_texture) vkDestroyPipelineLayout(r->device, r->layout_texture, NULL);
-        if (r->set_layout) vkDestroyDescriptorSetLayout(r->device, r->set_layout, NULL);
+        if (r->color_layout) vkDestroyDescriptorSetLayout(r->device, r->color_layout, NULL);
+        if (r->texture_layout) vkDestroyDescriptorSetLayout(r->device, r->texture_layout, NULL);
         if (r->fence) vkDestroyFence(r->device, r->fence, NULL);
         if (r->cmd_pool) vkDestroyCommandPool(r->device, r->cmd_pool, NULL);
         vkDestroyDevice(r->device, NULL);

@@ -10,11 +10,17 @@ layout(push_constant, row_major) uniform Transform {
     mat4 proj;
 } pc;
 
+// The draw's constant colour (scene key "color"). Vulkan promises only 128 bytes of push
+// constants, all taken by the matrices, so it comes from a uniform buffer.
+layout(set = 0, binding = 0) uniform DrawColor {
+    vec4 color;
+} u_draw;
+
 layout(location = 0) out vec4 v_color;
 
 void main() {
     vec4 clip = pc.proj * (pc.world_view * a_position);
     // Vulkan's framebuffer has y down with NDC y = -1 at the top, and clips z to [0, w].
     gl_Position = vec4(clip.x, -clip.y, 0.5 * (clip.z + clip.w), clip.w);
-    v_color = a_color;
+    v_color = a_color * u_draw.color;
 }
