@@ -1,14 +1,15 @@
 /* test_blend.c - alpha blending and back-to-front sorting.
  *
- * - The 8-bit blend of one channel against the documented formula, for every (src, dst, alpha),
- *   and the packed RGBA8 blend channel by channel against it.
+ * - The 8-bit blend of one channel against the documented formula (lavapipe's, found by rendering
+ *   all 2^24 (src, dst, alpha) there), for every input, and the packed RGBA8 blend channel by
+ *   channel against it.
  * - Order: a pass of many overlapping blended and opaque triangles, in draws of several
  *   triangles, is byte-identical to drawing each triangle in a pass of its own that loads the
  *   previous result, for 1, 2 and 3 threads and every instruction set this CPU runs.
  * - The constant draw colour multiplies the vertex colour; alpha from the vertex colour and from
  *   the texel.
- * - The back-to-front order against a plain stable sort of the same keys, ties and quads
- *   included.
+ * - The back-to-front order against a plain stable sort of the same keys, ties, NaN keys and
+ *   quads included.
  */
 #include "test_common.h"
 
@@ -22,11 +23,31 @@
 
 static const float IDENTITY[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
-/* The documented blend of one channel: (s a + d (255 - a)) / 255 rounded to nearest, written
- * with a division, independently of the shifts the library uses. */
+/* The documented blend of one channel: each product x y / 255 rounded the way lavapipe rounds it,
+ * floor((t + floor(t / 256) + 128) / 256) with t = x y, then the two terms added; written with
+ * divisions, independently of the library's shifts. */
+static uint32_t product(uint32_t x, uint32_t y) {
+    uint32_t t = x * y;
+    return (t + t / 256 + 128) / 256;
+}
+
 static uint32_t reference_channel(uint32_t s, uint32_t d, uint32_t a) {
-    uint32_t x = s * a + d * (255 - a);
-    return (2 * x + 255) / 510;
+    return product(s, a) + product(d, 255 - a);
+}
+
+/* The product rounding is exact but for 24 of the 65536 products, e.g. 191 * 253 / 255 =
+ * 189.5 - 1/255 rounds to 190, and the blend gives 189. */
+static void product_rounding(void **state) {
+    (void)state;
+    int inexact = 0;
+    for (uint32_t x = 0; x < 256; x++)
+        for (uint32_t y = 0; y < 256; y++) {
+            uint32_t exact = (2 * x * y + 255) / 510;
+            assert_int_equal(sg_mul_unorm8(x, y), product(x, y));
+            inexact += sg_mul_unorm8(x, y) != exact;
+        }
+    assert_int_equal(inexact, 24);
+    assert_int_equal(sg_mul_unorm8(191, 253), 189);
 }
 
 static void blend_channel_exhaustive(void **state) {
@@ -273,6 +294,7 @@ typedef struct keyed {
 
 static int cmp_keyed(const void *pa, const void *pb) {
     const keyed *a = pa, *b = pb;
+    if (isnan(a->key) != isnan(b->key)) return isnan(a->key) ? 1 : -1; /* NaN keys last */
     if (a->key < b->key) return -1;
     if (a->key > b->key) return 1;
     return (a->tri > b->tri) - (a->tri < b->tri); /* stable: equal keys keep their order */
@@ -325,6 +347,7 @@ static void sort_is_stable_back_to_front(void **state) {
         pos[i * 4 + 1] = rnd(&x) * 10 - 5;
         pos[i * 4 + 2] = i % 7 == 0 ? -0.0f : (float)(int)(rnd(&x) * 8) - 4;
         pos[i * 4 + 3] = i % 5 == 0 ? 2.0f : 1.0f;
+        if (i % 11 == 0) pos[i * 4 + 2] = pos[i * 4 + 3] = 0.0f; /* view z = 0 / 0: NaN key */
     }
     for (int i = 0; i < NI; i++) {
         x = x * 1664525u + 1013904223u;
@@ -400,6 +423,7 @@ static void sorted_draw_blends_far_first(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(product_rounding),
         cmocka_unit_test(blend_channel_exhaustive),
         cmocka_unit_test(blend_rgba8_channel_by_channel),
         cmocka_unit_test(blending_follows_submission_order),

@@ -1486,8 +1486,10 @@ static void scene_alpha_cubes(scene *s, mat4 proj) {
     d->proj = proj;
     d->world_view = mat_mul(view, mat_scale(4, 4, 4));
     for (size_t i = 0; i < sizeof cubes / sizeof cubes[0]; i++) {
-        mat4 wv = mat_mul(view, model(v3(cubes[i].x, cubes[i].size, cubes[i].z), cubes[i].yaw, 0, 0,
-                                      cubes[i].size));
+        /* Held a little above the floor: a bottom face in the floor's plane would z-fight. */
+        double y = 1.04 * cubes[i].size;
+        mat4 wv =
+            mat_mul(view, model(v3(cubes[i].x, y, cubes[i].z), cubes[i].yaw, 0, 0, cubes[i].size));
         for (int pass = 0; pass < 2; pass++) {
             d = scene_add(s);
             d->mesh = A_CUBE;
@@ -1670,17 +1672,20 @@ static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
     }
 }
 
-/* Writes a scene file of 1024 x 1024 scenes cleared to transparent black unless they say
+/* Writes a scene file of 1024 x 1024 scenes cleared to `clear` (r, g, b, a) unless they say
  * otherwise. */
-static bool write_scene_file(const char *path, const int *which, mat4 proj, const mesh *teapot) {
+static bool write_scene_file(const char *path, const char *clear, const int *which, mat4 proj,
+                             const mesh *teapot) {
     FILE *f = fopen(path, "wb");
     if (!f) {
         fprintf(stderr, "sgapi-assets: cannot write %s: %s\n", path, strerror(errno));
         return false;
     }
     scene *s = xmalloc(sizeof *s);
-    fprintf(f, "{\n  \"width\": 1024,\n  \"height\": 1024,\n  \"clear_color\": [0, 0, 0, 0],\n"
-               "  \"scenes\": [\n");
+    fprintf(f,
+            "{\n  \"width\": 1024,\n  \"height\": 1024,\n  \"clear_color\": [%s],\n"
+            "  \"scenes\": [\n",
+            clear);
     for (int i = 0; which[i] != S_END; i++) {
         memset(s, 0, sizeof *s);
         build_scene(s, which[i], proj, teapot);
@@ -1781,9 +1786,10 @@ int main(int argc, char **argv) {
     free(height);
 
     const mat4 proj = mat_perspective(45.0, 1.0, 0.1, 100.0);
-    ok = ok && write_scene_file(join(path, out, "default.json"), DEFAULT_SCENES, proj, &teapot);
-    ok = ok &&
-         write_scene_file(join(path, out, "transparency.json"), TRANSPARENCY_SCENES, proj, &teapot);
+    ok = ok && write_scene_file(join(path, out, "default.json"), "0, 0, 0, 0", DEFAULT_SCENES, proj,
+                                &teapot);
+    ok = ok && write_scene_file(join(path, out, "transparency.json"), "0.62, 0.71, 0.78, 1",
+                                TRANSPARENCY_SCENES, proj, &teapot);
     mesh_free(&teapot);
     return ok ? 0 : 1;
 }

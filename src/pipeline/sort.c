@@ -10,8 +10,10 @@ size_t sg_sort_scratch_size(int vertex_count, size_t triangles) {
 }
 
 /* A float's bits turned into an unsigned key with the same order (-0 counted as +0, so equal
- * values keep their submission order). */
+ * values keep their submission order). A NaN key (a vertex with view-space w = 0, say) sorts
+ * last, whatever its sign bit. */
 static uint32_t order_key(float f) {
+    if (f != f) return UINT32_MAX;
     f += 0.0f; /* -0 + 0 = +0 */
     uint32_t u;
     memcpy(&u, &f, sizeof u);

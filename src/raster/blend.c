@@ -1,30 +1,42 @@
 /* blend.c - the raster functions of blended draws (see blend.h): per covered tile, the depth
  * test, then the pipeline's shading of the passing pixels, then each blended into the bin's
- * colour. */
+ * colour. Portable C (the reference) and SSE2, which computes the same integer blend and the
+ * same float depth, so both give the same bytes. */
 #include "raster/blend.h"
 
 #include "raster/rast_walk.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 enum { Z_NONE, Z_ANY };
 
-static inline __attribute__((always_inline)) void blend_tile(const void *vctx, const sg_tri *t,
-                                                             int x0, int y0, uint32_t mask,
-                                                             const int zmode, const int zwrite) {
+/* Depth test of the covered pixels of a tile: the mask of those that pass (their depth written
+ * when the pipeline writes depth). */
+static inline __attribute__((always_inline)) uint32_t depth_scalar(const sg_vis_ctx *v,
+                                                                   const sg_tri *t, int x0, int y0,
+                                                                   uint32_t mask, int base,
+                                                                   const int zwrite) {
+    float *dp = v->depth + base;
+    float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    uint32_t pass = 0;
+    for (uint32_t left = mask; left; left &= left - 1) {
+        int bit = __builtin_ctz(left);
+        float z = sg_tri_depth(t, ox + (float)(bit & 3), oy + (float)(bit >> 2));
+        if (!sg_depth_passes(v->compare, z, dp[bit])) continue;
+        if (zwrite) dp[bit] = z;
+        pass |= 1u << bit;
+    }
+    return pass;
+}
+
+static inline __attribute__((always_inline)) void blend_scalar(const void *vctx, const sg_tri *t,
+                                                               int x0, int y0, uint32_t mask,
+                                                               const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
-    if (zmode != Z_NONE || zwrite) {
-        float *dp = v->depth + base;
-        float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
-        uint32_t pass = 0;
-        for (uint32_t left = mask; left; left &= left - 1) {
-            int bit = __builtin_ctz(left);
-            float z = sg_tri_depth(t, ox + (float)(bit & 3), oy + (float)(bit >> 2));
-            if (zmode == Z_ANY && !sg_depth_passes(v->compare, z, dp[bit])) continue;
-            if (zwrite) dp[bit] = z;
-            pass |= 1u << bit;
-        }
-        mask = pass;
-    }
+    if (zmode != Z_NONE || zwrite) mask = depth_scalar(v, t, x0, y0, mask, base, zwrite);
     if (!mask) return;
     uint32_t src[SG_TILE_PIXELS];
     v->shade(v->shade_ctx, t, x0, y0, mask, src);
@@ -35,20 +47,129 @@ static inline __attribute__((always_inline)) void blend_tile(const void *vctx, c
     }
 }
 
-#define SG_BLEND_FN(name, zm, zw)                                                                  \
+#define SG_BLEND_FN(name, body, zm, zw)                                                            \
     static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        blend_tile(c, t, x0, y0, m, zm, zw);                                                       \
+        body(c, t, x0, y0, m, zm, zw);                                                             \
     }                                                                                              \
     static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
         sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
     }
-SG_BLEND_FN(blend_none_0, Z_NONE, 0)
-SG_BLEND_FN(blend_none_1, Z_NONE, 1)
-SG_BLEND_FN(blend_any_0, Z_ANY, 0)
-SG_BLEND_FN(blend_any_1, Z_ANY, 1)
+SG_BLEND_FN(blend_none_0, blend_scalar, Z_NONE, 0)
+SG_BLEND_FN(blend_none_1, blend_scalar, Z_NONE, 1)
+SG_BLEND_FN(blend_any_0, blend_scalar, Z_ANY, 0)
+SG_BLEND_FN(blend_any_1, blend_scalar, Z_ANY, 1)
+
+#if defined(__SSE2__)
+/* x y / 255 as sg_mul_unorm8 rounds it, in 16-bit lanes (x, y <= 255, so no lane overflows). */
+static inline __m128i mul_unorm8_sse2(__m128i x, __m128i y) {
+    __m128i t = _mm_mullo_epi16(x, y);
+    t = _mm_add_epi16(_mm_add_epi16(t, _mm_srli_epi16(t, 8)), _mm_set1_epi16(128));
+    return _mm_srli_epi16(t, 8);
+}
+
+/* Two pixels in 16-bit lanes (r g b a r g b a): src over dst by src's alpha. */
+static inline __m128i blend2_sse2(__m128i s, __m128i d) {
+    __m128i a = _mm_shufflehi_epi16(_mm_shufflelo_epi16(s, 0xff), 0xff);
+    __m128i ia = _mm_sub_epi16(_mm_set1_epi16(255), a);
+    return _mm_add_epi16(mul_unorm8_sse2(s, a), mul_unorm8_sse2(d, ia));
+}
+
+/* Four packed RGBA8 pixels blended as sg_blend_rgba8 does. */
+static inline __m128i blend4_sse2(__m128i s, __m128i d) {
+    const __m128i zero = _mm_setzero_si128();
+    __m128i lo = blend2_sse2(_mm_unpacklo_epi8(s, zero), _mm_unpacklo_epi8(d, zero));
+    __m128i hi = blend2_sse2(_mm_unpackhi_epi8(s, zero), _mm_unpackhi_epi8(d, zero));
+    return _mm_packus_epi16(lo, hi);
+}
+
+/* The pass mask of one row of 4 pixels: z against the stored depth by the pipeline's compare,
+ * with the scalar code's IEEE results (a NaN z passes only NOT_EQUAL and ALWAYS). */
+static inline __m128 compare_sse2(sgCompare op, __m128 z, __m128 d) {
+    switch (op) {
+    case SG_COMPARE_NEVER:
+        return _mm_setzero_ps();
+    case SG_COMPARE_LESS:
+        return _mm_cmplt_ps(z, d);
+    case SG_COMPARE_EQUAL:
+        return _mm_cmpeq_ps(z, d);
+    case SG_COMPARE_LESS_EQUAL:
+        return _mm_cmple_ps(z, d);
+    case SG_COMPARE_GREATER:
+        return _mm_cmplt_ps(d, z);
+    case SG_COMPARE_NOT_EQUAL:
+        return _mm_cmpneq_ps(z, d);
+    case SG_COMPARE_GREATER_EQUAL:
+        return _mm_cmple_ps(d, z);
+    default:
+        return _mm_castsi128_ps(_mm_set1_epi32(-1));
+    }
+}
+
+static inline __attribute__((always_inline)) void blend_sse2(const void *vctx, const sg_tri *t,
+                                                             int x0, int y0, uint32_t mask,
+                                                             const int zmode, const int zwrite) {
+    const sg_vis_ctx *v = vctx;
+    int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    const __m128i lanes = _mm_setr_epi32(1, 2, 4, 8);
+    if (zmode != Z_NONE || zwrite) { /* as vis_sse2 (depth.c) computes and clamps z */
+        float *dp = v->depth + base;
+        const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+        __m128 dx =
+            _mm_add_ps(_mm_set1_ps((float)(x0 - t->minx)), _mm_setr_ps(0.0f, 1.0f, 2.0f, 3.0f));
+        __m128 zx = _mm_add_ps(_mm_set1_ps(t->z), _mm_mul_ps(_mm_set1_ps(t->z_dx), dx));
+        __m128 zdy = _mm_set1_ps(t->z_dy);
+        float oy = (float)(y0 - t->miny);
+        uint32_t pass = 0;
+        for (int j = 0; j < 4; j++) {
+            uint32_t bits = (mask >> (4 * j)) & 15u;
+            if (!bits) continue;
+            __m128 z = _mm_add_ps(zx, _mm_mul_ps(zdy, _mm_set1_ps(oy + (float)j)));
+            z = _mm_min_ps(one, _mm_max_ps(zero, z));
+            __m128 d = _mm_load_ps(dp + 4 * j);
+            __m128i cov = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)bits), lanes), lanes);
+            __m128i p = _mm_and_si128(cov, _mm_castps_si128(compare_sse2(v->compare, z, d)));
+            if (zwrite)
+                _mm_store_ps(dp + 4 * j, _mm_or_ps(_mm_and_ps(_mm_castsi128_ps(p), z),
+                                                   _mm_andnot_ps(_mm_castsi128_ps(p), d)));
+            pass |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(p)) << (4 * j);
+        }
+        mask = pass;
+    }
+    if (!mask) return;
+    _Alignas(16) uint32_t src[SG_TILE_PIXELS];
+    v->shade(v->shade_ctx, t, x0, y0, mask, src);
+    uint32_t *dst = v->color + base;
+    for (int j = 0; j < 4; j++) {
+        uint32_t bits = (mask >> (4 * j)) & 15u;
+        if (!bits) continue;
+        __m128i *pd = (__m128i *)(void *)(dst + 4 * j);
+        __m128i d = _mm_load_si128(pd);
+        __m128i out = blend4_sse2(_mm_load_si128((const __m128i *)(const void *)(src + 4 * j)), d);
+        __m128i sel = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)bits), lanes), lanes);
+        _mm_store_si128(pd, _mm_or_si128(_mm_and_si128(sel, out), _mm_andnot_si128(sel, d)));
+    }
+}
+
+SG_BLEND_FN(blend_none_0_sse2, blend_sse2, Z_NONE, 0)
+SG_BLEND_FN(blend_none_1_sse2, blend_sse2, Z_NONE, 1)
+SG_BLEND_FN(blend_any_0_sse2, blend_sse2, Z_ANY, 0)
+SG_BLEND_FN(blend_any_1_sse2, blend_sse2, Z_ANY, 1)
+#endif
 
 sg_raster_fn sg_blend_select(sgCompare compare, bool depth_write, sg_isa isa) {
+    int zmode = compare == SG_COMPARE_ALWAYS ? Z_NONE : Z_ANY;
+    sg_raster_fn fn = NULL;
+    if (isa >= SG_ISA_AVX512) fn = sg_blend_avx512(zmode == Z_ANY, depth_write);
+    if (!fn && isa >= SG_ISA_AVX2) fn = sg_blend_avx2(zmode == Z_ANY, depth_write);
+    if (fn) return fn;
+#if defined(__SSE2__)
+    static const sg_raster_fn sse2[2][2] = {{blend_none_0_sse2, blend_none_1_sse2},
+                                            {blend_any_0_sse2, blend_any_1_sse2}};
+    if (isa >= SG_ISA_SSE2) return sse2[zmode][depth_write ? 1 : 0];
+#else
     (void)isa;
-    if (compare == SG_COMPARE_ALWAYS) return depth_write ? blend_none_1 : blend_none_0;
-    return depth_write ? blend_any_1 : blend_any_0;
+#endif
+    static const sg_raster_fn scalar[2][2] = {{blend_none_0, blend_none_1},
+                                              {blend_any_0, blend_any_1}};
+    return scalar[zmode][depth_write ? 1 : 0];
 }

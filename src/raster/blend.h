@@ -14,10 +14,17 @@
 #include "raster/depth.h"
 #include "sgapi/sgapi.h"
 
-/** One unorm8 channel of SRC_ALPHA / ONE_MINUS_SRC_ALPHA blending (docs/accuracy.md). */
+/** x * y / 255 for unorm8 values, rounded the way lavapipe's 8-bit blend rounds each product:
+ *  (t + (t >> 8) + 128) >> 8 with t = x y (exact rounding but for 24 of the 65536 products). */
+static inline uint32_t sg_mul_unorm8(uint32_t x, uint32_t y) {
+    uint32_t t = x * y;
+    return (t + (t >> 8) + 128u) >> 8;
+}
+
+/** One unorm8 channel of SRC_ALPHA / ONE_MINUS_SRC_ALPHA blending: each term rounded, then
+ *  added (the sum never exceeds 255); docs/accuracy.md. */
 static inline uint32_t sg_blend_channel(uint32_t s, uint32_t d, uint32_t a) {
-    uint32_t t = s * a + d * (255u - a) + 128u;
-    return (t + (t >> 8)) >> 8;
+    return sg_mul_unorm8(s, a) + sg_mul_unorm8(d, 255u - a);
 }
 
 /** A packed RGBA8 fragment blended over a packed RGBA8 pixel by the fragment's alpha. */
@@ -31,5 +38,9 @@ static inline uint32_t sg_blend_rgba8(uint32_t src, uint32_t dst) {
 /** The raster function of a blended draw for a resolved depth state (ctx: an sg_vis_ctx with
  *  color, shade and shade_ctx set). */
 sg_raster_fn sg_blend_select(sgCompare compare, bool depth_write, sg_isa isa);
+/** The AVX2 and AVX-512 ones (blend_avx2.c, blend_avx512.c; NULL where not built); depth_test:
+ *  the compare is not ALWAYS. */
+sg_raster_fn sg_blend_avx2(bool depth_test, bool depth_write);
+sg_raster_fn sg_blend_avx512(bool depth_test, bool depth_write);
 
 #endif

@@ -1,0 +1,124 @@
+/* blend_avx2.c - the raster functions of blended draws in AVX2 (see blend.h): two rows of a tile
+ * a vector; the same depth (z, clamp, compare) as the scalar and SSE2 code and the same integer
+ * blend, so the same bytes. */
+#include "raster/blend.h"
+
+#include "raster/rast_walk.h"
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+
+/* x y / 255 as sg_mul_unorm8 rounds it, in 16-bit lanes. */
+static inline __m256i mul_unorm8(__m256i x, __m256i y) {
+    __m256i t = _mm256_mullo_epi16(x, y);
+    t = _mm256_add_epi16(_mm256_add_epi16(t, _mm256_srli_epi16(t, 8)), _mm256_set1_epi16(128));
+    return _mm256_srli_epi16(t, 8);
+}
+
+/* Pixels in 16-bit lanes (r g b a ...): src over dst by src's alpha. */
+static inline __m256i blend_lanes(__m256i s, __m256i d) {
+    __m256i a = _mm256_shufflehi_epi16(_mm256_shufflelo_epi16(s, 0xff), 0xff);
+    __m256i ia = _mm256_sub_epi16(_mm256_set1_epi16(255), a);
+    return _mm256_add_epi16(mul_unorm8(s, a), mul_unorm8(d, ia));
+}
+
+static inline __m256 compare(sgCompare op, __m256 z, __m256 d) {
+    switch (op) {
+    case SG_COMPARE_NEVER:
+        return _mm256_setzero_ps();
+    case SG_COMPARE_LESS:
+        return _mm256_cmp_ps(z, d, _CMP_LT_OQ);
+    case SG_COMPARE_EQUAL:
+        return _mm256_cmp_ps(z, d, _CMP_EQ_OQ);
+    case SG_COMPARE_LESS_EQUAL:
+        return _mm256_cmp_ps(z, d, _CMP_LE_OQ);
+    case SG_COMPARE_GREATER:
+        return _mm256_cmp_ps(z, d, _CMP_GT_OQ);
+    case SG_COMPARE_NOT_EQUAL:
+        return _mm256_cmp_ps(z, d, _CMP_NEQ_UQ);
+    case SG_COMPARE_GREATER_EQUAL:
+        return _mm256_cmp_ps(z, d, _CMP_GE_OQ);
+    default:
+        return _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+    }
+}
+
+enum { Z_NONE, Z_ANY };
+
+static inline __attribute__((always_inline)) void blend_avx2(const void *vctx, const sg_tri *t,
+                                                             int x0, int y0, uint32_t mask,
+                                                             const int zmode, const int zwrite) {
+    const sg_vis_ctx *v = vctx;
+    int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    if (zmode != Z_NONE || zwrite) { /* as vis_avx2 (depth_avx2.c) computes and clamps z */
+        float *dp = v->depth + base;
+        const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+        __m256 dx = _mm256_add_ps(_mm256_set1_ps((float)(x0 - t->minx)),
+                                  _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
+        __m256 zx = _mm256_add_ps(_mm256_set1_ps(t->z), _mm256_mul_ps(_mm256_set1_ps(t->z_dx), dx));
+        __m256 zdy = _mm256_set1_ps(t->z_dy), oy = _mm256_set1_ps((float)(y0 - t->miny));
+        uint32_t pass = 0;
+        for (int h = 0; h < 2; h++) {
+            uint32_t bits = (mask >> (8 * h)) & 255u;
+            if (!bits) continue;
+            float r0 = (float)(2 * h), r1 = (float)(2 * h + 1);
+            __m256 dy = _mm256_add_ps(oy, _mm256_setr_ps(r0, r0, r0, r0, r1, r1, r1, r1));
+            __m256 z = _mm256_add_ps(zx, _mm256_mul_ps(zdy, dy));
+            z = _mm256_min_ps(one, _mm256_max_ps(zero, z));
+            __m256 d = _mm256_load_ps(dp + 8 * h);
+            __m256 p =
+                _mm256_and_ps(compare(v->compare, z, d),
+                              _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                                  _mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes)));
+            if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, p));
+            pass |= (uint32_t)_mm256_movemask_ps(p) << (8 * h);
+        }
+        mask = pass;
+    }
+    if (!mask) return;
+    _Alignas(32) uint32_t src[SG_TILE_PIXELS];
+    v->shade(v->shade_ctx, t, x0, y0, mask, src);
+    uint32_t *dst = v->color + base;
+    const __m256i zero = _mm256_setzero_si256();
+    for (int h = 0; h < 2; h++) {
+        uint32_t bits = (mask >> (8 * h)) & 255u;
+        if (!bits) continue;
+        __m256i *pd = (__m256i *)(void *)(dst + 8 * h);
+        __m256i s = _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h));
+        __m256i d = _mm256_load_si256(pd);
+        __m256i lo = blend_lanes(_mm256_unpacklo_epi8(s, zero), _mm256_unpacklo_epi8(d, zero));
+        __m256i hi = blend_lanes(_mm256_unpackhi_epi8(s, zero), _mm256_unpackhi_epi8(d, zero));
+        __m256i sel =
+            _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes);
+        _mm256_store_si256(pd, _mm256_blendv_epi8(d, _mm256_packus_epi16(lo, hi), sel));
+    }
+}
+
+#define SG_BLEND_FN(name, zm, zw)                                                                  \
+    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
+        blend_avx2(c, t, x0, y0, m, zm, zw);                                                       \
+    }                                                                                              \
+    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
+        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
+    }
+SG_BLEND_FN(blend_none_0, Z_NONE, 0)
+SG_BLEND_FN(blend_none_1, Z_NONE, 1)
+SG_BLEND_FN(blend_any_0, Z_ANY, 0)
+SG_BLEND_FN(blend_any_1, Z_ANY, 1)
+
+sg_raster_fn sg_blend_avx2(bool depth_test, bool depth_write) {
+    static const sg_raster_fn fns[2][2] = {{blend_none_0, blend_none_1},
+                                           {blend_any_0, blend_any_1}};
+    return fns[depth_test][depth_write];
+}
+
+#else
+
+sg_raster_fn sg_blend_avx2(bool depth_test, bool depth_write) {
+    (void)depth_test;
+    (void)depth_write;
+    return NULL;
+}
+
+#endif
