@@ -258,9 +258,23 @@ static int same_as_reference(sg_shade_fn fn, const char *isa, const sg_shade_ctx
 }
 
 static void compare_variant(int variant) {
-    static const int sizes[][2] = {{1, 1},     {1, 7},     {3, 5}, {64, 64},
-                                   {256, 128}, {17, 300},  {7, 1}, {2048, 40},
-                                   {16384, 1}, {1, 16384}, {5, 3}, {33, 2}};
+    static const int sizes[][2] = {{1, 1},
+                                   {1, 7},
+                                   {3, 5},
+                                   {64, 64},
+                                   {256, 128},
+                                   {17, 300},
+                                   {7, 1},
+                                   {2048, 40},
+                                   {16384, 1},
+                                   {1, 16384},
+                                   {5, 3},
+                                   {33, 2},
+                                   /* the smallest textures AVX-512 reads through an 8 x 8 window */
+                                   {8, 8},
+                                   {8, 9},
+                                   {9, 8},
+                                   {7, 8}};
     enum { NSIZES = sizeof sizes / sizeof *sizes };
     rng g = {0x5eed0000u + (uint64_t)variant};
     texture tex[NSIZES];

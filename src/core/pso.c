@@ -41,7 +41,8 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     if (!d->blend) d->blend = SG_BLEND_OPAQUE;
     /* Opaque draws find the visible triangle first; blended ones blend as they go (blend.h). */
     p.raster_fn = d->blend == SG_BLEND_ALPHA
-                      ? sg_blend_select(d->depth.compare, d->depth.write, dev->isa)
+                      ? sg_blend_select(sg_shade_variant(d->shade, d->filter, d->wrap),
+                                        d->depth.compare, d->depth.write, dev->isa)
                       : sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
     p.shade_fn = sg_shade_select(d->shade, d->filter, d->wrap, dev->isa);
     p.nattr = sg_shade_attr_count(d->shade);

@@ -156,10 +156,10 @@ SG_BLEND_FN(blend_any_0_sse2, blend_sse2, Z_ANY, 0)
 SG_BLEND_FN(blend_any_1_sse2, blend_sse2, Z_ANY, 1)
 #endif
 
-sg_raster_fn sg_blend_select(sgCompare compare, bool depth_write, sg_isa isa) {
+sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa) {
     int zmode = compare == SG_COMPARE_ALWAYS ? Z_NONE : Z_ANY;
     sg_raster_fn fn = NULL;
-    if (isa >= SG_ISA_AVX512) fn = sg_blend_avx512(zmode == Z_ANY, depth_write);
+    if (isa >= SG_ISA_AVX512) fn = sg_blend_avx512(shade_variant, zmode == Z_ANY, depth_write);
     if (!fn && isa >= SG_ISA_AVX2) fn = sg_blend_avx2(zmode == Z_ANY, depth_write);
     if (fn) return fn;
 #if defined(__SSE2__)

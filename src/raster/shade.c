@@ -40,10 +40,13 @@ shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask
 #define SG_SHADE_TABLE sg_shade_scalar
 #include "raster/shade_variants.h"
 
+int sg_shade_variant(sgShade shade, sgFilter filter, sgWrap wrap) {
+    if (shade != SG_SHADE_TEXTURE_MODULATE) return 0;
+    return 1 + (filter == SG_FILTER_BILINEAR ? 2 : 0) + (wrap == SG_WRAP_REPEAT ? 0 : 1);
+}
+
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa) {
-    int variant = 0;
-    if (shade == SG_SHADE_TEXTURE_MODULATE)
-        variant = 1 + (filter == SG_FILTER_BILINEAR ? 2 : 0) + (wrap == SG_WRAP_REPEAT ? 0 : 1);
+    int variant = sg_shade_variant(shade, filter, wrap);
     sg_shade_fn fn = NULL;
     /* The best set the ISA allows that is built: AVX-512, AVX2, SSE2, scalar. */
     if (isa >= SG_ISA_AVX512) fn = sg_shade_avx512(variant);

@@ -37,6 +37,8 @@ typedef enum sg_isa {
 typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, int y0, uint32_t mask,
                             uint32_t *dst);
 
+/** The index of a resolved shading state in the variant tables below. */
+int sg_shade_variant(sgShade shade, sgFilter filter, sgWrap wrap);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
 /** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,

@@ -1,0 +1,315 @@
+/* shade_avx512.h - the AVX-512 shading body (internal to the raster; included only by files
+ * compiled with -mavx512f/bw/vl/dq): a whole 4x4 tile is one __m512, lane y * 4 + x, and a vector
+ * per channel; the algorithms are those of shade_avx2.c widened (see there why each is exact), so
+ * the bytes are the scalar reference's. The tile mask is the gather mask: pixels outside it are
+ * not read. shade_avx512.c makes the shading table of it, blend_avx512.c inlines it into the
+ * raster functions of blended draws (no call per tile).
+ */
+#ifndef SG_SHADE_AVX512_H
+#define SG_SHADE_AVX512_H
+
+#include <float.h>
+
+#include "raster/shade.h"
+
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__AVX512F__) && defined(__AVX512BW__) && \
+    FLT_EVAL_METHOD == 0
+#define SG_SHADE_AVX512 1
+
+#include <immintrin.h>
+
+#include "raster/framebuffer.h"
+
+_Static_assert(SG_MAX_IMAGE_SIZE < 32768, "texture sides must fit signed 16 bits");
+
+#define INLINE static inline __attribute__((always_inline))
+
+/* The 16-bit lanes of odd index: the high half of each 32-bit lane. */
+#define HI16 ((__mmask32)0xaaaaaaaau)
+
+typedef struct tex16 {
+    const int *texels;
+    int width, height;
+    __m512 scale_x, scale_y, hi_x, hi_y;
+    __m512i n_x, n_y, last_x, last_y;
+} tex16;
+
+INLINE __m512 coord_repeat(__m512 s, __m512 scale) {
+    __m512 f = _mm512_roundscale_ps(s, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    __m512 x = _mm512_mul_ps(_mm512_sub_ps(s, f), scale);
+    return _mm512_max_ps(x, _mm512_setzero_ps()); /* NaN -> 0 */
+}
+
+INLINE __m512i nearest_index(__m512 s, __m512 scale, __m512 hi, __m512i n, __m512i last,
+                             const int repeat) {
+    if (repeat) {
+        __m512i i = _mm512_cvttps_epi32(coord_repeat(s, scale));
+        return _mm512_mask_sub_epi32(i, _mm512_cmpgt_epi32_mask(i, last), i, n);
+    }
+    __m512 x = _mm512_max_ps(_mm512_mul_ps(s, scale), _mm512_setzero_ps());
+    return _mm512_cvttps_epi32(_mm512_min_ps(x, hi));
+}
+
+INLINE __m512i bilinear_split(__m512 s, __m512 scale, __m512 hi, const int repeat) {
+    __m512i fl;
+    if (repeat) {
+        fl = _mm512_cvttps_epi32(coord_repeat(s, scale));
+    } else {
+        __m512 x = _mm512_max_ps(_mm512_mul_ps(s, scale), _mm512_set1_ps(-256.0f));
+        fl = _mm512_cvttps_epi32(_mm512_min_ps(x, hi));
+    }
+    return _mm512_sub_epi32(fl, _mm512_set1_epi32(128));
+}
+
+INLINE void bilinear_wrap(__m512i g, __m512i n, __m512i last, const int repeat, __m512i *i0,
+                          __m512i *i1) {
+    __m512i a = _mm512_srai_epi32(g, 8), b = _mm512_add_epi32(a, _mm512_set1_epi32(1));
+    if (repeat) {
+        *i0 = _mm512_min_epu32(a, _mm512_add_epi32(a, n));
+        *i1 = _mm512_min_epu32(b, _mm512_sub_epi32(b, n));
+    } else {
+        *i0 = _mm512_min_epi32(_mm512_max_epi32(a, _mm512_setzero_si512()), last);
+        *i1 = _mm512_min_epi32(_mm512_max_epi32(b, _mm512_setzero_si512()), last);
+    }
+}
+
+/* The fraction (low byte of g) in both 16-bit halves of its lane. */
+INLINE __m512i frac2(__m512i g) {
+    const __m512i dup = _mm512_set4_epi32(0x800c800c, 0x80088008, 0x80048004, 0x80008000);
+    return _mm512_shuffle_epi8(g, dup);
+}
+
+INLINE __m512i row_start(__m512i j, const tex16 *tx) {
+    return _mm512_madd_epi16(_mm512_sub_epi32(tx->last_y, j), tx->n_x);
+}
+
+/* Every index is inside the texture whatever the coordinates (as in shade_avx2.c); the mask only
+ * saves the loads of pixels outside the tile mask. */
+INLINE __m512i fetch16(const tex16 *tx, __m512i idx, __mmask16 m) {
+    return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), m, idx, tx->texels, 4);
+}
+
+INLINE __m512i nearest16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const int repeat) {
+    __m512i i = nearest_index(s, tx->scale_x, tx->hi_x, tx->n_x, tx->last_x, repeat);
+    __m512i j = nearest_index(u, tx->scale_y, tx->hi_y, tx->n_y, tx->last_y, repeat);
+    return fetch16(tx, _mm512_add_epi32(row_start(j, tx), i), m);
+}
+
+/* Texels idx and idx + 1 of every lane of m, as two vectors. */
+INLINE void pair_fetch(const tex16 *tx, __m512i idx, __mmask16 m, __m512i *first, __m512i *second) {
+    __m512i lo = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), (__mmask8)m,
+                                             _mm512_castsi512_si256(idx), tx->texels, 4);
+    __m512i hi = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), (__mmask8)(m >> 8),
+                                             _mm512_extracti64x4_epi64(idx, 1), tx->texels, 4);
+    const __m512i even =
+        _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    *first = _mm512_permutex2var_epi32(lo, even, hi);
+    *second = _mm512_permutex2var_epi32(lo, _mm512_add_epi32(even, _mm512_set1_epi32(1)), hi);
+}
+
+/* Texels from an 8 x 8 window of the texture around the tile's first pixel's texel, when every
+ * texel the pixels of m need lies in it (a magnified or about 1:1 texture, away from a repeat
+ * seam): eight row loads and two-source permutes instead of gathers; the same texels, so the same
+ * bytes. False: the footprint is wider; the caller gathers. */
+INLINE bool window_fetch(const tex16 *tx, __m512i i0, __m512i i1, __m512i j0, __m512i j1,
+                         __mmask16 m, __m512i *t00, __m512i *t10, __m512i *t01, __m512i *t11) {
+    const int tw = tx->width, th = tx->height;
+    if (tw < 8 || th < 8) return false;
+    int wx = _mm_cvtsi128_si32(_mm512_castsi512_si128(i0)) - 3;
+    int wy = _mm_cvtsi128_si32(_mm512_castsi512_si128(j0)) - 3;
+    wx = wx < 0 ? 0 : (wx > tw - 8 ? tw - 8 : wx);
+    wy = wy < 0 ? 0 : (wy > th - 8 ? th - 8 : wy);
+    __m512i ox = _mm512_set1_epi32(wx), oy = _mm512_set1_epi32(wy), eight = _mm512_set1_epi32(8);
+    __m512i c0 = _mm512_sub_epi32(i0, ox), c1 = _mm512_sub_epi32(i1, ox);
+    __m512i d0 = _mm512_sub_epi32(j0, oy), d1 = _mm512_sub_epi32(j1, oy);
+    __mmask16 in = _mm512_mask_cmplt_epu32_mask(m, c0, eight);
+    in = _mm512_mask_cmplt_epu32_mask(in, c1, eight);
+    in = _mm512_mask_cmplt_epu32_mask(in, d0, eight);
+    in = _mm512_mask_cmplt_epu32_mask(in, d1, eight);
+    if (in != m) return false;
+    /* Texture row j is memory row th - 1 - j (top row first); window row r is row wy + r. */
+    const int *row = tx->texels + (size_t)(th - 1 - wy) * (size_t)tw + (size_t)wx;
+    __m512i w[4];
+    for (int k = 0; k < 4; k++) {
+        const int *a = row - (size_t)(2 * k) * (size_t)tw, *b = a - tw;
+        w[k] = _mm512_inserti64x4(
+            _mm512_castsi256_si512(_mm256_loadu_si256((const __m256i *)(const void *)a)),
+            _mm256_loadu_si256((const __m256i *)(const void *)b), 1);
+    }
+    __m512i r0 = _mm512_slli_epi32(d0, 3), r1 = _mm512_slli_epi32(d1, 3);
+    const __m512i half = _mm512_set1_epi32(32);
+#define SG_LOOKUP(idx)                                                                             \
+    _mm512_mask_blend_epi32(_mm512_test_epi32_mask(idx, half),                                     \
+                            _mm512_permutex2var_epi32(w[0], idx, w[1]),                            \
+                            _mm512_permutex2var_epi32(w[2], idx, w[3]))
+    __m512i idx = _mm512_add_epi32(r0, c0);
+    *t00 = SG_LOOKUP(idx);
+    idx = _mm512_add_epi32(r0, c1);
+    *t10 = SG_LOOKUP(idx);
+    idx = _mm512_add_epi32(r1, c0);
+    *t01 = SG_LOOKUP(idx);
+    idx = _mm512_add_epi32(r1, c1);
+    *t11 = SG_LOOKUP(idx);
+#undef SG_LOOKUP
+    return true;
+}
+
+/* bilinear8 of shade_avx2.c on a whole tile: x[k] gets channel k in bits 16 to 23 of each lane. */
+INLINE void bilinear16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const int repeat,
+                       __m512i x[4]) {
+    __m512i i0, i1, j0, j1;
+    __m512i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
+    __m512i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
+    bilinear_wrap(gx, tx->n_x, tx->last_x, repeat, &i0, &i1);
+    bilinear_wrap(gy, tx->n_y, tx->last_y, repeat, &j0, &j1);
+    __m512i t00, t10, t01, t11;
+    if (window_fetch(tx, i0, i1, j0, j1, m, &t00, &t10, &t01, &t11)) goto fetched;
+    __m512i r0 = row_start(j0, tx), r1 = row_start(j1, tx);
+    /* Where no pixel of the mask has a split column outside [0, n - 2], i1 = i0 + 1 for every
+     * wrap mode and columns i0 and i1 are adjacent in memory: one 64-bit gather fetches both, half
+     * the loads (64-bit gathers of 8 cost about as much as 32-bit ones of 16, per element). */
+    __m512i a = _mm512_srai_epi32(gx, 8);
+    if (_mm512_mask_cmplt_epu32_mask(m, a, tx->last_x) == m) {
+        pair_fetch(tx, _mm512_add_epi32(r0, a), m, &t00, &t10);
+        pair_fetch(tx, _mm512_add_epi32(r1, a), m, &t01, &t11);
+    } else {
+        t00 = fetch16(tx, _mm512_add_epi32(r0, i0), m);
+        t10 = fetch16(tx, _mm512_add_epi32(r0, i1), m);
+        t01 = fetch16(tx, _mm512_add_epi32(r1, i0), m);
+        t11 = fetch16(tx, _mm512_add_epi32(r1, i1), m);
+    }
+fetched:;
+    const __m512i lo8 = _mm512_set1_epi32(0x00ff00ff);
+    const __m512i bias = _mm512_set1_epi32((int)0x80008000u);
+    const __m512i w256 = _mm512_set1_epi16(256);
+    const __m512i round = _mm512_set1_epi32(128 * 65536 + 32768);
+    __m512i fy2 = frac2(gy), fx2 = frac2(gx);
+    __m512i gy2 = _mm512_sub_epi16(w256, fy2);
+    __m512i wx = _mm512_mask_blend_epi16(HI16, _mm512_sub_epi16(w256, fx2), fx2);
+#define SG_VBLEND(a, b)                                                                            \
+    _mm512_xor_si512(_mm512_add_epi16(_mm512_mullo_epi16(a, gy2), _mm512_mullo_epi16(b, fy2)), bias)
+    __m512i rb0 = SG_VBLEND(_mm512_and_si512(t00, lo8), _mm512_and_si512(t01, lo8));
+    __m512i rb1 = SG_VBLEND(_mm512_and_si512(t10, lo8), _mm512_and_si512(t11, lo8));
+    __m512i ga0 = SG_VBLEND(_mm512_srli_epi16(t00, 8), _mm512_srli_epi16(t01, 8));
+    __m512i ga1 = SG_VBLEND(_mm512_srli_epi16(t10, 8), _mm512_srli_epi16(t11, 8));
+#undef SG_VBLEND
+#define SG_HBLEND(v) _mm512_add_epi32(_mm512_madd_epi16(v, wx), round)
+    x[0] = SG_HBLEND(_mm512_mask_blend_epi16(HI16, rb0, _mm512_slli_epi32(rb1, 16)));
+    x[1] = SG_HBLEND(_mm512_mask_blend_epi16(HI16, ga0, _mm512_slli_epi32(ga1, 16)));
+    x[2] = SG_HBLEND(_mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(rb0, 16), rb1));
+    x[3] = SG_HBLEND(_mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(ga0, 16), ga1));
+#undef SG_HBLEND
+}
+
+/* Four channels in bits 16 to 23 of their lanes, zeros above, to RGBA8. */
+INLINE __m512i pack_hi8(const __m512i x[4]) {
+    __m512i rb = _mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(x[0], 16), x[2]);
+    __m512i ga = _mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(x[1], 16), x[3]);
+    return _mm512_or_si512(rb, _mm512_slli_epi32(ga, 8));
+}
+
+INLINE void unpack_texels(__m512i t, __m512i c[4]) {
+    const __m512i lo8 = _mm512_set1_epi32(255);
+    c[0] = _mm512_and_si512(t, lo8);
+    c[1] = _mm512_and_si512(_mm512_srli_epi32(t, 8), lo8);
+    c[2] = _mm512_and_si512(_mm512_srli_epi32(t, 16), lo8);
+    c[3] = _mm512_srli_epi32(t, 24);
+}
+
+/* sg_to_unorm8 but the clamp to [0, 255], left to pack_unorm8 (see shade_avx2.c). */
+INLINE __m512i unorm8(__m512 v) {
+    v = _mm512_min_ps(_mm512_set1_ps(1.0f), v); /* the second operand, v, when it is NaN */
+    return _mm512_cvttps_epi32(
+        _mm512_add_ps(_mm512_mul_ps(v, _mm512_set1_ps(255.0f)), _mm512_set1_ps(0.5f)));
+}
+
+/* Planar float colours to RGBA8: each 128-bit lane is one row, packed as in shade_avx2.c. */
+INLINE __m512i pack_unorm8(const __m512 col[4]) {
+    __m512i p01 = _mm512_packs_epi32(unorm8(col[0]), unorm8(col[1]));
+    __m512i p23 = _mm512_packs_epi32(unorm8(col[2]), unorm8(col[3]));
+    const __m512i tr = _mm512_set4_epi32(0x0f0b0703, 0x0e0a0602, 0x0d090501, 0x0c080400);
+    return _mm512_shuffle_epi8(_mm512_packus_epi16(p01, p23), tr);
+}
+
+/* dx = ox + x and dy = oy + y of lane y * 4 + x of the tile at (x0, y0), each rounding as in
+ * the reference: the pixels' offsets from the triangle's bounds. */
+INLINE void sg_tile_offsets(const sg_tri *t, int x0, int y0, __m512 *dx, __m512 *dy) {
+    *dx = _mm512_add_ps(_mm512_set1_ps((float)(x0 - t->minx)),
+                        _mm512_set4_ps(3.0f, 2.0f, 1.0f, 0.0f));
+    *dy = _mm512_add_ps(_mm512_set1_ps((float)(y0 - t->miny)),
+                        _mm512_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 2.0f, 2.0f,
+                                       2.0f, 2.0f, 3.0f, 3.0f, 3.0f, 3.0f));
+}
+
+/* The colours of the pixels at offsets (dx, dy) from the triangle's bounds, lanes of `mask`, as
+ * RGBA8 lanes (others undefined): the body of every variant, as shade_rows in shade.c; the
+ * constant arguments fold away. Each lane computes what the reference computes for its pixel,
+ * wherever that pixel is. */
+INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, __m512 dx, __m512 dy,
+                             uint32_t mask, const int textured, const int bilinear,
+                             const int repeat, const int flat) {
+    const __mmask16 m = (__mmask16)mask;
+    if (!textured && flat != SG_FLAT_NONE) {
+        uint32_t px = sg_pack_rgba8(sg_to_unorm8(t->color[0]), sg_to_unorm8(t->color[1]),
+                                    sg_to_unorm8(t->color[2]), sg_to_unorm8(t->color[3]));
+        return _mm512_set1_epi32((int)px);
+    }
+#define SG_PLANE(a, adx, ady)                                                                      \
+    _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(a), _mm512_mul_ps(_mm512_set1_ps(adx), dx)),        \
+                  _mm512_mul_ps(_mm512_set1_ps(ady), dy))
+    const __m512 w = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy));
+    __m512 col[4];
+    for (int k = 0; k < 4; k++)
+        col[k] = flat != SG_FLAT_NONE ? _mm512_set1_ps(t->color[k])
+                                      : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
+    if (textured) {
+        const int tw = c->tex.width, th = c->tex.height;
+        const float sc = bilinear ? 256.0f : 1.0f;
+        tex16 tx;
+        tx.texels = (const int *)(const void *)c->tex.texels;
+        tx.width = tw;
+        tx.height = th;
+        tx.scale_x = _mm512_set1_ps(sc * (float)tw);
+        tx.scale_y = _mm512_set1_ps(sc * (float)th);
+        tx.hi_x = _mm512_set1_ps(bilinear ? 256.0f * (float)(tw + 1) : (float)(tw - 1));
+        tx.hi_y = _mm512_set1_ps(bilinear ? 256.0f * (float)(th + 1) : (float)(th - 1));
+        tx.n_x = _mm512_set1_epi32(tw);
+        tx.n_y = _mm512_set1_epi32(th);
+        tx.last_x = _mm512_set1_epi32(tw - 1);
+        tx.last_y = _mm512_set1_epi32(th - 1);
+        __m512 s = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
+        __m512 u = _mm512_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
+        __m512i tc[4];
+        if (bilinear) {
+            __m512i x[4];
+            bilinear16(&tx, s, u, m, repeat, x);
+            if (flat == SG_FLAT_WHITE) {
+                return pack_hi8(x);
+            }
+            for (int k = 0; k < 4; k++) tc[k] = _mm512_srli_epi32(x[k], 16);
+        } else {
+            __m512i texel = nearest16(&tx, s, u, m, repeat);
+            if (flat == SG_FLAT_WHITE) { /* the texel is the colour, as in the reference */
+                return texel;
+            }
+            unpack_texels(texel, tc);
+        }
+        for (int k = 0; k < 4; k++)
+            col[k] = _mm512_mul_ps(
+                col[k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[k]), _mm512_set1_ps(1.0f / 255.0f)));
+    }
+#undef SG_PLANE
+    return pack_unorm8(col);
+}
+
+/* sg_shade16_at for the pixels of `mask` of the tile at (x0, y0), lane y * 4 + x. */
+INLINE __m512i sg_shade16(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                          const int textured, const int bilinear, const int repeat,
+                          const int flat) {
+    __m512 dx, dy;
+    sg_tile_offsets(t, x0, y0, &dx, &dy);
+    return sg_shade16_at(c, t, dx, dy, mask, textured, bilinear, repeat, flat);
+}
+
+#endif
+#endif
