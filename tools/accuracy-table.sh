@@ -1,5 +1,6 @@
 #!/bin/sh
-# Prints the markdown table of sgapi against lavapipe for the default scenes, the hard cases and,
+# Prints the markdown table of sgapi against lavapipe for the project's scene files (the default
+# scenes, then one file per feature), the hard cases and,
 # when it sits beside the checkout, the gapi-task suite: each renderer's time per frame (median of 5) next to
 # the error figures of sgapi's image against lavapipe's.
 #   tools/accuracy-table.sh [BUILD_DIR]      (default: build; run `make build` first)
@@ -22,6 +23,10 @@ table() { # suite scenes.json
         "$out/$1-ref.txt" "$out/$1.txt"
 }
 table default scenes/default.json
+for f in scenes/*.json; do
+    name=$(basename "$f" .json)
+    [ "$name" = default ] || table "$name" "$f"
+done
 # The hard cases: each file alone; where a reference twin exists, lavapipe renders the twin.
 for f in scenes/hard/*.json; do
     case $f in *.reference.json) continue ;; esac

@@ -40,7 +40,8 @@ static inline void shade_run(const sg_bin_pass *p, uint32_t id, int x0, int y0, 
 
 /* Shades the visible pixels of one tile: each run of pixels that see the same triangle is one
  * call of that triangle's shading function. */
-static void shade_tile(const sg_bin_pass *p, const uint32_t *ids, int x0, int y0, uint32_t *dst) {
+static inline __attribute__((always_inline)) void
+shade_tile(const sg_bin_pass *p, const uint32_t *ids, int x0, int y0, uint32_t *dst) {
     uint32_t left = 0xffffu;
     if (ids[0]) { /* the first pixel's triangle first: often the tile's only one */
         uint32_t mask = same_id(ids, ids[0]);
@@ -76,13 +77,58 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
     }
 }
 
+/* Where a bin's pixels are in the target images. */
+typedef struct bin_view {
+    int x0, y0, w, h;
+    size_t pitch; /* of both targets: width * 4 bytes */
+    uint8_t *color;
+    float *depth; /* NULL without a depth target */
+} bin_view;
+
+/* The bin's depth from the pass's load or clear (nothing without a depth target). */
+static void start_depth(const sg_bin_pass *p, const bin_view *v, float *depth) {
+    if (!v->depth) return;
+    if (p->load_depth)
+        sg_tile_from_linear_f32(depth, v->depth, v->pitch, v->w, v->h, BIN_TILES);
+    else
+        sg_fb_fill_depth(depth, BIN_PIXELS, p->clear_depth);
+}
+
+static void start_color(const sg_bin_pass *p, const bin_view *v, uint32_t *color) {
+    if (p->load_color)
+        sg_tile_from_linear_rgba8(color, v->color, v->pitch, v->w, v->h, BIN_TILES);
+    else
+        sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
+}
+
+/* The bin's pixels written once to the targets. */
+static void write_bin(const sg_bin_pass *p, const bin_view *v, const uint32_t *color,
+                      const float *depth) {
+    sg_tile_to_linear_rgba8(v->color, v->pitch, color, v->w, v->h, BIN_TILES);
+    if (v->depth && p->store_depth)
+        sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
+}
+
 /* A bin of a pass with blended draws: the colour starts from the pass's load or clear, opaque
  * triangles go through visibility as usual, and before each run of blended triangles the visible
- * ids so far are shaded (shade_reached), so every pixel sees the triangles in submission order. */
-static void blended_bin(const sg_bin_pass *p, const sg_bin *bin, int x0, int y0, uint32_t *color,
-                        float *depth, uint32_t *ids, uint64_t *touched) {
+ * ids so far are shaded (shade_reached), so every pixel sees the triangles in submission order.
+ * Kept out of line, with its own buffers, so that the opaque path of sg_rast_bin stays as it
+ * is. */
+static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg_bin *bin,
+                                                  const bin_view *v) {
+    _Alignas(64) uint32_t color[BIN_PIXELS];
+    _Alignas(64) float depth[BIN_PIXELS];
+    _Alignas(64) uint32_t ids[BIN_PIXELS];
+    uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
+    memset(ids, 0, sizeof ids);
+    SG_STAGE_START(clock);
+    start_depth(p, v, depth);
+    start_color(p, v, color);
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     const sg_binner *b = p->binner;
-    sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, color, NULL, NULL};
+    int x0 = v->x0, y0 = v->y0;
+    sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   touched, x0,  y0, 0,
+                      SG_COMPARE_ALWAYS,       color, NULL,    NULL};
     bool pending = false; /* ids hold opaque triangles not shaded yet */
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
@@ -101,27 +147,37 @@ static void blended_bin(const sg_bin_pass *p, const sg_bin *bin, int x0, int y0,
         d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
     }
     if (pending) shade_reached(p, ids, touched, x0, y0, color, true);
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
+    write_bin(p, v, color, depth);
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }
 
 void sg_rast_bin(const sg_bin_pass *p, int index) {
     const sg_binner *b = p->binner;
     const sg_bin *bin = &b->bins[index];
-    int x0 = (index % b->bins_x) << SG_BIN_SHIFT, y0 = (index / b->bins_x) << SG_BIN_SHIFT;
-    int w = p->width - x0 < SG_BIN_SIZE ? p->width - x0 : SG_BIN_SIZE;
-    int h = p->height - y0 < SG_BIN_SIZE ? p->height - y0 : SG_BIN_SIZE;
-    size_t cpitch = (size_t)p->width * 4;
-    uint8_t *cimg = p->color + (size_t)y0 * cpitch + (size_t)x0 * 4;
-    float *dimg =
-        p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)y0 * cpitch) + x0 : NULL;
+    bin_view v;
+    v.x0 = (index % b->bins_x) << SG_BIN_SHIFT;
+    v.y0 = (index / b->bins_x) << SG_BIN_SHIFT;
+    v.w = p->width - v.x0 < SG_BIN_SIZE ? p->width - v.x0 : SG_BIN_SIZE;
+    v.h = p->height - v.y0 < SG_BIN_SIZE ? p->height - v.y0 : SG_BIN_SIZE;
+    v.pitch = (size_t)p->width * 4;
+    v.color = p->color + (size_t)v.y0 * v.pitch + (size_t)v.x0 * 4;
+    v.depth =
+        p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)v.y0 * v.pitch) + v.x0 : NULL;
+    int x0 = v.x0, y0 = v.y0;
     SG_STAGE_START(clock);
     if (!bin->count) { /* nothing drawn here: the pass's load and clear are the result */
-        if (!p->load_color) sg_fill_linear_u32(cimg, cpitch, w, h, p->clear_color);
-        if (dimg && p->store_depth && !p->load_depth) {
+        if (!p->load_color) sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
+        if (v.depth && p->store_depth && !p->load_depth) {
             uint32_t bits;
             memcpy(&bits, &p->clear_depth, 4);
-            sg_fill_linear_u32(dimg, cpitch, w, h, bits);
+            sg_fill_linear_u32(v.depth, v.pitch, v.w, v.h, bits);
         }
         SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
+        return;
+    }
+    if (p->any_blend) {
+        blended_bin(p, bin, &v);
         return;
     }
 
@@ -130,27 +186,10 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     _Alignas(64) uint32_t ids[BIN_PIXELS];
     uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
     memset(ids, 0, sizeof ids);
-    if (dimg) {
-        if (p->load_depth)
-            sg_tile_from_linear_f32(depth, dimg, cpitch, w, h, BIN_TILES);
-        else
-            sg_fb_fill_depth(depth, BIN_PIXELS, p->clear_depth);
-    }
+    start_depth(p, &v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
-    if (p->any_blend) {
-        if (p->load_color)
-            sg_tile_from_linear_rgba8(color, cimg, cpitch, w, h, BIN_TILES);
-        else
-            sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
-        blended_bin(p, bin, x0, y0, color, dimg ? depth : NULL, ids, touched);
-        SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
-        sg_tile_to_linear_rgba8(cimg, cpitch, color, w, h, BIN_TILES);
-        if (dimg && p->store_depth) sg_tile_to_linear_f32(dimg, cpitch, depth, w, h, BIN_TILES);
-        SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
-        return;
-    }
-    sg_vis_ctx vis = {dimg ? depth : NULL, ids,  touched, x0,  y0, 0,
-                      SG_COMPARE_ALWAYS,   NULL, NULL,    NULL};
+    sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  touched, x0,  y0, 0,
+                      SG_COMPARE_ALWAYS,      NULL, NULL,    NULL};
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
@@ -165,16 +204,11 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     }
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
 
-    if (p->load_color)
-        sg_tile_from_linear_rgba8(color, cimg, cpitch, w, h, BIN_TILES);
-    else
-        sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
+    start_color(p, &v, color);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     /* Only tiles some triangle reached hold ids (depth.h). */
     shade_reached(p, ids, touched, x0, y0, color, false);
-
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
-    sg_tile_to_linear_rgba8(cimg, cpitch, color, w, h, BIN_TILES);
-    if (dimg && p->store_depth) sg_tile_to_linear_f32(dimg, cpitch, depth, w, h, BIN_TILES);
+    write_bin(p, &v, color, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }
