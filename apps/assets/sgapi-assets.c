@@ -1278,6 +1278,17 @@ static mat4 model(vec3 t, double yaw, double pitch, double roll, double s) {
     return mat_mul(mat_translate(t.x, t.y, t.z), mat_mul(r, mat_scale(s, s, s)));
 }
 
+/* The textured ground plane, scaled by `scale`, seen through `view`. */
+static draw *add_floor(scene *s, mat4 proj, mat4 view, const char *texture, double scale) {
+    draw *d = scene_add(s);
+    d->mesh = A_PLANE;
+    d->textured = true;
+    d->texture = texture;
+    d->proj = proj;
+    d->world_view = mat_mul(view, mat_scale(scale, scale, scale));
+    return d;
+}
+
 static void scene_01(scene *s) {
     s->name = "01_colored_triangle";
     draw *d = scene_add(s);
@@ -1342,12 +1353,7 @@ static void scene_05(scene *s, mat4 proj) {
     static const char *const textures[3] = {A_BRICK, A_MOSAIC, A_CHECKER};
     s->name = "05_many_cubes";
     mat4 view = mat_look_at(v3(0, 8.5, 10.5), v3(0, 0, -0.2), v3(0, 1, 0));
-    draw *d = scene_add(s);
-    d->mesh = A_PLANE;
-    d->textured = true;
-    d->texture = A_CHECKER;
-    d->proj = proj;
-    d->world_view = mat_mul(view, mat_scale(8, 8, 8));
+    draw *d = add_floor(s, proj, view, A_CHECKER, 8);
 
     /* A 4 x 4 grid, jittered; every fourth slot a pyramid, two cubes carry a smaller one. */
     rng r = {0x5EED0005u};
@@ -1383,16 +1389,11 @@ static void scene_05(scene *s, mat4 proj) {
     }
 }
 
-/* One teapot, checker texture repeating twice per patch, resting on a brick floor. */
-static void scene_06(scene *s, mat4 proj, const mesh *teapot) {
-    s->name = "06_teapot";
+/* The brick floor and one teapot resting on it, checker texture repeating twice per patch, as
+ * seen by scenes 06 and the translucent teapots; returns the teapot's draw. */
+static draw *teapot_on_floor(scene *s, mat4 proj, const mesh *teapot) {
     mat4 view = mat_look_at(v3(0, 1.55, 2.9), v3(0, 0.32, 0), v3(0, 1, 0));
-    draw *d = scene_add(s);
-    d->mesh = A_PLANE;
-    d->textured = true;
-    d->texture = A_BRICK;
-    d->proj = proj;
-    d->world_view = mat_mul(view, mat_scale(2.5, 2.5, 2.5));
+    draw *d = add_floor(s, proj, view, A_BRICK, 2.5);
 
     mat4 pose = model(v3(0, 0, 0), -28, 0, 0, 1.0);
     d = scene_add(s);
@@ -1401,6 +1402,13 @@ static void scene_06(scene *s, mat4 proj, const mesh *teapot) {
     d->texture = A_CHECKER;
     d->proj = proj;
     d->world_view = mat_mul(view, mat_mul(mat_translate(0, -mesh_min_y(teapot, pose), 0), pose));
+    return d;
+}
+
+/* One teapot, checker texture repeating twice per patch, resting on a brick floor. */
+static void scene_06(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "06_teapot";
+    teapot_on_floor(s, proj, teapot);
 }
 
 /* Ten teapots in different poses (upright, on their side, upside down, tipped) on the floor. */
@@ -1418,12 +1426,7 @@ static void scene_07(scene *s, mat4 proj, const mesh *teapot) {
     };
     s->name = "07_many_teapots";
     mat4 view = mat_look_at(v3(0, 5.0, 7.6), v3(0, 0.2, -0.4), v3(0, 1, 0));
-    draw *d = scene_add(s);
-    d->mesh = A_PLANE;
-    d->textured = true;
-    d->texture = A_CHECKER;
-    d->proj = proj;
-    d->world_view = mat_mul(view, mat_scale(7, 7, 7));
+    draw *d = add_floor(s, proj, view, A_CHECKER, 7);
     for (size_t i = 0; i < sizeof poses / sizeof poses[0]; i++) {
         mat4 pose = model(v3(0, 0, 0), poses[i].yaw, poses[i].pitch, poses[i].roll, poses[i].scale);
         double lift = -mesh_min_y(teapot, pose);
@@ -1479,12 +1482,7 @@ static void scene_alpha_cubes(scene *s, mat4 proj) {
     };
     s->name = "alpha_cubes";
     mat4 view = mat_look_at(v3(0, 4.2, 6.2), v3(0, 0.3, 0), v3(0, 1, 0));
-    draw *d = scene_add(s);
-    d->mesh = A_PLANE;
-    d->textured = true;
-    d->texture = A_CHECKER;
-    d->proj = proj;
-    d->world_view = mat_mul(view, mat_scale(4, 4, 4));
+    draw *d = add_floor(s, proj, view, A_CHECKER, 4);
     for (size_t i = 0; i < sizeof cubes / sizeof cubes[0]; i++) {
         /* Held a little above the floor: a bottom face in the floor's plane would z-fight. */
         double y = 1.04 * cubes[i].size;
@@ -1509,24 +1507,11 @@ static void scene_alpha_cubes(scene *s, mat4 proj) {
  * writes: sorted back to front it reads correctly; unsorted the order of the patches shows. */
 static void scene_alpha_teapot(scene *s, mat4 proj, const mesh *teapot, bool sorted) {
     s->name = sorted ? "alpha_teapot_sorted" : "alpha_teapot_unsorted";
-    mat4 view = mat_look_at(v3(0, 1.55, 2.9), v3(0, 0.32, 0), v3(0, 1, 0));
-    draw *d = scene_add(s);
-    d->mesh = A_PLANE;
-    d->textured = true;
-    d->texture = A_BRICK;
-    d->proj = proj;
-    d->world_view = mat_mul(view, mat_scale(2.5, 2.5, 2.5));
-    mat4 pose = model(v3(0, 0, 0), -28, 0, 0, 1.0);
-    d = scene_add(s);
-    d->mesh = A_TEAPOT;
-    d->textured = true;
-    d->texture = A_CHECKER;
+    draw *d = teapot_on_floor(s, proj, teapot);
     d->no_depth_write = true;
     d->blend = true;
     d->sort = sorted;
     set_color(d, 1.0, 0.9, 0.75, 0.45);
-    d->proj = proj;
-    d->world_view = mat_mul(view, mat_mul(mat_translate(0, -mesh_min_y(teapot, pose), 0), pose));
 }
 
 /* Window panes with a cut-out ring and an alpha gradient, standing on the checkered floor at
@@ -1537,12 +1522,7 @@ static void scene_alpha_cutout(scene *s, mat4 proj) {
     } panes[] = {{-1.2, -2.0, 25, 1.0}, {1.3, -1.2, -30, 0.9}, {-0.3, 0.4, 10, 0.8}};
     s->name = "alpha_cutout";
     mat4 view = mat_look_at(v3(0, 2.0, 5.5), v3(0, 0.7, 0), v3(0, 1, 0));
-    draw *d = scene_add(s);
-    d->mesh = A_PLANE;
-    d->textured = true;
-    d->texture = A_CHECKER;
-    d->proj = proj;
-    d->world_view = mat_mul(view, mat_scale(4, 4, 4));
+    draw *d = add_floor(s, proj, view, A_CHECKER, 4);
     for (size_t i = 0; i < sizeof panes / sizeof panes[0]; i++) {
         d = scene_add(s);
         d->mesh = A_QUAD;

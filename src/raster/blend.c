@@ -4,6 +4,7 @@
  * same float depth, so both give the same bytes. */
 #include "raster/blend.h"
 
+#include "raster/depth_simd.h"
 #include "raster/rast_walk.h"
 
 #if defined(__SSE2__)
@@ -82,52 +83,23 @@ static inline __m128i blend4_sse2(__m128i s, __m128i d) {
     return _mm_packus_epi16(lo, hi);
 }
 
-/* The pass mask of one row of 4 pixels: z against the stored depth by the pipeline's compare,
- * with the scalar code's IEEE results (a NaN z passes only NOT_EQUAL and ALWAYS). */
-static inline __m128 compare_sse2(sgCompare op, __m128 z, __m128 d) {
-    switch (op) {
-    case SG_COMPARE_NEVER:
-        return _mm_setzero_ps();
-    case SG_COMPARE_LESS:
-        return _mm_cmplt_ps(z, d);
-    case SG_COMPARE_EQUAL:
-        return _mm_cmpeq_ps(z, d);
-    case SG_COMPARE_LESS_EQUAL:
-        return _mm_cmple_ps(z, d);
-    case SG_COMPARE_GREATER:
-        return _mm_cmplt_ps(d, z);
-    case SG_COMPARE_NOT_EQUAL:
-        return _mm_cmpneq_ps(z, d);
-    case SG_COMPARE_GREATER_EQUAL:
-        return _mm_cmple_ps(d, z);
-    default:
-        return _mm_castsi128_ps(_mm_set1_epi32(-1));
-    }
-}
-
 static inline __attribute__((always_inline)) void blend_sse2(const void *vctx, const sg_tri *t,
                                                              int x0, int y0, uint32_t mask,
                                                              const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     const __m128i lanes = _mm_setr_epi32(1, 2, 4, 8);
-    if (zmode != Z_NONE || zwrite) { /* as vis_sse2 (depth.c) computes and clamps z */
+    if (zmode != Z_NONE || zwrite) {
         float *dp = v->depth + base;
-        const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
-        __m128 dx =
-            _mm_add_ps(_mm_set1_ps((float)(x0 - t->minx)), _mm_setr_ps(0.0f, 1.0f, 2.0f, 3.0f));
-        __m128 zx = _mm_add_ps(_mm_set1_ps(t->z), _mm_mul_ps(_mm_set1_ps(t->z_dx), dx));
-        __m128 zdy = _mm_set1_ps(t->z_dy);
-        float oy = (float)(y0 - t->miny);
+        const sg_zrows4 zr = sg_zrows4_at(t, x0, y0);
         uint32_t pass = 0;
         for (int j = 0; j < 4; j++) {
             uint32_t bits = (mask >> (4 * j)) & 15u;
             if (!bits) continue;
-            __m128 z = _mm_add_ps(zx, _mm_mul_ps(zdy, _mm_set1_ps(oy + (float)j)));
-            z = _mm_min_ps(one, _mm_max_ps(zero, z));
+            __m128 z = sg_zrow4(&zr, j);
             __m128 d = _mm_load_ps(dp + 4 * j);
             __m128i cov = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)bits), lanes), lanes);
-            __m128i p = _mm_and_si128(cov, _mm_castps_si128(compare_sse2(v->compare, z, d)));
+            __m128i p = _mm_and_si128(cov, _mm_castps_si128(sg_compare4(v->compare, z, d)));
             if (zwrite)
                 _mm_store_ps(dp + 4 * j, _mm_or_ps(_mm_and_ps(_mm_castsi128_ps(p), z),
                                                    _mm_andnot_ps(_mm_castsi128_ps(p), d)));

@@ -3,6 +3,7 @@
  * blend, so the same bytes. */
 #include "raster/blend.h"
 
+#include "raster/depth_simd.h"
 #include "raster/rast_walk.h"
 
 #if defined(__AVX2__)
@@ -22,27 +23,6 @@ static inline __m256i blend_lanes(__m256i s, __m256i d) {
     return _mm256_add_epi16(mul_unorm8(s, a), mul_unorm8(d, ia));
 }
 
-static inline __m256 compare(sgCompare op, __m256 z, __m256 d) {
-    switch (op) {
-    case SG_COMPARE_NEVER:
-        return _mm256_setzero_ps();
-    case SG_COMPARE_LESS:
-        return _mm256_cmp_ps(z, d, _CMP_LT_OQ);
-    case SG_COMPARE_EQUAL:
-        return _mm256_cmp_ps(z, d, _CMP_EQ_OQ);
-    case SG_COMPARE_LESS_EQUAL:
-        return _mm256_cmp_ps(z, d, _CMP_LE_OQ);
-    case SG_COMPARE_GREATER:
-        return _mm256_cmp_ps(z, d, _CMP_GT_OQ);
-    case SG_COMPARE_NOT_EQUAL:
-        return _mm256_cmp_ps(z, d, _CMP_NEQ_UQ);
-    case SG_COMPARE_GREATER_EQUAL:
-        return _mm256_cmp_ps(z, d, _CMP_GE_OQ);
-    default:
-        return _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-    }
-}
-
 enum { Z_NONE, Z_ANY };
 
 static inline __attribute__((always_inline)) void blend_avx2(const void *vctx, const sg_tri *t,
@@ -51,24 +31,17 @@ static inline __attribute__((always_inline)) void blend_avx2(const void *vctx, c
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    if (zmode != Z_NONE || zwrite) { /* as vis_avx2 (depth_avx2.c) computes and clamps z */
+    if (zmode != Z_NONE || zwrite) {
         float *dp = v->depth + base;
-        const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-        __m256 dx = _mm256_add_ps(_mm256_set1_ps((float)(x0 - t->minx)),
-                                  _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
-        __m256 zx = _mm256_add_ps(_mm256_set1_ps(t->z), _mm256_mul_ps(_mm256_set1_ps(t->z_dx), dx));
-        __m256 zdy = _mm256_set1_ps(t->z_dy), oy = _mm256_set1_ps((float)(y0 - t->miny));
+        const sg_zrows8 zr = sg_zrows8_at(t, x0, y0);
         uint32_t pass = 0;
         for (int h = 0; h < 2; h++) {
             uint32_t bits = (mask >> (8 * h)) & 255u;
             if (!bits) continue;
-            float r0 = (float)(2 * h), r1 = (float)(2 * h + 1);
-            __m256 dy = _mm256_add_ps(oy, _mm256_setr_ps(r0, r0, r0, r0, r1, r1, r1, r1));
-            __m256 z = _mm256_add_ps(zx, _mm256_mul_ps(zdy, dy));
-            z = _mm256_min_ps(one, _mm256_max_ps(zero, z));
+            __m256 z = sg_zrows8_half(&zr, h);
             __m256 d = _mm256_load_ps(dp + 8 * h);
             __m256 p =
-                _mm256_and_ps(compare(v->compare, z, d),
+                _mm256_and_ps(sg_compare8(v->compare, z, d),
                               _mm256_castsi256_ps(_mm256_cmpeq_epi32(
                                   _mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes)));
             if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, p));

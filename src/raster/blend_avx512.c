@@ -4,6 +4,7 @@
  * the same integer blend, so the same bytes. One function per shading variant and depth state. */
 #include "raster/blend.h"
 
+#include "raster/depth_simd.h"
 #include "raster/rast_walk.h"
 #include "raster/shade_avx512.h"
 
@@ -21,27 +22,6 @@ static inline __m512i blend_lanes(__m512i s, __m512i d) {
     __m512i a = _mm512_shufflehi_epi16(_mm512_shufflelo_epi16(s, 0xff), 0xff);
     __m512i ia = _mm512_sub_epi16(_mm512_set1_epi16(255), a);
     return _mm512_add_epi16(mul_unorm8(s, a), mul_unorm8(d, ia));
-}
-
-static inline __mmask16 compare(sgCompare op, __mmask16 m, __m512 z, __m512 d) {
-    switch (op) {
-    case SG_COMPARE_NEVER:
-        return 0;
-    case SG_COMPARE_LESS:
-        return _mm512_mask_cmp_ps_mask(m, z, d, _CMP_LT_OQ);
-    case SG_COMPARE_EQUAL:
-        return _mm512_mask_cmp_ps_mask(m, z, d, _CMP_EQ_OQ);
-    case SG_COMPARE_LESS_EQUAL:
-        return _mm512_mask_cmp_ps_mask(m, z, d, _CMP_LE_OQ);
-    case SG_COMPARE_GREATER:
-        return _mm512_mask_cmp_ps_mask(m, z, d, _CMP_GT_OQ);
-    case SG_COMPARE_NOT_EQUAL:
-        return _mm512_mask_cmp_ps_mask(m, z, d, _CMP_NEQ_UQ);
-    case SG_COMPARE_GREATER_EQUAL:
-        return _mm512_mask_cmp_ps_mask(m, z, d, _CMP_GE_OQ);
-    default:
-        return m;
-    }
 }
 
 /* The pipeline's colours of lanes `mask` at offsets (dx, dy), flat colours split off per
@@ -82,7 +62,7 @@ typedef struct pairing {
 INLINE void shade_tile_alone(const sg_vis_ctx *v, const sg_tri *t, int x0, int y0, uint32_t mask,
                              const int textured, const int bilinear, const int repeat) {
     __m512 dx, dy;
-    sg_tile_offsets(t, x0, y0, &dx, &dy);
+    sg_tile_dxdy16(t, x0, y0, &dx, &dy);
     __m512i s = shade(v, t, dx, dy, mask, textured, bilinear, repeat);
     blend_store(v->color + sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0), s, (__mmask16)mask);
 }
@@ -95,8 +75,8 @@ INLINE void shade_pair(const sg_vis_ctx *v, const sg_tri *t, const pending *a, i
     __mmask16 am = (__mmask16)a->mask, bm = (__mmask16)mask;
     __mmask16 lanes_b = (__mmask16)(((1u << n) - 1u) << k);
     __m512 adx, ady, bdx, bdy;
-    sg_tile_offsets(t, a->x0, a->y0, &adx, &ady);
-    sg_tile_offsets(t, x0, y0, &bdx, &bdy);
+    sg_tile_dxdy16(t, a->x0, a->y0, &adx, &ady);
+    sg_tile_dxdy16(t, x0, y0, &bdx, &bdy);
     __m512 dx = _mm512_mask_expand_ps(_mm512_maskz_compress_ps(am, adx), lanes_b,
                                       _mm512_maskz_compress_ps(bm, bdx));
     __m512 dy = _mm512_mask_expand_ps(_mm512_maskz_compress_ps(am, ady), lanes_b,
@@ -113,15 +93,12 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
                          const int repeat) {
     const pairing *p = vctx;
     const sg_vis_ctx *v = p->v;
-    if (ztest || zwrite) { /* as vis_avx512 (depth_avx512.c) computes and clamps z */
+    if (ztest || zwrite) {
         float *dp = v->depth + sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
         __m512 dx, dy;
-        sg_tile_offsets(t, x0, y0, &dx, &dy);
-        __m512 z = _mm512_add_ps(
-            _mm512_add_ps(_mm512_set1_ps(t->z), _mm512_mul_ps(_mm512_set1_ps(t->z_dx), dx)),
-            _mm512_mul_ps(_mm512_set1_ps(t->z_dy), dy));
-        z = _mm512_min_ps(_mm512_set1_ps(1.0f), _mm512_max_ps(_mm512_setzero_ps(), z));
-        mask = compare(v->compare, (__mmask16)mask, z, _mm512_loadu_ps(dp));
+        sg_tile_dxdy16(t, x0, y0, &dx, &dy);
+        __m512 z = sg_z16(t, dx, dy);
+        mask = sg_compare16(v->compare, (__mmask16)mask, z, _mm512_loadu_ps(dp));
         if (zwrite) _mm512_mask_storeu_ps(dp, (__mmask16)mask, z);
     }
     if (!mask) return;

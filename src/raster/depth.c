@@ -5,6 +5,7 @@
  * alike. */
 #include "raster/depth.h"
 
+#include "raster/depth_simd.h"
 #include "raster/rast_walk.h"
 
 #if defined(__SSE2__)
@@ -56,9 +57,8 @@ SG_VIS(vis_any_0, Z_ANY, 0)
 SG_VIS(vis_any_1, Z_ANY, 1)
 
 #if defined(__SSE2__)
-/* One row of 4 pixels at a time. `lanes` has the bit of each lane, to turn the 4 coverage bits
- * of a row into a lane mask. MAXPS/MINPS return their second operand when one is NaN, so
- * max(0, z) and min(1, .) keep a NaN z, as the scalar clamp does. */
+/* One row of 4 pixels at a time (z as depth_simd.h computes it). `lanes` has the bit of each
+ * lane, to turn the 4 coverage bits of a row into a lane mask. */
 static inline __attribute__((always_inline)) void
 vis_sse2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const int zwrite) {
     const sg_vis_ctx *v = vctx;
@@ -66,20 +66,15 @@ vis_sse2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const
     uint32_t *ids = sg_vis_tile_ids(v, base);
     float *dp = v->depth + base;
     const __m128i lanes = _mm_setr_epi32(1, 2, 4, 8);
-    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
-    __m128 dx = _mm_add_ps(_mm_set1_ps((float)(x0 - t->minx)), _mm_setr_ps(0.0f, 1.0f, 2.0f, 3.0f));
-    __m128 zx = _mm_add_ps(_mm_set1_ps(t->z), _mm_mul_ps(_mm_set1_ps(t->z_dx), dx));
-    __m128 zdy = _mm_set1_ps(t->z_dy);
+    const sg_zrows4 zr = sg_zrows4_at(t, x0, y0);
     __m128i id = _mm_set1_epi32((int)v->id);
-    float oy = (float)(y0 - t->miny);
     for (int j = 0; j < 4; j++) {
         uint32_t bits = (mask >> (4 * j)) & 15u;
         if (!bits) continue;
-        __m128 z = _mm_add_ps(zx, _mm_mul_ps(zdy, _mm_set1_ps(oy + (float)j)));
-        z = _mm_min_ps(one, _mm_max_ps(zero, z));
+        __m128 z = sg_zrow4(&zr, j);
         __m128 d = _mm_load_ps(dp + 4 * j);
         __m128i cov = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)bits), lanes), lanes);
-        __m128i pass = _mm_and_si128(cov, _mm_castps_si128(_mm_cmplt_ps(z, d)));
+        __m128i pass = _mm_and_si128(cov, _mm_castps_si128(sg_compare4(SG_COMPARE_LESS, z, d)));
         if (!_mm_movemask_epi8(pass)) continue;
         if (zwrite)
             _mm_store_ps(dp + 4 * j, _mm_or_ps(_mm_and_ps(_mm_castsi128_ps(pass), z),

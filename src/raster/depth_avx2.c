@@ -2,6 +2,7 @@
  * vector, the same z = (z0 + z_dx * dx) + z_dy * dy and clamp as the scalar and SSE2 ones. */
 #include "raster/depth.h"
 
+#include "raster/depth_simd.h"
 #include "raster/rast_walk.h"
 
 #if defined(__AVX2__)
@@ -14,21 +15,14 @@ vis_avx2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const
     uint32_t *ids = sg_vis_tile_ids(v, base);
     float *dp = v->depth + base;
     const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    __m256 dx = _mm256_add_ps(_mm256_set1_ps((float)(x0 - t->minx)),
-                              _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
-    __m256 zx = _mm256_add_ps(_mm256_set1_ps(t->z), _mm256_mul_ps(_mm256_set1_ps(t->z_dx), dx));
-    __m256 zdy = _mm256_set1_ps(t->z_dy), oy = _mm256_set1_ps((float)(y0 - t->miny));
+    const sg_zrows8 zr = sg_zrows8_at(t, x0, y0);
     __m256i id = _mm256_set1_epi32((int)v->id);
     for (int h = 0; h < 2; h++) {
         uint32_t bits = (mask >> (8 * h)) & 255u;
         if (!bits) continue;
-        float r0 = (float)(2 * h), r1 = (float)(2 * h + 1); /* the two rows, exact */
-        __m256 dy = _mm256_add_ps(oy, _mm256_setr_ps(r0, r0, r0, r0, r1, r1, r1, r1));
-        __m256 z = _mm256_add_ps(zx, _mm256_mul_ps(zdy, dy));
-        z = _mm256_min_ps(one, _mm256_max_ps(zero, z)); /* NaN kept, as in depth.c */
+        __m256 z = sg_zrows8_half(&zr, h);
         __m256 d = _mm256_load_ps(dp + 8 * h);
-        __m256 pass = _mm256_cmp_ps(z, d, _CMP_LT_OQ);
+        __m256 pass = sg_compare8(SG_COMPARE_LESS, z, d);
         if (bits != 255u)
             pass = _mm256_and_ps(
                 pass, _mm256_castsi256_ps(_mm256_cmpeq_epi32(

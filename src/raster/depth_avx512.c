@@ -1,8 +1,8 @@
 /* depth_avx512.c - the LESS visibility tile functions in AVX-512 (see depth.h): a whole tile a
- * vector, the same z = (z0 + z_dx * dx) + z_dy * dy and clamp as the scalar, SSE2 and AVX2 ones;
- * the coverage mask is the compare and store mask. */
+ * vector, z as depth_simd.h computes it; the coverage mask is the compare and store mask. */
 #include "raster/depth.h"
 
+#include "raster/depth_simd.h"
 #include "raster/rast_walk.h"
 
 #if defined(__AVX512F__)
@@ -14,17 +14,10 @@ vis_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, con
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     uint32_t *ids = sg_vis_tile_ids(v, base);
     float *dp = v->depth + base;
-    __m512 dx = _mm512_add_ps(_mm512_set1_ps((float)(x0 - t->minx)),
-                              _mm512_set4_ps(3.0f, 2.0f, 1.0f, 0.0f));
-    __m512 dy = _mm512_add_ps(_mm512_set1_ps((float)(y0 - t->miny)),
-                              _mm512_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 2.0f,
-                                             2.0f, 2.0f, 2.0f, 3.0f, 3.0f, 3.0f, 3.0f));
-    __m512 z = _mm512_add_ps(
-        _mm512_add_ps(_mm512_set1_ps(t->z), _mm512_mul_ps(_mm512_set1_ps(t->z_dx), dx)),
-        _mm512_mul_ps(_mm512_set1_ps(t->z_dy), dy));
-    /* MAXPS/MINPS return their second operand when one is NaN: a NaN z is kept, as in depth.c */
-    z = _mm512_min_ps(_mm512_set1_ps(1.0f), _mm512_max_ps(_mm512_setzero_ps(), z));
-    __mmask16 pass = _mm512_mask_cmp_ps_mask((__mmask16)mask, z, _mm512_loadu_ps(dp), _CMP_LT_OQ);
+    __m512 dx, dy;
+    sg_tile_dxdy16(t, x0, y0, &dx, &dy);
+    __m512 z = sg_z16(t, dx, dy);
+    __mmask16 pass = sg_compare16(SG_COMPARE_LESS, (__mmask16)mask, z, _mm512_loadu_ps(dp));
     if (!pass) return;
     if (zwrite) _mm512_mask_storeu_ps(dp, pass, z);
     _mm512_mask_storeu_epi32(ids, pass, _mm512_set1_epi32((int)v->id));

@@ -10,6 +10,7 @@
 
 #include <float.h>
 
+#include "raster/depth_simd.h"
 #include "raster/shade.h"
 
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__AVX512F__) && defined(__AVX512BW__) && \
@@ -231,16 +232,6 @@ INLINE __m512i pack_unorm8(const __m512 col[4]) {
     return _mm512_shuffle_epi8(_mm512_packus_epi16(p01, p23), tr);
 }
 
-/* dx = ox + x and dy = oy + y of lane y * 4 + x of the tile at (x0, y0), each rounding as in
- * the reference: the pixels' offsets from the triangle's bounds. */
-INLINE void sg_tile_offsets(const sg_tri *t, int x0, int y0, __m512 *dx, __m512 *dy) {
-    *dx = _mm512_add_ps(_mm512_set1_ps((float)(x0 - t->minx)),
-                        _mm512_set4_ps(3.0f, 2.0f, 1.0f, 0.0f));
-    *dy = _mm512_add_ps(_mm512_set1_ps((float)(y0 - t->miny)),
-                        _mm512_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 2.0f, 2.0f,
-                                       2.0f, 2.0f, 3.0f, 3.0f, 3.0f, 3.0f));
-}
-
 /* The colours of the pixels at offsets (dx, dy) from the triangle's bounds, lanes of `mask`, as
  * RGBA8 lanes (others undefined): the body of every variant, as shade_rows in shade.c; the
  * constant arguments fold away. Each lane computes what the reference computes for its pixel,
@@ -307,7 +298,7 @@ INLINE __m512i sg_shade16(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0
                           const int textured, const int bilinear, const int repeat,
                           const int flat) {
     __m512 dx, dy;
-    sg_tile_offsets(t, x0, y0, &dx, &dy);
+    sg_tile_dxdy16(t, x0, y0, &dx, &dy);
     return sg_shade16_at(c, t, dx, dy, mask, textured, bilinear, repeat, flat);
 }
 
