@@ -182,7 +182,8 @@ typedef struct sgGeomDesc {
     const float *positions; /* required: vertex_count * 4 floats (x, y, z, w) */
     const float *colors;    /* optional: vertex_count * 4 floats (r, g, b, a); NULL: opaque white */
     const float *texcoords; /* optional: vertex_count * 2 floats (s, t) */
-    const float *normals; /* optional: vertex_count * 3 floats; carried, not yet used by shading */
+    const float *normals; /* optional: vertex_count * 3 floats (x, y, z), object space; read by lit
+                             pipelines (SG_LIGHTING_GOURAUD and _PHONG require them) */
     int index_count;      /* >= 1, a multiple of 3 (triangles) or 4 (quads) */
     const uint32_t *indices; /* required: each < vertex_count */
     sgPrimitive primitive;
@@ -249,6 +250,16 @@ typedef enum sgBlend {
     SG_BLEND_ALPHA,
 } sgBlend;
 
+/* Lighting of a pipeline: OpenGL 1.x fixed-function lighting (docs/api.md, "Lighting"), with the
+ * lights, ambient and material of each draw (sgDrawParams.lighting, .specular, .shininess). */
+typedef enum sgLightingMode {
+    SG_LIGHTING_DEFAULT = 0, /* none */
+    SG_LIGHTING_NONE,        /* the colour is not lit */
+    SG_LIGHTING_FLAT,    /* once per triangle, at its view-space centroid, with its face normal */
+    SG_LIGHTING_GOURAUD, /* per vertex (needs normals); colours interpolated */
+    SG_LIGHTING_PHONG,   /* per pixel (needs normals): normal and position interpolated */
+} sgLightingMode;
+
 typedef struct sgPipelineDesc {
     sgShade shade;
     sgFilter filter; /* used by SG_SHADE_TEXTURE_MODULATE */
@@ -260,6 +271,7 @@ typedef struct sgPipelineDesc {
     sgCull cull;
     sgFrontFace front_face;
     sgBlend blend;
+    sgLightingMode lighting;
 } sgPipelineDesc;
 
 /** Creates an immutable pipeline state object and selects the code specialised for its state. */
@@ -309,6 +321,30 @@ typedef enum sgSort {
     SG_SORT_BACK_TO_FRONT,
 } sgSort;
 
+#define SG_MAX_LIGHTS 8
+
+typedef enum sgLightType {
+    SG_LIGHT_DIRECTIONAL = 1, /* from infinitely far away, along `direction` */
+    SG_LIGHT_POINT,           /* from `position`, attenuated with distance */
+} sgLightType;
+
+/* One light, in view space (the space worldView maps to; the eye at the origin). */
+typedef struct sgLight {
+    sgLightType type;     /* required */
+    float direction[3];   /* DIRECTIONAL: the way the light travels (not normalised; not zero) */
+    float position[3];    /* POINT */
+    float color[3];       /* r, g, b, each finite and >= 0 */
+    float attenuation[3]; /* POINT: constant, linear, quadratic, each finite and >= 0; all three
+                             0 (zero-initialised): (1, 0, 0), no attenuation */
+} sgLight;
+
+/* The lights of a draw: scene ambient plus up to SG_MAX_LIGHTS lights. */
+typedef struct sgLighting {
+    float ambient[3]; /* r, g, b, each finite and >= 0 */
+    int light_count;  /* 0 .. SG_MAX_LIGHTS */
+    sgLight lights[SG_MAX_LIGHTS];
+} sgLighting;
+
 typedef struct sgDrawParams {
     float world_view[16]; /* row-major */
     float proj[16];       /* row-major */
@@ -317,6 +353,10 @@ typedef struct sgDrawParams {
      * channel in [0, 1]. NULL: opaque white, the vertex colours as they are. */
     const sgColor *color;
     sgSort sort;
+    /* Lit pipelines only (sgPipelineDesc.lighting), ignored otherwise: */
+    const sgLighting *lighting; /* NULL: no light and no ambient (a lit surface is black) */
+    float specular[3];          /* specular colour of the material, each finite and >= 0 */
+    float shininess;            /* specular exponent, 0 .. 128 */
 } sgDrawParams;
 
 /** Opens a render pass on the given targets, clearing or loading them. */
