@@ -38,7 +38,7 @@ static sg_cvert eye_vertex(double x, double y) {
 static void setup_plane_triangle(sg_tri *t) {
     sg_setup_params p = sg_test_params(W, H, 1);
     sg_cvert a = eye_vertex(-1.0, -1.0), b = eye_vertex(1.5, -1.0), c = eye_vertex(-1.0, 1.2);
-    assert_true(sg_setup_triangle(&p, &a, &b, &c, t));
+    assert_true(sg_setup_triangle(&p, &a, &b, &c, t, NULL));
 }
 
 static void perspective_correct_matches_ray_cast(void **state) {

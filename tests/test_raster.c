@@ -45,7 +45,7 @@ static sg_cvert at_pixel(double px, double py) {
 static void draw(counter *c, sg_cvert a, sg_cvert b, sg_cvert d) {
     sg_setup_params p = sg_test_params(W, H, 0);
     sg_tri t;
-    if (sg_setup_triangle(&p, &a, &b, &d, &t)) sg_rast_triangle(&t, count_tile, c);
+    if (sg_setup_triangle(&p, &a, &b, &d, &t, NULL)) sg_rast_triangle(&t, count_tile, c);
 }
 
 static void square_halves_cover_each_pixel_once(void **state) {
@@ -138,17 +138,17 @@ static void culling_and_zero_area(void **state) {
     /* Counter-clockwise on screen (y up): (10,50) -> (50,50) -> (30,10) in y-down pixels. */
     sg_cvert a = at_pixel(10, 50), b = at_pixel(50, 50), d = at_pixel(30, 10);
     p.cull = SG_CULL_BACK;
-    assert_true(sg_setup_triangle(&p, &a, &b, &d, &t));
-    assert_false(sg_setup_triangle(&p, &a, &d, &b, &t));
+    assert_true(sg_setup_triangle(&p, &a, &b, &d, &t, NULL));
+    assert_false(sg_setup_triangle(&p, &a, &d, &b, &t, NULL));
     p.cull = SG_CULL_FRONT;
-    assert_false(sg_setup_triangle(&p, &a, &b, &d, &t));
-    assert_true(sg_setup_triangle(&p, &a, &d, &b, &t));
+    assert_false(sg_setup_triangle(&p, &a, &b, &d, &t, NULL));
+    assert_true(sg_setup_triangle(&p, &a, &d, &b, &t, NULL));
     p.front_face = SG_FRONT_FACE_CW;
-    assert_true(sg_setup_triangle(&p, &a, &b, &d, &t));
+    assert_true(sg_setup_triangle(&p, &a, &b, &d, &t, NULL));
     p.cull = SG_CULL_NONE;
     sg_cvert e = at_pixel(20, 30), f = at_pixel(40, 30); /* collinear with (30, 30) */
     sg_cvert g = at_pixel(30, 30);
-    assert_false(sg_setup_triangle(&p, &e, &f, &g, &t));
+    assert_false(sg_setup_triangle(&p, &e, &f, &g, &t, NULL));
 }
 
 static void huge_triangle_stays_exact(void **state) {

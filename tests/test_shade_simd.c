@@ -2,7 +2,9 @@
  * bytes. For every variant and flat mode, many random cases: plausible and perspective plane
  * equations, 1/q near 0, colours outside [0, 1], texture coordinates far outside [0, 1] (1e4, 1e30,
  * infinite, NaN), random masks over a sentinel-filled tile, and textures from 1x1 to 16384 texels
- * wide. The texels sit in exactly-sized allocations (a stray load shows under AddressSanitizer)
+ * wide; the same for the variants that add a secondary colour (flat and Gouraud lighting with a
+ * specular material) and for per-pixel lighting (random positions, normals, lights, materials).
+ * The texels sit in exactly-sized allocations (a stray load shows under AddressSanitizer)
  * and, where there is mmap, also right before or right after an inaccessible page, which catches
  * stray reads in any build, AVX2 and AVX-512 gathers (which AddressSanitizer does not see)
  * included.
@@ -247,17 +249,79 @@ static void print_case(const char *isa, int variant, int flat, long n, const sg_
 /* Runs `fn` on the case and compares with the reference output; false (and a report) on any
  * difference, inside or outside the mask. */
 static int same_as_reference(sg_shade_fn fn, const char *isa, const sg_shade_ctx *ctx,
-                             const sg_tri *t, int x0, int y0, uint32_t mask, uint32_t sentinel,
-                             const uint32_t *ref, int variant, int flat, long n) {
+                             const sg_tri *t, const sg_tri_ext *ext, int x0, int y0, uint32_t mask,
+                             uint32_t sentinel, const uint32_t *ref, int variant, int flat,
+                             long n) {
     uint32_t got[16];
     for (int i = 0; i < 16; i++) got[i] = sentinel;
-    fn(ctx, t, x0, y0, mask, got);
+    fn(ctx, t, ext, x0, y0, mask, got);
     if (!memcmp(ref, got, sizeof got)) return 1;
     print_case(isa, variant, flat, n, t, x0, y0, mask, &ctx->tex, ref, got);
     return 0;
 }
 
-static void compare_variant(int variant) {
+/* The lit part of a case: a secondary colour's planes (kind SECONDARY), or a view position and
+ * normal and the draw's lights (kind PHONG: positions around the eye, normals of any length or
+ * none, one to eight lights of both kinds, specular colours and shininess from 0 to 128). */
+enum { UNLIT, SECONDARY, PHONG };
+
+static void random_plane(rng *g, float value, float spread, float q, int x0, int y0,
+                         const sg_tri *t, float *a, float *adx, float *ady) {
+    float dx = spread * frange(g, -1.0f, 1.0f), dy = spread * frange(g, -1.0f, 1.0f);
+    *adx = dx * q;
+    *ady = dy * q;
+    *a = value * q - *adx * (float)(x0 - t->minx) - *ady * (float)(y0 - t->miny);
+}
+
+static void random_lit(rng *g, int kind, int flat, const sg_tri *t, int x0, int y0, sg_tri_ext *ext,
+                       sg_shade_ctx *ctx) {
+    memset(ext, 0, sizeof *ext);
+    float q = 1.0f / ((t->q + t->q_dx * (float)(x0 - t->minx)) + t->q_dy * (float)(y0 - t->miny));
+    q = isfinite(q) && q != 0.0f ? 1.0f / q : 1.0f;
+    if (kind == SECONDARY) {
+        for (int k = 0; k < 3; k++) {
+            float v = chance(g, 5) ? wild(g) : frange(g, -0.2f, 1.4f);
+            if (flat)
+                ext->a[k] = v; /* a flat triangle keeps its secondary colour as it is */
+            else
+                random_plane(g, v, 0.05f, q, x0, y0, t, &ext->a[k], &ext->a_dx[k], &ext->a_dy[k]);
+        }
+        return;
+    }
+    const int ep = SG_LIT_POS - SG_TRI_ATTRS, en = SG_LIT_NRM - SG_TRI_ATTRS;
+    for (int k = 0; k < 3; k++) {
+        float p = k == 2 ? frange(g, -6.0f, -0.5f) : frange(g, -2.0f, 2.0f);
+        random_plane(g, p, 0.01f, q, x0, y0, t, &ext->a[ep + k], &ext->a_dx[ep + k],
+                     &ext->a_dy[ep + k]);
+        float nv = chance(g, 3) ? 0.0f : frange(g, -1.5f, 1.5f);
+        random_plane(g, nv, chance(g, 50) ? 0.0f : 0.05f, q, x0, y0, t, &ext->a[en + k],
+                     &ext->a_dx[en + k], &ext->a_dy[en + k]);
+        if (chance(g, 1)) ext->a[en + k] = wild(g);
+    }
+    sgLighting l;
+    memset(&l, 0, sizeof l);
+    l.light_count = irange(g, 0, SG_MAX_LIGHTS);
+    for (int k = 0; k < 3; k++) l.ambient[k] = frange(g, 0.0f, 0.4f);
+    for (int i = 0; i < l.light_count; i++) {
+        sgLight *li = &l.lights[i];
+        li->type = chance(g, 50) ? SG_LIGHT_DIRECTIONAL : SG_LIGHT_POINT;
+        for (int k = 0; k < 3; k++) {
+            li->direction[k] = frange(g, -1.0f, 1.0f);
+            li->position[k] = k == 2 ? frange(g, -6.0f, 2.0f) : frange(g, -3.0f, 3.0f);
+            li->color[k] = frange(g, 0.0f, 1.5f);
+            li->attenuation[k] = chance(g, 50) ? 0.0f : frange(g, 0.0f, 0.5f);
+        }
+        li->direction[0] += 0.01f; /* never zero */
+    }
+    float spec[3] = {chance(g, 30) ? 0.0f : frange(g, 0.0f, 1.0f), frange(g, 0.0f, 1.0f),
+                     frange(g, 0.0f, 1.0f)};
+    float shine = chance(g, 10) ? 0.0f : chance(g, 10) ? 128.0f : frange(g, 0.0f, 128.0f);
+    char why[160];
+    int code;
+    assert_true(sg_light_prepare(&l, spec, shine, &ctx->lights, why, sizeof why, &code));
+}
+
+static void compare_variant(int variant, int kind) {
     static const int sizes[][2] = {{1, 1},
                                    {1, 7},
                                    {3, 5},
@@ -276,41 +340,55 @@ static void compare_variant(int variant) {
                                    {9, 8},
                                    {7, 8}};
     enum { NSIZES = sizeof sizes / sizeof *sizes };
-    rng g = {0x5eed0000u + (uint64_t)variant};
+    rng g = {0x5eed0000u + (uint64_t)variant + 100u * (uint64_t)kind};
     texture tex[NSIZES];
     for (int i = 0; i < NSIZES; i++) texture_make(&tex[i], &g, sizes[i][0], sizes[i][1]);
     const int textured = variant != 0;
     const sg_isa isa = sg_isa_detect();
-    sg_shade_fn scalar = sg_shade_scalar(variant), sse2 = sg_shade_sse2(variant),
-                avx2 = isa >= SG_ISA_AVX2 ? sg_shade_avx2(variant) : NULL,
-                avx512 = isa >= SG_ISA_AVX512 ? sg_shade_avx512(variant) : NULL;
+    const int index = variant + (kind == SECONDARY ? SG_SHADE_SECONDARY : 0);
+    sg_shade_fn scalar, sse2 = NULL, avx2 = NULL, avx512 = NULL;
+    if (kind == PHONG) {
+        scalar = sg_shade_phong_scalar(variant);
+        if (isa >= SG_ISA_AVX2) avx2 = sg_shade_phong_avx2(variant);
+        if (isa >= SG_ISA_AVX512) avx512 = sg_shade_phong_avx512(variant);
+    } else {
+        scalar = sg_shade_scalar(index);
+        sse2 = sg_shade_sse2(index);
+        if (isa >= SG_ISA_AVX2) avx2 = sg_shade_avx2(index);
+        if (isa >= SG_ISA_AVX512) avx512 = sg_shade_avx512(index);
 #if defined(__x86_64__)
-    assert_non_null(sse2); /* SSE2 is the x86-64 baseline */
-    if (isa >= SG_ISA_AVX2) assert_non_null(avx2);
-    if (isa >= SG_ISA_AVX512) assert_non_null(avx512);
+        if (kind == UNLIT) assert_non_null(sse2); /* SSE2 is the x86-64 baseline */
+        if (isa >= SG_ISA_AVX2) assert_non_null(avx2);
+        if (isa >= SG_ISA_AVX512) assert_non_null(avx512);
 #endif
+    }
+    const long cases = kind == PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
     long failures = 0;
     for (int flat = 0; flat < FLATS; flat++) {
-        for (long n = 0; n < CASES_PER_FLAT && failures < 5; n++) {
+        for (long n = 0; n < cases && failures < 5; n++) {
             const texture *tx = &tex[n % NSIZES];
-            sg_shade_ctx ctx = {{texture_pick(tx, &g), tx->w, tx->h}};
+            sg_shade_ctx ctx;
+            memset(&ctx, 0, sizeof ctx);
+            ctx.tex = (sg_texview){texture_pick(tx, &g), tx->w, tx->h};
             if (!textured) ctx.tex.texels = NULL; /* a vertex-colour pipeline binds none */
             sg_tri t;
+            sg_tri_ext ext, *e = kind == UNLIT ? NULL : &ext;
             int x0, y0;
             random_tri(&g, &t, flat, tx->w, tx->h, &x0, &y0);
+            if (kind != UNLIT) random_lit(&g, kind, flat, &t, x0, y0, &ext, &ctx);
             uint32_t mask = random_mask(&g), sentinel = (uint32_t)next(&g);
             uint32_t ref[16];
             for (int i = 0; i < 16; i++) ref[i] = sentinel;
-            scalar(&ctx, &t, x0, y0, mask, ref);
+            scalar(&ctx, &t, e, x0, y0, mask, ref);
             for (int i = 0; i < 16; i++)
                 if (!(mask >> i & 1)) assert_int_equal(ref[i], sentinel);
-            if (sse2 && !same_as_reference(sse2, "SSE2", &ctx, &t, x0, y0, mask, sentinel, ref,
+            if (sse2 && !same_as_reference(sse2, "SSE2", &ctx, &t, e, x0, y0, mask, sentinel, ref,
                                            variant, flat, n))
                 failures++;
-            if (avx2 && !same_as_reference(avx2, "AVX2", &ctx, &t, x0, y0, mask, sentinel, ref,
+            if (avx2 && !same_as_reference(avx2, "AVX2", &ctx, &t, e, x0, y0, mask, sentinel, ref,
                                            variant, flat, n))
                 failures++;
-            if (avx512 && !same_as_reference(avx512, "AVX-512", &ctx, &t, x0, y0, mask, sentinel,
+            if (avx512 && !same_as_reference(avx512, "AVX-512", &ctx, &t, e, x0, y0, mask, sentinel,
                                              ref, variant, flat, n))
                 failures++;
         }
@@ -321,34 +399,96 @@ static void compare_variant(int variant) {
 
 static void vertex_colour(void **state) {
     (void)state;
-    compare_variant(0);
+    compare_variant(0, UNLIT);
+}
+
+static void vertex_colour_secondary(void **state) {
+    (void)state;
+    compare_variant(0, SECONDARY);
+}
+
+static void vertex_colour_phong(void **state) {
+    (void)state;
+    compare_variant(0, PHONG);
 }
 
 static void nearest_repeat(void **state) {
     (void)state;
-    compare_variant(1);
+    compare_variant(1, UNLIT);
+}
+
+static void nearest_repeat_secondary(void **state) {
+    (void)state;
+    compare_variant(1, SECONDARY);
+}
+
+static void nearest_repeat_phong(void **state) {
+    (void)state;
+    compare_variant(1, PHONG);
 }
 
 static void nearest_clamp(void **state) {
     (void)state;
-    compare_variant(2);
+    compare_variant(2, UNLIT);
+}
+
+static void nearest_clamp_secondary(void **state) {
+    (void)state;
+    compare_variant(2, SECONDARY);
+}
+
+static void nearest_clamp_phong(void **state) {
+    (void)state;
+    compare_variant(2, PHONG);
 }
 
 static void bilinear_repeat(void **state) {
     (void)state;
-    compare_variant(3);
+    compare_variant(3, UNLIT);
+}
+
+static void bilinear_repeat_secondary(void **state) {
+    (void)state;
+    compare_variant(3, SECONDARY);
+}
+
+static void bilinear_repeat_phong(void **state) {
+    (void)state;
+    compare_variant(3, PHONG);
 }
 
 static void bilinear_clamp(void **state) {
     (void)state;
-    compare_variant(4);
+    compare_variant(4, UNLIT);
+}
+
+static void bilinear_clamp_secondary(void **state) {
+    (void)state;
+    compare_variant(4, SECONDARY);
+}
+
+static void bilinear_clamp_phong(void **state) {
+    (void)state;
+    compare_variant(4, PHONG);
 }
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(vertex_colour),  cmocka_unit_test(nearest_repeat),
-        cmocka_unit_test(nearest_clamp),  cmocka_unit_test(bilinear_repeat),
+        cmocka_unit_test(vertex_colour),
+        cmocka_unit_test(nearest_repeat),
+        cmocka_unit_test(nearest_clamp),
+        cmocka_unit_test(bilinear_repeat),
         cmocka_unit_test(bilinear_clamp),
+        cmocka_unit_test(vertex_colour_secondary),
+        cmocka_unit_test(nearest_repeat_secondary),
+        cmocka_unit_test(nearest_clamp_secondary),
+        cmocka_unit_test(bilinear_repeat_secondary),
+        cmocka_unit_test(bilinear_clamp_secondary),
+        cmocka_unit_test(vertex_colour_phong),
+        cmocka_unit_test(nearest_repeat_phong),
+        cmocka_unit_test(nearest_clamp_phong),
+        cmocka_unit_test(bilinear_repeat_phong),
+        cmocka_unit_test(bilinear_clamp_phong),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

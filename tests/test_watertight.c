@@ -54,7 +54,8 @@ static void count_tile(const void *ctx, const sg_tri *t, int x0, int y0, uint32_
         }
 }
 
-static sg_tri *slot(void *user) {
+static sg_tri *slot(void *user, sg_tri_ext **ext) {
+    (void)ext; /* unlit: no extension */
     return &((counter *)user)->tri;
 }
 

@@ -188,6 +188,7 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->bin_order);
     sg_free(dev, dev->fe_counts);
     sg_free(dev, dev->sort_scratch);
+    sg_free(dev, dev->lit);
     if (dev->images)
         for (int i = 0; i < dev->image_pool.capacity; i++)
             if (dev->image_pool.live[i]) sg_image_release(dev, &dev->images[i]);

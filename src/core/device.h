@@ -36,6 +36,7 @@ typedef struct sg_pso {
     sgPipelineDesc desc;    /* every DEFAULT resolved */
     sg_raster_fn raster_fn; /* coverage and visibility (depth.c) */
     sg_shade_fn shade_fn;
+    sg_shade_fn shade_sec; /* flat and Gouraud lighting with a specular material */
     int nattr;
     bool uses_depth;
 } sg_pso;
@@ -61,6 +62,8 @@ struct sgDevice {
 
     /* Arenas, grown as needed and reused. */
     float (*clip)[4];
+    float *lit; /* a lit draw's vertex attributes (vertex.h, sg_vertex_lit_attributes) */
+    size_t lit_capacity;
     uint32_t *outcodes;
     sg_svert *screen;   /* projections of the vertices inside every clip plane */
     uint8_t *screen_ok; /* 1: that projection fits the raster's range */

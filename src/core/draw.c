@@ -12,8 +12,11 @@
 #include "raster/shade.h"
 
 /* Setup builds each triangle in the binner's array; the bins are rendered when the pass ends. */
-static sg_tri *bin_slot(void *user) {
-    return sg_binner_reserve(user, 1);
+static sg_tri *bin_slot(void *user, sg_tri_ext **ext) {
+    sg_binner *b = user;
+    sg_tri *t = sg_binner_reserve(b, 1);
+    if (t && b->use_ext) *ext = b->ext + b->tri_count;
+    return t;
 }
 
 static void bin_emit(void *user) {
@@ -30,14 +33,18 @@ enum { FE_MIN_TRIANGLES = 4096, FE_MAX_CHUNKS = 64 };
 typedef struct fe_chunk {
     sg_assembly a;
     sg_tri *out;
+    sg_tri_ext *out_ext; /* beside out, when the draw uses extensions */
     size_t base, count, capacity;
     uint32_t draw;
     bool overflow;
 } fe_chunk;
 
-static sg_tri *fe_slot(void *user) {
+static sg_tri *fe_slot(void *user, sg_tri_ext **ext) {
     fe_chunk *c = user;
-    if (c->count < c->capacity) return &c->out[c->count];
+    if (c->count < c->capacity) {
+        if (c->out_ext) *ext = &c->out_ext[c->count];
+        return &c->out[c->count];
+    }
     c->overflow = true;
     return NULL;
 }
@@ -119,7 +126,10 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     sg_binner *b = &dev->binner;
     sg_tri *room = sg_binner_reserve(b, total);
     if (!room) return true; /* out_of_memory is set: the draw fails */
-    for (int i = 0; i < n; i++) chunks[i].out = room + chunks[i].base;
+    for (int i = 0; i < n; i++) {
+        chunks[i].out = room + chunks[i].base;
+        chunks[i].out_ext = b->use_ext ? b->ext + (room - b->tris) + chunks[i].base : NULL;
+    }
     size_t first = b->tri_count;
     sg_workers_run(&dev->workers, n, fe_run, chunks);
     b->tri_count += total;
@@ -147,6 +157,7 @@ typedef struct vs_job {
     const sgDevice *dev;
     const sg_guard *guard;
     const sg_setup_params *setup;
+    const sg_vertex_lit *lit; /* lit draws: their vertex attributes, into dev->lit */
     int count, chunks;
 } vs_job;
 
@@ -159,16 +170,19 @@ static void vs_run(void *vjob, int index) {
                         dev->outcodes + v0, j->guard);
     sg_vertex_project(j->setup, (const float(*)[4])dev->clip + v0, dev->outcodes + v0, v1 - v0,
                       dev->screen + v0, dev->screen_ok + v0);
-    sg_vertex_check_attributes(j->colors ? j->colors + (size_t)v0 * 4 : NULL,
-                               j->texcoords ? j->texcoords + (size_t)v0 * 2 : NULL, j->setup->nattr,
-                               v1 - v0, dev->screen_ok + v0);
+    if (j->lit)
+        sg_vertex_lit_attributes(j->lit, v0, v1 - v0, dev->lit, dev->screen_ok);
+    else
+        sg_vertex_check_attributes(j->colors ? j->colors + (size_t)v0 * 4 : NULL,
+                                   j->texcoords ? j->texcoords + (size_t)v0 * 2 : NULL,
+                                   j->setup->nattr, v1 - v0, dev->screen_ok + v0);
 }
 
 static void transform_vertices(sgDevice *dev, const float *mvp, const sg_geom *geom,
-                               const sg_guard *guard, const sg_setup_params *setup) {
-    vs_job job = {mvp, geom->positions, geom->colors, geom->texcoords,
-                  dev, guard,           setup,        geom->vertex_count,
-                  1};
+                               const sg_guard *guard, const sg_setup_params *setup,
+                               const sg_vertex_lit *lit) {
+    vs_job job = {mvp,   geom->positions, geom->colors, geom->texcoords,    dev,
+                  guard, setup,           lit,          geom->vertex_count, 1};
     if (dev->thread_count > 1 && geom->vertex_count >= FE_MIN_TRIANGLES)
         job.chunks = 2 * dev->thread_count;
     sg_workers_run(&dev->workers, job.chunks, vs_run, &job);
@@ -213,6 +227,17 @@ static bool grow_vertex_arenas(sgDevice *dev, size_t n) {
         return false;
     }
     dev->vertex_capacity = cap;
+    return true;
+}
+
+/* Room for a lit draw's vertex attributes. */
+static bool grow_lit(sgDevice *dev, size_t floats) {
+    if (dev->lit_capacity >= floats) return true;
+    float *p = sg_alloc(dev, floats * sizeof *p);
+    if (!p) return false;
+    sg_free(dev, dev->lit);
+    dev->lit = p;
+    dev->lit_capacity = floats;
     return true;
 }
 
@@ -280,6 +305,18 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
             dev, SG_ERROR_MISSING_DEPTH,
             "sgDraw: the pipeline tests or writes depth but the pass has no depth target");
     sg_shade_ctx ctx = {0};
+    const sgLightingMode lighting = pso->desc.lighting;
+    if (lighting != SG_LIGHTING_NONE) {
+        char why[160];
+        int code = SG_OK;
+        if (!sg_light_prepare(params->lighting, params->specular, params->shininess, &ctx.lights,
+                              why, sizeof why, &code))
+            return sg_error(dev, (sgResult)code, "sgDraw: %s", why);
+        if (lighting != SG_LIGHTING_FLAT && !geom->normals)
+            return sg_error(dev, SG_ERROR_MISSING_ATTRIBUTE,
+                            "sgDraw: the pipeline lights per %s but the geom has no normals",
+                            lighting == SG_LIGHTING_GOURAUD ? "vertex" : "pixel");
+    }
     sg_image *tex = NULL;
     if (pso->desc.shade == SG_SHADE_TEXTURE_MODULATE) {
         if (!params->texture.id)
@@ -312,6 +349,43 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for the draw list");
     int width = dev->pass.width, height = dev->pass.height;
 
+    /* A lit draw's vertices carry the attributes of light.h (SG_LIT_*): flat, base colour,
+     * texcoords and view position, lit per triangle at assembly; Gouraud, the lit colours
+     * (primary, texcoords, secondary when the material has a specular colour); Phong, base colour,
+     * texcoords, position and normal, lit per pixel. */
+    const bool textured = pso->desc.shade == SG_SHADE_TEXTURE_MODULATE;
+    const bool spec = lighting != SG_LIGHTING_NONE && ctx.lights.has_specular;
+    int nattr = pso->nattr, sec = 0, vstride = 0;
+    float normal_matrix[9];
+    sg_vertex_lit lit = {0};
+    if (lighting != SG_LIGHTING_NONE) {
+        vstride = lighting == SG_LIGHTING_PHONG          ? SG_LIT_NRM + 3
+                  : lighting == SG_LIGHTING_FLAT || spec ? SG_LIT_SEC + 3
+                                                         : SG_LIT_SEC;
+        nattr = lighting == SG_LIGHTING_PHONG ? SG_LIT_NRM + 3
+                : spec                        ? SG_LIT_SEC + 3
+                                              : (textured ? 6 : 4);
+        sec = spec && lighting != SG_LIGHTING_PHONG ? SG_LIT_SEC : 0;
+        if (!grow_lit(dev, (size_t)geom->vertex_count * (size_t)vstride))
+            return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                            "sgDraw: out of memory for the lit attributes of %d vertices",
+                            geom->vertex_count);
+        if (nattr > SG_TRI_ATTRS && !dev->binner.use_ext && !sg_binner_use_ext(&dev->binner))
+            return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                            "sgDraw: out of memory for the lit attributes of the pass");
+        sg_normal_matrix(params->world_view, normal_matrix);
+        lit.mode = lighting;
+        lit.world_view = params->world_view;
+        lit.normal_matrix = normal_matrix;
+        lit.positions = geom->positions;
+        lit.normals = geom->normals;
+        lit.colors = geom->colors;
+        lit.texcoords = textured ? geom->texcoords : NULL;
+        lit.tint = tinted ? tint : NULL;
+        lit.lights = &ctx.lights;
+        lit.stride = vstride;
+    }
+
     float mvp[16];
     sg_mat4_mul(mvp, params->proj, params->world_view);
     sg_assembly a = {0};
@@ -334,12 +408,19 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.setup.rect_y1 = height;
     a.setup.cull = pso->desc.cull;
     a.setup.front_face = pso->desc.front_face;
-    a.setup.nattr = pso->nattr;
+    a.setup.nattr = nattr;
+    a.setup.sec = sec;
+    if (lighting != SG_LIGHTING_NONE) {
+        a.vattr = dev->lit;
+        a.vstride = vstride;
+        if (lighting == SG_LIGHTING_FLAT) a.flat = &ctx.lights;
+    }
     if (params->sort == SG_SORT_BACK_TO_FRONT && !sort_triangles(dev, geom, params->world_view, &a))
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                         "sgDraw: out of memory to sort %d indices back to front",
                         geom->index_count);
-    transform_vertices(dev, mvp, geom, &a.guard, &a.setup);
+    transform_vertices(dev, mvp, geom, &a.guard, &a.setup,
+                       lighting != SG_LIGHTING_NONE ? &lit : NULL);
     a.screen = dev->screen;
     a.screen_ok = dev->screen_ok;
     a.slot = bin_slot;
@@ -356,7 +437,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     }
     sg_draw_state *ds = &dev->draws[dev->draw_count++];
     ds->raster_fn = pso->raster_fn;
-    ds->shade_fn = pso->shade_fn;
+    ds->shade_fn = sec ? pso->shade_sec : pso->shade_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
     ds->blend = pso->desc.blend == SG_BLEND_ALPHA;

@@ -27,6 +27,7 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     CHECK_ENUM(cull, SG_CULL_DEFAULT, SG_CULL_FRONT, "sgCull")
     CHECK_ENUM(front_face, SG_FRONT_FACE_DEFAULT, SG_FRONT_FACE_CW, "sgFrontFace")
     CHECK_ENUM(blend, SG_BLEND_DEFAULT, SG_BLEND_ALPHA, "sgBlend")
+    CHECK_ENUM(lighting, SG_LIGHTING_DEFAULT, SG_LIGHTING_PHONG, "sgLightingMode")
 
     sg_pso p;
     memset(&p, 0, sizeof p);
@@ -39,12 +40,20 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     if (!d->cull) d->cull = SG_CULL_NONE;
     if (!d->front_face) d->front_face = SG_FRONT_FACE_CCW;
     if (!d->blend) d->blend = SG_BLEND_OPAQUE;
-    /* Opaque draws find the visible triangle first; blended ones blend as they go (blend.h). */
-    p.raster_fn = d->blend == SG_BLEND_ALPHA
-                      ? sg_blend_select(sg_shade_variant(d->shade, d->filter, d->wrap),
-                                        d->depth.compare, d->depth.write, dev->isa)
-                      : sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
-    p.shade_fn = sg_shade_select(d->shade, d->filter, d->wrap, dev->isa);
+    if (!d->lighting) d->lighting = SG_LIGHTING_NONE;
+    const bool lit = d->lighting != SG_LIGHTING_NONE;
+    /* Opaque draws find the visible triangle first; blended ones blend as they go (blend.h),
+     * with the unlit shading inlined where the instruction set allows. */
+    const int variant = sg_shade_variant(d->shade, d->filter, d->wrap);
+    p.raster_fn =
+        d->blend == SG_BLEND_ALPHA
+            ? sg_blend_select(lit ? -1 : variant, d->depth.compare, d->depth.write, dev->isa)
+            : sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
+    /* Flat and Gouraud lighting make colours the unlit shading takes as vertex colours, unless
+     * the draw's material has a specular colour (sgDraw picks shade_sec then). */
+    p.shade_fn = d->lighting == SG_LIGHTING_PHONG ? sg_shade_phong_select(variant, dev->isa)
+                                                  : sg_shade_select_variant(variant, dev->isa);
+    p.shade_sec = sg_shade_select_variant(variant + SG_SHADE_SECONDARY, dev->isa);
     p.nattr = sg_shade_attr_count(d->shade);
     p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;
 

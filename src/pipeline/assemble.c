@@ -3,11 +3,17 @@
 
 #include "pipeline/vertex.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
 static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS]) {
     static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    if (a->vattr) {
+        memcpy(attr, a->vattr + (size_t)idx * (size_t)a->vstride,
+               (size_t)a->vstride * sizeof(float));
+        return;
+    }
     memcpy(attr, a->colors ? a->colors + (size_t)idx * 4 : white, 4 * sizeof(float));
     if (a->tint)
         for (int k = 0; k < 4; k++) attr[k] *= a->tint[k];
@@ -18,7 +24,34 @@ static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_M
  * as one with a non-finite position is, so it cannot paint garbage or sample out of range. (The
  * vertex stage makes the same check for vertices inside every clip plane.) */
 static bool attributes_finite(const sg_assembly *a, uint32_t idx) {
+    if (a->vattr) {
+        const float *v = a->vattr + (size_t)idx * (size_t)a->vstride;
+        for (int k = 0; k < a->vstride; k++)
+            if (!(v[k] >= -FLT_MAX && v[k] <= FLT_MAX)) return false;
+        return true;
+    }
     return sg_vertex_attributes_finite(a->colors, a->texcoords, a->setup.nattr, idx);
+}
+
+/* Flat lighting: the equation once for the triangle, at the centroid of its view-space positions
+ * with its face normal (P1 - P0) x (P2 - P0) and the base colour of its first vertex; every
+ * vertex then carries the same primary and secondary colours (setup finds the triangle flat). */
+static void light_flat(const sg_lights *ls, float *const attr[3]) {
+    const float *p0 = attr[0] + SG_LIT_POS, *p1 = attr[1] + SG_LIT_POS, *p2 = attr[2] + SG_LIT_POS;
+    float e1[3], e2[3], c[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = p1[k] - p0[k];
+        e2[k] = p2[k] - p0[k];
+        c[k] = ((p0[k] + p1[k]) + p2[k]) / 3.0f;
+    }
+    float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                  e1[0] * e2[1] - e1[1] * e2[0]};
+    float prim[4], sec[3];
+    sg_light_eval(ls, c, n, attr[0] + SG_LIT_COLOR, prim, sec);
+    for (int i = 0; i < 3; i++) {
+        memcpy(attr[i] + SG_LIT_COLOR, prim, sizeof prim);
+        memcpy(attr[i] + SG_LIT_SEC, sec, sizeof sec);
+    }
 }
 
 /* The projection of a vertex inside every clip plane (made once by the vertex stage); false: the
@@ -55,6 +88,7 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
     }
     if (a->rebase_texcoords)
         rebase_texcoords((float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
+    if (a->flat) light_flat(a->flat, (float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
     int n = sg_clip_polygon(poly, 3, planes, a->setup.nattr, &a->guard);
     /* Each vertex is projected once, though the fan uses poly[0] in every triangle. */
     sg_svert s[SG_CLIP_MAX_VERTS];
@@ -64,10 +98,11 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
         if (!ok[0] || !ok[k] || !ok[k + 1]) continue;
         sg_svert t[3] = {s[0], s[k], s[k + 1]};
         const float *attr[3] = {poly[0].attr, poly[k].attr, poly[k + 1].attr};
-        sg_tri *tri = a->slot(a->user);
+        sg_tri_ext *ext = NULL;
+        sg_tri *tri = a->slot(a->user, &ext);
         if (!tri) return;
         if (!sg_setup_coverage(&a->setup, t, attr, tri)) continue;
-        sg_setup_planes(&a->setup, t, attr, tri);
+        sg_setup_planes(&a->setup, t, attr, tri, ext);
         a->emit(a->user);
     }
 }
@@ -88,13 +123,15 @@ static void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint32_t i2
         return;
     float attr[3][SG_MAX_ATTRS];
     const float *order[3] = {attr[0], attr[1], attr[2]}; /* reordered by coverage */
-    sg_tri *tri = a->slot(a->user);
+    sg_tri_ext *ext = NULL;
+    sg_tri *tri = a->slot(a->user, &ext);
     if (!tri || !sg_setup_coverage(&a->setup, s, order, tri)) return;
     fetch_attributes(a, i0, attr[0]);
     fetch_attributes(a, i1, attr[1]);
     fetch_attributes(a, i2, attr[2]);
     if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]});
-    sg_setup_planes(&a->setup, s, order, tri);
+    if (a->flat) light_flat(a->flat, (float *const[3]){attr[0], attr[1], attr[2]});
+    sg_setup_planes(&a->setup, s, order, tri, ext);
     a->emit(a->user);
 }
 

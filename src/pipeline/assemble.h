@@ -4,6 +4,7 @@
 
 #include <stdint.h>
 
+#include "pipeline/light.h"
 #include "pipeline/setup.h"
 
 typedef struct sg_assembly {
@@ -17,13 +18,20 @@ typedef struct sg_assembly {
     const float *colors;      /* 4 floats a vertex, NULL: opaque white */
     const float *texcoords;   /* 2 floats a vertex, read when setup.nattr > 4 */
     const float *tint;        /* r g b a multiplying every vertex colour, or NULL */
-    int rebase_texcoords;     /* repeat wrapping: move each triangle's texcoords next to 0 */
+    /* Lit draws: every attribute of each vertex, `vstride` floats a vertex, made by the vertex
+     * stage (vertex.h, sg_vertex_lit); read instead of colors, texcoords and tint. */
+    const float *vattr;
+    int vstride;
+    /* Flat lighting: the lights, evaluated once per triangle before clipping (vattr then holds
+     * base colour, texcoords, view position: SG_LIT_*). */
+    const sg_lights *flat;
+    int rebase_texcoords; /* repeat wrapping: move each triangle's texcoords next to 0 */
     sg_guard guard;
     sg_setup_params setup;
-    /* Receives every triangle that survives, in submission order. */
-    /* Where the next triangle is set up (NULL: no room, it is dropped), then emit when it
-     * survives: triangles are built in place, in submission order. */
-    sg_tri *(*slot)(void *user);
+    /* Where the next triangle (and its extension, when setup.nattr > SG_TRI_ATTRS) is set up
+     * (NULL: no room, it is dropped), then emit when it survives: triangles are built in place,
+     * in submission order. */
+    sg_tri *(*slot)(void *user, sg_tri_ext **ext);
     void (*emit)(void *user);
     void *user;
 } sg_assembly;

@@ -56,8 +56,10 @@ static void intersect(sg_cvert *out, uint32_t plane, const sg_guard *g, const sg
                       float d_in, const sg_cvert *outside, float d_out, int nattr) {
     float t = d_in / (d_in - d_out);
     for (int k = 0; k < 4; k++) out->pos[k] = in->pos[k] + t * (outside->pos[k] - in->pos[k]);
-    for (int k = 0; k < SG_MAX_ATTRS; k++)
-        out->attr[k] = k < nattr ? in->attr[k] + t * (outside->attr[k] - in->attr[k]) : 0.0f;
+    for (int k = 0; k < nattr; k++)
+        out->attr[k] = in->attr[k] + t * (outside->attr[k] - in->attr[k]);
+    /* The rest defined too, so that a new vertex is the same bytes however it is reached. */
+    memset(out->attr + nattr, 0, (size_t)(SG_MAX_ATTRS - nattr) * sizeof(float));
     /* Put the point exactly on the plane: rounding could leave it a hair outside, and a later
      * plane or the divide must never see it there. */
     float *p = out->pos;

@@ -10,7 +10,9 @@
 
 #include <stdint.h>
 
-#define SG_MAX_ATTRS 6 /* r, g, b, a, s, t */
+/* Attributes a vertex may carry through clipping and setup: r g b a, s t, then up to ten more
+ * for lit draws (secondary colour; or view position and normal). */
+#define SG_MAX_ATTRS 16
 
 /* Smallest w a clipped vertex keeps; far below any near plane a scene uses. */
 #define SG_CLIP_W_MIN 1e-9f

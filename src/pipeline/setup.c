@@ -126,11 +126,19 @@ static bool same_color(const float *a, const float *b) {
     return ((x[0] ^ y[0]) | (x[1] ^ y[1])) == 0;
 }
 
+/* The three floats at a and b are the same bits. */
+static bool same3(const float *a, const float *b) {
+    return memcmp(a, b, 3 * sizeof(float)) == 0;
+}
+
 void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
-                     sg_tri *out) {
+                     sg_tri *out, sg_tri_ext *ext) {
     out->nattr = p->nattr;
     out->flat = SG_FLAT_NONE;
-    if (p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2])) {
+    /* A secondary colour must be constant too for the triangle to be flat. */
+    const int sec = p->sec;
+    if (p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2]) &&
+        (!sec || (same3(attr[0] + sec, attr[1] + sec) && same3(attr[0] + sec, attr[2] + sec)))) {
         memcpy(out->color, attr[0], sizeof out->color);
         /* == 1.0f as bits: 1.0f has no other encoding. */
         uint64_t c[2], white;
@@ -155,19 +163,30 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     memset(out->a, 0, sizeof out->a);
     memset(out->a_dx, 0, sizeof out->a_dx);
     memset(out->a_dy, 0, sizeof out->a_dy);
-    for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < p->nattr; k++)
+    int n = p->nattr < SG_TRI_ATTRS ? p->nattr : SG_TRI_ATTRS;
+    for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < n; k++)
         plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
               (double)attr[2][k] * s[2].q, &out->a[k], &out->a_dx[k], &out->a_dy[k]);
+    if (p->nattr <= SG_TRI_ATTRS) return;
+    memset(ext, 0, sizeof *ext);
+    for (int k = SG_TRI_ATTRS; k < p->nattr; k++) {
+        int e = k - SG_TRI_ATTRS;
+        if (out->flat != SG_FLAT_NONE && sec && k >= sec && k < sec + 3)
+            ext->a[e] = attr[0][k]; /* the flat secondary colour, as it is */
+        else
+            plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
+                  (double)attr[2][k] * s[2].q, &ext->a[e], &ext->a_dx[e], &ext->a_dy[e]);
+    }
 }
 
 bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cvert *v1,
-                       const sg_cvert *v2, sg_tri *out) {
+                       const sg_cvert *v2, sg_tri *out, sg_tri_ext *ext) {
     const sg_cvert *v[3] = {v0, v1, v2};
     const float *attr[3] = {v0->attr, v1->attr, v2->attr};
     sg_svert s[3];
     for (int i = 0; i < 3; i++)
         if (!sg_setup_project(p, v[i]->pos, &s[i])) return false;
     if (!sg_setup_coverage(p, s, attr, out)) return false;
-    sg_setup_planes(p, s, attr, out);
+    sg_setup_planes(p, s, attr, out, ext);
     return true;
 }

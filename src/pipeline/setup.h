@@ -24,7 +24,12 @@ typedef struct sg_setup_params {
     sgCull cull;            /* resolved: NONE, BACK or FRONT */
     sgFrontFace front_face; /* resolved: CCW or CW */
     int nattr;              /* attributes to interpolate (0 .. SG_MAX_ATTRS) */
+    int sec;                /* lit draws: index of a secondary colour (3 attributes), else 0 */
 } sg_setup_params;
+
+/* Attributes an sg_tri holds; a draw that interpolates more keeps the rest in an sg_tri_ext (the
+ * binner's array beside the triangles, same index), so unlit triangles stay small. */
+#define SG_TRI_ATTRS 6
 
 /* A triangle ready for the raster. Every "at origin" value is taken at the centre of pixel
  * (minx, miny); a step moves one pixel. Edge e covers a pixel when its value is >= 0. */
@@ -34,8 +39,8 @@ typedef struct sg_tri {
     int64_t edge_dx[3], edge_dy[3];
     float z, z_dx, z_dy;   /* window depth (0 near .. 1 far), linear in screen space */
     float q, q_dx, q_dy;   /* 1 / w */
-    float a[SG_MAX_ATTRS]; /* attribute / w */
-    float a_dx[SG_MAX_ATTRS], a_dy[SG_MAX_ATTRS];
+    float a[SG_TRI_ATTRS]; /* attribute / w */
+    float a_dx[SG_TRI_ATTRS], a_dy[SG_TRI_ATTRS];
     int nattr;
     /* The three vertex colours are equal: the colour is `color` everywhere, exactly (interpolating
      * it would only add rounding), and SG_FLAT_WHITE when that colour is opaque white. */
@@ -50,9 +55,18 @@ typedef struct sg_tri {
 
 enum { SG_FLAT_NONE, SG_FLAT_COLOR, SG_FLAT_WHITE };
 
-/** Divides, snaps, culls and sets up one clipped triangle (all w > 0); false: nothing to draw. */
+/* Attributes SG_TRI_ATTRS.. of a triangle, as sg_tri's (attribute / w, at the origin, steps). A
+ * flat triangle with a secondary colour keeps that colour as it is in a[sec - SG_TRI_ATTRS ..]
+ * (steps zero). */
+typedef struct sg_tri_ext {
+    float a[SG_MAX_ATTRS - SG_TRI_ATTRS];
+    float a_dx[SG_MAX_ATTRS - SG_TRI_ATTRS], a_dy[SG_MAX_ATTRS - SG_TRI_ATTRS];
+} sg_tri_ext;
+
+/** Divides, snaps, culls and sets up one clipped triangle (all w > 0); false: nothing to draw.
+ *  ext receives attributes SG_TRI_ATTRS.. (NULL when p->nattr <= SG_TRI_ATTRS). */
 bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cvert *v1,
-                       const sg_cvert *v2, sg_tri *out);
+                       const sg_cvert *v2, sg_tri *out, sg_tri_ext *ext);
 
 /* Triangle setup in steps (setup.c), for assembly: a vertex is projected once however many
  * triangles share it, and a triangle is culled from its screen positions alone, before any of its
@@ -74,6 +88,6 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
  *  sg_setup_coverage, with the s[] and attr[] it reordered (each attr[i] holds nattr values).
  *  Only the planes the shading reads are computed; the others are zero. */
 void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
-                     sg_tri *out);
+                     sg_tri *out, sg_tri_ext *ext);
 
 #endif

@@ -13,7 +13,8 @@ size_t sg_sort_scratch_size(int vertex_count, size_t triangles);
 /** Writes the draw's triangles (quads split into a b c, a c d first) to out, 3 indices each,
  *  farthest first: key = ((z0 + z1) + z2) / 3 of the view-space z of the three vertices, where
  *  (z, w) = rows 2 and 3 of world_view times the position and z is divided by w when w != 1.
- *  A NaN key sorts last. A stable LSD radix sort: linear in the triangles, the same order on any thread count. */
+ *  A NaN key sorts last. A stable LSD radix sort: linear in the triangles, the same order on any
+ * thread count. */
 void sg_sort_back_to_front(const float world_view[16], const float *positions, int vertex_count,
                            const uint32_t *indices, int index_count, int quads, void *scratch,
                            uint32_t *out);

@@ -130,3 +130,43 @@ void sg_vertex_check_attributes(const float *colors, const float *texcoords, int
             ok[i] = (uint8_t)sg_vertex_attributes_finite(colors, texcoords, nattr, (size_t)i);
 #endif
 }
+
+void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, float *out,
+                              uint8_t *ok) {
+    static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    const float *m = l->world_view, *nm = l->normal_matrix;
+    for (int i = first; i < first + count; i++) {
+        float *o = out + (size_t)i * (size_t)l->stride;
+        float base[4], P[3], v[4];
+        memcpy(base, l->colors ? l->colors + (size_t)i * 4 : white, sizeof base);
+        if (l->tint)
+            for (int k = 0; k < 4; k++) base[k] *= l->tint[k];
+        sg_mat4_transform(v, m, l->positions + (size_t)i * 4);
+        for (int k = 0; k < 3; k++) P[k] = v[3] != 1.0f ? v[k] / v[3] : v[k];
+        o[SG_LIT_ST] = l->texcoords ? l->texcoords[(size_t)i * 2] : 0.0f;
+        o[SG_LIT_ST + 1] = l->texcoords ? l->texcoords[(size_t)i * 2 + 1] : 0.0f;
+        float n[3] = {0.0f, 0.0f, 0.0f};
+        if (l->mode != SG_LIGHTING_FLAT) {
+            const float *src = l->normals + (size_t)i * 3;
+            for (int r = 0; r < 3; r++)
+                n[r] = (nm[r * 3] * src[0] + nm[r * 3 + 1] * src[1]) + nm[r * 3 + 2] * src[2];
+        }
+        if (l->mode == SG_LIGHTING_GOURAUD) {
+            float prim[4], sec[3];
+            sg_light_eval(l->lights, P, n, base, prim, sec);
+            memcpy(o + SG_LIT_COLOR, prim, sizeof prim);
+            if (l->stride > SG_LIT_SEC) memcpy(o + SG_LIT_SEC, sec, sizeof sec);
+        } else {
+            memcpy(o + SG_LIT_COLOR, base, sizeof base);
+            memcpy(o + SG_LIT_POS, P, sizeof P);
+            if (l->mode == SG_LIGHTING_PHONG) memcpy(o + SG_LIT_NRM, n, sizeof n);
+        }
+        uint32_t bad = 0;
+        for (int k = 0; k < l->stride; k++) {
+            uint32_t u;
+            memcpy(&u, o + k, sizeof u);
+            bad |= (uint32_t)((u & 0x7f800000u) == 0x7f800000u);
+        }
+        if (bad) ok[i] = 0;
+    }
+}

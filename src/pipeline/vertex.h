@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "pipeline/clip.h"
+#include "pipeline/light.h"
 #include "pipeline/setup.h"
 
 /** clip[i] = mvp * positions[i] and outcodes[i] = its clip outcode, for i < count. */
@@ -30,6 +31,22 @@ static inline bool sg_vertex_attributes_finite(const float *colors, const float 
     for (int k = 0; k < 6; k++) bad |= (uint32_t)((u[k] & 0x7f800000u) == 0x7f800000u);
     return !bad;
 }
+
+/* What the vertex stage of a lit draw needs (light.h has the layout of what it makes). */
+typedef struct sg_vertex_lit {
+    sgLightingMode mode; /* FLAT, GOURAUD or PHONG */
+    const float *world_view, *normal_matrix;
+    const float *positions, *normals, *colors, *texcoords, *tint; /* each may be NULL but
+                                                                     positions */
+    const sg_lights *lights;                                      /* GOURAUD */
+    int stride;                                                   /* floats a vertex */
+} sg_vertex_lit;
+
+/** The lit attributes of vertices [first, first + count) into out (stride floats each): base
+ *  colour, texcoords, view position (FLAT); and normal (PHONG); or the lit colours (GOURAUD). A
+ *  vertex any of whose attributes is NaN or infinite gets ok[i] = 0. */
+void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, float *out,
+                              uint8_t *ok);
 
 /** Clears ok[i] of the vertices with a NaN or infinite attribute the draw reads (colour: 4 floats
  *  a vertex, NULL for none; texcoords: 2 floats a vertex, read when nattr > 4). */

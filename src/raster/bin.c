@@ -39,6 +39,16 @@ bool sg_binner_reset(sg_binner *b, int width, int height) {
     for (int i = 0; i < bx * by; i++) b->bins[i].count = 0;
     b->tri_count = 0;
     b->out_of_memory = false;
+    b->use_ext = false;
+    return true;
+}
+
+bool sg_binner_use_ext(sg_binner *b) {
+    size_t cap = b->ext_capacity;
+    if (!grow(b, (void **)&b->ext, &cap, b->tri_capacity ? b->tri_capacity : 64, sizeof *b->ext))
+        return false;
+    b->ext_capacity = cap;
+    b->use_ext = true;
     return true;
 }
 
@@ -50,7 +60,9 @@ void sg_binner_commit(sg_binner *b) {
 sg_tri *sg_binner_reserve(sg_binner *b, size_t n) {
     /* Ids are index + 1 in 32 bits (depth.h). */
     if (b->out_of_memory || n > UINT32_MAX - 1 - b->tri_count ||
-        !grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + n, sizeof *b->tris)) {
+        !grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + n, sizeof *b->tris) ||
+        (b->use_ext &&
+         !grow(b, (void **)&b->ext, &b->ext_capacity, b->tri_count + n, sizeof *b->ext))) {
         b->out_of_memory = true;
         return NULL;
     }
@@ -134,5 +146,6 @@ void sg_binner_release(sg_binner *b) {
         if (b->bins[i].tris) b->free(b->bins[i].tris, b->user);
     if (b->bins) b->free(b->bins, b->user);
     if (b->tris) b->free(b->tris, b->user);
+    if (b->ext) b->free(b->ext, b->user);
     memset(b, 0, sizeof *b);
 }

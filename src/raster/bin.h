@@ -24,6 +24,11 @@ typedef struct sg_binner {
     void *user;
     sg_tri *tris;
     size_t tri_count, tri_capacity;
+    /* Beside tris, same index: the attributes beyond SG_TRI_ATTRS of lit draws. Kept as large as
+     * tris once a pass has used it (use_ext), so a triangle's extension is always at hand. */
+    sg_tri_ext *ext;
+    size_t ext_capacity;
+    bool use_ext;
     sg_bin *bins;
     int bins_x, bins_y, bin_capacity;
     uint32_t draw;      /* stamped on each added triangle */
@@ -32,6 +37,9 @@ typedef struct sg_binner {
 
 /** Empties every bin and sizes the grid for a width x height target. */
 bool sg_binner_reset(sg_binner *b, int width, int height);
+/** From now on in this pass, every triangle has room for an sg_tri_ext; false: out of memory
+ *  (nothing changed). */
+bool sg_binner_use_ext(sg_binner *b);
 /** Room for n more triangles at tris + tri_count (NULL, and out_of_memory, when there is none);
  *  the caller fills them, then moves tri_count and lists each filled one with sg_binner_list. */
 sg_tri *sg_binner_reserve(sg_binner *b, size_t n);

@@ -40,7 +40,7 @@ static inline __attribute__((always_inline)) void blend_scalar(const void *vctx,
     if (zmode != Z_NONE || zwrite) mask = depth_scalar(v, t, x0, y0, mask, base, zwrite);
     if (!mask) return;
     uint32_t src[SG_TILE_PIXELS];
-    v->shade(v->shade_ctx, t, x0, y0, mask, src);
+    v->shade(v->shade_ctx, t, sg_vis_ext(v, t), x0, y0, mask, src);
     uint32_t *dst = v->color + base;
     for (; mask; mask &= mask - 1) {
         int bit = __builtin_ctz(mask);
@@ -109,7 +109,7 @@ static inline __attribute__((always_inline)) void blend_sse2(const void *vctx, c
     }
     if (!mask) return;
     _Alignas(16) uint32_t src[SG_TILE_PIXELS];
-    v->shade(v->shade_ctx, t, x0, y0, mask, src);
+    v->shade(v->shade_ctx, t, sg_vis_ext(v, t), x0, y0, mask, src);
     uint32_t *dst = v->color + base;
     for (int j = 0; j < 4; j++) {
         uint32_t bits = (mask >> (4 * j)) & 15u;
@@ -131,7 +131,9 @@ SG_BLEND_FN(blend_any_1_sse2, blend_sse2, Z_ANY, 1)
 sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa) {
     int zmode = compare == SG_COMPARE_ALWAYS ? Z_NONE : Z_ANY;
     sg_raster_fn fn = NULL;
-    if (isa >= SG_ISA_AVX512) fn = sg_blend_avx512(shade_variant, zmode == Z_ANY, depth_write);
+    /* A negative variant (lit shading) calls the draw's shading function: AVX2 at best. */
+    if (isa >= SG_ISA_AVX512 && shade_variant >= 0)
+        fn = sg_blend_avx512(shade_variant, zmode == Z_ANY, depth_write);
     if (!fn && isa >= SG_ISA_AVX2) fn = sg_blend_avx2(zmode == Z_ANY, depth_write);
     if (fn) return fn;
 #if defined(__SSE2__)

@@ -35,8 +35,9 @@ static inline uint32_t sg_blend_rgba8(uint32_t src, uint32_t dst) {
     return out;
 }
 
-/** The raster function of a blended draw for a shading variant (sg_shade_variant) and a resolved
- *  depth state (ctx: an sg_vis_ctx with color, shade and shade_ctx set). */
+/** The raster function of a blended draw for a shading variant (sg_shade_variant; -1: a lit one,
+ *  shaded through the draw's function) and a resolved depth state (ctx: an sg_vis_ctx with
+ *  color, shade and shade_ctx set). */
 sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa);
 /** The AVX2 and AVX-512 ones (blend_avx2.c, blend_avx512.c; NULL where not built); depth_test:
  *  the compare is not ALWAYS. The AVX-512 ones inline the shading (no call per tile). */

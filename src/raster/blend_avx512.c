@@ -30,10 +30,12 @@ INLINE __m512i shade(const sg_vis_ctx *v, const sg_tri *t, __m512 dx, __m512 dy,
                      const int textured, const int bilinear, const int repeat) {
     const sg_shade_ctx *c = v->shade_ctx;
     if (t->flat == SG_FLAT_WHITE)
-        return sg_shade16_at(c, t, dx, dy, mask, textured, bilinear, repeat, SG_FLAT_WHITE);
+        return sg_shade16_at(c, t, NULL, dx, dy, mask, textured, bilinear, repeat, SG_FLAT_WHITE,
+                             0);
     if (t->flat == SG_FLAT_COLOR)
-        return sg_shade16_at(c, t, dx, dy, mask, textured, bilinear, repeat, SG_FLAT_COLOR);
-    return sg_shade16_at(c, t, dx, dy, mask, textured, bilinear, repeat, SG_FLAT_NONE);
+        return sg_shade16_at(c, t, NULL, dx, dy, mask, textured, bilinear, repeat, SG_FLAT_COLOR,
+                             0);
+    return sg_shade16_at(c, t, NULL, dx, dy, mask, textured, bilinear, repeat, SG_FLAT_NONE, 0);
 }
 
 /* Blends the fragments s of the pixels of mask into the tile's colour. */

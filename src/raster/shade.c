@@ -7,9 +7,11 @@
 /* The one body every variant is made from; the constant arguments fold away per variant, and
  * `flat` (a per-triangle constant, see sg_tri) is split off at the top into its own loops. */
 static inline __attribute__((always_inline)) void
-shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask, uint32_t *dst,
-           const int textured, const int bilinear, const int repeat, const int flat) {
+shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0, int y0,
+           uint32_t mask, uint32_t *dst, const int textured, const int bilinear, const int repeat,
+           const int flat, const int sec) {
     float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     while (mask) {
         int bit = __builtin_ctz(mask);
         mask &= mask - 1;
@@ -25,13 +27,18 @@ shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask
             float u = (t->a[5] + t->a_dx[5] * dx + t->a_dy[5] * dy) * w;
             sg_texel tx = bilinear ? sg_sample_bilinear(&c->tex, s, u, repeat)
                                    : sg_sample_nearest(&c->tex, s, u, repeat);
-            if (flat == SG_FLAT_WHITE) { /* 1 * texel / 255, back to unorm8, is the texel */
+            if (flat == SG_FLAT_WHITE && !sec) { /* 1 * texel / 255, back to unorm8: the texel */
                 dst[bit] = sg_pack_rgba8((uint32_t)tx.c[0], (uint32_t)tx.c[1], (uint32_t)tx.c[2],
                                          (uint32_t)tx.c[3]);
                 continue;
             }
             for (int k = 0; k < 4; k++) col[k] *= (float)tx.c[k] * (1.0f / 255.0f);
         }
+        if (sec)
+            for (int k = 0; k < 3; k++)
+                col[k] += flat != SG_FLAT_NONE
+                              ? ext->a[e + k]
+                              : (ext->a[e + k] + ext->a_dx[e + k] * dx + ext->a_dy[e + k] * dy) * w;
         dst[bit] = sg_pack_rgba8(sg_to_unorm8(col[0]), sg_to_unorm8(col[1]), sg_to_unorm8(col[2]),
                                  sg_to_unorm8(col[3]));
     }
@@ -46,7 +53,10 @@ int sg_shade_variant(sgShade shade, sgFilter filter, sgWrap wrap) {
 }
 
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa) {
-    int variant = sg_shade_variant(shade, filter, wrap);
+    return sg_shade_select_variant(sg_shade_variant(shade, filter, wrap), isa);
+}
+
+sg_shade_fn sg_shade_select_variant(int variant, sg_isa isa) {
     sg_shade_fn fn = NULL;
     /* The best set the ISA allows that is built: AVX-512, AVX2, SSE2, scalar. */
     if (isa >= SG_ISA_AVX512) fn = sg_shade_avx512(variant);

@@ -15,12 +15,14 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "pipeline/light.h"
 #include "pipeline/setup.h"
 #include "sgapi/sgapi.h"
 #include "tex/sample.h"
 
 typedef struct sg_shade_ctx {
-    sg_texview tex; /* bound texture, when the pipeline samples one */
+    sg_texview tex;   /* bound texture, when the pipeline samples one */
+    sg_lights lights; /* the draw's lights and material (SG_LIGHTING_PHONG) */
 } sg_shade_ctx;
 
 /* Instruction sets with their own shading and visibility code. */
@@ -33,22 +35,36 @@ typedef enum sg_isa {
 } sg_isa;
 
 /* Shades the pixels of `mask` (bit y * 4 + x) of the 4x4 tile whose top-left pixel is (x0, y0)
- * and writes them as RGBA8 to dst[y * 4 + x]; other pixels of dst are left as they are. */
-typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, int y0, uint32_t mask,
-                            uint32_t *dst);
+ * and writes them as RGBA8 to dst[y * 4 + x]; other pixels of dst are left as they are. ext: the
+ * triangle's attributes beyond SG_TRI_ATTRS (lit draws; NULL, and not read, otherwise). */
+typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                            int y0, uint32_t mask, uint32_t *dst);
 
-/** The index of a resolved shading state in the variant tables below. */
+/** The index of a resolved shading state in the variant tables below: 0 vertex colour,
+ *  1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */
 int sg_shade_variant(sgShade shade, sgFilter filter, sgWrap wrap);
+/* The tables hold those five variants, then the same five adding a secondary colour (flat and
+ * Gouraud lighting with a specular material: clamp(primary x texel + secondary), the secondary
+ * colour at SG_LIT_SEC). */
+enum { SG_SHADE_VARIANTS = 5, SG_SHADE_SECONDARY = 5 };
+/** The shading function of a table index (variant, + SG_SHADE_SECONDARY) and instruction set. */
+sg_shade_fn sg_shade_select_variant(int index, sg_isa isa);
+/** The per-pixel lighting (SG_LIGHTING_PHONG) function of a variant and instruction set
+ *  (shade_phong*.c). */
+sg_shade_fn sg_shade_phong_select(int variant, sg_isa isa);
+sg_shade_fn sg_shade_phong_scalar(int variant);
+sg_shade_fn sg_shade_phong_avx2(int variant);
+sg_shade_fn sg_shade_phong_avx512(int variant);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
 /** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,
- *  shade_avx2.c, shade_avx512.c; NULL where not built);
- *  index: 0 vertex colour, 1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */
+ *  shade_avx2.c, shade_avx512.c; NULL where not built, and the SSE2 table has no secondary
+ *  variants), by table index. */
 sg_shade_fn sg_shade_scalar(int variant);
 sg_shade_fn sg_shade_sse2(int variant);
 sg_shade_fn sg_shade_avx2(int variant);
 sg_shade_fn sg_shade_avx512(int variant);
-/** Attributes a shading mode interpolates: r g b a, plus s t when textured. */
+/** Attributes an unlit shading mode interpolates: r g b a, plus s t when textured. */
 int sg_shade_attr_count(sgShade shade);
 /** The best instruction set this CPU runs. */
 sg_isa sg_isa_detect(void);

@@ -196,12 +196,16 @@ INLINE void store_rows(uint32_t *dst, __m256i v, unsigned m) {
 }
 
 /* The body of every variant, as shade_pixels in shade.c; the constant arguments fold away. */
-INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
-                       uint32_t *dst, const int textured, const int bilinear, const int repeat,
-                       const int flat) {
+INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                       int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
+                       const int repeat, const int flat, const int sec) {
+    const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
-        uint32_t px = sg_pack_rgba8(sg_to_unorm8(t->color[0]), sg_to_unorm8(t->color[1]),
-                                    sg_to_unorm8(t->color[2]), sg_to_unorm8(t->color[3]));
+        float f[4] = {t->color[0], t->color[1], t->color[2], t->color[3]};
+        if (sec)
+            for (int k = 0; k < 3; k++) f[k] += ext->a[e + k];
+        uint32_t px = sg_pack_rgba8(sg_to_unorm8(f[0]), sg_to_unorm8(f[1]), sg_to_unorm8(f[2]),
+                                    sg_to_unorm8(f[3]));
         for (int r = 0; r < 4; r += 2) {
             unsigned m = (mask >> (4 * r)) & 255u;
             if (m) store_rows(dst + 4 * r, _mm256_set1_epi32((int)px), m);
@@ -223,6 +227,12 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
             ax[k] = _mm256_add_ps(_mm256_set1_ps(t->a[k]),
                                   _mm256_mul_ps(_mm256_set1_ps(t->a_dx[k]), dx));
     }
+    __m256 sx[3]; /* the secondary colour's a + a_dx dx, or the flat colour */
+    for (int k = 0; sec && k < 3; k++)
+        sx[k] = flat != SG_FLAT_NONE
+                    ? _mm256_set1_ps(ext->a[e + k])
+                    : _mm256_add_ps(_mm256_set1_ps(ext->a[e + k]),
+                                    _mm256_mul_ps(_mm256_set1_ps(ext->a_dx[e + k]), dx));
     tex8 tx;
     if (textured) {
         const int w = c->tex.width, h = c->tex.height;
@@ -261,14 +271,15 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
             if (bilinear) {
                 __m256i x[4];
                 bilinear8(&tx, s, u, repeat, x);
-                if (flat == SG_FLAT_WHITE) {
+                if (flat == SG_FLAT_WHITE && !sec) {
                     store_rows(dst + 4 * r, pack_hi8(x), m);
                     continue;
                 }
                 for (int k = 0; k < 4; k++) tc[k] = _mm256_srli_epi32(x[k], 16);
             } else {
                 __m256i texel = nearest8(&tx, s, u, repeat);
-                if (flat == SG_FLAT_WHITE) { /* the texel is the colour, as in the reference */
+                if (flat == SG_FLAT_WHITE &&
+                    !sec) { /* the texel is the colour, as in the reference */
                     store_rows(dst + 4 * r, texel, m);
                     continue;
                 }
@@ -278,6 +289,14 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
                 col[k] = _mm256_mul_ps(col[k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[k]),
                                                              _mm256_set1_ps(1.0f / 255.0f)));
         }
+        for (int k = 0; sec && k < 3; k++)
+            col[k] = _mm256_add_ps(
+                col[k],
+                flat != SG_FLAT_NONE
+                    ? sx[k]
+                    : _mm256_mul_ps(
+                          _mm256_add_ps(sx[k], _mm256_mul_ps(_mm256_set1_ps(ext->a_dy[e + k]), dy)),
+                          w));
         store_rows(dst + 4 * r, pack_unorm8(col), m);
     }
 }
@@ -287,8 +306,8 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
 
 #else
 
-sg_shade_fn sg_shade_avx2(int variant) {
-    (void)variant;
+sg_shade_fn sg_shade_avx2(int index) {
+    (void)index;
     return NULL;
 }
 

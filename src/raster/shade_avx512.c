@@ -8,10 +8,10 @@
 #if defined(SG_SHADE_AVX512)
 
 /* The mask is the store mask: pixels outside it are not written. */
-INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
-                       uint32_t *dst, const int textured, const int bilinear, const int repeat,
-                       const int flat) {
-    __m512i v = sg_shade16(c, t, x0, y0, mask, textured, bilinear, repeat, flat);
+INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                       int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
+                       const int repeat, const int flat, const int sec) {
+    __m512i v = sg_shade16(c, t, ext, x0, y0, mask, textured, bilinear, repeat, flat, sec);
     _mm512_mask_storeu_epi32(dst, (__mmask16)mask, v);
 }
 
@@ -20,8 +20,8 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
 
 #else
 
-sg_shade_fn sg_shade_avx512(int variant) {
-    (void)variant;
+sg_shade_fn sg_shade_avx512(int index) {
+    (void)index;
     return NULL;
 }
 

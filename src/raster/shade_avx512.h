@@ -236,13 +236,17 @@ INLINE __m512i pack_unorm8(const __m512 col[4]) {
  * RGBA8 lanes (others undefined): the body of every variant, as shade_rows in shade.c; the
  * constant arguments fold away. Each lane computes what the reference computes for its pixel,
  * wherever that pixel is. */
-INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, __m512 dx, __m512 dy,
-                             uint32_t mask, const int textured, const int bilinear,
-                             const int repeat, const int flat) {
+INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
+                             __m512 dx, __m512 dy, uint32_t mask, const int textured,
+                             const int bilinear, const int repeat, const int flat, const int sec) {
     const __mmask16 m = (__mmask16)mask;
+    const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) {
-        uint32_t px = sg_pack_rgba8(sg_to_unorm8(t->color[0]), sg_to_unorm8(t->color[1]),
-                                    sg_to_unorm8(t->color[2]), sg_to_unorm8(t->color[3]));
+        float f[4] = {t->color[0], t->color[1], t->color[2], t->color[3]};
+        if (sec)
+            for (int k = 0; k < 3; k++) f[k] += ext->a[e + k];
+        uint32_t px = sg_pack_rgba8(sg_to_unorm8(f[0]), sg_to_unorm8(f[1]), sg_to_unorm8(f[2]),
+                                    sg_to_unorm8(f[3]));
         return _mm512_set1_epi32((int)px);
     }
 #define SG_PLANE(a, adx, ady)                                                                      \
@@ -274,32 +278,34 @@ INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, __m512 dx, 
         if (bilinear) {
             __m512i x[4];
             bilinear16(&tx, s, u, m, repeat, x);
-            if (flat == SG_FLAT_WHITE) {
-                return pack_hi8(x);
-            }
+            if (flat == SG_FLAT_WHITE && !sec) return pack_hi8(x);
             for (int k = 0; k < 4; k++) tc[k] = _mm512_srli_epi32(x[k], 16);
         } else {
             __m512i texel = nearest16(&tx, s, u, m, repeat);
-            if (flat == SG_FLAT_WHITE) { /* the texel is the colour, as in the reference */
-                return texel;
-            }
+            if (flat == SG_FLAT_WHITE && !sec) return texel; /* the colour, as in the reference */
             unpack_texels(texel, tc);
         }
         for (int k = 0; k < 4; k++)
             col[k] = _mm512_mul_ps(
                 col[k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[k]), _mm512_set1_ps(1.0f / 255.0f)));
     }
+    for (int k = 0; sec && k < 3; k++)
+        col[k] = _mm512_add_ps(
+            col[k],
+            flat != SG_FLAT_NONE
+                ? _mm512_set1_ps(ext->a[e + k])
+                : _mm512_mul_ps(SG_PLANE(ext->a[e + k], ext->a_dx[e + k], ext->a_dy[e + k]), w));
 #undef SG_PLANE
     return pack_unorm8(col);
 }
 
 /* sg_shade16_at for the pixels of `mask` of the tile at (x0, y0), lane y * 4 + x. */
-INLINE __m512i sg_shade16(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
-                          const int textured, const int bilinear, const int repeat,
-                          const int flat) {
+INLINE __m512i sg_shade16(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                          int y0, uint32_t mask, const int textured, const int bilinear,
+                          const int repeat, const int flat, const int sec) {
     __m512 dx, dy;
     sg_tile_dxdy16(t, x0, y0, &dx, &dy);
-    return sg_shade16_at(c, t, dx, dy, mask, textured, bilinear, repeat, flat);
+    return sg_shade16_at(c, t, ext, dx, dy, mask, textured, bilinear, repeat, flat, sec);
 }
 
 #endif

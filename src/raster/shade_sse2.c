@@ -196,9 +196,13 @@ INLINE void store_row(uint32_t *dst, __m128i v, unsigned m) {
 }
 
 /* The body of every variant, as shade_pixels in shade.c; the constant arguments fold away. */
-INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
-                       uint32_t *dst, const int textured, const int bilinear, const int repeat,
-                       const int flat) {
+/* No secondary colour here (SG_SHADE_NO_SECONDARY): lit draws with one take the scalar code on
+ * an SSE2-only CPU. */
+INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                       int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
+                       const int repeat, const int flat, const int sec) {
+    (void)ext;
+    (void)sec;
     if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
         uint32_t px = sg_pack_rgba8(sg_to_unorm8(t->color[0]), sg_to_unorm8(t->color[1]),
                                     sg_to_unorm8(t->color[2]), sg_to_unorm8(t->color[3]));
@@ -273,12 +277,13 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
 }
 
 #define SG_SHADE_TABLE sg_shade_sse2
+#define SG_SHADE_NO_SECONDARY
 #include "raster/shade_variants.h"
 
 #else
 
-sg_shade_fn sg_shade_sse2(int variant) {
-    (void)variant;
+sg_shade_fn sg_shade_sse2(int index) {
+    (void)index;
     return NULL;
 }
 

@@ -1,40 +1,58 @@
 /* shade_variants.h - the shading variants of one instruction set, made from its row function.
  *
- * Included by shade.c, shade_sse2.c and shade_avx2.c after each defines
- *   shade_rows(ctx, tri, x0, y0, mask, dst, textured, bilinear, repeat, flat)
- * (always inlined, its last four arguments constants) and SG_SHADE_TABLE, the name of its
- * sg_shade_fn (int variant) lookup. The per-triangle `flat` is split off once per tile, so each
- * of the five pipeline variants holds three specialised loops.
+ * Included by shade.c, shade_sse2.c, shade_avx2.c and shade_avx512.c after each defines
+ *   shade_rows(ctx, tri, ext, x0, y0, mask, dst, textured, bilinear, repeat, flat, sec)
+ * (always inlined, its last five arguments constants; sec: add the secondary colour of ext) and
+ * SG_SHADE_TABLE, the name of its sg_shade_fn (int index) lookup, and SG_SHADE_NO_SECONDARY when
+ * it has no secondary variants. The per-triangle `flat` is split off once per tile, so each
+ * variant holds three specialised loops.
  */
 #ifndef SG_SHADE_TABLE
 #error "define SG_SHADE_TABLE and shade_rows before including shade_variants.h"
 #endif
 
 static inline __attribute__((always_inline)) void shade_flat(const sg_shade_ctx *c, const sg_tri *t,
-                                                             int x0, int y0, uint32_t mask,
-                                                             uint32_t *dst, const int textured,
-                                                             const int bilinear, const int repeat) {
-    if (t->flat == SG_FLAT_WHITE)
-        shade_rows(c, t, x0, y0, mask, dst, textured, bilinear, repeat, SG_FLAT_WHITE);
-    else if (t->flat == SG_FLAT_COLOR)
-        shade_rows(c, t, x0, y0, mask, dst, textured, bilinear, repeat, SG_FLAT_COLOR);
+                                                             const sg_tri_ext *ext, int x0, int y0,
+                                                             uint32_t mask, uint32_t *dst,
+                                                             const int textured, const int bilinear,
+                                                             const int repeat, const int sec) {
+    /* With a secondary colour, white is a colour like any other: the texel is not the result. */
+    if (t->flat == SG_FLAT_WHITE && !sec)
+        shade_rows(c, t, ext, x0, y0, mask, dst, textured, bilinear, repeat, SG_FLAT_WHITE, sec);
+    else if (t->flat != SG_FLAT_NONE)
+        shade_rows(c, t, ext, x0, y0, mask, dst, textured, bilinear, repeat, SG_FLAT_COLOR, sec);
     else
-        shade_rows(c, t, x0, y0, mask, dst, textured, bilinear, repeat, SG_FLAT_NONE);
+        shade_rows(c, t, ext, x0, y0, mask, dst, textured, bilinear, repeat, SG_FLAT_NONE, sec);
 }
 
-#define SG_VARIANT(tex, bil, rep)                                                                  \
-    static void shade_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,      \
-                                      uint32_t m, uint32_t *dst) {                                 \
-        shade_flat(c, t, x0, y0, m, dst, tex, bil, rep);                                           \
+#define SG_VARIANT(tex, bil, rep, sec)                                                             \
+    static void shade_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t,                 \
+                                           const sg_tri_ext *ext, int x0, int y0, uint32_t m,      \
+                                           uint32_t *dst) {                                        \
+        shade_flat(c, t, ext, x0, y0, m, dst, tex, bil, rep, sec);                                 \
     }
-SG_VARIANT(0, 0, 0) /* vertex colour */
-SG_VARIANT(1, 0, 1) /* texture, nearest, repeat */
-SG_VARIANT(1, 0, 0) /* texture, nearest, clamp */
-SG_VARIANT(1, 1, 1) /* texture, bilinear, repeat */
-SG_VARIANT(1, 1, 0) /* texture, bilinear, clamp */
+SG_VARIANT(0, 0, 0, 0) /* vertex colour */
+SG_VARIANT(1, 0, 1, 0) /* texture, nearest, repeat */
+SG_VARIANT(1, 0, 0, 0) /* texture, nearest, clamp */
+SG_VARIANT(1, 1, 1, 0) /* texture, bilinear, repeat */
+SG_VARIANT(1, 1, 0, 0) /* texture, bilinear, clamp */
+#if !defined(SG_SHADE_NO_SECONDARY)
+SG_VARIANT(0, 0, 0, 1) /* the same five, plus the secondary colour */
+SG_VARIANT(1, 0, 1, 1)
+SG_VARIANT(1, 0, 0, 1)
+SG_VARIANT(1, 1, 1, 1)
+SG_VARIANT(1, 1, 0, 1)
+#endif
 #undef SG_VARIANT
 
-sg_shade_fn SG_SHADE_TABLE(int variant) {
-    static const sg_shade_fn table[5] = {shade_000, shade_101, shade_100, shade_111, shade_110};
-    return table[variant];
+sg_shade_fn SG_SHADE_TABLE(int index) {
+#if defined(SG_SHADE_NO_SECONDARY)
+    static const sg_shade_fn table[10] = {shade_0000, shade_1010, shade_1000, shade_1110,
+                                          shade_1100};
+#else
+    static const sg_shade_fn table[10] = {shade_0000, shade_1010, shade_1000, shade_1110,
+                                          shade_1100, shade_0001, shade_1011, shade_1001,
+                                          shade_1111, shade_1101};
+#endif
+    return table[index];
 }
