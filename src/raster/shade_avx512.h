@@ -155,6 +155,25 @@ INLINE bool window_fetch(const tex16 *tx, __m512i i0, __m512i i1, __m512i j0, __
     return true;
 }
 
+/* The bound texture for the filter (bilinear: coordinates in 1/256 texel). */
+INLINE tex16 tex16_of(const sg_texview *tv, const int bilinear) {
+    const int tw = tv->width, th = tv->height;
+    const float sc = bilinear ? 256.0f : 1.0f;
+    tex16 tx;
+    tx.texels = (const int *)(const void *)tv->texels;
+    tx.width = tw;
+    tx.height = th;
+    tx.scale_x = _mm512_set1_ps(sc * (float)tw);
+    tx.scale_y = _mm512_set1_ps(sc * (float)th);
+    tx.hi_x = _mm512_set1_ps(bilinear ? 256.0f * (float)(tw + 1) : (float)(tw - 1));
+    tx.hi_y = _mm512_set1_ps(bilinear ? 256.0f * (float)(th + 1) : (float)(th - 1));
+    tx.n_x = _mm512_set1_epi32(tw);
+    tx.n_y = _mm512_set1_epi32(th);
+    tx.last_x = _mm512_set1_epi32(tw - 1);
+    tx.last_y = _mm512_set1_epi32(th - 1);
+    return tx;
+}
+
 /* bilinear8 of shade_avx2.c on a whole tile: x[k] gets channel k in bits 16 to 23 of each lane. */
 INLINE void bilinear16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const int repeat,
                        __m512i x[4]) {
@@ -258,20 +277,7 @@ INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tr
         col[k] = flat != SG_FLAT_NONE ? _mm512_set1_ps(t->color[k])
                                       : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
     if (textured) {
-        const int tw = c->tex.width, th = c->tex.height;
-        const float sc = bilinear ? 256.0f : 1.0f;
-        tex16 tx;
-        tx.texels = (const int *)(const void *)c->tex.texels;
-        tx.width = tw;
-        tx.height = th;
-        tx.scale_x = _mm512_set1_ps(sc * (float)tw);
-        tx.scale_y = _mm512_set1_ps(sc * (float)th);
-        tx.hi_x = _mm512_set1_ps(bilinear ? 256.0f * (float)(tw + 1) : (float)(tw - 1));
-        tx.hi_y = _mm512_set1_ps(bilinear ? 256.0f * (float)(th + 1) : (float)(th - 1));
-        tx.n_x = _mm512_set1_epi32(tw);
-        tx.n_y = _mm512_set1_epi32(th);
-        tx.last_x = _mm512_set1_epi32(tw - 1);
-        tx.last_y = _mm512_set1_epi32(th - 1);
+        const tex16 tx = tex16_of(&c->tex, bilinear);
         __m512 s = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
         __m512 u = _mm512_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
         __m512i tc[4];

@@ -1,7 +1,115 @@
-/* shade_phong_avx2.c - per-pixel lighting in AVX2 (see shade_phong.c). */
-#include "raster/shade.h"
+/* shade_phong_avx2.c - per-pixel lighting in AVX2 (see shade_phong.c): two rows of a tile a
+ * vector, the equation of light_simd.h, the texture helpers of shade_avx2.h; the same bytes as the
+ * scalar reference. */
+#include "raster/shade_avx2.h"
+
+#if defined(SG_SHADE_AVX2)
+
+typedef __m256 LV;
+typedef __m256 LM; /* all ones in a lane that passes */
+typedef __m256i LI;
+#define lv_set1(f)      _mm256_set1_ps(f)
+#define li_set1(i)      _mm256_set1_epi32(i)
+#define lv_add          _mm256_add_ps
+#define lv_sub          _mm256_sub_ps
+#define lv_mul          _mm256_mul_ps
+#define lv_div          _mm256_div_ps
+#define lv_sqrt         _mm256_sqrt_ps
+#define lv_floor(v)     _mm256_round_ps(v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
+#define lv_neg(v)       _mm256_xor_ps(v, _mm256_set1_ps(-0.0f))
+#define lm_gt(a, b)     _mm256_cmp_ps(a, b, _CMP_GT_OQ)
+#define lm_ge(a, b)     _mm256_cmp_ps(a, b, _CMP_GE_OQ)
+#define lm_le(a, b)     _mm256_cmp_ps(a, b, _CMP_LE_OQ)
+#define lm_and          _mm256_and_ps
+#define lv_sel(m, a, b) _mm256_blendv_ps(b, a, m)
+#define lv_bits(v)      _mm256_castps_si256(v)
+#define lv_of_bits(i)   _mm256_castsi256_ps(i)
+#define lv_of_int(i)    _mm256_cvtepi32_ps(i)
+#define li_of_float(v)  _mm256_cvttps_epi32(v)
+#define li_and          _mm256_and_si256
+#define li_or           _mm256_or_si256
+#define li_add          _mm256_add_epi32
+#define li_sub          _mm256_sub_epi32
+#define li_srl(i, n)    _mm256_srli_epi32(i, n)
+#define li_sll(i, n)    _mm256_slli_epi32(i, n)
+#include "raster/light_simd.h"
+
+INLINE void phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                       int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
+                       const int repeat, const int flat) {
+    const int ep = SG_LIT_POS - SG_TRI_ATTRS, en = SG_LIT_NRM - SG_TRI_ATTRS;
+    const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    const __m256 dx = _mm256_add_ps(_mm256_set1_ps(ox),
+                                    _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
+    tex8 tx;
+    if (textured) tx = tex8_of(&c->tex, bilinear);
+    for (int r = 0; r < 4; r += 2) {
+        unsigned m = (mask >> (4 * r)) & 255u;
+        if (!m) continue;
+        /* dy of row r in the low half, of row r + 1 in the high half */
+        const __m256 dy =
+            _mm256_set_m128(_mm_set1_ps(oy + (float)(r + 1)), _mm_set1_ps(oy + (float)r));
+#define SG_PLANE(a, adx, ady)                                                                      \
+    _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(a), _mm256_mul_ps(_mm256_set1_ps(adx), dx)),        \
+                  _mm256_mul_ps(_mm256_set1_ps(ady), dy))
+        const __m256 w = _mm256_div_ps(_mm256_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy));
+        __m256 base[4], P[3], n[3], prim[4], sec[3];
+        for (int k = 0; k < 4; k++)
+            base[k] = flat ? _mm256_set1_ps(t->color[k])
+                           : _mm256_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
+        for (int k = 0; k < 3; k++) {
+            P[k] = _mm256_mul_ps(SG_PLANE(ext->a[ep + k], ext->a_dx[ep + k], ext->a_dy[ep + k]), w);
+            n[k] = _mm256_mul_ps(SG_PLANE(ext->a[en + k], ext->a_dx[en + k], ext->a_dy[en + k]), w);
+        }
+        lv_light_eval(&c->lights, P, n, base, prim, sec);
+        if (textured) {
+            __m256 s = _mm256_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
+            __m256 u = _mm256_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
+            __m256i tc[4];
+            if (bilinear) {
+                __m256i x[4];
+                bilinear8(&tx, s, u, repeat, x);
+                for (int k = 0; k < 4; k++) tc[k] = _mm256_srli_epi32(x[k], 16);
+            } else {
+                unpack_texels(nearest8(&tx, s, u, repeat), tc);
+            }
+            for (int k = 0; k < 4; k++)
+                prim[k] = _mm256_mul_ps(prim[k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[k]),
+                                                               _mm256_set1_ps(1.0f / 255.0f)));
+        }
+#undef SG_PLANE
+        for (int k = 0; k < 3; k++) prim[k] = _mm256_add_ps(prim[k], sec[k]);
+        store_rows(dst + 4 * r, pack_unorm8(prim), m);
+    }
+}
+
+#define SG_PHONG_VARIANT(tex, bil, rep)                                                            \
+    static void phong_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t,                      \
+                                      const sg_tri_ext *ext, int x0, int y0, uint32_t m,           \
+                                      uint32_t *dst) {                                             \
+        if (t->flat != SG_FLAT_NONE)                                                               \
+            phong_rows(c, t, ext, x0, y0, m, dst, tex, bil, rep, 1);                               \
+        else                                                                                       \
+            phong_rows(c, t, ext, x0, y0, m, dst, tex, bil, rep, 0);                               \
+    }
+SG_PHONG_VARIANT(0, 0, 0)
+SG_PHONG_VARIANT(1, 0, 1)
+SG_PHONG_VARIANT(1, 0, 0)
+SG_PHONG_VARIANT(1, 1, 1)
+SG_PHONG_VARIANT(1, 1, 0)
+#undef SG_PHONG_VARIANT
+
+sg_shade_fn sg_shade_phong_avx2(int variant) {
+    static const sg_shade_fn table[SG_SHADE_VARIANTS] = {phong_000, phong_101, phong_100, phong_111,
+                                                         phong_110};
+    return table[variant];
+}
+
+#else
 
 sg_shade_fn sg_shade_phong_avx2(int variant) {
     (void)variant;
     return NULL;
 }
+
+#endif

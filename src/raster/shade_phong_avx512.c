@@ -1,7 +1,106 @@
-/* shade_phong_avx512.c - per-pixel lighting in AVX-512 (see shade_phong.c). */
-#include "raster/shade.h"
+/* shade_phong_avx512.c - per-pixel lighting in AVX-512 (see shade_phong.c): a whole tile a
+ * vector, the equation of light_simd.h, the texture helpers of shade_avx512.h; the same bytes as
+ * the scalar reference. */
+#include "raster/shade_avx512.h"
+
+#if defined(SG_SHADE_AVX512)
+
+typedef __m512 LV;
+typedef __mmask16 LM;
+typedef __m512i LI;
+#define lv_set1(f)      _mm512_set1_ps(f)
+#define li_set1(i)      _mm512_set1_epi32(i)
+#define lv_add          _mm512_add_ps
+#define lv_sub          _mm512_sub_ps
+#define lv_mul          _mm512_mul_ps
+#define lv_div          _mm512_div_ps
+#define lv_sqrt         _mm512_sqrt_ps
+#define lv_floor(v)     _mm512_roundscale_ps(v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
+#define lv_neg(v)       _mm512_xor_ps(v, _mm512_set1_ps(-0.0f))
+#define lm_gt(a, b)     _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
+#define lm_ge(a, b)     _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ)
+#define lm_le(a, b)     _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
+#define lm_and(a, b)    ((__mmask16)((a) & (b)))
+#define lv_sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
+#define lv_bits(v)      _mm512_castps_si512(v)
+#define lv_of_bits(i)   _mm512_castsi512_ps(i)
+#define lv_of_int(i)    _mm512_cvtepi32_ps(i)
+#define li_of_float(v)  _mm512_cvttps_epi32(v)
+#define li_and          _mm512_and_si512
+#define li_or           _mm512_or_si512
+#define li_add          _mm512_add_epi32
+#define li_sub          _mm512_sub_epi32
+#define li_srl(i, n)    _mm512_srli_epi32(i, n)
+#define li_sll(i, n)    _mm512_slli_epi32(i, n)
+#include "raster/light_simd.h"
+
+INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                       int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
+                       const int repeat, const int flat) {
+    const int ep = SG_LIT_POS - SG_TRI_ATTRS, en = SG_LIT_NRM - SG_TRI_ATTRS;
+    __m512 dx, dy;
+    sg_tile_dxdy16(t, x0, y0, &dx, &dy);
+#define SG_PLANE(a, adx, ady)                                                                      \
+    _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(a), _mm512_mul_ps(_mm512_set1_ps(adx), dx)),        \
+                  _mm512_mul_ps(_mm512_set1_ps(ady), dy))
+    const __m512 w = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy));
+    __m512 base[4], P[3], n[3], prim[4], sec[3];
+    for (int k = 0; k < 4; k++)
+        base[k] = flat ? _mm512_set1_ps(t->color[k])
+                       : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
+    for (int k = 0; k < 3; k++) {
+        P[k] = _mm512_mul_ps(SG_PLANE(ext->a[ep + k], ext->a_dx[ep + k], ext->a_dy[ep + k]), w);
+        n[k] = _mm512_mul_ps(SG_PLANE(ext->a[en + k], ext->a_dx[en + k], ext->a_dy[en + k]), w);
+    }
+    lv_light_eval(&c->lights, P, n, base, prim, sec);
+    if (textured) {
+        const tex16 tx = tex16_of(&c->tex, bilinear);
+        __m512 s = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
+        __m512 u = _mm512_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
+        __m512i tc[4];
+        if (bilinear) {
+            __m512i x[4];
+            bilinear16(&tx, s, u, (__mmask16)mask, repeat, x);
+            for (int k = 0; k < 4; k++) tc[k] = _mm512_srli_epi32(x[k], 16);
+        } else {
+            unpack_texels(nearest16(&tx, s, u, (__mmask16)mask, repeat), tc);
+        }
+        for (int k = 0; k < 4; k++)
+            prim[k] = _mm512_mul_ps(
+                prim[k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[k]), _mm512_set1_ps(1.0f / 255.0f)));
+    }
+#undef SG_PLANE
+    for (int k = 0; k < 3; k++) prim[k] = _mm512_add_ps(prim[k], sec[k]);
+    _mm512_mask_storeu_epi32(dst, (__mmask16)mask, pack_unorm8(prim));
+}
+
+#define SG_PHONG_VARIANT(tex, bil, rep)                                                            \
+    static void phong_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t,                      \
+                                      const sg_tri_ext *ext, int x0, int y0, uint32_t m,           \
+                                      uint32_t *dst) {                                             \
+        if (t->flat != SG_FLAT_NONE)                                                               \
+            phong_tile(c, t, ext, x0, y0, m, dst, tex, bil, rep, 1);                               \
+        else                                                                                       \
+            phong_tile(c, t, ext, x0, y0, m, dst, tex, bil, rep, 0);                               \
+    }
+SG_PHONG_VARIANT(0, 0, 0)
+SG_PHONG_VARIANT(1, 0, 1)
+SG_PHONG_VARIANT(1, 0, 0)
+SG_PHONG_VARIANT(1, 1, 1)
+SG_PHONG_VARIANT(1, 1, 0)
+#undef SG_PHONG_VARIANT
+
+sg_shade_fn sg_shade_phong_avx512(int variant) {
+    static const sg_shade_fn table[SG_SHADE_VARIANTS] = {phong_000, phong_101, phong_100, phong_111,
+                                                         phong_110};
+    return table[variant];
+}
+
+#else
 
 sg_shade_fn sg_shade_phong_avx512(int variant) {
     (void)variant;
     return NULL;
 }
+
+#endif

@@ -1,0 +1,126 @@
+/* light_simd.h - the lighting equation of light.h on vectors of pixels, written once for every
+ * instruction set: a file compiled for one set defines the vector operations below, then includes
+ * this header. Every lane computes the IEEE operations of sg_light_eval (and of sg_normalize3,
+ * sg_log2_pos, sg_exp2_neg, sg_pow_unit) in their order; where the scalar code branches per point,
+ * the vector code computes both sides and selects, which changes no lane's bits.
+ *
+ * The including file defines:
+ *   LV, LM, LI              float vector, lane mask, int32 vector
+ *   lv_set1(f), li_set1(i)
+ *   lv_add, lv_sub, lv_mul, lv_div, lv_sqrt, lv_floor (toward -inf), lv_neg (sign flipped)
+ *   lm_gt, lm_ge, lm_le (ordered: false for NaN), lm_and
+ *   lv_sel(m, a, b)         a where m, b elsewhere
+ *   lv_bits(v), lv_of_bits(i), lv_of_int(i) (convert), li_of_float(v) (truncate)
+ *   li_and, li_or, li_add, li_sub, li_srl(i, n), li_sll(i, n)
+ */
+#ifndef SG_LIGHT_SIMD_H
+#define SG_LIGHT_SIMD_H
+
+#include "pipeline/light.h"
+
+#define LS_INLINE static inline __attribute__((always_inline))
+
+LS_INLINE LV lv_dot3(const LV a[3], const LV b[3]) {
+    return lv_add(lv_add(lv_mul(a[0], b[0]), lv_mul(a[1], b[1])), lv_mul(a[2], b[2]));
+}
+
+/* sg_normalize3 */
+LS_INLINE void lv_normalize3(const LV v[3], LV out[3]) {
+    LV len2 = lv_dot3(v, v);
+    LM ok = lm_and(lm_gt(len2, lv_set1(0.0f)), lm_le(len2, lv_set1(FLT_MAX)));
+    LV inv = lv_sel(ok, lv_div(lv_set1(1.0f), lv_sqrt(len2)), lv_set1(0.0f));
+    for (int k = 0; k < 3; k++) out[k] = lv_mul(v[k], inv);
+}
+
+/* sg_log2_pos, for the lanes where x is a normal positive float. */
+LS_INLINE LV lv_log2_pos(LV x) {
+    LI bits = lv_bits(x);
+    LI e = li_sub(li_and(li_srl(bits, 23), li_set1(255)), li_set1(127));
+    LV m = lv_of_bits(li_or(li_and(bits, li_set1(0x007fffff)), li_set1(0x3f800000)));
+    LM big = lm_gt(m, lv_set1(1.41421356f));
+    m = lv_sel(big, lv_mul(m, lv_set1(0.5f)), m);
+    e = lv_bits(lv_sel(big, lv_of_bits(li_add(e, li_set1(1))), lv_of_bits(e)));
+    LV t = lv_div(lv_sub(m, lv_set1(1.0f)), lv_add(m, lv_set1(1.0f))), t2 = lv_mul(t, t);
+    LV p = lv_set1(1.0f / 11.0f);
+    p = lv_add(lv_mul(p, t2), lv_set1(1.0f / 9.0f));
+    p = lv_add(lv_mul(p, t2), lv_set1(1.0f / 7.0f));
+    p = lv_add(lv_mul(p, t2), lv_set1(1.0f / 5.0f));
+    p = lv_add(lv_mul(p, t2), lv_set1(1.0f / 3.0f));
+    p = lv_add(lv_mul(p, t2), lv_set1(1.0f));
+    return lv_add(lv_of_int(e), lv_mul(lv_mul(p, t), lv_set1(2.88539008f)));
+}
+
+/* sg_exp2_neg */
+LS_INLINE LV lv_exp2_neg(LV z) {
+    LM ok = lm_ge(z, lv_set1(-126.0f));
+    LV n = lv_floor(lv_add(z, lv_set1(0.5f)));
+    LV x = lv_mul(lv_sub(z, n), lv_set1(0.693147181f));
+    LV p = lv_set1(1.0f / 5040.0f);
+    p = lv_add(lv_mul(p, x), lv_set1(1.0f / 720.0f));
+    p = lv_add(lv_mul(p, x), lv_set1(1.0f / 120.0f));
+    p = lv_add(lv_mul(p, x), lv_set1(1.0f / 24.0f));
+    p = lv_add(lv_mul(p, x), lv_set1(1.0f / 6.0f));
+    p = lv_add(lv_mul(p, x), lv_set1(0.5f));
+    p = lv_add(lv_mul(p, x), lv_set1(1.0f));
+    p = lv_add(lv_mul(p, x), lv_set1(1.0f));
+    LV scale = lv_of_bits(li_sll(li_add(li_of_float(n), li_set1(127)), 23));
+    return lv_sel(ok, lv_mul(p, scale), lv_set1(0.0f));
+}
+
+/* sg_pow_unit */
+LS_INLINE LV lv_pow_unit(LV x, float s) {
+    if (s == 0.0f) return lv_set1(1.0f);
+    LM ok = lm_ge(x, lv_set1(FLT_MIN));
+    return lv_sel(ok, lv_exp2_neg(lv_mul(lv_set1(s), lv_log2_pos(x))), lv_set1(0.0f));
+}
+
+/* sg_light_eval */
+LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], const LV base[4],
+                             LV prim[4], LV sec[3]) {
+    LV N[3], V[3], mp[3] = {lv_neg(P[0]), lv_neg(P[1]), lv_neg(P[2])};
+    lv_normalize3(n, N);
+    lv_normalize3(mp, V);
+    const LV zero = lv_set1(0.0f);
+    LV diff[3] = {zero, zero, zero}, spec[3] = {zero, zero, zero};
+    for (int i = 0; i < ls->count; i++) {
+        LV L[3], att = lv_set1(1.0f);
+        const float *c = ls->light[i].color;
+        if (ls->light[i].point) {
+            const float *lp = ls->light[i].v, *k = ls->light[i].att;
+            LV v[3] = {lv_sub(lv_set1(lp[0]), P[0]), lv_sub(lv_set1(lp[1]), P[1]),
+                       lv_sub(lv_set1(lp[2]), P[2])};
+            LV d2 = lv_dot3(v, v), d = lv_sqrt(d2);
+            LM ok = lm_and(lm_gt(d, zero), lm_le(d, lv_set1(FLT_MAX)));
+            LV inv = lv_sel(ok, lv_div(lv_set1(1.0f), d), zero);
+            for (int j = 0; j < 3; j++) L[j] = lv_mul(v[j], inv);
+            LV den = lv_add(lv_add(lv_set1(k[0]), lv_mul(lv_set1(k[1]), d)),
+                            lv_mul(lv_set1(k[2]), d2));
+            den = lv_sel(lm_gt(den, lv_set1(FLT_MIN)), den, lv_set1(FLT_MIN));
+            att = lv_div(lv_set1(1.0f), den);
+        } else {
+            for (int j = 0; j < 3; j++) L[j] = lv_set1(ls->light[i].v[j]);
+        }
+        LV ndotl = lv_dot3(N, L);
+        LM lit = lm_gt(ndotl, zero);
+        LV f = lv_mul(att, ndotl);
+        for (int j = 0; j < 3; j++)
+            diff[j] = lv_sel(lit, lv_add(diff[j], lv_mul(f, lv_set1(c[j]))), diff[j]);
+        if (ls->has_specular) {
+            LV h[3] = {lv_add(L[0], V[0]), lv_add(L[1], V[1]), lv_add(L[2], V[2])}, H[3];
+            lv_normalize3(h, H);
+            LV ndoth = lv_dot3(N, H);
+            LV g = lv_mul(att, lv_pow_unit(lv_sel(lm_gt(ndoth, zero), ndoth, zero), ls->shininess));
+            for (int j = 0; j < 3; j++)
+                spec[j] = lv_sel(lit, lv_add(spec[j], lv_mul(g, lv_set1(c[j]))), spec[j]);
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        LV v = lv_add(lv_mul(base[k], lv_set1(ls->ambient[k])), lv_mul(base[k], diff[k]));
+        prim[k] = lv_sel(lm_gt(v, zero), lv_sel(lm_gt(lv_set1(1.0f), v), v, lv_set1(1.0f)), zero);
+        sec[k] = lv_mul(spec[k], lv_set1(ls->specular[k]));
+    }
+    prim[3] = base[3];
+}
+
+#undef LS_INLINE
+#endif

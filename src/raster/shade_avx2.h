@@ -1,0 +1,218 @@
+/* shade_avx2.h - the AVX2 shading helpers (internal to the raster; included only by files
+ * compiled with -mavx2, no FMA): texel fetches with gathers, bilinear filtering in exact integer
+ * arithmetic on 16-bit lanes, and float colours to RGBA8, eight pixels a vector (two rows of a
+ * tile). shade_avx2.c makes the shading table of them, shade_phong_avx2.c the per-pixel lighting.
+ * Each computes the scalar reference's operations (shade.c, sample.h) in the same order.
+ */
+#ifndef SG_SHADE_AVX2_H
+#define SG_SHADE_AVX2_H
+
+#include <float.h>
+
+#include "raster/shade.h"
+
+/* FLT_EVAL_METHOD 0: the scalar code rounds each operation to float, as AVX does. */
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__AVX2__) && FLT_EVAL_METHOD == 0
+#define SG_SHADE_AVX2 1
+
+#include <immintrin.h>
+
+#include "raster/framebuffer.h"
+
+/* Texel rows and row * width are computed in 16-bit lanes (pmaddwd). */
+_Static_assert(SG_MAX_IMAGE_SIZE < 32768, "texture sides must fit signed 16 bits");
+
+#define INLINE static inline __attribute__((always_inline))
+
+/* The bound texture, broadcast; "scale" is the size the texcoord functions multiply by (n, or
+ * 256 n when bilinear) and "hi" the clamp's upper limit (n - 1 texels, or 256 (n + 1)). */
+typedef struct tex8 {
+    const int *texels;
+    __m256 scale_x, scale_y, hi_x, hi_y;
+    __m256i n_x, n_y, last_x, last_y; /* n and n - 1 */
+} tex8;
+
+/* sg_texcoord_repeat: vroundps is floorf exactly (NaN and infinities included), and max turns the
+ * NaN that NaN and infinite s give into 0, as the reference's x >= 0 test does. */
+INLINE __m256 coord_repeat(__m256 s, __m256 scale) {
+    __m256 x = _mm256_mul_ps(_mm256_sub_ps(s, _mm256_floor_ps(s)), scale);
+    return _mm256_max_ps(x, _mm256_setzero_ps());
+}
+
+/* Column (or row) of sg_sample_nearest. Repeat: x is in [0, n], so truncation is floor and only n
+ * wraps. Clamp: flooring then clamping to [0, n - 1] is clamping then truncating, and the clamp to
+ * [-1, 2] before the scaling changes nothing after it; max turns NaN into 0 as the reference does
+ * (NaN -> -1 -> -n -> 0). */
+INLINE __m256i nearest_index(__m256 s, __m256 scale, __m256 hi, __m256i n, __m256i last,
+                             const int repeat) {
+    if (repeat) {
+        __m256i i = _mm256_cvttps_epi32(coord_repeat(s, scale));
+        return _mm256_sub_epi32(i, _mm256_and_si256(_mm256_cmpgt_epi32(i, last), n));
+    }
+    __m256 x = _mm256_max_ps(_mm256_mul_ps(s, scale), _mm256_setzero_ps());
+    return _mm256_cvttps_epi32(_mm256_min_ps(x, hi));
+}
+
+/* The split of sg_sample_bilinear: g = floor(x) - 128, whose low byte is the 8-bit fraction and
+ * g >> 8 the column (or row) i0, the reference's split without its +512. Clamp: the reference
+ * clamps s to [-1, 2] and then x to [-256, 256 (n + 1)], which is x = s * 256 n clamped to the
+ * latter alone (NaN -> -256 with max). */
+INLINE __m256i bilinear_split(__m256 s, __m256 scale, __m256 hi, const int repeat) {
+    __m256i fl;
+    if (repeat) {
+        fl = _mm256_cvttps_epi32(coord_repeat(s, scale)); /* x >= 0: truncation is floor */
+    } else {
+        __m256 x = _mm256_max_ps(_mm256_mul_ps(s, scale), _mm256_set1_ps(-256.0f));
+        /* Truncation, not floor: where they differ (x < 0) i0 and i1 both clamp to 0, and the
+         * fraction then only weighs a texel against itself. */
+        fl = _mm256_cvttps_epi32(_mm256_min_ps(x, hi));
+    }
+    return _mm256_sub_epi32(fl, _mm256_set1_epi32(128));
+}
+
+/* i0 and i1 = i0 + 1 of a split, wrapped. Repeat: x >= 0, so i0 is in [-1, n - 1] and i1 in
+ * [0, n]; an unsigned min with i0 + n (i1 - n) wraps -1 (n) and keeps the rest. */
+INLINE void bilinear_wrap(__m256i g, __m256i n, __m256i last, const int repeat, __m256i *i0,
+                          __m256i *i1) {
+    __m256i a = _mm256_srai_epi32(g, 8), b = _mm256_add_epi32(a, _mm256_set1_epi32(1));
+    if (repeat) {
+        *i0 = _mm256_min_epu32(a, _mm256_add_epi32(a, n));
+        *i1 = _mm256_min_epu32(b, _mm256_sub_epi32(b, n));
+    } else {
+        *i0 = _mm256_min_epi32(_mm256_max_epi32(a, _mm256_setzero_si256()), last);
+        *i1 = _mm256_min_epi32(_mm256_max_epi32(b, _mm256_setzero_si256()), last);
+    }
+}
+
+/* The fraction of a split (the low byte of g) in both 16-bit halves of its lane. */
+INLINE __m256i frac2(__m256i g) {
+    const __m256i dup = _mm256_setr_epi8(0, -1, 0, -1, 4, -1, 4, -1, 8, -1, 8, -1, 12, -1, 12, -1,
+                                         0, -1, 0, -1, 4, -1, 4, -1, 8, -1, 8, -1, 12, -1, 12, -1);
+    return _mm256_shuffle_epi8(g, dup);
+}
+
+/* Index of the first texel of row j counted from the bottom (sg_texel_at): (n_y - 1 - j) * width
+ * with one pmaddwd (faster than pmulld), both factors being below 2^15 in the low half of a lane.
+ */
+INLINE __m256i row_start(__m256i j, const tex8 *tx) {
+    return _mm256_madd_epi16(_mm256_sub_epi32(tx->last_y, j), tx->n_x);
+}
+
+/* Every lane's index is inside the texture, whatever its coordinates, so lanes outside the mask
+ * need not be masked off. */
+INLINE __m256i fetch8(const tex8 *tx, __m256i idx) {
+    return _mm256_i32gather_epi32(tx->texels, idx, 4);
+}
+
+INLINE __m256i nearest8(const tex8 *tx, __m256 s, __m256 u, const int repeat) {
+    __m256i i = nearest_index(s, tx->scale_x, tx->hi_x, tx->n_x, tx->last_x, repeat);
+    __m256i j = nearest_index(u, tx->scale_y, tx->hi_y, tx->n_y, tx->last_y, repeat);
+    return fetch8(tx, _mm256_add_epi32(row_start(j, tx), i));
+}
+
+/* sg_sample_bilinear of eight pixels, planar: x[k] gets channel k of the eight pixels in bits 16
+ * to 23 of each lane, zeros above. Channels r, b and g, a are blended as pairs of 16-bit lanes. The
+ * vertical blends t0 (256 - fy) + t1 fy are at most 255 * 256, exact in unsigned 16 bits; biased
+ * by -32768 (the xor) they are signed, and the blends of columns i0 and i1 of a channel, put side
+ * by side in a 32-bit lane, go through pmaddwd with (256 - fx, fx), whose sum brings the bias back
+ * as 32768 * 256. That is the reference's four-weight sum exactly, plus 32768: its >> 16 is the
+ * reference's result. No shuffles: all lanes stay in place. */
+INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m256i x[4]) {
+    __m256i i0, i1, j0, j1;
+    __m256i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
+    __m256i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
+    bilinear_wrap(gx, tx->n_x, tx->last_x, repeat, &i0, &i1);
+    bilinear_wrap(gy, tx->n_y, tx->last_y, repeat, &j0, &j1);
+    __m256i r0 = row_start(j0, tx), r1 = row_start(j1, tx);
+    __m256i t00 = fetch8(tx, _mm256_add_epi32(r0, i0));
+    __m256i t10 = fetch8(tx, _mm256_add_epi32(r0, i1));
+    __m256i t01 = fetch8(tx, _mm256_add_epi32(r1, i0));
+    __m256i t11 = fetch8(tx, _mm256_add_epi32(r1, i1));
+    const __m256i lo8 = _mm256_set1_epi32(0x00ff00ff);
+    const __m256i bias = _mm256_set1_epi32((int)0x80008000u);
+    const __m256i w256 = _mm256_set1_epi16(256);
+    const __m256i round = _mm256_set1_epi32(128 * 65536 + 32768);
+    __m256i fy2 = frac2(gy), fx2 = frac2(gx);
+    __m256i gy2 = _mm256_sub_epi16(w256, fy2);
+    __m256i wx = _mm256_blend_epi16(_mm256_sub_epi16(w256, fx2), fx2, 0xaa); /* 256 - fx, fx */
+#define SG_VBLEND(a, b)                                                                            \
+    _mm256_xor_si256(_mm256_add_epi16(_mm256_mullo_epi16(a, gy2), _mm256_mullo_epi16(b, fy2)), bias)
+    __m256i rb0 = SG_VBLEND(_mm256_and_si256(t00, lo8), _mm256_and_si256(t01, lo8));
+    __m256i rb1 = SG_VBLEND(_mm256_and_si256(t10, lo8), _mm256_and_si256(t11, lo8));
+    __m256i ga0 = SG_VBLEND(_mm256_srli_epi16(t00, 8), _mm256_srli_epi16(t01, 8));
+    __m256i ga1 = SG_VBLEND(_mm256_srli_epi16(t10, 8), _mm256_srli_epi16(t11, 8));
+#undef SG_VBLEND
+#define SG_HBLEND(v) _mm256_add_epi32(_mm256_madd_epi16(v, wx), round)
+    x[0] = SG_HBLEND(_mm256_blend_epi16(rb0, _mm256_slli_epi32(rb1, 16), 0xaa));
+    x[1] = SG_HBLEND(_mm256_blend_epi16(ga0, _mm256_slli_epi32(ga1, 16), 0xaa));
+    x[2] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(rb0, 16), rb1, 0xaa));
+    x[3] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(ga0, 16), ga1, 0xaa));
+#undef SG_HBLEND
+}
+
+/* Four channels in bits 16 to 23 of their lanes, zeros above, to RGBA8 (sg_pack_rgba8). */
+INLINE __m256i pack_hi8(const __m256i x[4]) {
+    __m256i rb = _mm256_blend_epi16(_mm256_srli_epi32(x[0], 16), x[2], 0xaa);
+    __m256i ga = _mm256_blend_epi16(_mm256_srli_epi32(x[1], 16), x[3], 0xaa);
+    return _mm256_or_si256(rb, _mm256_slli_epi32(ga, 8));
+}
+
+/* Eight RGBA8 texels to planar channels. */
+INLINE void unpack_texels(__m256i t, __m256i c[4]) {
+    const __m256i lo8 = _mm256_set1_epi32(255);
+    c[0] = _mm256_and_si256(t, lo8);
+    c[1] = _mm256_and_si256(_mm256_srli_epi32(t, 8), lo8);
+    c[2] = _mm256_and_si256(_mm256_srli_epi32(t, 16), lo8);
+    c[3] = _mm256_srli_epi32(t, 24);
+}
+
+/* sg_to_unorm8 of each lane but its clamp to [0, 255], left to pack_unorm8: min puts v above 1 at
+ * 1 and keeps NaN, whose conversion gives INT_MIN, as v far below 0 does; every v <= 0 gives a
+ * value <= 0 (-0 and tiny v: 0), every other v its unorm8. */
+INLINE __m256i unorm8(__m256 v) {
+    v = _mm256_min_ps(_mm256_set1_ps(1.0f), v); /* the second operand, v, when it is NaN */
+    return _mm256_cvttps_epi32(
+        _mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(255.0f)), _mm256_set1_ps(0.5f)));
+}
+
+/* Planar float colours to RGBA8 (sg_to_unorm8, sg_pack_rgba8): the saturating packs clamp to
+ * [0, 255], then a byte shuffle turns the 4x4 blocks of channel bytes of each 128-bit half into
+ * pixels. */
+INLINE __m256i pack_unorm8(const __m256 col[4]) {
+    __m256i p01 = _mm256_packs_epi32(unorm8(col[0]), unorm8(col[1]));
+    __m256i p23 = _mm256_packs_epi32(unorm8(col[2]), unorm8(col[3]));
+    const __m256i tr = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4,
+                                        8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+    return _mm256_shuffle_epi8(_mm256_packus_epi16(p01, p23), tr);
+}
+
+/* The bound texture for the filter (bilinear: coordinates in 1/256 texel). */
+INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
+    const int w = tv->width, h = tv->height;
+    const float sc = bilinear ? 256.0f : 1.0f;
+    tex8 tx;
+    tx.texels = (const int *)(const void *)tv->texels;
+    tx.scale_x = _mm256_set1_ps(sc * (float)w);
+    tx.scale_y = _mm256_set1_ps(sc * (float)h);
+    tx.hi_x = _mm256_set1_ps(bilinear ? 256.0f * (float)(w + 1) : (float)(w - 1));
+    tx.hi_y = _mm256_set1_ps(bilinear ? 256.0f * (float)(h + 1) : (float)(h - 1));
+    tx.n_x = _mm256_set1_epi32(w);
+    tx.n_y = _mm256_set1_epi32(h);
+    tx.last_x = _mm256_set1_epi32(w - 1);
+    tx.last_y = _mm256_set1_epi32(h - 1);
+    return tx;
+}
+
+/* Writes the lanes of `m` (8 bits) of two rows; other pixels are not touched. */
+INLINE void store_rows(uint32_t *dst, __m256i v, unsigned m) {
+    if (m == 255) {
+        _mm256_storeu_si256((__m256i *)(void *)dst, v);
+        return;
+    }
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    __m256i sel = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)m), bits), bits);
+    _mm256_maskstore_epi32((int *)(void *)dst, sel, v);
+}
+
+#endif
+#endif
