@@ -1167,9 +1167,19 @@ typedef struct draw {
     bool blend; /* "blend": "alpha" */
     bool sort;  /* "sort": "back_to_front" */
     bool has_color;
-    double color[4]; /* "color", when has_color */
+    double color[4];      /* "color", when has_color */
+    const char *lighting; /* NULL: none */
+    double specular[3], shininess;
     mat4 world_view, proj;
 } draw;
+
+/* A light in world space; written to the scene file in view space. */
+typedef struct light {
+    bool point;
+    vec3 v; /* direction the light travels, or position */
+    vec3 color;
+    double att[3];
+} light;
 
 enum { MAX_DRAWS = 48 };
 
@@ -1178,6 +1188,11 @@ typedef struct scene {
     const double *clear; /* NULL: the file's default */
     draw draws[MAX_DRAWS];
     int count;
+    /* Lighting: ambient, and lights in world space seen through `view` (light_count > 0). */
+    vec3 ambient;
+    light lights[8];
+    int light_count;
+    mat4 view;
 } scene;
 
 static draw *scene_add(scene *s) {
@@ -1210,6 +1225,29 @@ static void write_scene(FILE *f, const scene *s, bool last) {
             fprintf(f, "%s%s", i ? ", " : "", fmt_num(a, sizeof a, s->clear[i], 4));
         fprintf(f, "],\n");
     }
+    if (s->light_count) {
+        char b[32], c[32];
+        fprintf(f, "      \"ambient\": [%s, %s, %s],\n      \"lights\": [\n",
+                fmt_num(a, sizeof a, s->ambient.x, 4), fmt_num(b, sizeof b, s->ambient.y, 4),
+                fmt_num(c, sizeof c, s->ambient.z, 4));
+        for (int i = 0; i < s->light_count; i++) {
+            const light *l = &s->lights[i];
+            /* World to view: positions by the whole matrix, directions by its 3 x 3. */
+            vec3 v = l->point ? mat_apply(s->view, l->v)
+                              : v3_sub(mat_apply(s->view, l->v), mat_apply(s->view, v3(0, 0, 0)));
+            fprintf(f, "        {\"type\": \"%s\", \"%s\": [%s, %s, %s], \"color\": [",
+                    l->point ? "point" : "directional", l->point ? "position" : "direction",
+                    fmt_num(a, sizeof a, v.x, 4), fmt_num(b, sizeof b, v.y, 4),
+                    fmt_num(c, sizeof c, v.z, 4));
+            fprintf(f, "%s, %s, %s]", fmt_num(a, sizeof a, l->color.x, 4),
+                    fmt_num(b, sizeof b, l->color.y, 4), fmt_num(c, sizeof c, l->color.z, 4));
+            if (l->point)
+                fprintf(f, ", \"attenuation\": [%s, %s, %s]", fmt_num(a, sizeof a, l->att[0], 4),
+                        fmt_num(b, sizeof b, l->att[1], 4), fmt_num(c, sizeof c, l->att[2], 4));
+            fprintf(f, "}%s\n", i + 1 < s->light_count ? "," : "");
+        }
+        fprintf(f, "      ],\n");
+    }
     fprintf(f, "      \"draws\": [\n");
     for (int i = 0; i < s->count; i++) {
         const draw *d = &s->draws[i];
@@ -1239,6 +1277,17 @@ static void write_scene(FILE *f, const scene *s, bool last) {
         if (d->no_depth_write) fprintf(f, "          \"depth_write\": false,\n");
         if (d->blend) fprintf(f, "          \"blend\": \"alpha\",\n");
         if (d->sort) fprintf(f, "          \"sort\": \"back_to_front\",\n");
+        if (d->lighting) {
+            char b[32], c[32], e[32];
+            fprintf(f, "          \"lighting\": \"%s\"", d->lighting);
+            if (d->specular[0] || d->specular[1] || d->specular[2])
+                fprintf(f, ", \"specular\": [%s, %s, %s], \"shininess\": %s",
+                        fmt_num(a, sizeof a, d->specular[0], 4),
+                        fmt_num(b, sizeof b, d->specular[1], 4),
+                        fmt_num(c, sizeof c, d->specular[2], 4),
+                        fmt_num(e, sizeof e, d->shininess, 2));
+            fprintf(f, ",\n");
+        }
         if (d->has_color) {
             fprintf(f, "          \"color\": [");
             for (int k = 0; k < 4; k++)
@@ -1572,6 +1621,126 @@ static void scene_alpha_stack(scene *s) {
 }
 
 /* ---------------------------------------------------------------------------------------------
+ * Lighting scenes (lighting.json). Lights are placed in world space and written in view space.
+ */
+
+static light dir_light(vec3 travel, vec3 color) {
+    light l = {false, travel, color, {1, 0, 0}};
+    return l;
+}
+
+static light point_light(vec3 at, vec3 color, double c, double lin, double q) {
+    light l = {true, at, color, {c, lin, q}};
+    return l;
+}
+
+static void set_lit(draw *d, const char *mode, double spec, double shininess) {
+    d->lighting = mode;
+    d->specular[0] = d->specular[1] = d->specular[2] = spec;
+    d->shininess = shininess;
+}
+
+/* A teapot resting on the ground at (x, z), turned by yaw; returns its draw. */
+static draw *teapot_at(scene *s, mat4 proj, const mesh *teapot, double x, double z, double yaw,
+                       double scale) {
+    mat4 pose = model(v3(0, 0, 0), yaw, 0, 0, scale);
+    draw *d = scene_add(s);
+    d->mesh = A_TEAPOT;
+    d->proj = proj;
+    d->world_view = mat_mul(s->view, mat_mul(mat_translate(x, -mesh_min_y(teapot, pose), z), pose));
+    return d;
+}
+
+/* The three modes side by side, flat, Gouraud and Phong, under a directional key light and a
+ * warm point light, with a white specular highlight. */
+static void scene_lit_modes(scene *s, mat4 proj, const mesh *teapot) {
+    static const char *const modes[3] = {"flat", "gouraud", "phong"};
+    s->name = "lit_modes";
+    s->view = mat_look_at(v3(0, 2.6, 5.2), v3(0, 0.45, 0), v3(0, 1, 0));
+    s->ambient = v3(0.12, 0.12, 0.14);
+    s->lights[s->light_count++] = dir_light(v3(-0.5, -0.8, -0.6), v3(0.75, 0.75, 0.72));
+    s->lights[s->light_count++] = point_light(v3(1.5, 2.0, 2.0), v3(0.6, 0.45, 0.3), 1, 0, 0.05);
+    draw *d = add_floor(s, proj, s->view, A_CHECKER, 4);
+    set_lit(d, "phong", 0, 0);
+    for (int i = 0; i < 3; i++) {
+        d = teapot_at(s, proj, teapot, -1.55 + 1.55 * i, 0, -30, 0.62);
+        set_color(d, 0.85, 0.4, 0.25, 1);
+        set_lit(d, modes[i], 0.8, 40);
+    }
+}
+
+/* A textured teapot, lit per pixel, with a sharp white highlight on the checker. */
+static void scene_lit_textured(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "lit_textured_teapot";
+    s->view = mat_look_at(v3(0, 1.55, 2.9), v3(0, 0.32, 0), v3(0, 1, 0));
+    s->ambient = v3(0.15, 0.15, 0.15);
+    s->lights[s->light_count++] = dir_light(v3(-0.4, -1.0, -0.5), v3(0.85, 0.85, 0.85));
+    draw *d = add_floor(s, proj, s->view, A_BRICK, 2.5);
+    set_lit(d, "gouraud", 0, 0);
+    d = teapot_at(s, proj, teapot, 0, 0, -28, 1.0);
+    d->textured = true;
+    d->texture = A_CHECKER;
+    set_lit(d, "phong", 1.0, 60);
+}
+
+/* Cubes around a point light close above the floor: quadratic attenuation makes a pool of light
+ * that falls off with distance, and the cube faces turned away from it stay dark. */
+static void scene_lit_point(scene *s, mat4 proj) {
+    s->name = "lit_point_cubes";
+    s->view = mat_look_at(v3(0, 4.5, 6.0), v3(0, 0.2, 0), v3(0, 1, 0));
+    s->ambient = v3(0.05, 0.05, 0.06);
+    s->lights[s->light_count++] = point_light(v3(0, 1.3, 0), v3(1.0, 0.95, 0.85), 0.2, 0.1, 0.6);
+    draw *d = add_floor(s, proj, s->view, A_CHECKER, 5);
+    set_lit(d, "phong", 0, 0);
+    for (int i = 0; i < 6; i++) {
+        double a = i * 60.0 + 15.0, r = 1.6 + 0.5 * (i % 2), size = 0.3 + 0.05 * (i % 3);
+        double c, sn;
+        sin_cos_deg(a, &sn, &c);
+        d = scene_add(s);
+        d->mesh = A_CUBE;
+        d->proj = proj;
+        d->world_view = mat_mul(s->view, model(v3(r * c, size, r * sn), a * 0.7, 0, 0, size));
+        vec3 col = hsv(i / 6.0, 0.55, 0.9);
+        set_color(d, col.x, col.y, col.z, 1);
+        set_lit(d, i % 2 ? "phong" : "gouraud", 0.5, 24);
+    }
+}
+
+/* A wall between the eye and a point light: its front gets ambient only, and no highlight leaks
+ * through it (the specular term needs N.L > 0); the teapot in front is lit by a dim fill light,
+ * and the light itself shines on the ground behind the wall's edges. */
+static void scene_lit_behind(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "lit_behind_surface";
+    s->view = mat_look_at(v3(0.6, 1.6, 4.2), v3(0, 0.6, 0), v3(0, 1, 0));
+    s->ambient = v3(0.1, 0.1, 0.12);
+    s->lights[s->light_count++] = point_light(v3(0.2, 0.8, -1.2), v3(1.0, 0.9, 0.7), 1, 0, 0.15);
+    s->lights[s->light_count++] = dir_light(v3(0.3, -0.5, -1.0), v3(0.25, 0.25, 0.3));
+    draw *d = add_floor(s, proj, s->view, A_BRICK, 3);
+    set_lit(d, "phong", 0, 0);
+    d = scene_add(s);
+    d->mesh = A_QUAD;
+    d->proj = proj;
+    d->world_view =
+        mat_mul(s->view, mat_mul(mat_translate(0, 0.8, -0.5), mat_scale(1.1, 0.8, 1.0)));
+    set_lit(d, "phong", 1.0, 30);
+    d = teapot_at(s, proj, teapot, 0.7, 0.6, 20, 0.45);
+    set_color(d, 0.3, 0.6, 0.9, 1);
+    set_lit(d, "gouraud", 0.6, 20);
+}
+
+/* The ten teapots of 07_many_teapots, textured, lit per pixel by two lights: for speed. */
+static void scene_lit_many(scene *s, mat4 proj, const mesh *teapot) {
+    scene_07(s, proj, teapot);
+    s->name = "lit_many_teapots";
+    s->view = mat_look_at(v3(0, 5.0, 7.6), v3(0, 0.2, -0.4), v3(0, 1, 0));
+    s->ambient = v3(0.12, 0.12, 0.12);
+    s->lights[s->light_count++] = dir_light(v3(-0.6, -1.0, -0.4), v3(0.8, 0.8, 0.78));
+    s->lights[s->light_count++] = point_light(v3(2.5, 3.0, 2.5), v3(0.4, 0.35, 0.3), 1, 0.1, 0);
+    set_lit(&s->draws[0], "gouraud", 0, 0);
+    for (int i = 1; i < s->count; i++) set_lit(&s->draws[i], "phong", 0.7, 32);
+}
+
+/* ---------------------------------------------------------------------------------------------
  * Output.
  */
 
@@ -1601,12 +1770,19 @@ enum {
     S_ALPHA_TEAPOT_UNSORTED,
     S_ALPHA_CUTOUT,
     S_ALPHA_STACK,
+    S_LIT_MODES,
+    S_LIT_TEXTURED,
+    S_LIT_POINT,
+    S_LIT_BEHIND,
+    S_LIT_MANY,
     S_END = -1
 };
 static const int DEFAULT_SCENES[] = {S_01, S_02, S_03, S_04, S_05, S_06, S_07, S_08, S_END};
 static const int TRANSPARENCY_SCENES[] = {S_ALPHA_CUBES,           S_ALPHA_TEAPOT_SORTED,
                                           S_ALPHA_TEAPOT_UNSORTED, S_ALPHA_CUTOUT,
                                           S_ALPHA_STACK,           S_END};
+static const int LIGHTING_SCENES[] = {S_LIT_MODES,  S_LIT_TEXTURED, S_LIT_POINT,
+                                      S_LIT_BEHIND, S_LIT_MANY,     S_END};
 
 static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
     switch (which) {
@@ -1646,8 +1822,23 @@ static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
     case S_ALPHA_CUTOUT:
         scene_alpha_cutout(s, proj);
         break;
-    default:
+    case S_ALPHA_STACK:
         scene_alpha_stack(s);
+        break;
+    case S_LIT_MODES:
+        scene_lit_modes(s, proj, teapot);
+        break;
+    case S_LIT_TEXTURED:
+        scene_lit_textured(s, proj, teapot);
+        break;
+    case S_LIT_POINT:
+        scene_lit_point(s, proj);
+        break;
+    case S_LIT_BEHIND:
+        scene_lit_behind(s, proj, teapot);
+        break;
+    default:
+        scene_lit_many(s, proj, teapot);
         break;
     }
 }
@@ -1770,6 +1961,8 @@ int main(int argc, char **argv) {
                                 &teapot);
     ok = ok && write_scene_file(join(path, out, "transparency.json"), "0.62, 0.71, 0.78, 1",
                                 TRANSPARENCY_SCENES, proj, &teapot);
+    ok = ok && write_scene_file(join(path, out, "lighting.json"), "0.1, 0.12, 0.16, 1",
+                                LIGHTING_SCENES, proj, &teapot);
     mesh_free(&teapot);
     return ok ? 0 : 1;
 }
