@@ -149,6 +149,11 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                         "sgEndRenderPass: targets (color 0x%08x, depth 0x%08x) differ from those "
                         "of sgBeginRenderPass (color 0x%08x, depth 0x%08x)",
                         pass->color.id, pass->depth.id, dev->pass_color.id, dev->pass_depth.id);
+    /* Lit shading finds a triangle's extension beside it: the arrays are final now. */
+    for (size_t i = 0; i < dev->draw_count; i++) {
+        dev->draws[i].ctx.tris = dev->binner.tris;
+        dev->draws[i].ctx.ext = dev->binner.use_ext ? dev->binner.ext : NULL;
+    }
     busiest_first(&dev->binner, dev->bin_order);
     int nbins = dev->binner.bins_x * dev->binner.bins_y, busy = 0;
     while (busy < nbins && dev->binner.bins[dev->bin_order[busy] & 0xffffffffu].count) busy++;

@@ -7,9 +7,14 @@
 #include <math.h>
 #include <string.h>
 
-static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS]) {
+/* The assembly of unlit and of lit draws (lit: vattr is set) are compiled apart, `lit` a constant
+ * in each, so that the unlit path has no test of its own for lighting. */
+#define SG_ASM_INLINE static inline __attribute__((always_inline))
+
+SG_ASM_INLINE void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS],
+                                    const int lit) {
     static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-    if (a->vattr) {
+    if (lit) {
         memcpy(attr, a->vattr + (size_t)idx * (size_t)a->vstride,
                (size_t)a->vstride * sizeof(float));
         return;
@@ -23,8 +28,8 @@ static void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_M
 /* False when an attribute the draw reads is NaN or infinite: such a triangle is dropped whole,
  * as one with a non-finite position is, so it cannot paint garbage or sample out of range. (The
  * vertex stage makes the same check for vertices inside every clip plane.) */
-static bool attributes_finite(const sg_assembly *a, uint32_t idx) {
-    if (a->vattr) {
+SG_ASM_INLINE bool attributes_finite(const sg_assembly *a, uint32_t idx, const int lit) {
+    if (lit) {
         const float *v = a->vattr + (size_t)idx * (size_t)a->vstride;
         for (int k = 0; k < a->vstride; k++)
             if (!(v[k] >= -FLT_MAX && v[k] <= FLT_MAX)) return false;
@@ -81,10 +86,14 @@ static void rebase_texcoords(float *const attr[3]) {
 static void __attribute__((noinline))
 clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
     sg_cvert poly[SG_CLIP_MAX_VERTS];
+    const int lit = a->vattr != NULL;
     for (int i = 0; i < 3; i++) {
         for (int k = 0; k < 4; k++) poly[i].pos[k] = a->clip[idx[i]][k];
-        if (!attributes_finite(a, idx[i])) return;
-        fetch_attributes(a, idx[i], poly[i].attr);
+        if (lit ? !attributes_finite(a, idx[i], 1) : !attributes_finite(a, idx[i], 0)) return;
+        if (lit)
+            fetch_attributes(a, idx[i], poly[i].attr, 1);
+        else
+            fetch_attributes(a, idx[i], poly[i].attr, 0);
     }
     if (a->rebase_texcoords)
         rebase_texcoords((float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
@@ -102,12 +111,14 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
         sg_tri *tri = a->slot(a->user, &ext);
         if (!tri) return;
         if (!sg_setup_coverage(&a->setup, t, attr, tri)) continue;
-        sg_setup_planes(&a->setup, t, attr, tri, ext);
+        sg_setup_planes(&a->setup, t, attr, tri);
+        if (ext) sg_setup_planes_ext(&a->setup, t, attr, tri, ext);
         a->emit(a->user);
     }
 }
 
-static void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint32_t i2) {
+SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint32_t i2,
+                            const int lit) {
     uint32_t c0 = a->outcodes[i0], c1 = a->outcodes[i1], c2 = a->outcodes[i2];
     /* Wholly outside one plane, or a NaN / infinite position: nothing of it is drawn. */
     if ((c0 & c1 & c2) || ((c0 | c1 | c2) & SG_CLIP_NONFINITE)) return;
@@ -126,23 +137,36 @@ static void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint32_t i2
     sg_tri_ext *ext = NULL;
     sg_tri *tri = a->slot(a->user, &ext);
     if (!tri || !sg_setup_coverage(&a->setup, s, order, tri)) return;
-    fetch_attributes(a, i0, attr[0]);
-    fetch_attributes(a, i1, attr[1]);
-    fetch_attributes(a, i2, attr[2]);
+    fetch_attributes(a, i0, attr[0], lit);
+    fetch_attributes(a, i1, attr[1], lit);
+    fetch_attributes(a, i2, attr[2], lit);
     if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]});
-    if (a->flat) light_flat(a->flat, (float *const[3]){attr[0], attr[1], attr[2]});
-    sg_setup_planes(&a->setup, s, order, tri, ext);
+    if (lit && a->flat) light_flat(a->flat, (float *const[3]){attr[0], attr[1], attr[2]});
+    sg_setup_planes(&a->setup, s, order, tri);
+    if (lit && ext) sg_setup_planes_ext(&a->setup, s, order, tri, ext);
     a->emit(a->user);
 }
 
-void sg_assemble(const sg_assembly *a) {
+SG_ASM_INLINE void assemble(const sg_assembly *a, const int lit) {
     const uint32_t *ix = a->indices;
     if (a->quads) {
         for (int i = 0; i + 3 < a->index_count; i += 4) {
-            triangle(a, ix[i], ix[i + 1], ix[i + 2]);
-            triangle(a, ix[i], ix[i + 2], ix[i + 3]);
+            triangle(a, ix[i], ix[i + 1], ix[i + 2], lit);
+            triangle(a, ix[i], ix[i + 2], ix[i + 3], lit);
         }
     } else {
-        for (int i = 0; i + 2 < a->index_count; i += 3) triangle(a, ix[i], ix[i + 1], ix[i + 2]);
+        for (int i = 0; i + 2 < a->index_count; i += 3)
+            triangle(a, ix[i], ix[i + 1], ix[i + 2], lit);
     }
+}
+
+static void __attribute__((noinline)) assemble_lit(const sg_assembly *a) {
+    assemble(a, 1);
+}
+
+void sg_assemble(const sg_assembly *a) {
+    if (a->vattr)
+        assemble_lit(a);
+    else
+        assemble(a, 0);
 }

@@ -131,8 +131,20 @@ static bool same3(const float *a, const float *b) {
     return memcmp(a, b, 3 * sizeof(float)) == 0;
 }
 
+/* What every plane of a triangle shares, from its snapped vertices and pixel bounds. */
+static plane_basis basis_of(const sg_svert s[3], const sg_tri *t) {
+    const int64_t one = SG_SUBPIXEL_ONE;
+    double x0 = (double)s[0].x / one, y0 = (double)s[0].y / one;
+    double e1x = (double)s[1].x / one - x0, e1y = (double)s[1].y / one - y0;
+    double e2x = (double)s[2].x / one - x0, e2y = (double)s[2].y / one - y0;
+    double inv_det = 1.0 / (e1x * e2y - e2x * e1y);
+    double pox = (double)t->minx + 0.5 - x0, poy = (double)t->miny + 0.5 - y0;
+    const plane_basis b = {e1x, e1y, e2x, e2y, inv_det, pox, poy};
+    return b;
+}
+
 void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
-                     sg_tri *out, sg_tri_ext *ext) {
+                     sg_tri *out) {
     out->nattr = p->nattr;
     out->flat = SG_FLAT_NONE;
     /* A secondary colour must be constant too for the triangle to be flat. */
@@ -147,17 +159,10 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
         out->flat = c[0] == white && c[1] == white ? SG_FLAT_WHITE : SG_FLAT_COLOR;
     }
 
-    /* Plane equations from the snapped positions, in double, relative to vertex 0. */
-    const int64_t one = SG_SUBPIXEL_ONE;
-    double x0 = (double)s[0].x / one, y0 = (double)s[0].y / one;
-    double e1x = (double)s[1].x / one - x0, e1y = (double)s[1].y / one - y0;
-    double e2x = (double)s[2].x / one - x0, e2y = (double)s[2].y / one - y0;
-    double inv_det = 1.0 / (e1x * e2y - e2x * e1y);
-    double pox = (double)out->minx + 0.5 - x0, poy = (double)out->miny + 0.5 - y0;
-
-    /* Depth, 1/w, then each attribute / w the shading reads (not a flat colour, which it takes
-     * as it is); the others stay zero: never read, but every byte of a triangle is defined. */
-    const plane_basis b = {e1x, e1y, e2x, e2y, inv_det, pox, poy};
+    /* Plane equations from the snapped positions, in double, relative to vertex 0. Depth, 1/w,
+     * then each attribute / w the shading reads (not a flat colour, which it takes as it is);
+     * the others stay zero: never read, but every byte of a triangle is defined. */
+    const plane_basis b = basis_of(s, out);
     plane(&b, s[0].z, s[1].z, s[2].z, &out->z, &out->z_dx, &out->z_dy);
     plane(&b, s[0].q, s[1].q, s[2].q, &out->q, &out->q_dx, &out->q_dy);
     memset(out->a, 0, sizeof out->a);
@@ -167,11 +172,16 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < n; k++)
         plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
               (double)attr[2][k] * s[2].q, &out->a[k], &out->a_dx[k], &out->a_dy[k]);
-    if (p->nattr <= SG_TRI_ATTRS) return;
+}
+
+void sg_setup_planes_ext(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
+                         const sg_tri *t, sg_tri_ext *ext) {
     memset(ext, 0, sizeof *ext);
+    const plane_basis b = basis_of(s, t);
+    const int sec = p->sec;
     for (int k = SG_TRI_ATTRS; k < p->nattr; k++) {
         int e = k - SG_TRI_ATTRS;
-        if (out->flat != SG_FLAT_NONE && sec && k >= sec && k < sec + 3)
+        if (t->flat != SG_FLAT_NONE && sec && k >= sec && k < sec + 3)
             ext->a[e] = attr[0][k]; /* the flat secondary colour, as it is */
         else
             plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
@@ -187,6 +197,7 @@ bool sg_setup_triangle(const sg_setup_params *p, const sg_cvert *v0, const sg_cv
     for (int i = 0; i < 3; i++)
         if (!sg_setup_project(p, v[i]->pos, &s[i])) return false;
     if (!sg_setup_coverage(p, s, attr, out)) return false;
-    sg_setup_planes(p, s, attr, out, ext);
+    sg_setup_planes(p, s, attr, out);
+    if (p->nattr > SG_TRI_ATTRS) sg_setup_planes_ext(p, s, attr, out, ext);
     return true;
 }

@@ -88,6 +88,10 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
  *  sg_setup_coverage, with the s[] and attr[] it reordered (each attr[i] holds nattr values).
  *  Only the planes the shading reads are computed; the others are zero. */
 void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
-                     sg_tri *out, sg_tri_ext *ext);
+                     sg_tri *out);
+/** The planes of attributes SG_TRI_ATTRS .. p->nattr - 1 of a triangle sg_setup_planes has set
+ *  up (a lit draw's), into its extension. */
+void sg_setup_planes_ext(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
+                         const sg_tri *t, sg_tri_ext *ext);
 
 #endif

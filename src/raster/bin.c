@@ -59,10 +59,15 @@ void sg_binner_commit(sg_binner *b) {
 
 sg_tri *sg_binner_reserve(sg_binner *b, size_t n) {
     /* Ids are index + 1 in 32 bits (depth.h). */
-    if (b->out_of_memory || n > UINT32_MAX - 1 - b->tri_count ||
-        !grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + n, sizeof *b->tris) ||
+    if (b->out_of_memory || n > UINT32_MAX - 1 - b->tri_count) {
+        b->out_of_memory = true;
+        return NULL;
+    }
+    if (b->tri_count + n <= b->tri_capacity) return b->tris + b->tri_count;
+    /* Growing: the extensions grow with the triangles while the pass uses them. */
+    if (!grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + n, sizeof *b->tris) ||
         (b->use_ext &&
-         !grow(b, (void **)&b->ext, &b->ext_capacity, b->tri_count + n, sizeof *b->ext))) {
+         !grow(b, (void **)&b->ext, &b->ext_capacity, b->tri_capacity, sizeof *b->ext))) {
         b->out_of_memory = true;
         return NULL;
     }

@@ -40,7 +40,7 @@ static inline __attribute__((always_inline)) void blend_scalar(const void *vctx,
     if (zmode != Z_NONE || zwrite) mask = depth_scalar(v, t, x0, y0, mask, base, zwrite);
     if (!mask) return;
     uint32_t src[SG_TILE_PIXELS];
-    v->shade(v->shade_ctx, t, sg_vis_ext(v, t), x0, y0, mask, src);
+    v->shade(v->shade_ctx, t, x0, y0, mask, src);
     uint32_t *dst = v->color + base;
     for (; mask; mask &= mask - 1) {
         int bit = __builtin_ctz(mask);
@@ -109,7 +109,7 @@ static inline __attribute__((always_inline)) void blend_sse2(const void *vctx, c
     }
     if (!mask) return;
     _Alignas(16) uint32_t src[SG_TILE_PIXELS];
-    v->shade(v->shade_ctx, t, sg_vis_ext(v, t), x0, y0, mask, src);
+    v->shade(v->shade_ctx, t, x0, y0, mask, src);
     uint32_t *dst = v->color + base;
     for (int j = 0; j < 4; j++) {
         uint32_t bits = (mask >> (4 * j)) & 15u;

@@ -51,7 +51,7 @@ static inline __attribute__((always_inline)) void blend_avx2(const void *vctx, c
     }
     if (!mask) return;
     _Alignas(32) uint32_t src[SG_TILE_PIXELS];
-    v->shade(v->shade_ctx, t, sg_vis_ext(v, t), x0, y0, mask, src);
+    v->shade(v->shade_ctx, t, x0, y0, mask, src);
     uint32_t *dst = v->color + base;
     const __m256i zero = _mm256_setzero_si256();
     for (int h = 0; h < 2; h++) {

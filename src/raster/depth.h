@@ -28,14 +28,7 @@ typedef struct sg_vis_ctx {
     uint32_t *color;
     sg_shade_fn shade;
     const sg_shade_ctx *shade_ctx;
-    const sg_tri *tris;    /* the pass's triangles, and their extensions beside them (NULL when */
-    const sg_tri_ext *ext; /* no draw of the pass has any): t's is ext + (t - tris) */
 } sg_vis_ctx;
-
-/** The extension of triangle t of the pass, or NULL. */
-static inline const sg_tri_ext *sg_vis_ext(const sg_vis_ctx *v, const sg_tri *t) {
-    return v->ext ? v->ext + (t - v->tris) : NULL;
-}
 
 /* Rasterises a triangle's part in the rectangle [x0, x1) x [y0, y1) into the bin's buffers (ctx:
  * an sg_vis_ctx): the walk of rast_walk.h with one visibility tile function inlined. */

@@ -93,8 +93,8 @@ LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], 
             LM ok = lm_and(lm_gt(d, zero), lm_le(d, lv_set1(FLT_MAX)));
             LV inv = lv_sel(ok, lv_div(lv_set1(1.0f), d), zero);
             for (int j = 0; j < 3; j++) L[j] = lv_mul(v[j], inv);
-            LV den = lv_add(lv_add(lv_set1(k[0]), lv_mul(lv_set1(k[1]), d)),
-                            lv_mul(lv_set1(k[2]), d2));
+            LV den =
+                lv_add(lv_add(lv_set1(k[0]), lv_mul(lv_set1(k[1]), d)), lv_mul(lv_set1(k[2]), d2));
             den = lv_sel(lm_gt(den, lv_set1(FLT_MIN)), den, lv_set1(FLT_MIN));
             att = lv_div(lv_set1(1.0f), den);
         } else {

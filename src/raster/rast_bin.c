@@ -33,10 +33,9 @@ static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
 
 static inline void shade_run(const sg_bin_pass *p, uint32_t id, int x0, int y0, uint32_t mask,
                              uint32_t *dst) {
-    const sg_binner *b = p->binner;
-    const sg_tri *t = &b->tris[id - 1];
+    const sg_tri *t = &p->binner->tris[id - 1];
     const sg_draw_state *d = &p->draws[t->draw];
-    d->shade_fn(&d->ctx, t, b->use_ext ? &b->ext[id - 1] : NULL, x0, y0, mask, dst);
+    d->shade_fn(&d->ctx, t, x0, y0, mask, dst);
 }
 
 /* Shades the visible pixels of one tile: each run of pixels that see the same triangle is one
@@ -128,9 +127,8 @@ static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     const sg_binner *b = p->binner;
     int x0 = v->x0, y0 = v->y0;
-    sg_vis_ctx vis = {
-        v->depth ? depth : NULL, ids,   touched, x0,   y0,      0,
-        SG_COMPARE_ALWAYS,       color, NULL,    NULL, b->tris, b->use_ext ? b->ext : NULL};
+    sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   touched, x0,  y0, 0,
+                      SG_COMPARE_ALWAYS,       color, NULL,    NULL};
     bool pending = false; /* ids hold opaque triangles not shaded yet */
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
@@ -190,8 +188,8 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     memset(ids, 0, sizeof ids);
     start_depth(p, &v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
-    sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  touched, x0,   y0,   0,
-                      SG_COMPARE_ALWAYS,      NULL, NULL,    NULL, NULL, NULL};
+    sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  touched, x0,  y0, 0,
+                      SG_COMPARE_ALWAYS,      NULL, NULL,    NULL};
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];

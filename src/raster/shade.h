@@ -23,7 +23,16 @@
 typedef struct sg_shade_ctx {
     sg_texview tex;   /* bound texture, when the pipeline samples one */
     sg_lights lights; /* the draw's lights and material (SG_LIGHTING_PHONG) */
+    /* The pass's triangles and their extensions (NULL when it has none), set when the pass
+     * ends: a lit triangle t's attributes beyond SG_TRI_ATTRS are at ext + (t - tris). */
+    const sg_tri *tris;
+    const sg_tri_ext *ext;
 } sg_shade_ctx;
+
+/** The extension of triangle t (NULL when the pass has none). */
+static inline const sg_tri_ext *sg_shade_ext(const sg_shade_ctx *c, const sg_tri *t) {
+    return c->ext ? c->ext + (t - c->tris) : NULL;
+}
 
 /* Instruction sets with their own shading and visibility code. */
 typedef enum sg_isa {
@@ -35,10 +44,9 @@ typedef enum sg_isa {
 } sg_isa;
 
 /* Shades the pixels of `mask` (bit y * 4 + x) of the 4x4 tile whose top-left pixel is (x0, y0)
- * and writes them as RGBA8 to dst[y * 4 + x]; other pixels of dst are left as they are. ext: the
- * triangle's attributes beyond SG_TRI_ATTRS (lit draws; NULL, and not read, otherwise). */
-typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, const sg_tri_ext *ext, int x0,
-                            int y0, uint32_t mask, uint32_t *dst);
+ * and writes them as RGBA8 to dst[y * 4 + x]; other pixels of dst are left as they are. */
+typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, int y0, uint32_t mask,
+                            uint32_t *dst);
 
 /** The index of a resolved shading state in the variant tables below: 0 vertex colour,
  *  1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */

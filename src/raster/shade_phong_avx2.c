@@ -84,9 +84,9 @@ INLINE void phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 }
 
 #define SG_PHONG_VARIANT(tex, bil, rep)                                                            \
-    static void phong_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t,                      \
-                                      const sg_tri_ext *ext, int x0, int y0, uint32_t m,           \
-                                      uint32_t *dst) {                                             \
+    static void phong_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,      \
+                                      uint32_t m, uint32_t *dst) {                                 \
+        const sg_tri_ext *ext = sg_shade_ext(c, t);                                                \
         if (t->flat != SG_FLAT_NONE)                                                               \
             phong_rows(c, t, ext, x0, y0, m, dst, tex, bil, rep, 1);                               \
         else                                                                                       \

@@ -26,10 +26,9 @@ static inline __attribute__((always_inline)) void shade_flat(const sg_shade_ctx 
 }
 
 #define SG_VARIANT(tex, bil, rep, sec)                                                             \
-    static void shade_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t,                 \
-                                           const sg_tri_ext *ext, int x0, int y0, uint32_t m,      \
-                                           uint32_t *dst) {                                        \
-        shade_flat(c, t, ext, x0, y0, m, dst, tex, bil, rep, sec);                                 \
+    static void shade_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, \
+                                           uint32_t m, uint32_t *dst) {                            \
+        shade_flat(c, t, sec ? sg_shade_ext(c, t) : NULL, x0, y0, m, dst, tex, bil, rep, sec);     \
     }
 SG_VARIANT(0, 0, 0, 0) /* vertex colour */
 SG_VARIANT(1, 0, 1, 0) /* texture, nearest, repeat */
