@@ -373,7 +373,13 @@ static void heightmap_mesh(void **state) {
     assert_float_equal(m->texcoords[5 * 2], 2.0f / 3.0f, 1e-6);
     assert_float_equal(m->texcoords[5 * 2 + 1], 0.5f, 1e-6);
     assert_float_equal(m->colors[5 * 4], 1.0f, 0);
-    assert_null(m->normals);
+    /* The loader gives the grid smooth normals; its triangles face up (+y). */
+    assert_non_null(m->normals);
+    for (int v = 0; v < 6; v++) {
+        const float *n = m->normals + v * 3;
+        assert_true(n[1] > 0.0f);
+        assert_float_equal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0f, 1e-6);
+    }
     sc_free(&f);
 
     /* A heightmap needs two rows and two columns. */
@@ -430,6 +436,11 @@ static void scene_defaults(void **state) {
     assert_int_equal(d->blend, SC_BLEND_OPAQUE);
     for (int i = 0; i < 4; i++) assert_float_equal(d->color[i], 1.0f, 0);
     assert_int_equal(d->sort, SC_SORT_NONE);
+    assert_int_equal(d->lighting, SC_LIGHTING_NONE);
+    for (int i = 0; i < 3; i++) assert_float_equal(d->specular[i], 0.0f, 0);
+    assert_float_equal(d->shininess, 0.0f, 0);
+    for (int i = 0; i < 3; i++) assert_float_equal(s->ambient[i], 0.0f, 0);
+    assert_int_equal(s->light_count, 0);
     assert_float_equal(d->world_view[0], 1.0f, 0);
     assert_float_equal(d->proj[15], 1.0f, 0);
     sc_free(&f);
@@ -531,6 +542,104 @@ static void scene_transparency(void **state) {
     sc_free(&f);
 }
 
+/* The lighting keys: per draw mode and material, per scene (or file) ambient and lights. */
+static void scene_lighting(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    if (!load_scene(
+            t, "lighting.json",
+            "{\"width\": 4, \"height\": 4, \"ambient\": [0.25, 0.5, 0],"
+            " \"lights\": [{\"type\": \"point\", \"position\": [1, 2, 3], \"color\": [4, 0, 1]}],"
+            " \"scenes\": ["
+            "{\"name\": \"own\", \"ambient\": [0.125, 0, 2], \"lights\": ["
+            "  {\"type\": \"directional\", \"direction\": [0, -1, -2], \"color\": [1, 0.5, 0]},"
+            "  {\"type\": \"point\", \"position\": [-1, 0.5, -4], \"color\": [0, 0, 3],"
+            "   \"attenuation\": [0.5, 0.25, 0.125]},"
+            "  {\"type\": \"point\", \"position\": [0, 0, 0], \"color\": [1, 1, 1],"
+            "   \"attenuation\": [0, 0, 0]}],"
+            " \"draws\": ["
+            "  {\"mesh\": \"tri.obj\", \"lighting\": \"flat\", \"specular\": [0.5, 2, 0],"
+            "   \"shininess\": 32.5, " MATRICES "},"
+            "  {\"mesh\": \"tri.obj\", \"lighting\": \"gouraud\", \"shininess\": 128, " MATRICES
+            "},"
+            "  {\"mesh\": \"tri.obj\", \"lighting\": \"phong\", " MATRICES "},"
+            "  {\"mesh\": \"tri.obj\", \"lighting\": \"none\", " MATRICES "}]},"
+            "{\"name\": \"inherits\", \"draws\": []},"
+            "{\"name\": \"dark\", \"lights\": [], \"draws\": []}]}",
+            &f, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(f.scene_count, 3);
+
+    const sc_scene *s = &f.scenes[0];
+    const float amb[3] = {0.125f, 0, 2};
+    assert_floats(s->ambient, amb, 3);
+    assert_int_equal(s->light_count, 3);
+    const sc_light *l = &s->lights[0];
+    assert_int_equal(l->type, SC_LIGHT_DIRECTIONAL);
+    const float dir[3] = {0, -1, -2}, c0[3] = {1, 0.5f, 0};
+    assert_floats(l->direction, dir, 3);
+    assert_floats(l->color, c0, 3);
+    l = &s->lights[1];
+    assert_int_equal(l->type, SC_LIGHT_POINT);
+    const float pos[3] = {-1, 0.5f, -4}, c1[3] = {0, 0, 3}, att[3] = {0.5f, 0.25f, 0.125f};
+    assert_floats(l->position, pos, 3);
+    assert_floats(l->color, c1, 3);
+    assert_floats(l->attenuation, att, 3);
+    /* (0, 0, 0) is sgapi's "no attenuation", written out as (1, 0, 0). */
+    const float none[3] = {1, 0, 0};
+    assert_floats(s->lights[2].attenuation, none, 3);
+
+    const sc_draw *d = s->draws;
+    assert_int_equal(d[0].lighting, SC_LIGHTING_FLAT);
+    const float spec[3] = {0.5f, 2, 0};
+    assert_floats(d[0].specular, spec, 3);
+    assert_float_equal(d[0].shininess, 32.5f, 0);
+    assert_int_equal(d[1].lighting, SC_LIGHTING_GOURAUD);
+    assert_float_equal(d[1].shininess, 128.0f, 0);
+    for (int i = 0; i < 3; i++) assert_float_equal(d[1].specular[i], 0.0f, 0);
+    assert_int_equal(d[2].lighting, SC_LIGHTING_PHONG);
+    assert_float_equal(d[2].shininess, 0.0f, 0);
+    assert_int_equal(d[3].lighting, SC_LIGHTING_NONE);
+
+    /* Without keys of its own a scene takes the top level's; the attenuation defaults to
+     * (1, 0, 0). */
+    s = &f.scenes[1];
+    const float top_amb[3] = {0.25f, 0.5f, 0}, top_pos[3] = {1, 2, 3}, top_col[3] = {4, 0, 1};
+    assert_floats(s->ambient, top_amb, 3);
+    assert_int_equal(s->light_count, 1);
+    assert_int_equal(s->lights[0].type, SC_LIGHT_POINT);
+    assert_floats(s->lights[0].position, top_pos, 3);
+    assert_floats(s->lights[0].color, top_col, 3);
+    assert_floats(s->lights[0].attenuation, none, 3);
+    /* An empty list replaces the top level's. */
+    s = &f.scenes[2];
+    assert_int_equal(s->light_count, 0);
+    assert_floats(s->ambient, top_amb, 3);
+    sc_free(&f);
+}
+
+/* Every loaded mesh has normals: its own, or smooth ones computed from its triangles. */
+static void scene_mesh_normals(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    write_file(t, "tri_n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0.6 0 0.8\nf 1//1 2//1 3//1\n");
+    if (!load_scene(t, "normals.json",
+                    "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"n\", \"draws\": ["
+                    "{\"mesh\": \"tri.obj\", " MATRICES "},"
+                    "{\"mesh\": \"tri_n.obj\", " MATRICES "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(f.mesh_count, 2);
+    const float up[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1},
+                own[9] = {0.6f, 0, 0.8f, 0.6f, 0, 0.8f, 0.6f, 0, 0.8f};
+    assert_non_null(f.meshes[0].normals);
+    assert_floats(f.meshes[0].normals, up, 9);
+    assert_floats(f.meshes[1].normals, own, 9);
+    sc_free(&f);
+}
+
 /* Scene files that must fail, each with words its message must contain. */
 static void scene_errors(void **state) {
     tmp_dir *t = *state;
@@ -609,6 +718,93 @@ static void scene_errors(void **state) {
         {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
          "\"tri.obj\", \"color\": 1, " MATRICES "}]}]}",
          "draws[0]", "'color' must be an array of 4 numbers"},
+        /* Lighting. */
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"lighting\": \"toon\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]",
+         "'lighting' must be one of none, flat, gouraud, phong (got 'toon')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"lighting\": 1, " MATRICES "}]}]}",
+         "draws[0]", "'lighting' must be a string"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"shininess\": 129, " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]", "'shininess' must be a number in 0..128 (got 129)"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"shininess\": -1, " MATRICES "}]}]}",
+         "draws[0]", "'shininess' must be a number in 0..128 (got -1)"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"shininess\": \"8\", " MATRICES "}]}]}",
+         "draws[0]", "'shininess' must be a number"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"specular\": [1, -0.5, 0], " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]", "'specular'[1] = -0.5 must be >= 0"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"specular\": [1, 1], " MATRICES "}]}]}",
+         "draws[0]", "'specular' must be an array of 3 numbers"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"specular\": [1, 1, 1e39], " MATRICES "}]}]}",
+         "draws[0]", "'specular'[2] = 1e+39 does not fit a float"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"ambient\": [0, -1, 0],"
+         " \"draws\": []}]}",
+         "scenes[0] ('a'): ", "'ambient'[1] = -1 must be >= 0"},
+        {"{\"width\": 4, \"height\": 4, \"ambient\": [1, 1], \"scenes\": []}",
+         "errors.json: ", "'ambient' must be an array of 3 numbers"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"nine\", \"lights\": ["
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]},"
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]},"
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]},"
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]},"
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]},"
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]},"
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]},"
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]},"
+         "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]}],"
+         " \"draws\": []}]}",
+         "scenes[0] ('nine'): ", "'lights' holds 9 lights, more than the 8 allowed"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"point\", \"position\": [0, 0, 0], \"color\": [1, 1, 1]},"
+         "{\"type\": \"point\", \"position\": [0, 0, 0], \"color\": [1, -0.25, 1]}],"
+         " \"draws\": []}]}",
+         "scenes[0] ('a'), lights[1]: ", "'color'[1] = -0.25 must be >= 0"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"spot\", \"position\": [0, 0, 0], \"color\": [1, 1, 1]}],"
+         " \"draws\": []}]}",
+         "scenes[0] ('a'), lights[0]: ", "'type' must be one of directional, point (got 'spot')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"position\": [0, 0, 0], \"color\": [1, 1, 1]}], \"draws\": []}]}",
+         "lights[0]: ", "missing 'type'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"directional\", \"color\": [1, 1, 1]}], \"draws\": []}]}",
+         "lights[0]: ", "missing 'direction'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"directional\", \"direction\": [0, -0.0, 0], \"color\": [1, 1, 1]}],"
+         " \"draws\": []}]}",
+         "lights[0]: ", "'direction' is (0, 0, 0)"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"point\", \"direction\": [0, 0, 1], \"color\": [1, 1, 1]}],"
+         " \"draws\": []}]}",
+         "lights[0]: ", "missing 'position'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"point\", \"position\": [0, 0, 1]}], \"draws\": []}]}",
+         "lights[0]: ", "missing 'color'"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"point\", \"position\": [0, 0, 1], \"color\": [1, 1, 1],"
+         " \"attenuation\": [1, 0, -2]}], \"draws\": []}]}",
+         "lights[0]: ", "'attenuation'[2] = -2 must be >= 0"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"point\", \"position\": [0, 0, 1e40], \"color\": [1, 1, 1]}],"
+         " \"draws\": []}]}",
+         "lights[0]: ", "'position'[2] = 1e+40 does not fit a float"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": [1],"
+         " \"draws\": []}]}",
+         "scenes[0] ('a'), lights[0]: ", "a light must be an object"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": {},"
+         " \"draws\": []}]}",
+         "scenes[0] ('a'): ", "'lights' must be an array"},
+        /* At the top level, the light alone is named. */
+        {"{\"width\": 4, \"height\": 4, \"lights\": [{\"type\": \"point\", \"position\":"
+         " [0, 0, 1], \"color\": [1, 1, -1]}], \"scenes\": [{\"name\": \"a\", \"draws\": []}]}",
+         "errors.json: lights[0]: ", "'color'[2] = -1 must be >= 0"},
         {"{\n\"width\": 4,\n\"height\": x\n}", "invalid JSON", "line 3"},
         {"[1, 2]", "errors.json", "top level"},
     };
@@ -722,6 +918,8 @@ int main(void) {
         cmocka_unit_test(scene_overrides),
         cmocka_unit_test(scene_texture_null),
         cmocka_unit_test(scene_transparency),
+        cmocka_unit_test(scene_lighting),
+        cmocka_unit_test(scene_mesh_normals),
         cmocka_unit_test(scene_errors),
         cmocka_unit_test(sort_order_and_ties),
         cmocka_unit_test(sort_stable_at_scale),

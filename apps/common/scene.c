@@ -17,12 +17,15 @@
 #include <sys/stat.h>
 
 #include <cJSON.h>
+#include <sgapi/sgapi_util.h>
 
 /* Where in the file an error is: -1 for "not inside one". */
 typedef struct loc {
-    int scene, draw;
+    int scene, draw, light;
     const char *scene_name;
 } loc;
+
+#define NOWHERE ((loc){.scene = -1, .draw = -1, .light = -1, .scene_name = NULL})
 
 enum { MESH_OBJ, MESH_HEIGHTMAP };
 
@@ -45,18 +48,24 @@ typedef struct ctx {
 
 static bool fail(ctx *c, const loc *l, const char *fmt, ...) PRINTF_LIKE(3, 4);
 
-/* Formats "file: scenes[i] ('name'), draws[j]: message"; always returns false. */
+/* Formats "file: scenes[i] ('name'), draws[j]: message" (or ", lights[k]" for a light of the
+ * scene, or "lights[k]" for one of the top level); always returns false. */
 static bool fail(ctx *c, const loc *l, const char *fmt, ...) {
     if (!c->err || c->errlen == 0) return false;
     int n = snprintf(c->err, c->errlen, "%s: ", c->path);
+    bool where = l && (l->scene >= 0 || l->light >= 0);
     if (n >= 0 && (size_t)n < c->errlen && l && l->scene >= 0) {
         n += snprintf(c->err + n, c->errlen - (size_t)n, "scenes[%d]", l->scene);
         if ((size_t)n < c->errlen && l->scene_name)
             n += snprintf(c->err + n, c->errlen - (size_t)n, " ('%s')", l->scene_name);
         if ((size_t)n < c->errlen && l->draw >= 0)
             n += snprintf(c->err + n, c->errlen - (size_t)n, ", draws[%d]", l->draw);
-        if ((size_t)n < c->errlen) n += snprintf(c->err + n, c->errlen - (size_t)n, ": ");
     }
+    if (n >= 0 && (size_t)n < c->errlen && l && l->light >= 0)
+        n += snprintf(c->err + n, c->errlen - (size_t)n, "%slights[%d]", l->scene >= 0 ? ", " : "",
+                      l->light);
+    if (n >= 0 && (size_t)n < c->errlen && where)
+        n += snprintf(c->err + n, c->errlen - (size_t)n, ": ");
     if (n >= 0 && (size_t)n < c->errlen) {
         va_list ap;
         va_start(ap, fmt);
@@ -145,10 +154,25 @@ static bool get_floats(ctx *c, const loc *l, const cJSON *obj, const char *key, 
         double d = e->valuedouble;
         float f = (float)d;
         if (!isfinite(f)) return fail(c, l, "'%s'[%d] = %g does not fit a float", key, i, d);
+        if (d < lo && hi == HUGE_VAL)
+            return fail(c, l, "'%s'[%d] = %g must be >= %g", key, i, d, lo);
         if (d < lo || d > hi)
             return fail(c, l, "'%s'[%d] = %g is out of range (%g..%g)", key, i, d, lo, hi);
         out[i++] = f;
     }
+    return true;
+}
+
+/* A finite number in [lo, hi]; absent keeps *out (the default). */
+static bool get_number(ctx *c, const loc *l, const cJSON *obj, const char *key, double lo,
+                       double hi, float *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v) return true;
+    if (!cJSON_IsNumber(v)) return fail(c, l, "'%s' must be a number in %g..%g", key, lo, hi);
+    double d = v->valuedouble;
+    if (!(d >= lo && d <= hi))
+        return fail(c, l, "'%s' must be a number in %g..%g (got %g)", key, lo, hi, d);
+    *out = (float)d;
     return true;
 }
 
@@ -180,6 +204,13 @@ static const enum_name blends[] = {
     {"opaque", SC_BLEND_OPAQUE}, {"alpha", SC_BLEND_ALPHA}, {NULL, 0}};
 static const enum_name sorts[] = {
     {"none", SC_SORT_NONE}, {"back_to_front", SC_SORT_BACK_TO_FRONT}, {NULL, 0}};
+static const enum_name lightings[] = {{"none", SC_LIGHTING_NONE},
+                                      {"flat", SC_LIGHTING_FLAT},
+                                      {"gouraud", SC_LIGHTING_GOURAUD},
+                                      {"phong", SC_LIGHTING_PHONG},
+                                      {NULL, 0}};
+static const enum_name light_types[] = {
+    {"directional", SC_LIGHT_DIRECTIONAL}, {"point", SC_LIGHT_POINT}, {NULL, 0}};
 
 /* A string naming one of the table's values; absent keeps *out (the default). */
 static bool get_enum(ctx *c, const loc *l, const cJSON *obj, const char *key,
@@ -283,6 +314,15 @@ static bool check_image_size(ctx *c, const loc *l, const char *path, const sc_im
     return true;
 }
 
+/* Gives a mesh without normals smooth ones, so every renderer lights the same normals. */
+static bool add_normals(sc_mesh *m) {
+    if (m->normals) return true;
+    m->normals = calloc(m->vertex_count, 3 * sizeof(float)); /* calloc checks the product */
+    /* Both counts are at most SC_MESH_MAX_COUNT, so they fit an int. */
+    return m->normals && sgu_compute_normals(m->positions, (int)m->vertex_count, m->indices,
+                                             (int)m->index_count, 0, m->normals) == 0;
+}
+
 /* Appends a mesh with its source and kind; takes ownership of source and mesh, even on failure. */
 static bool add_mesh(ctx *c, const loc *l, char *source, int kind, sc_mesh *mesh, int *out) {
     sc_file *f = c->f;
@@ -380,6 +420,12 @@ static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
         free(source);
         return fail(c, l, "mesh: %s", why);
     }
+    if (!add_normals(&mesh)) {
+        fail(c, l, "mesh '%s': out of memory for its normals", source);
+        free(source);
+        sc_mesh_free(&mesh);
+        return false;
+    }
     return add_mesh(c, l, source, kind, &mesh, out);
 }
 
@@ -442,13 +488,14 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     int mode = d->texture >= 0 ? SC_MODE_TEXTURE : SC_MODE_VERTEX_COLOR;
     int filter = SC_FILTER_BILINEAR, wrap = SC_WRAP_REPEAT, cull = SC_CULL_NONE;
     int front = SC_FRONT_FACE_CCW, compare = SC_COMPARE_LESS;
-    int blend = SC_BLEND_OPAQUE, sort = SC_SORT_NONE;
+    int blend = SC_BLEND_OPAQUE, sort = SC_SORT_NONE, lighting = SC_LIGHTING_NONE;
     if (!get_enum(c, l, v, "mode", modes, &mode) ||
         !get_enum(c, l, v, "filter", filters, &filter) ||
         !get_enum(c, l, v, "wrap", wraps, &wrap) || !get_enum(c, l, v, "cull", culls, &cull) ||
         !get_enum(c, l, v, "front_face", front_faces, &front) ||
         !get_enum(c, l, v, "depth_compare", compares, &compare) ||
-        !get_enum(c, l, v, "blend", blends, &blend) || !get_enum(c, l, v, "sort", sorts, &sort))
+        !get_enum(c, l, v, "blend", blends, &blend) || !get_enum(c, l, v, "sort", sorts, &sort) ||
+        !get_enum(c, l, v, "lighting", lightings, &lighting))
         return false;
     d->mode = (sc_mode)mode;
     d->filter = (sc_filter)filter;
@@ -458,6 +505,7 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     d->depth_compare = (sc_compare)compare;
     d->blend = (sc_blend)blend;
     d->sort = (sc_sort)sort;
+    d->lighting = (sc_lighting)lighting;
 
     const cJSON *dw = cJSON_GetObjectItemCaseSensitive(v, "depth_write");
     if (dw && !cJSON_IsBool(dw)) return fail(c, l, "'depth_write' must be true or false");
@@ -466,6 +514,9 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     bool present;
     for (int i = 0; i < 4; i++) d->color[i] = 1.0f;
     if (!get_floats(c, l, v, "color", 4, 0.0, 1.0, d->color, &present)) return false;
+    if (!get_floats(c, l, v, "specular", 3, 0.0, HUGE_VAL, d->specular, &present) ||
+        !get_number(c, l, v, "shininess", 0.0, 128.0, &d->shininess))
+        return false;
     if (!get_floats(c, l, v, "worldView", 16, -HUGE_VAL, HUGE_VAL, d->world_view, &present))
         return false;
     if (!present) return fail(c, l, "missing 'worldView' (16 numbers, row-major)");
@@ -474,15 +525,74 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     return true;
 }
 
+/* One light object; l names it in messages. */
+static bool parse_light(ctx *c, const loc *l, const cJSON *v, sc_light *out) {
+    if (!cJSON_IsObject(v)) return fail(c, l, "a light must be an object");
+    if (!cJSON_GetObjectItemCaseSensitive(v, "type"))
+        return fail(c, l, "missing 'type' (directional or point)");
+    int type = SC_LIGHT_DIRECTIONAL;
+    if (!get_enum(c, l, v, "type", light_types, &type)) return false;
+    memset(out, 0, sizeof *out);
+    out->type = (sc_light_type)type;
+    bool present;
+    if (out->type == SC_LIGHT_DIRECTIONAL) {
+        if (!get_floats(c, l, v, "direction", 3, -HUGE_VAL, HUGE_VAL, out->direction, &present))
+            return false;
+        if (!present) return fail(c, l, "missing 'direction' (3 numbers) of a directional light");
+        if (out->direction[0] == 0.0f && out->direction[1] == 0.0f && out->direction[2] == 0.0f)
+            return fail(c, l, "'direction' is (0, 0, 0): a directional light needs a direction");
+    } else {
+        if (!get_floats(c, l, v, "position", 3, -HUGE_VAL, HUGE_VAL, out->position, &present))
+            return false;
+        if (!present) return fail(c, l, "missing 'position' (3 numbers) of a point light");
+        out->attenuation[0] = 1.0f;
+        if (!get_floats(c, l, v, "attenuation", 3, 0.0, HUGE_VAL, out->attenuation, &present))
+            return false;
+        /* sgapi reads (0, 0, 0) as "no attenuation"; spelled out here, every renderer agrees. */
+        if (out->attenuation[0] == 0.0f && out->attenuation[1] == 0.0f &&
+            out->attenuation[2] == 0.0f)
+            out->attenuation[0] = 1.0f;
+    }
+    if (!get_floats(c, l, v, "color", 3, 0.0, HUGE_VAL, out->color, &present)) return false;
+    if (!present) return fail(c, l, "missing 'color' (3 numbers >= 0) of a light");
+    return true;
+}
+
+/* "ambient" and "lights" of the top level or of a scene; absent keys keep what is there. */
+static bool parse_lighting(ctx *c, const loc *l, const cJSON *obj, float ambient[3],
+                           sc_light lights[SC_MAX_LIGHTS], int *light_count) {
+    bool present;
+    if (!get_floats(c, l, obj, "ambient", 3, 0.0, HUGE_VAL, ambient, &present)) return false;
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "lights");
+    if (!v) return true;
+    if (!cJSON_IsArray(v)) return fail(c, l, "'lights' must be an array of light objects");
+    int n = cJSON_GetArraySize(v);
+    if (n > SC_MAX_LIGHTS)
+        return fail(c, l, "'lights' holds %d lights, more than the %d allowed", n, SC_MAX_LIGHTS);
+    loc ll = *l;
+    ll.light = 0;
+    const cJSON *e;
+    cJSON_ArrayForEach(e, v) {
+        if (!parse_light(c, &ll, e, &lights[ll.light])) return false;
+        ll.light++;
+    }
+    *light_count = n;
+    return true;
+}
+
 /* File-level values every scene starts from. */
 typedef struct defaults {
     int width, height;
     bool has_width, has_height;
     float clear_color[4];
+    float ambient[3];
+    int light_count;
+    sc_light lights[SC_MAX_LIGHTS];
 } defaults;
 
 static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, sc_scene *s) {
-    loc l = {index, -1, NULL};
+    loc l = NOWHERE;
+    l.scene = index;
     if (!cJSON_IsObject(v)) return fail(c, &l, "a scene must be an object");
     const cJSON *name = cJSON_GetObjectItemCaseSensitive(v, "name");
     if (!name) return fail(c, &l, "missing 'name'");
@@ -510,6 +620,11 @@ static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, 
                     has_w ? "height" : "width");
     memcpy(s->clear_color, def->clear_color, sizeof s->clear_color);
     if (!get_floats(c, &l, v, "clear_color", 4, 0.0, 1.0, s->clear_color, &present)) return false;
+    /* A scene's "lights" replaces the top level's list as a whole. */
+    memcpy(s->ambient, def->ambient, sizeof s->ambient);
+    memcpy(s->lights, def->lights, sizeof s->lights);
+    s->light_count = def->light_count;
+    if (!parse_lighting(c, &l, v, s->ambient, s->lights, &s->light_count)) return false;
 
     const cJSON *draws = cJSON_GetObjectItemCaseSensitive(v, "draws");
     if (!draws) return fail(c, &l, "missing 'draws'");
@@ -529,14 +644,15 @@ static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, 
 }
 
 static bool parse_root(ctx *c, const cJSON *root) {
-    loc none = {-1, -1, NULL};
+    loc none = NOWHERE;
     if (!cJSON_IsObject(root)) return fail(c, &none, "the top level must be a JSON object");
     defaults def = {0};
     if (!get_int(c, &none, root, "width", 1, SC_MAX_IMAGE_SIZE, &def.width, &def.has_width) ||
         !get_int(c, &none, root, "height", 1, SC_MAX_IMAGE_SIZE, &def.height, &def.has_height))
         return false;
     bool present;
-    if (!get_floats(c, &none, root, "clear_color", 4, 0.0, 1.0, def.clear_color, &present))
+    if (!get_floats(c, &none, root, "clear_color", 4, 0.0, 1.0, def.clear_color, &present) ||
+        !parse_lighting(c, &none, root, def.ambient, def.lights, &def.light_count))
         return false;
 
     const cJSON *scenes = cJSON_GetObjectItemCaseSensitive(root, "scenes");
@@ -560,7 +676,7 @@ bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, char
     memset(out, 0, sizeof *out);
     if (err && errlen) err[0] = '\0';
     ctx c = {.path = path, .err = err, .errlen = errlen, .f = out};
-    loc none = {-1, -1, NULL};
+    loc none = NOWHERE;
     bool ok = false;
     cJSON *root = NULL;
 

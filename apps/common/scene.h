@@ -51,6 +51,31 @@ typedef enum sc_sort {
     SC_SORT_BACK_TO_FRONT, /* by view-space centroid z, farthest first (docs/scene-format.md) */
 } sc_sort;
 
+typedef enum sc_lighting {
+    SC_LIGHTING_NONE,    /* the colour is not lit */
+    SC_LIGHTING_FLAT,    /* once per triangle, at its view-space centroid, with its face normal */
+    SC_LIGHTING_GOURAUD, /* per vertex, colours interpolated */
+    SC_LIGHTING_PHONG,   /* per pixel, normal and view position interpolated */
+} sc_lighting;
+
+/* Most lights of a scene (sgapi's SG_MAX_LIGHTS). */
+#define SC_MAX_LIGHTS 8
+
+typedef enum sc_light_type {
+    SC_LIGHT_DIRECTIONAL, /* from infinitely far, along `direction` */
+    SC_LIGHT_POINT,       /* from `position`, attenuated with distance */
+} sc_light_type;
+
+/* One light, in view space (the eye at the origin, looking down -z). */
+typedef struct sc_light {
+    sc_light_type type;
+    float direction[3];   /* DIRECTIONAL: the way the light travels; not (0, 0, 0) */
+    float position[3];    /* POINT */
+    float color[3];       /* r, g, b, each finite and >= 0 */
+    float attenuation[3]; /* POINT: constant, linear, quadratic, each finite and >= 0, not all 0;
+                             default 1, 0, 0 */
+} sc_light;
+
 /* One draw call. */
 typedef struct sc_draw {
     int mesh;    /* index into sc_file.meshes */
@@ -65,6 +90,9 @@ typedef struct sc_draw {
     sc_blend blend;
     float color[4]; /* r, g, b, a in [0, 1], times every vertex colour; default 1, 1, 1, 1 */
     sc_sort sort;
+    sc_lighting lighting;
+    float specular[3];    /* r, g, b of the specular material, each finite and >= 0; default 0 */
+    float shininess;      /* specular exponent, 0 .. 128; default 0 */
     float world_view[16]; /* row-major: elements 0..3 are the first row */
     float proj[16];       /* row-major; clip = proj * world_view * position */
 } sc_draw;
@@ -76,6 +104,9 @@ typedef struct sc_scene {
     float clear_color[4]; /* r, g, b, a in [0, 1] */
     sc_draw *draws;       /* in order; may be empty (the image is only cleared) */
     size_t draw_count;
+    float ambient[3]; /* r, g, b of the scene's ambient light, each finite and >= 0; default 0 */
+    int light_count;  /* 0 .. SC_MAX_LIGHTS */
+    sc_light lights[SC_MAX_LIGHTS];
 } sc_scene;
 
 /* A loaded scene file: the scenes and everything their draws refer to. */
@@ -91,7 +122,8 @@ typedef struct sc_file {
     size_t texture_count;
 } sc_file;
 
-/** Loads a scene file and every mesh and texture it names; on failure *out is zeroed. */
+/** Loads a scene file and every mesh and texture it names; on failure *out is zeroed. Every
+ *  mesh has normals: a mesh without them gets smooth ones (sgu_compute_normals). */
 bool sc_load(const char *path, sc_file *out, char *err, size_t errlen);
 /** Parses scene JSON text; path names it in messages and relative paths start at its folder. */
 bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, char *err,

@@ -19,6 +19,13 @@ static const sgCompare compare_map[] = {
     [SC_COMPARE_ALWAYS] = SG_COMPARE_ALWAYS,
 };
 
+static const sgLightingMode lighting_map[] = {
+    [SC_LIGHTING_NONE] = SG_LIGHTING_NONE,
+    [SC_LIGHTING_FLAT] = SG_LIGHTING_FLAT,
+    [SC_LIGHTING_GOURAUD] = SG_LIGHTING_GOURAUD,
+    [SC_LIGHTING_PHONG] = SG_LIGHTING_PHONG,
+};
+
 sgPipelineDesc ss_pipeline_desc(const sc_draw *d) {
     sgPipelineDesc p;
     memset(&p, 0, sizeof p);
@@ -39,13 +46,31 @@ sgPipelineDesc ss_pipeline_desc(const sc_draw *d) {
                                         : SG_CULL_NONE;
     p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
     p.blend = d->blend == SC_BLEND_ALPHA ? SG_BLEND_ALPHA : SG_BLEND_OPAQUE;
+    p.lighting = lighting_map[d->lighting];
     return p;
+}
+
+/* The scene's ambient and lights as sgapi takes them. */
+static void scene_lighting(const sc_scene *s, sgLighting *out) {
+    memset(out, 0, sizeof *out);
+    memcpy(out->ambient, s->ambient, sizeof out->ambient);
+    out->light_count = s->light_count;
+    for (int i = 0; i < s->light_count; i++) {
+        const sc_light *l = &s->lights[i];
+        sgLight *o = &out->lights[i];
+        o->type = l->type == SC_LIGHT_POINT ? SG_LIGHT_POINT : SG_LIGHT_DIRECTIONAL;
+        memcpy(o->direction, l->direction, sizeof o->direction);
+        memcpy(o->position, l->position, sizeof o->position);
+        memcpy(o->color, l->color, sizeof o->color);
+        memcpy(o->attenuation, l->attenuation, sizeof o->attenuation);
+    }
 }
 
 static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
     return a->shade == b->shade && a->filter == b->filter && a->wrap == b->wrap &&
            a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
-           a->cull == b->cull && a->front_face == b->front_face && a->blend == b->blend;
+           a->cull == b->cull && a->front_face == b->front_face && a->blend == b->blend &&
+           a->lighting == b->lighting;
 }
 
 bool ss_get_pso(const char *prog, sgDevice *dev, ss_pso_cache *c, const sgPipelineDesc *desc,
@@ -146,6 +171,8 @@ bool ss_create_targets(const char *prog, sgDevice *dev, const sc_scene *s, sgIma
 
 bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *f, const sc_scene *s,
                    const ss_uploads *u, const sgPipelineStateObject *psos, const sgPassDesc *pass) {
+    sgLighting lighting;
+    scene_lighting(s, &lighting);
     sgResult r = sgBeginRenderPass(dev, pass);
     if (r != SG_OK) return ss_fail(prog, dev, r, "scene '%s': sgBeginRenderPass", s->name);
     for (size_t i = 0; i < s->draw_count; i++) {
@@ -160,6 +187,11 @@ bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *f, const sc_s
         bool white = color.r == 1.0f && color.g == 1.0f && color.b == 1.0f && color.a == 1.0f;
         params.color = white ? NULL : &color;
         params.sort = d->sort == SC_SORT_BACK_TO_FRONT ? SG_SORT_BACK_TO_FRONT : SG_SORT_NONE;
+        if (d->lighting != SC_LIGHTING_NONE) {
+            params.lighting = &lighting;
+            memcpy(params.specular, d->specular, sizeof params.specular);
+            params.shininess = d->shininess;
+        }
         r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
         if (r != SG_OK) {
             ss_fail(prog, dev, r, "scene '%s', draw %zu (%s): sgDraw", s->name, i,

@@ -6,13 +6,16 @@
  * Same scene loader, same conventions as sgapi-render (see docs/reference.md): OpenGL clip space
  * mapped to Vulkan's in the vertex shader, texture rows uploaded bottom first so t = 0 is the
  * bottom row, RGBA8 unorm colour, D32 float depth, no mipmaps; alpha blending is pipeline state,
- * the draw colour a uniform the vertex shader multiplies by, back-to-front sorting done on the CPU.
+ * the draw colour a uniform the vertex shader multiplies by, back-to-front sorting done on the CPU;
+ * lit draws evaluate sgapi's lighting equation in GLSL per vertex (Gouraud), per pixel (Phong) or
+ * per triangle in a geometry shader (flat), with the lights in the same per-draw uniform block.
  * Writes DIR/<scene>.png and prints the time per frame (submit to fence, median of N). --threads
  * sets LP_NUM_THREADS.
  */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -29,10 +32,49 @@
 #include "scene.h"
 #include "spv_color_frag.h"
 #include "spv_color_vert.h"
+#include "spv_flat_geom.h"
+#include "spv_lit_flat_frag.h"
+#include "spv_lit_flat_texture_frag.h"
+#include "spv_lit_flat_vert.h"
+#include "spv_lit_gouraud_frag.h"
+#include "spv_lit_gouraud_texture_frag.h"
+#include "spv_lit_gouraud_vert.h"
+#include "spv_lit_phong_frag.h"
+#include "spv_lit_phong_texture_frag.h"
+#include "spv_lit_phong_vert.h"
 #include "spv_texture_frag.h"
 #include "spv_texture_vert.h"
 
 #define MAX_PIPELINES 512
+
+/* The shader modules. Lit stages are indexed by mode: SC_LIGHTING_FLAT - 1, GOURAUD - 1,
+ * PHONG - 1; lit fragment stages by mode * 2 + textured. */
+enum {
+    SH_COLOR_VERT,
+    SH_COLOR_FRAG,
+    SH_TEXTURE_VERT,
+    SH_TEXTURE_FRAG,
+    SH_LIT_VERT,                   /* 3 modes */
+    SH_LIT_FRAG = SH_LIT_VERT + 3, /* 3 modes x (untextured, textured) */
+    SH_FLAT_GEOM = SH_LIT_FRAG + 6,
+    SH_COUNT
+};
+
+/* The per-draw uniform block of the shaders, std140 (apps/ref/shaders/lighting.glsl): the draw
+ * colour, which every shader reads, then what lit shaders read. */
+typedef struct draw_block {
+    float color[4];
+    float ambient[4];  /* rgb */
+    float specular[4]; /* rgb, shininess */
+    float nm[3][4];    /* rows of the normal matrix */
+    int32_t light_count, pad[3];
+    struct {
+        float vec[4]; /* directional: L, w = 0; point: position, w = 1 */
+        float color[4];
+        float attenuation[4];
+    } lights[SC_MAX_LIGHTS];
+} draw_block;
+_Static_assert(sizeof(draw_block) == 496, "draw_block must match the std140 block of the shaders");
 
 typedef struct buffer {
     VkBuffer buffer;
@@ -61,12 +103,13 @@ typedef struct ref {
     VkCommandPool cmd_pool;
     VkCommandBuffer cmd;
     VkFence fence;
-    VkShaderModule modules[4];            /* color.vert, color.frag, texture.vert, texture.frag */
-    VkDescriptorSetLayout color_layout;   /* set 0: the draws' constant colours, dynamic offset */
+    VkShaderModule modules[SH_COUNT];
+    bool has_geometry;                    /* geometryShader: needed by flat lighting */
+    VkDescriptorSetLayout color_layout;   /* set 0: the draws' uniform blocks, dynamic offset */
     VkDescriptorSetLayout texture_layout; /* set 1: the texture and its sampler */
     VkPipelineLayout layout_color, layout_texture;
-    VkDeviceSize color_stride; /* bytes between draws in a scene's colour buffer */
-    VkSampler samplers[4];     /* [filter bilinear?][wrap clamp?] */
+    VkDeviceSize draw_stride; /* bytes between draws in a scene's uniform buffer */
+    VkSampler samplers[4];    /* [filter bilinear?][wrap clamp?] */
     VkRenderPass render_pass;
     pipeline_entry pipelines[MAX_PIPELINES];
     int pipeline_count;
@@ -133,9 +176,14 @@ static bool create_device(ref *r) {
     vkGetPhysicalDeviceMemoryProperties(r->phys, &r->mem);
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(r->phys, &props);
-    /* One vec4 per draw, each at an offset the device accepts for a dynamic uniform buffer. */
-    VkDeviceSize align = props.limits.minUniformBufferOffsetAlignment;
-    r->color_stride = align > 16 ? (16 + align - 1) / align * align : 16;
+    /* One block per draw, each at an offset the device accepts for a dynamic uniform buffer. */
+    VkDeviceSize align = props.limits.minUniformBufferOffsetAlignment, size = sizeof(draw_block);
+    r->draw_stride = align > 1 ? (size + align - 1) / align * align : size;
+    /* Flat lighting runs in a geometry shader; without one, only flat-lit draws fail. */
+    VkPhysicalDeviceFeatures have, want = {0};
+    vkGetPhysicalDeviceFeatures(r->phys, &have);
+    r->has_geometry = have.geometryShader == VK_TRUE;
+    want.geometryShader = have.geometryShader;
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(r->phys, &n, NULL);
     VkQueueFamilyProperties qf[16];
@@ -155,7 +203,8 @@ static bool create_device(ref *r) {
                                    .pQueuePriorities = &prio};
     VkDeviceCreateInfo dci = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
                               .queueCreateInfoCount = 1,
-                              .pQueueCreateInfos = &qci};
+                              .pQueueCreateInfos = &qci,
+                              .pEnabledFeatures = &want};
     VK_CHECK(r, vkCreateDevice(r->phys, &dci, NULL, &r->device));
     vkGetDeviceQueue(r->device, r->queue_family, 0, &r->queue);
     VkCommandPoolCreateInfo cpi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
@@ -173,19 +222,40 @@ static bool create_device(ref *r) {
 }
 
 static bool create_shaders_and_layouts(ref *r) {
-    const uint32_t *code[4] = {spv_color_vert, spv_color_frag, spv_texture_vert, spv_texture_frag};
-    size_t size[4] = {sizeof spv_color_vert, sizeof spv_color_frag, sizeof spv_texture_vert,
-                      sizeof spv_texture_frag};
-    for (int i = 0; i < 4; i++) {
+    static const struct {
+        const uint32_t *code;
+        size_t size;
+    } spv[SH_COUNT] = {
+        [SH_COLOR_VERT] = {spv_color_vert, sizeof spv_color_vert},
+        [SH_COLOR_FRAG] = {spv_color_frag, sizeof spv_color_frag},
+        [SH_TEXTURE_VERT] = {spv_texture_vert, sizeof spv_texture_vert},
+        [SH_TEXTURE_FRAG] = {spv_texture_frag, sizeof spv_texture_frag},
+        [SH_LIT_VERT + 0] = {spv_lit_flat_vert, sizeof spv_lit_flat_vert},
+        [SH_LIT_VERT + 1] = {spv_lit_gouraud_vert, sizeof spv_lit_gouraud_vert},
+        [SH_LIT_VERT + 2] = {spv_lit_phong_vert, sizeof spv_lit_phong_vert},
+        [SH_LIT_FRAG + 0] = {spv_lit_flat_frag, sizeof spv_lit_flat_frag},
+        [SH_LIT_FRAG + 1] = {spv_lit_flat_texture_frag, sizeof spv_lit_flat_texture_frag},
+        [SH_LIT_FRAG + 2] = {spv_lit_gouraud_frag, sizeof spv_lit_gouraud_frag},
+        [SH_LIT_FRAG + 3] = {spv_lit_gouraud_texture_frag, sizeof spv_lit_gouraud_texture_frag},
+        [SH_LIT_FRAG + 4] = {spv_lit_phong_frag, sizeof spv_lit_phong_frag},
+        [SH_LIT_FRAG + 5] = {spv_lit_phong_texture_frag, sizeof spv_lit_phong_texture_frag},
+        [SH_FLAT_GEOM] = {spv_flat_geom, sizeof spv_flat_geom},
+    };
+    for (int i = 0; i < SH_COUNT; i++) {
+        /* A module with the Geometry capability needs the feature enabled. */
+        if (i == SH_FLAT_GEOM && !r->has_geometry) continue;
         VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-                                        .codeSize = size[i],
-                                        .pCode = code[i]};
+                                        .codeSize = spv[i].size,
+                                        .pCode = spv[i].code};
         VK_CHECK(r, vkCreateShaderModule(r->device, &smi, NULL, &r->modules[i]));
     }
+    /* The draw block is read by every stage of a lit pipeline. */
+    VkShaderStageFlags draw_stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
+                                     (r->has_geometry ? VK_SHADER_STAGE_GEOMETRY_BIT : 0);
     VkDescriptorSetLayoutBinding cb = {.binding = 0,
                                        .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
                                        .descriptorCount = 1,
-                                       .stageFlags = VK_SHADER_STAGE_VERTEX_BIT};
+                                       .stageFlags = draw_stages};
     VkDescriptorSetLayoutCreateInfo dli = {.sType =
                                                VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                            .bindingCount = 1,
@@ -260,7 +330,7 @@ static bool create_shaders_and_layouts(ref *r) {
 static uint32_t pipeline_key(const sc_draw *d, bool textured) {
     return (uint32_t)textured | (uint32_t)d->cull << 1 | (uint32_t)d->front_face << 3 |
            (uint32_t)d->depth_compare << 4 | (uint32_t)d->depth_write << 8 |
-           (uint32_t)d->blend << 9;
+           (uint32_t)d->blend << 9 | (uint32_t)d->lighting << 10;
 }
 
 static const VkCompareOp compare_ops[] = {
@@ -282,26 +352,45 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *ou
             return true;
         }
     if (r->pipeline_count == MAX_PIPELINES) return fail(r, "too many pipeline states");
-    VkPipelineShaderStageCreateInfo stages[2] = {
+    const bool lit = d->lighting != SC_LIGHTING_NONE;
+    if (d->lighting == SC_LIGHTING_FLAT && !r->has_geometry)
+        return fail(r, "flat lighting needs geometry shaders, which this lavapipe does not offer "
+                       "(VkPhysicalDeviceFeatures.geometryShader)");
+    VkPipelineShaderStageCreateInfo stages[3] = {
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
          .stage = VK_SHADER_STAGE_VERTEX_BIT,
-         .module = r->modules[textured ? 2 : 0],
          .pName = "main"},
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
          .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
-         .module = r->modules[textured ? 3 : 1],
+         .pName = "main"},
+        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+         .stage = VK_SHADER_STAGE_GEOMETRY_BIT,
+         .module = r->modules[SH_FLAT_GEOM],
          .pName = "main"}};
-    VkVertexInputBindingDescription bind[3] = {{0, 16, VK_VERTEX_INPUT_RATE_VERTEX},
+    if (lit) {
+        int mode = (int)d->lighting - 1;
+        stages[0].module = r->modules[SH_LIT_VERT + mode];
+        stages[1].module = r->modules[SH_LIT_FRAG + mode * 2 + textured];
+    } else {
+        stages[0].module = r->modules[textured ? SH_TEXTURE_VERT : SH_COLOR_VERT];
+        stages[1].module = r->modules[textured ? SH_TEXTURE_FRAG : SH_COLOR_FRAG];
+    }
+    /* Positions, colours, texcoords, normals: the sections of the mesh's vertex buffer. Unlit
+     * shaders read the first two, or three when textured; lit ones all four. */
+    VkVertexInputBindingDescription bind[4] = {{0, 16, VK_VERTEX_INPUT_RATE_VERTEX},
                                                {1, 16, VK_VERTEX_INPUT_RATE_VERTEX},
-                                               {2, 8, VK_VERTEX_INPUT_RATE_VERTEX}};
-    VkVertexInputAttributeDescription attr[3] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                                               {2, 8, VK_VERTEX_INPUT_RATE_VERTEX},
+                                               {3, 12, VK_VERTEX_INPUT_RATE_VERTEX}};
+    VkVertexInputAttributeDescription attr[4] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
                                                  {1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
-                                                 {2, 2, VK_FORMAT_R32G32_SFLOAT, 0}};
+                                                 {2, 2, VK_FORMAT_R32G32_SFLOAT, 0},
+                                                 {3, 3, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+    uint32_t inputs = lit ? 4 : textured ? 3 : 2;
     VkPipelineVertexInputStateCreateInfo vi = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
-        .vertexBindingDescriptionCount = textured ? 3 : 2,
+        .vertexBindingDescriptionCount = inputs,
         .pVertexBindingDescriptions = bind,
-        .vertexAttributeDescriptionCount = textured ? 3 : 2,
+        .vertexAttributeDescriptionCount = inputs,
         .pVertexAttributeDescriptions = attr};
     VkPipelineInputAssemblyStateCreateInfo ia = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
@@ -350,7 +439,7 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *ou
                                            .dynamicStateCount = 2,
                                            .pDynamicStates = dyn};
     VkGraphicsPipelineCreateInfo gpi = {.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-                                        .stageCount = 2,
+                                        .stageCount = d->lighting == SC_LIGHTING_FLAT ? 3 : 2,
                                         .pStages = stages,
                                         .pVertexInputState = &vi,
                                         .pInputAssemblyState = &ia,
@@ -500,7 +589,7 @@ static bool upload_texture(ref *r, const sc_image *img, texture *t) {
 
 /* GPU copies of one scene file's meshes and textures. */
 typedef struct uploads {
-    buffer *vertex; /* per mesh: positions | colours | texcoords, back to back */
+    buffer *vertex; /* per mesh: positions | colours | texcoords | normals, back to back */
     buffer *index;
     texture *textures;
     size_t mesh_count, texture_count;
@@ -514,7 +603,7 @@ static bool upload_file(ref *r, const sc_file *f, uploads *u) {
     for (size_t i = 0; i < f->mesh_count; i++) {
         const sc_mesh *m = &f->meshes[i];
         size_t n = m->vertex_count;
-        size_t bytes = n * 16 + n * 16 + n * 8;
+        size_t bytes = n * 16 + n * 16 + n * 8 + n * 12;
         if (!create_buffer(r, bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &u->vertex[i]))
             return false;
         u->mesh_count = i + 1;
@@ -525,6 +614,11 @@ static bool upload_file(ref *r, const sc_file *f, uploads *u) {
             memcpy(p + n * 32, m->texcoords, n * 8);
         else
             memset(p + n * 32, 0, n * 8);
+        /* The loader gives every mesh normals; zeros would light only with the ambient. */
+        if (m->normals)
+            memcpy(p + n * 40, m->normals, n * 12);
+        else
+            memset(p + n * 40, 0, n * 12);
         if (!create_buffer(r, (VkDeviceSize)m->index_count * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
                            &u->index[i]))
             return false;
@@ -593,7 +687,7 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         memcpy(pc, d->world_view, 64);
         memcpy(pc + 16, d->proj, 64);
         vkCmdPushConstants(r->cmd, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 128, pc);
-        uint32_t color_offset = (uint32_t)(i * r->color_stride);
+        uint32_t color_offset = (uint32_t)(i * r->draw_stride);
         vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &color_set,
                                 1, &color_offset);
         if (textured)
@@ -601,10 +695,11 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
                                     0, NULL);
         const sc_mesh *m = &f->meshes[d->mesh];
         VkDeviceSize n = m->vertex_count;
-        VkBuffer vb[3] = {u->vertex[d->mesh].buffer, u->vertex[d->mesh].buffer,
-                          u->vertex[d->mesh].buffer};
-        VkDeviceSize off[3] = {0, n * 16, n * 32};
-        vkCmdBindVertexBuffers(r->cmd, 0, textured ? 3 : 2, vb, off);
+        VkBuffer vb[4] = {u->vertex[d->mesh].buffer, u->vertex[d->mesh].buffer,
+                          u->vertex[d->mesh].buffer, u->vertex[d->mesh].buffer};
+        VkDeviceSize off[4] = {0, n * 16, n * 32, n * 40};
+        uint32_t inputs = d->lighting != SC_LIGHTING_NONE ? 4 : textured ? 3 : 2;
+        vkCmdBindVertexBuffers(r->cmd, 0, inputs, vb, off);
         /* A sorted draw has its own index buffer: the mesh's is shared with other draws. */
         VkBuffer ib = sorted[i].buffer ? sorted[i].buffer : u->index[d->mesh].buffer;
         vkCmdBindIndexBuffer(r->cmd, ib, 0, VK_INDEX_TYPE_UINT32);
@@ -619,19 +714,80 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     return true;
 }
 
-/* The per-draw data of a scene: each draw's constant colour, at color_stride bytes apart, and for
+/* The normal matrix of a row-major worldView: the inverse transpose of its upper-left 3x3, in
+ * double, rows out. A singular (or non-finite) matrix gives zero, so every normal is (0, 0, 0). */
+static void normal_matrix(const float *wv, float out[3][4]) {
+    double m[3][3], c[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) m[i][j] = wv[i * 4 + j];
+    /* inverse(M)^T = cofactor(M) / det(M). */
+    c[0][0] = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+    c[0][1] = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+    c[0][2] = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+    c[1][0] = m[0][2] * m[2][1] - m[0][1] * m[2][2];
+    c[1][1] = m[0][0] * m[2][2] - m[0][2] * m[2][0];
+    c[1][2] = m[0][1] * m[2][0] - m[0][0] * m[2][1];
+    c[2][0] = m[0][1] * m[1][2] - m[0][2] * m[1][1];
+    c[2][1] = m[0][2] * m[1][0] - m[0][0] * m[1][2];
+    c[2][2] = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    double det = m[0][0] * c[0][0] + m[0][1] * c[0][1] + m[0][2] * c[0][2];
+    bool ok = det != 0.0 && isfinite(det);
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            out[i][j] = ok ? (float)(c[i][j] / det) : 0.0f;
+            ok = ok && isfinite(out[i][j]);
+        }
+        out[i][3] = 0.0f;
+    }
+    if (!ok) memset(out, 0, 3 * sizeof out[0]);
+}
+
+/* What the shaders of a draw read: its colour and, when lit, the material, the normal matrix and
+ * the scene's ambient and lights. */
+static void fill_draw_block(const sc_scene *s, const sc_draw *d, draw_block *b) {
+    memset(b, 0, sizeof *b);
+    memcpy(b->color, d->color, sizeof d->color);
+    if (d->lighting == SC_LIGHTING_NONE) return;
+    memcpy(b->ambient, s->ambient, sizeof s->ambient);
+    memcpy(b->specular, d->specular, sizeof d->specular);
+    b->specular[3] = d->shininess;
+    normal_matrix(d->world_view, b->nm);
+    b->light_count = s->light_count;
+    for (int i = 0; i < s->light_count; i++) {
+        const sc_light *l = &s->lights[i];
+        if (l->type == SC_LIGHT_DIRECTIONAL) {
+            /* L = -normalize(direction), once per draw and in double; the loader refuses a zero
+             * direction. */
+            double x = l->direction[0], y = l->direction[1], z = l->direction[2];
+            double len = sqrt(x * x + y * y + z * z);
+            b->lights[i].vec[0] = (float)(-x / len);
+            b->lights[i].vec[1] = (float)(-y / len);
+            b->lights[i].vec[2] = (float)(-z / len);
+            b->lights[i].vec[3] = 0.0f;
+        } else {
+            memcpy(b->lights[i].vec, l->position, sizeof l->position);
+            b->lights[i].vec[3] = 1.0f;
+        }
+        memcpy(b->lights[i].color, l->color, sizeof l->color);
+        memcpy(b->lights[i].attenuation, l->attenuation, sizeof l->attenuation);
+    }
+}
+
+/* The per-draw data of a scene: each draw's uniform block, at draw_stride bytes apart, and for
  * each draw sorted back to front its own index buffer, in that order. */
-static bool prepare_draws(ref *r, const sc_file *f, const sc_scene *s, buffer *colors,
+static bool prepare_draws(ref *r, const sc_file *f, const sc_scene *s, buffer *blocks,
                           buffer *sorted) {
-    if (s->draw_count > UINT32_MAX / r->color_stride)
+    if (s->draw_count > UINT32_MAX / r->draw_stride)
         return fail(r, "too many draws (%zu)", s->draw_count);
-    VkDeviceSize stride = r->color_stride;
+    VkDeviceSize stride = r->draw_stride;
     if (!create_buffer(r, (VkDeviceSize)s->draw_count * stride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                       colors))
+                       blocks))
         return false;
     for (size_t i = 0; i < s->draw_count; i++) {
         const sc_draw *d = &s->draws[i];
-        memcpy((uint8_t *)colors->mapped + i * stride, d->color, sizeof d->color);
+        draw_block block;
+        fill_draw_block(s, d, &block);
+        memcpy((uint8_t *)blocks->mapped + i * stride, &block, sizeof block);
         if (d->sort != SC_SORT_BACK_TO_FRONT) continue;
         const sc_mesh *m = &f->meshes[d->mesh];
         if (!create_buffer(r, (VkDeviceSize)m->index_count * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
@@ -647,7 +803,7 @@ static bool prepare_draws(ref *r, const sc_file *f, const sc_scene *s, buffer *c
 static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          const char *out_dir, int frames) {
     texture color = {0}, depth = {0};
-    buffer readback = {0}, colors = {0};
+    buffer readback = {0}, blocks = {0};
     VkFramebuffer fb = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet color_set = VK_NULL_HANDLE;
@@ -656,7 +812,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     double *times = calloc((size_t)frames, sizeof *times);
     bool ok = sets && sorted && times;
     if (!ok) fail(r, "out of memory");
-    ok = ok && prepare_draws(r, f, s, &colors, sorted);
+    ok = ok && prepare_draws(r, f, s, &blocks, sorted);
     ok = ok &&
          create_image(r, s->width, s->height, VK_FORMAT_R8G8B8A8_UNORM,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -688,7 +844,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
                                           .pPoolSizes = ps};
         ok = vkCreateDescriptorPool(r->device, &dpi, NULL, &pool) == VK_SUCCESS ||
              fail(r, "vkCreateDescriptorPool failed");
-        /* One set for every draw's colour: each draw binds it at its own dynamic offset. */
+        /* One set for every draw's block: each draw binds it at its own dynamic offset. */
         VkDescriptorSetAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
                                            .descriptorPool = pool,
                                            .descriptorSetCount = 1,
@@ -696,7 +852,8 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         ok = ok && (vkAllocateDescriptorSets(r->device, &cai, &color_set) == VK_SUCCESS ||
                     fail(r, "vkAllocateDescriptorSets failed"));
         if (ok) {
-            VkDescriptorBufferInfo bi = {.buffer = colors.buffer, .offset = 0, .range = 16};
+            VkDescriptorBufferInfo bi = {
+                .buffer = blocks.buffer, .offset = 0, .range = sizeof(draw_block)};
             VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                       .dstSet = color_set,
                                       .descriptorCount = 1,
@@ -759,7 +916,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     if (pool) vkDestroyDescriptorPool(r->device, pool, NULL);
     if (fb) vkDestroyFramebuffer(r->device, fb, NULL);
     destroy_buffer(r, &readback);
-    destroy_buffer(r, &colors);
+    destroy_buffer(r, &blocks);
     for (size_t i = 0; sorted && i < s->draw_count; i++) destroy_buffer(r, &sorted[i]);
     destroy_image(r, &color);
     destroy_image(r, &depth);
@@ -775,10 +932,10 @@ static void destroy_ref(ref *r) {
         for (int i = 0; i < r->pipeline_count; i++)
             vkDestroyPipeline(r->device, r->pipelines[i].pipeline, NULL);
         if (r->render_pass) vkDestroyRenderPass(r->device, r->render_pass, NULL);
-        for (int i = 0; i < 4; i++) {
+        for (int i = 0; i < 4; i++)
             if (r->samplers[i]) vkDestroySampler(r->device, r->samplers[i], NULL);
+        for (int i = 0; i < SH_COUNT; i++)
             if (r->modules[i]) vkDestroyShaderModule(r->device, r->modules[i], NULL);
-        }
         if (r->layout_color) vkDestroyPipelineLayout(r->device, r->layout_color, NULL);
         if (r->layout_texture) vkDestroyPipelineLayout(r->device, r->layout_texture, NULL);
         if (r->color_layout) vkDestroyDescriptorSetLayout(r->device, r->color_layout, NULL);

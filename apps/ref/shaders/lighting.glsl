@@ -1,0 +1,91 @@
+// lighting.glsl - the lighting equation of sgapi (docs/scene-format.md, "Lighting"), shared by the
+// lit shaders. Intermediate values are `precise` (SPIR-V NoContraction) so that no multiply-add is
+// fused and sums are formed left to right, as sgapi's C does.
+
+// The draw's uniform block: colour, material, normal matrix and the scene's lights (std140; the
+// C side is sgapi-ref.c's draw_block). The unlit shaders read only `color`.
+struct Light {
+    vec4 vec;         // w = 0: directional, xyz = L = -normalize(direction) (done in double on
+                      // the CPU); w = 1: point, xyz = position
+    vec4 color;       // rgb
+    vec4 attenuation; // constant, linear, quadratic
+};
+
+layout(set = 0, binding = 0) uniform Draw {
+    vec4 color;        // the draw colour: base = vertex colour * color
+    vec4 ambient;      // rgb: the scene's ambient light
+    vec4 specular;     // rgb: the material's specular colour; w: shininess
+    vec4 nm[3];        // rows of the inverse transpose of worldView's 3x3 (zero when singular)
+    ivec4 light_count; // x
+    Light lights[8];
+} u;
+
+const float SMALLEST_NORMAL = 1.17549435e-38;
+
+precise float dot3(vec3 a, vec3 b) {
+    return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
+
+// v / |v|; a zero or NaN length gives (0, 0, 0), never NaN. normalize() is not used: it is
+// undefined for a zero vector and may use an approximate inverse square root.
+vec3 safe_normalize(vec3 v) {
+    precise float len = sqrt(dot3(v, v));
+    return len > 0.0 ? v / len : vec3(0.0);
+}
+
+// The unnormalised view-space normal NM * n.
+vec3 normal_matrix_times(vec3 n) {
+    return vec3(dot3(u.nm[0].xyz, n), dot3(u.nm[1].xyz, n), dot3(u.nm[2].xyz, n));
+}
+
+// Row i of a row-major matrix declared row_major (GLSL indexes it [column][row]) times p, summed
+// left to right.
+precise float row_times(mat4 m, int i, vec4 p) {
+    return ((m[0][i] * p.x + m[1][i] * p.y) + m[2][i] * p.z) + m[3][i] * p.w;
+}
+
+// The view-space position (worldView * p).xyz / (worldView * p).w.
+vec3 view_position(mat4 world_view, vec4 p) {
+    precise vec4 e = vec4(row_times(world_view, 0, p), row_times(world_view, 1, p),
+                          row_times(world_view, 2, p), row_times(world_view, 3, p));
+    precise vec3 v = e.xyz / e.w;
+    return v;
+}
+
+// OpenGL 1.x lighting with a local viewer, colour material on ambient and diffuse and a separate
+// specular colour. base: vertex colour * draw colour; P: view-space position; N: unit normal, or
+// zero.
+void shade(vec4 base, vec3 P, vec3 N, out vec4 primary, out vec3 secondary) {
+    vec3 V = safe_normalize(-P);
+    float shininess = u.specular.w;
+    precise vec3 sum = base.rgb * u.ambient.rgb;
+    precise vec3 spec = vec3(0.0);
+    for (int i = 0; i < u.light_count.x; i++) {
+        vec3 L;
+        precise float att;
+        if (u.lights[i].vec.w == 0.0) {
+            L = u.lights[i].vec.xyz;
+            att = 1.0;
+        } else {
+            precise vec3 v = u.lights[i].vec.xyz - P;
+            precise float d = sqrt(dot3(v, v));
+            L = d > 0.0 ? v / d : vec3(0.0);
+            vec3 k = u.lights[i].attenuation.xyz;
+            // A light at the surface: a finite att, and L = 0 makes its contribution 0.
+            precise float den = (k.x + k.y * d) + k.z * (d * d);
+            att = 1.0 / max(den, SMALLEST_NORMAL);
+        }
+        precise float nl = dot3(N, L);
+        sum += ((att * max(nl, 0.0)) * base.rgb) * u.lights[i].color.rgb;
+        if (nl > 0.0) {
+            vec3 H = safe_normalize(L + V);
+            float nh = max(dot3(N, H), 0.0);
+            // x^0 = 1 even for x = 0 (OpenGL's rule; GLSL leaves pow(0, 0) undefined), and
+            // pow(0, s) is 0 without relying on log2(0).
+            float pw = shininess == 0.0 ? 1.0 : (nh > 0.0 ? pow(nh, shininess) : 0.0);
+            spec += ((att * pw) * u.lights[i].color.rgb) * u.specular.rgb;
+        }
+    }
+    primary = vec4(clamp(sum, 0.0, 1.0), base.a);
+    secondary = spec;
+}

@@ -1,0 +1,45 @@
+#version 450
+// Fragment stage of a lit draw, built per mode (-DFLAT, -DGOURAUD, -DPHONG) and with -DTEXTURED for
+// a textured draw: rgb = clamp(primary * texel + secondary, 0, 1), alpha = primary alpha * texel
+// alpha (texel = 1 untextured). GOURAUD interpolates the vertices' colours (perspective-correct),
+// FLAT takes the triangle's (flat), PHONG evaluates the equation here with the interpolated base
+// colour, view position and normal, renormalised.
+#extension GL_GOOGLE_include_directive : require
+#include "lighting.glsl"
+
+#if defined(PHONG)
+layout(location = 0) in vec4 v_base;
+layout(location = 1) in vec3 v_view;
+layout(location = 3) in vec3 v_normal;
+#elif defined(FLAT)
+layout(location = 0) flat in vec4 v_primary;
+layout(location = 1) flat in vec3 v_secondary;
+#else
+layout(location = 0) in vec4 v_primary;
+layout(location = 1) in vec3 v_secondary;
+#endif
+layout(location = 2) in vec2 v_texcoord;
+
+#if defined(TEXTURED)
+layout(set = 1, binding = 0) uniform sampler2D u_texture;
+#endif
+
+layout(location = 0) out vec4 o_color;
+
+void main() {
+#if defined(PHONG)
+    vec4 primary;
+    vec3 secondary;
+    shade(v_base, v_view, safe_normalize(v_normal), primary, secondary);
+#else
+    vec4 primary = v_primary;
+    vec3 secondary = v_secondary;
+#endif
+#if defined(TEXTURED)
+    vec4 texel = texture(u_texture, v_texcoord);
+#else
+    vec4 texel = vec4(1.0);
+#endif
+    precise vec3 rgb = primary.rgb * texel.rgb + secondary;
+    o_color = vec4(clamp(rgb, 0.0, 1.0), primary.a * texel.a);
+}
