@@ -1,5 +1,5 @@
 #!/bin/sh
-# Renders the default and transparency scenes with BUILD_DIR's sgapi-render under valgrind memcheck. Any memory error
+# Renders every scene file of scenes/ with BUILD_DIR's sgapi-render under valgrind memcheck. Any memory error
 # or definite/indirect leak fails the run (exit 1); the images go to a scratch folder.
 #
 #   tools/memcheck.sh BUILD_DIR
@@ -10,4 +10,4 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
 valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect \
-    "$build/apps/sgapi-render" "$src/scenes/default.json" "$src/scenes/transparency.json" -o "$out"
+    "$build/apps/sgapi-render" "$src"/scenes/*.json -o "$out"
