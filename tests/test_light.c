@@ -152,17 +152,18 @@ static void degenerate_input_is_finite(void **state) {
                             .attenuation = {0, 0, 1}}; /* 1 / d^2: infinite at the surface */
     l.lights[1] = (sgLight){
         .type = SG_LIGHT_DIRECTIONAL, .direction = {0, 0, -1}, .color = {5, 5, 5}}; /* saturates */
-    const float spec[3] = {1, 1, 1}, base[4] = {1, 1, 1, 1};
+    l.lights[0].color[1] = 3e38f; /* near the light, its attenuation overflows this */
+    const float spec[3] = {1, 0, 1}, base[4] = {1, 0, 1, 1}; /* zero channels: inf x 0 */
     const float shines[] = {0.0f, 1.0f, 128.0f};
     const float normals[][3] = {{0, 0, 0}, {0, 0, 1}, {1e-30f, 0, 0}, {3e38f, 3e38f, 3e38f}};
-    const float positions[][3] = {{0, 0, -2}, {0, 0, 0}, {1, 1, -3}};
+    const float positions[][3] = {{0, 0, -2}, {0, 0, 0}, {1, 1, -3}, {0, 0, -2.000001f}};
     for (size_t s = 0; s < 3; s++) {
         sg_lights ls;
         char why[160];
         int code;
         assert_true(sg_light_prepare(&l, spec, shines[s], &ls, why, sizeof why, &code));
         for (size_t i = 0; i < 4; i++)
-            for (size_t p = 0; p < 3; p++) {
+            for (size_t p = 0; p < 4; p++) {
                 float prim[4], sec[3];
                 sg_light_eval(&ls, positions[p], normals[i], base, prim, sec);
                 for (int k = 0; k < 4; k++) assert_true(prim[k] >= 0.0f && prim[k] <= 1.0f);

@@ -160,6 +160,10 @@ static inline void sg_light_eval(const sg_lights *ls, const float P[3], const fl
         }
     }
     for (int k = 0; k < 3; k++) {
+        /* A light at the surface with a huge colour can overflow the sums to infinity, which
+         * times a zero base or specular colour would be NaN: they stop at FLT_MAX. */
+        diff[k] = diff[k] < FLT_MAX ? diff[k] : FLT_MAX;
+        spec[k] = spec[k] < FLT_MAX ? spec[k] : FLT_MAX;
         float v = base[k] * ls->ambient[k] + base[k] * diff[k];
         prim[k] = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
         sec[k] = spec[k] * ls->specular[k];

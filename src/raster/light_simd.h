@@ -115,6 +115,9 @@ LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], 
         }
     }
     for (int k = 0; k < 3; k++) {
+        const LV big = lv_set1(FLT_MAX);
+        diff[k] = lv_sel(lm_gt(big, diff[k]), diff[k], big);
+        spec[k] = lv_sel(lm_gt(big, spec[k]), spec[k], big);
         LV v = lv_add(lv_mul(base[k], lv_set1(ls->ambient[k])), lv_mul(base[k], diff[k]));
         prim[k] = lv_sel(lm_gt(v, zero), lv_sel(lm_gt(lv_set1(1.0f), v), v, lv_set1(1.0f)), zero);
         sec[k] = lv_mul(spec[k], lv_set1(ls->specular[k]));
