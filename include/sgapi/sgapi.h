@@ -267,6 +267,10 @@ typedef struct sgPipelineDesc {
     struct {
         sgCompare compare; /* anything but ALWAYS reads the depth target */
         bool write;        /* write the fragment's depth when it passes */
+        /* Depth bias, for shadow maps: each triangle's depth is moved by bias_constant +
+         * bias_slope * max(|dz/dx|, |dz/dy|) (window depth, per pixel) before the test and the
+         * write. Finite; 0: none. */
+        float bias_constant, bias_slope;
     } depth;
     sgCull cull;
     sgFrontFace front_face;
@@ -296,7 +300,8 @@ typedef enum sgStoreOp {
 } sgStoreOp;
 
 typedef struct sgPassDesc {
-    sgImage2D color; /* required, SG_FORMAT_RGBA8_UNORM */
+    sgImage2D color; /* SG_FORMAT_RGBA8_UNORM; {0}: none, a depth-only pass (then depth is
+                        required): draws only test and write depth, nothing is shaded */
     sgImage2D depth; /* optional ({0}: none), SG_FORMAT_D32_FLOAT, same size as color */
     sgLoadOp color_load;
     sgLoadOp depth_load;
@@ -345,6 +350,16 @@ typedef struct sgLighting {
     sgLight lights[SG_MAX_LIGHTS];
 } sgLighting;
 
+/* A shadow map a draw receives: the depth, seen from a light, of everything that casts a
+ * shadow, rendered in a depth-only pass (docs/api.md, "Shadows"). */
+typedef struct sgShadow {
+    sgImage2D map;    /* an SG_FORMAT_D32_FLOAT image, not a target of the open pass */
+    float matrix[16]; /* view space (as worldView maps to) -> the light's clip space, row-major:
+                         the light's projection x its view, the same for every draw */
+    int light;        /* lit draws: the index in params->lighting of the light it shadows */
+    bool pcf;         /* 2 x 2 percentage-closer filtering; else the one texel under the point */
+} sgShadow;
+
 typedef struct sgDrawParams {
     float world_view[16]; /* row-major */
     float proj[16];       /* row-major */
@@ -357,6 +372,10 @@ typedef struct sgDrawParams {
     const sgLighting *lighting; /* NULL: no light and no ambient (a lit surface is black) */
     float specular[3];          /* specular colour of the material, each finite and >= 0 */
     float shininess;            /* specular exponent, 0 .. 128 */
+    /* Optional: the draw receives this shadow (NULL: none). Lit draws lose the shadowed light's
+     * diffuse and specular light where it is hidden (SG_LIGHTING_PHONG only); unlit draws are
+     * darkened to half their colour there. */
+    const sgShadow *shadow;
 } sgDrawParams;
 
 /** Opens a render pass on the given targets, clearing or loading them. */
