@@ -1001,12 +1001,16 @@ static void pass_begin_errors(void **state) {
         assert_not_in_pass(f);                                                                     \
     } while (0)
 
-    const uint32_t bad_ids[] = {0, UNKNOWN_ID, stale.id};
+    /* No target at all (colour 0 alone is a depth-only pass). */
+    p = good;
+    p.color.id = 0;
+    p.depth.id = 0;
+    BEGIN_FAILS(SG_ERROR_INVALID_HANDLE);
+    const uint32_t bad_ids[] = {UNKNOWN_ID, stale.id};
     for (size_t i = 0; i < sizeof bad_ids / sizeof bad_ids[0]; i++) {
         p = good;
         p.color.id = bad_ids[i];
         BEGIN_FAILS(SG_ERROR_INVALID_HANDLE);
-        if (bad_ids[i] == 0) continue; /* depth 0 means "no depth target" */
         p = good;
         p.depth.id = bad_ids[i];
         BEGIN_FAILS(SG_ERROR_INVALID_HANDLE);

@@ -34,9 +34,12 @@ typedef struct sg_geom {
 
 typedef struct sg_pso {
     sgPipelineDesc desc;    /* every DEFAULT resolved */
-    sg_raster_fn raster_fn; /* coverage and visibility (depth.c) */
+    sg_raster_fn raster_fn; /* coverage and visibility (depth.c), or blending (blend.c) */
+    sg_raster_fn depth_fn;  /* coverage and depth alone, for depth-only passes */
     sg_shade_fn shade_fn;
-    sg_shade_fn shade_sec; /* flat and Gouraud lighting with a specular material */
+    sg_shade_fn shade_sec;      /* flat and Gouraud lighting with a specular material */
+    sg_shade_fn shade_shadow;   /* receiving a shadow map (NULL: flat and Gouraud lighting) */
+    sg_raster_fn raster_shadow; /* raster_fn, for draws that receive a shadow map */
     int nattr;
     bool uses_depth;
 } sg_pso;

@@ -3,6 +3,8 @@
  * (bin.c). The bins are rendered at sgEndRenderPass (rast_bin.c). */
 #include "core/device.h"
 
+#include <float.h>
+#include <math.h>
 #include <string.h>
 
 #include "pipeline/assemble.h"
@@ -180,9 +182,9 @@ static void vs_run(void *vjob, int index) {
 
 static void transform_vertices(sgDevice *dev, const float *mvp, const sg_geom *geom,
                                const sg_guard *guard, const sg_setup_params *setup,
-                               const sg_vertex_lit *lit) {
-    vs_job job = {mvp,   geom->positions, geom->colors, geom->texcoords,    dev,
-                  guard, setup,           lit,          geom->vertex_count, 1};
+                               const sg_vertex_lit *lit, const float *colors) {
+    vs_job job = {mvp,   geom->positions, colors, geom->texcoords,    dev,
+                  guard, setup,           lit,    geom->vertex_count, 1};
     if (dev->thread_count > 1 && geom->vertex_count >= FE_MIN_TRIANGLES)
         job.chunks = 2 * dev->thread_count;
     sg_workers_run(&dev->workers, job.chunks, vs_run, &job);
@@ -341,6 +343,45 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         ctx.tex.width = tex->width;
         ctx.tex.height = tex->height;
     }
+    sg_image *smap = NULL;
+    if (params->shadow) {
+        const sgShadow *sh = params->shadow;
+        smap = sg_lookup_image(dev, sh->map);
+        if (!smap)
+            return sg_error(dev, SG_ERROR_INVALID_HANDLE,
+                            "sgDraw: params->shadow->map id 0x%08x is not a live image",
+                            sh->map.id);
+        if (smap->format != SG_FORMAT_D32_FLOAT)
+            return sg_error(dev, SG_ERROR_FORMAT_MISMATCH,
+                            "sgDraw: params->shadow->map 0x%08x is RGBA8_UNORM; a shadow map is a "
+                            "D32_FLOAT image",
+                            sh->map.id);
+        if (sh->map.id == dev->pass_depth.id)
+            return sg_error(dev, SG_ERROR_IN_USE,
+                            "sgDraw: params->shadow->map 0x%08x is the depth target of the open "
+                            "pass; render the map in a pass of its own first",
+                            sh->map.id);
+        for (int k = 0; k < 16; k++)
+            if (!(fabsf(sh->matrix[k]) <= FLT_MAX))
+                return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                                "sgDraw: params->shadow->matrix[%d] = %g is not finite", k,
+                                (double)sh->matrix[k]);
+        if (lighting == SG_LIGHTING_FLAT || lighting == SG_LIGHTING_GOURAUD)
+            return sg_error(dev, SG_ERROR_UNSUPPORTED,
+                            "sgDraw: a draw lit per %s cannot receive a shadow map (the light it "
+                            "hides must be removed per pixel): use SG_LIGHTING_PHONG",
+                            lighting == SG_LIGHTING_FLAT ? "triangle" : "vertex");
+        if (lighting == SG_LIGHTING_PHONG && (sh->light < 0 || sh->light >= ctx.lights.count))
+            return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                            "sgDraw: params->shadow->light = %d, but the draw has %d light%s",
+                            sh->light, ctx.lights.count, ctx.lights.count == 1 ? "" : "s");
+        ctx.shadow.map = (const float *)(const void *)smap->data;
+        ctx.shadow.width = smap->width;
+        ctx.shadow.height = smap->height;
+        memcpy(ctx.shadow.m, sh->matrix, sizeof ctx.shadow.m);
+        ctx.shadow.light = lighting == SG_LIGHTING_PHONG ? sh->light : -1;
+        ctx.shadow.pcf = sh->pcf;
+    }
     if (!grow_vertex_arenas(dev, (size_t)geom->vertex_count))
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %d vertices",
                         geom->vertex_count);
@@ -352,27 +393,34 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     /* A lit draw's vertices carry the attributes of light.h (SG_LIT_*): flat, base colour,
      * texcoords and view position, lit per triangle at assembly; Gouraud, the lit colours
      * (primary, texcoords, secondary when the material has a specular colour); Phong, base colour,
-     * texcoords, position and normal, lit per pixel. */
+     * texcoords, position and normal, lit per pixel. An unlit draw that receives a shadow map
+     * carries base colour, texcoords and position. A depth-only pass reads no attribute. */
+    const bool depth_only = dev->pass.color == NULL;
+    const bool shadowed = smap && !depth_only;
     const bool textured = pso->desc.shade == SG_SHADE_TEXTURE_MODULATE;
     const bool spec = lighting != SG_LIGHTING_NONE && ctx.lights.has_specular;
-    int nattr = pso->nattr, sec = 0, vstride = 0;
+    int nattr = depth_only ? 0 : pso->nattr, sec = 0, vstride = 0;
     float normal_matrix[9];
     sg_vertex_lit lit = {0};
-    if (lighting != SG_LIGHTING_NONE) {
-        vstride = lighting == SG_LIGHTING_PHONG          ? SG_LIT_NRM + 3
-                  : lighting == SG_LIGHTING_FLAT || spec ? SG_LIT_SEC + 3
-                                                         : SG_LIT_SEC;
-        nattr = lighting == SG_LIGHTING_PHONG ? SG_LIT_NRM + 3
-                : spec                        ? SG_LIT_SEC + 3
-                                              : (textured ? 6 : 4);
+    const bool vattr = !depth_only && (lighting != SG_LIGHTING_NONE || shadowed);
+    if (vattr) {
+        vstride = lighting == SG_LIGHTING_PHONG ? SG_LIT_NRM + 3
+                  : lighting == SG_LIGHTING_FLAT || lighting == SG_LIGHTING_NONE || spec
+                      ? SG_LIT_SEC + 3
+                      : SG_LIT_SEC;
+        nattr = lighting == SG_LIGHTING_PHONG  ? SG_LIT_NRM + 3
+                : lighting == SG_LIGHTING_NONE ? SG_LIT_POS + 3
+                : spec                         ? SG_LIT_SEC + 3
+                                               : (textured ? 6 : 4);
         sec = spec && lighting != SG_LIGHTING_PHONG ? SG_LIT_SEC : 0;
         if (!grow_lit(dev, (size_t)geom->vertex_count * (size_t)vstride))
             return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
-                            "sgDraw: out of memory for the lit attributes of %d vertices",
-                            geom->vertex_count);
+                            "sgDraw: out of memory for the %s attributes of %d vertices",
+                            lighting != SG_LIGHTING_NONE ? "lit" : "shadowed", geom->vertex_count);
         if (nattr > SG_TRI_ATTRS && !dev->binner.use_ext && !sg_binner_use_ext(&dev->binner))
             return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
-                            "sgDraw: out of memory for the lit attributes of the pass");
+                            "sgDraw: out of memory for the %s attributes of the pass",
+                            lighting != SG_LIGHTING_NONE ? "lit" : "shadowed");
         sg_normal_matrix(params->world_view, normal_matrix);
         lit.mode = lighting;
         lit.world_view = params->world_view;
@@ -395,11 +443,11 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
     a.clip = (const float(*)[4])dev->clip;
     a.outcodes = dev->outcodes;
-    a.colors = geom->colors;
-    a.texcoords = geom->texcoords;
-    a.tint = tinted ? tint : NULL; /* white multiplies nothing */
-    a.rebase_texcoords =
-        pso->desc.shade == SG_SHADE_TEXTURE_MODULATE && pso->desc.wrap == SG_WRAP_REPEAT;
+    a.colors = depth_only ? NULL : geom->colors;
+    a.texcoords = depth_only ? NULL : geom->texcoords;
+    a.tint = tinted && !depth_only ? tint : NULL; /* white multiplies nothing */
+    a.rebase_texcoords = !depth_only && pso->desc.shade == SG_SHADE_TEXTURE_MODULATE &&
+                         pso->desc.wrap == SG_WRAP_REPEAT;
     a.setup.width = width;
     a.setup.height = height;
     a.setup.rect_x0 = 0;
@@ -410,7 +458,9 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.setup.front_face = pso->desc.front_face;
     a.setup.nattr = nattr;
     a.setup.sec = sec;
-    if (lighting != SG_LIGHTING_NONE) {
+    a.setup.bias_constant = pso->desc.depth.bias_constant;
+    a.setup.bias_slope = pso->desc.depth.bias_slope;
+    if (vattr) {
         a.vattr = dev->lit;
         a.vstride = vstride;
         if (lighting == SG_LIGHTING_FLAT) a.flat = &ctx.lights;
@@ -419,8 +469,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                         "sgDraw: out of memory to sort %d indices back to front",
                         geom->index_count);
-    transform_vertices(dev, mvp, geom, &a.guard, &a.setup,
-                       lighting != SG_LIGHTING_NONE ? &lit : NULL);
+    transform_vertices(dev, mvp, geom, &a.guard, &a.setup, vattr ? &lit : NULL, a.colors);
     a.screen = dev->screen;
     a.screen_ok = dev->screen_ok;
     a.slot = bin_slot;
@@ -436,13 +485,14 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                         "sgDraw: out of memory for %zu triangles in the pass", total);
     }
     sg_draw_state *ds = &dev->draws[dev->draw_count++];
-    ds->raster_fn = pso->raster_fn;
-    ds->shade_fn = sec ? pso->shade_sec : pso->shade_fn;
+    ds->raster_fn = depth_only ? pso->depth_fn : shadowed ? pso->raster_shadow : pso->raster_fn;
+    ds->shade_fn = shadowed ? pso->shade_shadow : sec ? pso->shade_sec : pso->shade_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
-    ds->blend = pso->desc.blend == SG_BLEND_ALPHA;
+    ds->blend = !depth_only && pso->desc.blend == SG_BLEND_ALPHA;
     dev->pass.any_blend |= ds->blend;
     if (tex) tex->pass_use = dev->pass_serial;
+    if (smap) smap->pass_use = dev->pass_serial;
     SG_STAGE_ADD(dev->pass.stage_times, SG_STAGE_FRONT, clock);
     return SG_OK;
 }

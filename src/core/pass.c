@@ -54,14 +54,21 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     if (dev->in_pass)
         return sg_error(dev, SG_ERROR_ALREADY_IN_PASS,
                         "sgBeginRenderPass: a render pass is already open; end it first");
-    sg_image *color = sg_lookup_image(dev, pass->color);
-    if (!color)
+    /* No colour target: a depth-only pass (shadow maps), sized by its depth target. */
+    sg_image *color = NULL;
+    if (pass->color.id) {
+        color = sg_lookup_image(dev, pass->color);
+        if (!color)
+            return sg_error(dev, SG_ERROR_INVALID_HANDLE,
+                            "sgBeginRenderPass: color target id 0x%08x is not a live image",
+                            pass->color.id);
+        if (color->format != SG_FORMAT_RGBA8_UNORM)
+            return sg_error(dev, SG_ERROR_FORMAT_MISMATCH,
+                            "sgBeginRenderPass: the color target must be RGBA8_UNORM");
+    } else if (!pass->depth.id) {
         return sg_error(dev, SG_ERROR_INVALID_HANDLE,
-                        "sgBeginRenderPass: color target id 0x%08x is not a live image",
-                        pass->color.id);
-    if (color->format != SG_FORMAT_RGBA8_UNORM)
-        return sg_error(dev, SG_ERROR_FORMAT_MISMATCH,
-                        "sgBeginRenderPass: the color target must be RGBA8_UNORM");
+                        "sgBeginRenderPass: the pass has no target (color and depth are both 0)");
+    }
     sg_image *depth = NULL;
     if (pass->depth.id) {
         depth = sg_lookup_image(dev, pass->depth);
@@ -72,11 +79,12 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
         if (depth->format != SG_FORMAT_D32_FLOAT)
             return sg_error(dev, SG_ERROR_FORMAT_MISMATCH,
                             "sgBeginRenderPass: the depth target must be D32_FLOAT");
-        if (depth->width != color->width || depth->height != color->height)
+        if (color && (depth->width != color->width || depth->height != color->height))
             return sg_error(dev, SG_ERROR_INVALID_SIZE,
                             "sgBeginRenderPass: depth target is %dx%d but color target is %dx%d",
                             depth->width, depth->height, color->width, color->height);
     }
+    const sg_image *size = color ? color : depth;
     if ((int)pass->depth_store < SG_STORE_DEFAULT || pass->depth_store > SG_STORE_DONT_CARE)
         return sg_error(dev, SG_ERROR_INVALID_ENUM,
                         "sgBeginRenderPass: depth_store %d is not an sgStoreOp",
@@ -86,7 +94,7 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
         return sg_error(dev, SG_ERROR_INVALID_ENUM,
                         "sgBeginRenderPass: color_load %d / depth_load %d is not an sgLoadOp",
                         (int)pass->color_load, (int)pass->depth_load);
-    for (int k = 0; k < 4 && pass->color_load != SG_LOAD_LOAD; k++)
+    for (int k = 0; k < 4 && color && pass->color_load != SG_LOAD_LOAD; k++)
         if (!unit_range(pass->clear_color[k]))
             return sg_error(dev, SG_ERROR_INVALID_VALUE,
                             "sgBeginRenderPass: clear_color[%d] = %g is outside [0, 1]", k,
@@ -96,10 +104,10 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                         "sgBeginRenderPass: clear_depth = %g is outside [0, 1]",
                         (double)pass->clear_depth);
 
-    if (!sg_binner_reset(&dev->binner, color->width, color->height))
+    if (!sg_binner_reset(&dev->binner, size->width, size->height))
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                         "sgBeginRenderPass: out of memory for the screen bins of a %dx%d target",
-                        color->width, color->height);
+                        size->width, size->height);
     int nbins = dev->binner.bins_x * dev->binner.bins_y;
     if (nbins > dev->bin_order_capacity) {
         uint64_t *order = sg_alloc(dev, (size_t)nbins * sizeof *order);
@@ -107,7 +115,7 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
             return sg_error(
                 dev, SG_ERROR_OUT_OF_MEMORY,
                 "sgBeginRenderPass: out of memory for the screen bins of a %dx%d target",
-                color->width, color->height);
+                size->width, size->height);
         sg_free(dev, dev->bin_order);
         dev->bin_order = order;
         dev->bin_order_capacity = nbins;
@@ -117,9 +125,9 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     memset(p, 0, sizeof *p);
     p->binner = &dev->binner;
     p->draws = dev->draws;
-    p->width = color->width;
-    p->height = color->height;
-    p->color = color->data;
+    p->width = size->width;
+    p->height = size->height;
+    p->color = color ? color->data : NULL;
     p->depth = depth ? (float *)(void *)depth->data : NULL;
     p->load_color = pass->color_load == SG_LOAD_LOAD;
     p->load_depth = pass->depth_load == SG_LOAD_LOAD;

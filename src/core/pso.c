@@ -1,6 +1,7 @@
 /* pso.c - pipeline state objects: validated and specialised once, at creation. */
 #include "core/device.h"
 
+#include <math.h>
 #include <string.h>
 
 #include "raster/blend.h"
@@ -28,6 +29,11 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     CHECK_ENUM(front_face, SG_FRONT_FACE_DEFAULT, SG_FRONT_FACE_CW, "sgFrontFace")
     CHECK_ENUM(blend, SG_BLEND_DEFAULT, SG_BLEND_ALPHA, "sgBlend")
     CHECK_ENUM(lighting, SG_LIGHTING_DEFAULT, SG_LIGHTING_PHONG, "sgLightingMode")
+    if (!isfinite(desc->depth.bias_constant) || !isfinite(desc->depth.bias_slope))
+        return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                        "sgCreatePipelineStateObject: depth.bias_constant = %g, depth.bias_slope = "
+                        "%g: both must be finite",
+                        (double)desc->depth.bias_constant, (double)desc->depth.bias_slope);
 
     sg_pso p;
     memset(&p, 0, sizeof p);
@@ -45,15 +51,24 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     /* Opaque draws find the visible triangle first; blended ones blend as they go (blend.h),
      * with the unlit shading inlined where the instruction set allows. */
     const int variant = sg_shade_variant(d->shade, d->filter, d->wrap);
-    p.raster_fn =
-        d->blend == SG_BLEND_ALPHA
-            ? sg_blend_select(lit ? -1 : variant, d->depth.compare, d->depth.write, dev->isa)
-            : sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
+    p.depth_fn = sg_depth_select(d->depth.compare, d->depth.write, dev->isa);
+    p.raster_fn = d->blend == SG_BLEND_ALPHA ? sg_blend_select(lit ? -1 : variant, d->depth.compare,
+                                                               d->depth.write, dev->isa)
+                                             : p.depth_fn;
     /* Flat and Gouraud lighting make colours the unlit shading takes as vertex colours, unless
      * the draw's material has a specular colour (sgDraw picks shade_sec then). */
-    p.shade_fn = d->lighting == SG_LIGHTING_PHONG ? sg_shade_phong_select(variant, dev->isa)
-                                                  : sg_shade_select_variant(variant, dev->isa);
+    p.shade_fn = d->lighting == SG_LIGHTING_PHONG
+                     ? sg_shade_phong_select(SG_PIXEL_PHONG + variant, dev->isa)
+                     : sg_shade_select_variant(variant, dev->isa);
     p.shade_sec = sg_shade_select_variant(variant + SG_SHADE_SECONDARY, dev->isa);
+    /* Draws that receive a shadow map shade from each pixel's view position (shade_phong.c);
+     * blended ones then call that shading from the blend (its unlit shading is not inlined). */
+    if (d->lighting == SG_LIGHTING_PHONG || !lit)
+        p.shade_shadow = sg_shade_phong_select(
+            (lit ? SG_PIXEL_PHONG_SHADOW : SG_PIXEL_SHADOW) + variant, dev->isa);
+    p.raster_shadow = d->blend == SG_BLEND_ALPHA
+                          ? sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa)
+                          : p.depth_fn;
     p.nattr = sg_shade_attr_count(d->shade);
     p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;
 

@@ -5,10 +5,12 @@
  *
  *   N = normalize(n), V = normalize(-P)
  *   per light: directional L = -normalize(direction), att = 1;
- *              point v = position - P, d = |v|, L = v / d, att = 1 / max((c + l d) + q d^2,
- * FLT_MIN) where N.L > 0:  diffuse  += (att N.L) color specular += (att pow(max(N.H, 0),
- * shininess)) color,  H = normalize(L + V) primary   = clamp(base ambient + base diffuse, 0, 1) per
- * r, g, b; alpha = base alpha secondary = specular * material specular
+ *     point v = position - P, d = |v|, L = v / d, att = 1 / max((c + l d) + q d^2, FLT_MIN);
+ *     the light a shadow map hides: att x visibility (0 .. 1);
+ *     where N.L > 0: diffuse += (att N.L) color,
+ *                    specular += (att pow(max(N.H, 0), shininess)) color, H = normalize(L + V)
+ *   primary = clamp(base ambient + base diffuse, 0, 1) per r, g, b; alpha = base alpha
+ *   secondary = specular x material specular
  *
  * A zero-length vector normalises to 0 (so a zero normal, or a light at the surface point,
  * contributes nothing), never to NaN; pow(x, 0) = 1, as in OpenGL. Sums run left to right:
@@ -124,9 +126,11 @@ static inline float sg_pow_unit(float x, float s) {
 }
 
 /** The equation at one point: view-space position P, unnormalised normal n, base colour (rgba).
- *  primary rgba, secondary rgb. */
-static inline void sg_light_eval(const sg_lights *ls, const float P[3], const float n[3],
-                                 const float base[4], float prim[4], float sec[3]) {
+ *  primary rgba, secondary rgb. Light `shadowed` (-1: none) is seen by the fraction `vis` of the
+ *  point (shadow maps): its attenuation is multiplied by it. */
+static inline __attribute__((always_inline)) void
+sg_light_eval_shadowed(const sg_lights *ls, const float P[3], const float n[3], const float base[4],
+                       int shadowed, float vis, float prim[4], float sec[3]) {
     float N[3], V[3], mp[3] = {-P[0], -P[1], -P[2]};
     sg_normalize3(n, N);
     sg_normalize3(mp, V);
@@ -147,6 +151,7 @@ static inline void sg_light_eval(const sg_lights *ls, const float P[3], const fl
         } else {
             memcpy(L, ls->light[i].v, sizeof L);
         }
+        if (i == shadowed) att = att * vis;
         float ndotl = sg_dot3(N, L);
         if (!(ndotl > 0.0f)) continue;
         float f = att * ndotl;
@@ -169,6 +174,12 @@ static inline void sg_light_eval(const sg_lights *ls, const float P[3], const fl
         sec[k] = spec[k] * ls->specular[k];
     }
     prim[3] = base[3];
+}
+
+/** The equation at one point, every light seen (sg_light_eval_shadowed). */
+static inline void sg_light_eval(const sg_lights *ls, const float P[3], const float n[3],
+                                 const float base[4], float prim[4], float sec[3]) {
+    sg_light_eval_shadowed(ls, P, n, base, -1, 1.0f, prim, sec);
 }
 
 #endif

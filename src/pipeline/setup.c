@@ -164,6 +164,10 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
      * the others stay zero: never read, but every byte of a triangle is defined. */
     const plane_basis b = basis_of(s, out);
     plane(&b, s[0].z, s[1].z, s[2].z, &out->z, &out->z_dx, &out->z_dy);
+    if (p->bias_constant != 0.0f || p->bias_slope != 0.0f) { /* shadow maps: the plane moves */
+        float slope = fabsf(out->z_dx) > fabsf(out->z_dy) ? fabsf(out->z_dx) : fabsf(out->z_dy);
+        out->z += p->bias_constant + (p->bias_slope != 0.0f ? p->bias_slope * slope : 0.0f);
+    }
     plane(&b, s[0].q, s[1].q, s[2].q, &out->q, &out->q_dx, &out->q_dy);
     memset(out->a, 0, sizeof out->a);
     memset(out->a_dx, 0, sizeof out->a_dx);

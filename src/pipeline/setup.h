@@ -25,6 +25,9 @@ typedef struct sg_setup_params {
     sgFrontFace front_face; /* resolved: CCW or CW */
     int nattr;              /* attributes to interpolate (0 .. SG_MAX_ATTRS) */
     int sec;                /* lit draws: index of a secondary colour (3 attributes), else 0 */
+    /* Depth bias: every pixel's window depth moves by bias_constant + bias_slope * max(|dz/dx|,
+     * |dz/dy|), before the clamp to [0, 1] (finite; 0: none). */
+    float bias_constant, bias_slope;
 } sg_setup_params;
 
 /* Attributes an sg_tri holds; a draw that interpolates more keeps the rest in an sg_tri_ext (the

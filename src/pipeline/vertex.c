@@ -146,7 +146,7 @@ void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, floa
         o[SG_LIT_ST] = l->texcoords ? l->texcoords[(size_t)i * 2] : 0.0f;
         o[SG_LIT_ST + 1] = l->texcoords ? l->texcoords[(size_t)i * 2 + 1] : 0.0f;
         float n[3] = {0.0f, 0.0f, 0.0f};
-        if (l->mode != SG_LIGHTING_FLAT) {
+        if (l->mode == SG_LIGHTING_GOURAUD || l->mode == SG_LIGHTING_PHONG) {
             const float *src = l->normals + (size_t)i * 3;
             for (int r = 0; r < 3; r++)
                 n[r] = (nm[r * 3] * src[0] + nm[r * 3 + 1] * src[1]) + nm[r * 3 + 2] * src[2];

@@ -34,7 +34,7 @@ static inline bool sg_vertex_attributes_finite(const float *colors, const float 
 
 /* What the vertex stage of a lit draw needs (light.h has the layout of what it makes). */
 typedef struct sg_vertex_lit {
-    sgLightingMode mode; /* FLAT, GOURAUD or PHONG */
+    sgLightingMode mode; /* FLAT, GOURAUD or PHONG; NONE: unlit, receiving a shadow map */
     const float *world_view, *normal_matrix;
     const float *positions, *normals, *colors, *texcoords, *tint; /* each may be NULL but
                                                                      positions */
@@ -43,7 +43,8 @@ typedef struct sg_vertex_lit {
 } sg_vertex_lit;
 
 /** The lit attributes of vertices [first, first + count) into out (stride floats each): base
- *  colour, texcoords, view position (FLAT); and normal (PHONG); or the lit colours (GOURAUD). A
+ *  colour, texcoords, view position (FLAT, NONE); and normal (PHONG); or the lit colours
+ *  (GOURAUD). A
  *  vertex any of whose attributes is NaN or infinite gets ok[i] = 0. */
 void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, float *out,
                               uint8_t *ok);

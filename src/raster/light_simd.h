@@ -8,15 +8,17 @@
  *   LV, LM, LI              float vector, lane mask, int32 vector
  *   lv_set1(f), li_set1(i)
  *   lv_add, lv_sub, lv_mul, lv_div, lv_sqrt, lv_floor (toward -inf), lv_neg (sign flipped)
- *   lm_gt, lm_ge, lm_le (ordered: false for NaN), lm_and
+ *   lm_gt, lm_ge, lm_le, lm_lt (ordered: false for NaN), lm_and
  *   lv_sel(m, a, b)         a where m, b elsewhere
  *   lv_bits(v), lv_of_bits(i), lv_of_int(i) (convert), li_of_float(v) (truncate)
- *   li_and, li_or, li_add, li_sub, li_srl(i, n), li_sll(i, n)
+ *   li_and, li_or, li_add, li_sub, li_mul (low 32 bits), li_srl(i, n), li_sll(i, n)
+ *   lv_gather(p, i, m)      p[i] in the lanes of m (no other lane is read), 0 elsewhere
  */
 #ifndef SG_LIGHT_SIMD_H
 #define SG_LIGHT_SIMD_H
 
 #include "pipeline/light.h"
+#include "raster/shadow.h"
 
 #define LS_INLINE static inline __attribute__((always_inline))
 
@@ -74,9 +76,50 @@ LS_INLINE LV lv_pow_unit(LV x, float s) {
     return lv_sel(ok, lv_exp2_neg(lv_mul(lv_set1(s), lv_log2_pos(x))), lv_set1(0.0f));
 }
 
-/* sg_light_eval */
+/* sg_shadow_texel, for the lanes of `ok`, whose texel index is fi, fj (integers as floats). */
+LS_INLINE LV lv_shadow_texel(const sg_shadow_view *s, LV fi, LV fj, LV depth, LM ok) {
+    const LV zero = lv_set1(0.0f), one = lv_set1(1.0f);
+    LM in = lm_and(lm_and(ok, lm_and(lm_ge(fi, zero), lm_lt(fi, lv_set1((float)s->width)))),
+                   lm_and(lm_ge(fj, zero), lm_lt(fj, lv_set1((float)s->height))));
+    LI idx = li_add(li_mul(li_of_float(fj), li_set1(s->width)), li_of_float(fi));
+    LV d = lv_gather(s->map, idx, in);
+    return lv_sel(in, lv_sel(lm_le(depth, d), one, zero), one);
+}
+
+/* sg_shadow_visibility, for the lanes of `live` (the others: 1, and no texel read). */
+LS_INLINE LV lv_shadow_visibility(const sg_shadow_view *s, const LV P[3], LM live) {
+    const float *m = s->m;
+    const LV half = lv_set1(0.5f), one = lv_set1(1.0f);
+    LV c[4];
+    for (int r = 0; r < 4; r++)
+        c[r] = lv_add(
+            lv_add(lv_add(lv_mul(lv_set1(m[r * 4]), P[0]), lv_mul(lv_set1(m[r * 4 + 1]), P[1])),
+                   lv_mul(lv_set1(m[r * 4 + 2]), P[2])),
+            lv_set1(m[r * 4 + 3]));
+    const LV W = lv_set1((float)s->width), H = lv_set1((float)s->height);
+    LV x = lv_mul(lv_add(lv_mul(lv_div(c[0], c[3]), half), half), W);
+    LV y = lv_mul(lv_sub(half, lv_mul(lv_div(c[1], c[3]), half)), H);
+    LV depth = lv_add(lv_mul(lv_div(c[2], c[3]), half), half);
+    depth = lv_sel(lm_lt(depth, one), depth, one);
+    if (s->pcf) {
+        x = lv_sub(x, half);
+        y = lv_sub(y, half);
+    }
+    const LV m1 = lv_set1(-1.0f);
+    LM ok = lm_and(lm_and(live, lm_gt(c[3], lv_set1(0.0f))),
+                   lm_and(lm_and(lm_ge(x, m1), lm_lt(x, W)), lm_and(lm_ge(y, m1), lm_lt(y, H))));
+    LV fi = lv_floor(x), fj = lv_floor(y);
+    if (!s->pcf) return lv_sel(ok, lv_shadow_texel(s, fi, fj, depth, ok), one);
+    LV fi1 = lv_add(fi, one), fj1 = lv_add(fj, one);
+    LV sum = lv_add(
+        lv_add(lv_shadow_texel(s, fi, fj, depth, ok), lv_shadow_texel(s, fi1, fj, depth, ok)),
+        lv_add(lv_shadow_texel(s, fi, fj1, depth, ok), lv_shadow_texel(s, fi1, fj1, depth, ok)));
+    return lv_sel(ok, lv_mul(sum, lv_set1(0.25f)), one);
+}
+
+/* sg_light_eval_shadowed */
 LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], const LV base[4],
-                             LV prim[4], LV sec[3]) {
+                             int shadowed, LV vis, LV prim[4], LV sec[3]) {
     LV N[3], V[3], mp[3] = {lv_neg(P[0]), lv_neg(P[1]), lv_neg(P[2])};
     lv_normalize3(n, N);
     lv_normalize3(mp, V);
@@ -100,6 +143,7 @@ LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], 
         } else {
             for (int j = 0; j < 3; j++) L[j] = lv_set1(ls->light[i].v[j]);
         }
+        if (i == shadowed) att = lv_mul(att, vis);
         LV ndotl = lv_dot3(N, L);
         LM lit = lm_gt(ndotl, zero);
         LV f = lv_mul(att, ndotl);

@@ -152,6 +152,34 @@ static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }
 
+/* A bin of a depth-only pass: visibility alone, then the depth written (sgDraw gave every draw
+ * its plain depth function, blended or not). The ids the depth functions leave are never read
+ * (cleared all the same: some functions merge into them). */
+static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const sg_bin *bin,
+                                                     const bin_view *v) {
+    _Alignas(64) float depth[BIN_PIXELS];
+    _Alignas(64) uint32_t ids[BIN_PIXELS];
+    uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
+    memset(ids, 0, sizeof ids);
+    SG_STAGE_START(clock);
+    start_depth(p, v, depth);
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
+    const sg_binner *b = p->binner;
+    int x0 = v->x0, y0 = v->y0;
+    sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, NULL, NULL, NULL};
+    for (uint32_t i = 0; i < bin->count; i++) {
+        uint32_t ti = bin->tris[i];
+        const sg_tri *t = &b->tris[ti];
+        const sg_draw_state *d = &p->draws[t->draw];
+        vis.id = ti + 1;
+        vis.compare = d->compare;
+        d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
+    }
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
+    if (p->store_depth) sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
+    SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
+}
+
 void sg_rast_bin(const sg_bin_pass *p, int index) {
     const sg_binner *b = p->binner;
     const sg_bin *bin = &b->bins[index];
@@ -161,19 +189,24 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     v.w = p->width - v.x0 < SG_BIN_SIZE ? p->width - v.x0 : SG_BIN_SIZE;
     v.h = p->height - v.y0 < SG_BIN_SIZE ? p->height - v.y0 : SG_BIN_SIZE;
     v.pitch = (size_t)p->width * 4;
-    v.color = p->color + (size_t)v.y0 * v.pitch + (size_t)v.x0 * 4;
+    v.color = p->color ? p->color + (size_t)v.y0 * v.pitch + (size_t)v.x0 * 4 : NULL;
     v.depth =
         p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)v.y0 * v.pitch) + v.x0 : NULL;
     int x0 = v.x0, y0 = v.y0;
     SG_STAGE_START(clock);
     if (!bin->count) { /* nothing drawn here: the pass's load and clear are the result */
-        if (!p->load_color) sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
+        if (v.color && !p->load_color)
+            sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
         if (v.depth && p->store_depth && !p->load_depth) {
             uint32_t bits;
             memcpy(&bits, &p->clear_depth, 4);
             sg_fill_linear_u32(v.depth, v.pitch, v.w, v.h, bits);
         }
         SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
+        return;
+    }
+    if (!v.color) {
+        depth_only_bin(p, bin, &v);
         return;
     }
     if (p->any_blend) {

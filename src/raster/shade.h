@@ -17,12 +17,14 @@
 
 #include "pipeline/light.h"
 #include "pipeline/setup.h"
+#include "raster/shadow.h"
 #include "sgapi/sgapi.h"
 #include "tex/sample.h"
 
 typedef struct sg_shade_ctx {
-    sg_texview tex;   /* bound texture, when the pipeline samples one */
-    sg_lights lights; /* the draw's lights and material (SG_LIGHTING_PHONG) */
+    sg_texview tex;        /* bound texture, when the pipeline samples one */
+    sg_lights lights;      /* the draw's lights and material (SG_LIGHTING_PHONG) */
+    sg_shadow_view shadow; /* the shadow map the draw receives (shadow.h) */
     /* The pass's triangles and their extensions (NULL when it has none), set when the pass
      * ends: a lit triangle t's attributes beyond SG_TRI_ATTRS are at ext + (t - tris). */
     const sg_tri *tris;
@@ -57,12 +59,21 @@ int sg_shade_variant(sgShade shade, sgFilter filter, sgWrap wrap);
 enum { SG_SHADE_VARIANTS = 5, SG_SHADE_SECONDARY = 5 };
 /** The shading function of a table index (variant, + SG_SHADE_SECONDARY) and instruction set. */
 sg_shade_fn sg_shade_select_variant(int index, sg_isa isa);
-/** The per-pixel lighting (SG_LIGHTING_PHONG) function of a variant and instruction set
- *  (shade_phong*.c). */
-sg_shade_fn sg_shade_phong_select(int variant, sg_isa isa);
-sg_shade_fn sg_shade_phong_scalar(int variant);
-sg_shade_fn sg_shade_phong_avx2(int variant);
-sg_shade_fn sg_shade_phong_avx512(int variant);
+/* The shading that works from the view-space position of each pixel (shade_phong*.c): per-pixel
+ * lighting (SG_LIGHTING_PHONG), the same receiving a shadow map, and unlit shading receiving a
+ * shadow map (darkened to half where the light is hidden). Their tables hold the five variants
+ * of each, in that order. */
+enum {
+    SG_PIXEL_PHONG = 0,
+    SG_PIXEL_PHONG_SHADOW = 5,
+    SG_PIXEL_SHADOW = 10,
+    SG_PIXEL_VARIANTS = 15
+};
+/** The function of a table index (one of the three bases + variant) and instruction set. */
+sg_shade_fn sg_shade_phong_select(int index, sg_isa isa);
+sg_shade_fn sg_shade_phong_scalar(int index);
+sg_shade_fn sg_shade_phong_avx2(int index);
+sg_shade_fn sg_shade_phong_avx512(int index);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
 /** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,

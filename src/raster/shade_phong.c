@@ -1,17 +1,22 @@
-/* shade_phong.c - per-pixel lighting (SG_LIGHTING_PHONG): the scalar reference and the choice of
- * variant. Per pixel: the base colour (flat, or interpolated), the view-space position and the
- * normal interpolated perspective-correct, the lighting equation of light.h (the normal
- * renormalised there), then clamp(primary x texel + secondary). The AVX2 and AVX-512 variants
- * (shade_phong_avx2.c, shade_phong_avx512.c) compute the same IEEE operations in the same order.
+/* shade_phong.c - shading from each pixel's view-space position: per-pixel lighting
+ * (SG_LIGHTING_PHONG), with or without a shadow map, and unlit shading that receives a shadow map;
+ * the scalar reference and the choice of variant. Per pixel: the base colour (flat, or
+ * interpolated), the view-space position (and the normal, lit) interpolated perspective-correct;
+ * the shadow map's visibility there (shadow.h); the lighting equation of light.h (the normal
+ * renormalised there, the shadowing light attenuated by the visibility) or, unlit, the base
+ * colour; times the texel; then + secondary (lit), or rgb x (1/2 + visibility / 2) (unlit). The
+ * AVX2 and AVX-512 variants (shade_phong_avx2.c, shade_phong_avx512.c) compute the same IEEE
+ * operations in the same order.
  */
 #include "raster/framebuffer.h"
 #include "raster/shade.h"
 
-static inline __attribute__((always_inline)) void phong_rows(const sg_shade_ctx *c, const sg_tri *t,
-                                                             const sg_tri_ext *ext, int x0, int y0,
-                                                             uint32_t mask, uint32_t *dst,
-                                                             const int textured, const int bilinear,
-                                                             const int repeat, const int flat) {
+#include <string.h>
+
+static inline __attribute__((always_inline)) void
+phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0, int y0,
+           uint32_t mask, uint32_t *dst, const int textured, const int bilinear, const int repeat,
+           const int flat, const int lit, const int shadow) {
     const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
     const int ep = SG_LIT_POS - SG_TRI_ATTRS, en = SG_LIT_NRM - SG_TRI_ATTRS;
     while (mask) {
@@ -19,14 +24,19 @@ static inline __attribute__((always_inline)) void phong_rows(const sg_shade_ctx 
         mask &= mask - 1;
         float dx = ox + (float)(bit & 3), dy = oy + (float)(bit >> 2);
         float w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
-        float base[4], P[3], n[3], prim[4], sec[3];
+        float base[4], P[3], n[3], prim[4], sec[3] = {0.0f, 0.0f, 0.0f};
         for (int k = 0; k < 4; k++)
             base[k] = flat ? t->color[k] : (t->a[k] + t->a_dx[k] * dx + t->a_dy[k] * dy) * w;
         for (int k = 0; k < 3; k++) {
             P[k] = (ext->a[ep + k] + ext->a_dx[ep + k] * dx + ext->a_dy[ep + k] * dy) * w;
-            n[k] = (ext->a[en + k] + ext->a_dx[en + k] * dx + ext->a_dy[en + k] * dy) * w;
+            if (lit) n[k] = (ext->a[en + k] + ext->a_dx[en + k] * dx + ext->a_dy[en + k] * dy) * w;
         }
-        sg_light_eval(&c->lights, P, n, base, prim, sec);
+        const float vis = shadow ? sg_shadow_visibility(&c->shadow, P) : 1.0f;
+        if (lit)
+            sg_light_eval_shadowed(&c->lights, P, n, base, shadow ? c->shadow.light : -1, vis, prim,
+                                   sec);
+        else
+            memcpy(prim, base, sizeof prim);
         if (textured) {
             float s = (t->a[4] + t->a_dx[4] * dx + t->a_dy[4] * dy) * w;
             float u = (t->a[5] + t->a_dx[5] * dx + t->a_dy[5] * dy) * w;
@@ -34,37 +44,50 @@ static inline __attribute__((always_inline)) void phong_rows(const sg_shade_ctx 
                                    : sg_sample_nearest(&c->tex, s, u, repeat);
             for (int k = 0; k < 4; k++) prim[k] *= (float)tx.c[k] * (1.0f / 255.0f);
         }
-        for (int k = 0; k < 3; k++) prim[k] += sec[k];
+        if (lit) {
+            for (int k = 0; k < 3; k++) prim[k] += sec[k];
+        } else {
+            const float dim = 0.5f + 0.5f * vis;
+            for (int k = 0; k < 3; k++) prim[k] *= dim;
+        }
         dst[bit] = sg_pack_rgba8(sg_to_unorm8(prim[0]), sg_to_unorm8(prim[1]),
                                  sg_to_unorm8(prim[2]), sg_to_unorm8(prim[3]));
     }
 }
 
-#define SG_PHONG_VARIANT(tex, bil, rep)                                                            \
-    static void phong_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,      \
-                                      uint32_t m, uint32_t *dst) {                                 \
+#define SG_PHONG_VARIANT(name, lit, shadow, tex, bil, rep)                                         \
+    static void name##_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,     \
+                                       uint32_t m, uint32_t *dst) {                                \
         const sg_tri_ext *ext = sg_shade_ext(c, t);                                                \
         if (t->flat != SG_FLAT_NONE)                                                               \
-            phong_rows(c, t, ext, x0, y0, m, dst, tex, bil, rep, 1);                               \
+            phong_rows(c, t, ext, x0, y0, m, dst, tex, bil, rep, 1, lit, shadow);                  \
         else                                                                                       \
-            phong_rows(c, t, ext, x0, y0, m, dst, tex, bil, rep, 0);                               \
+            phong_rows(c, t, ext, x0, y0, m, dst, tex, bil, rep, 0, lit, shadow);                  \
     }
-SG_PHONG_VARIANT(0, 0, 0)
-SG_PHONG_VARIANT(1, 0, 1)
-SG_PHONG_VARIANT(1, 0, 0)
-SG_PHONG_VARIANT(1, 1, 1)
-SG_PHONG_VARIANT(1, 1, 0)
+#define SG_PHONG_KIND(name, lit, shadow)                                                           \
+    SG_PHONG_VARIANT(name, lit, shadow, 0, 0, 0)                                                   \
+    SG_PHONG_VARIANT(name, lit, shadow, 1, 0, 1)                                                   \
+    SG_PHONG_VARIANT(name, lit, shadow, 1, 0, 0)                                                   \
+    SG_PHONG_VARIANT(name, lit, shadow, 1, 1, 1)                                                   \
+    SG_PHONG_VARIANT(name, lit, shadow, 1, 1, 0)
+SG_PHONG_KIND(phong, 1, 0)
+SG_PHONG_KIND(phong_shadow, 1, 1)
+SG_PHONG_KIND(unlit_shadow, 0, 1)
+#undef SG_PHONG_KIND
 #undef SG_PHONG_VARIANT
 
-sg_shade_fn sg_shade_phong_scalar(int variant) {
-    static const sg_shade_fn table[SG_SHADE_VARIANTS] = {phong_000, phong_101, phong_100, phong_111,
-                                                         phong_110};
-    return table[variant];
+/* The table of a file's variants, in the order of shade.h (SG_PIXEL_*). */
+#define SG_PHONG_ROW(name) name##_000, name##_101, name##_100, name##_111, name##_110
+
+sg_shade_fn sg_shade_phong_scalar(int index) {
+    static const sg_shade_fn table[SG_PIXEL_VARIANTS] = {
+        SG_PHONG_ROW(phong), SG_PHONG_ROW(phong_shadow), SG_PHONG_ROW(unlit_shadow)};
+    return table[index];
 }
 
-sg_shade_fn sg_shade_phong_select(int variant, sg_isa isa) {
+sg_shade_fn sg_shade_phong_select(int index, sg_isa isa) {
     sg_shade_fn fn = NULL;
-    if (isa >= SG_ISA_AVX512) fn = sg_shade_phong_avx512(variant);
-    if (!fn && isa >= SG_ISA_AVX2) fn = sg_shade_phong_avx2(variant);
-    return fn ? fn : sg_shade_phong_scalar(variant);
+    if (isa >= SG_ISA_AVX512) fn = sg_shade_phong_avx512(index);
+    if (!fn && isa >= SG_ISA_AVX2) fn = sg_shade_phong_avx2(index);
+    return fn ? fn : sg_shade_phong_scalar(index);
 }

@@ -8,35 +8,38 @@
 typedef __m512 LV;
 typedef __mmask16 LM;
 typedef __m512i LI;
-#define lv_set1(f)      _mm512_set1_ps(f)
-#define li_set1(i)      _mm512_set1_epi32(i)
-#define lv_add          _mm512_add_ps
-#define lv_sub          _mm512_sub_ps
-#define lv_mul          _mm512_mul_ps
-#define lv_div          _mm512_div_ps
-#define lv_sqrt         _mm512_sqrt_ps
-#define lv_floor(v)     _mm512_roundscale_ps(v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
-#define lv_neg(v)       _mm512_xor_ps(v, _mm512_set1_ps(-0.0f))
-#define lm_gt(a, b)     _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
-#define lm_ge(a, b)     _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ)
-#define lm_le(a, b)     _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
-#define lm_and(a, b)    ((__mmask16)((a) & (b)))
-#define lv_sel(m, a, b) _mm512_mask_blend_ps(m, b, a)
-#define lv_bits(v)      _mm512_castps_si512(v)
-#define lv_of_bits(i)   _mm512_castsi512_ps(i)
-#define lv_of_int(i)    _mm512_cvtepi32_ps(i)
-#define li_of_float(v)  _mm512_cvttps_epi32(v)
-#define li_and          _mm512_and_si512
-#define li_or           _mm512_or_si512
-#define li_add          _mm512_add_epi32
-#define li_sub          _mm512_sub_epi32
-#define li_srl(i, n)    _mm512_srli_epi32(i, n)
-#define li_sll(i, n)    _mm512_slli_epi32(i, n)
+#define lv_set1(f)         _mm512_set1_ps(f)
+#define li_set1(i)         _mm512_set1_epi32(i)
+#define lv_add             _mm512_add_ps
+#define lv_sub             _mm512_sub_ps
+#define lv_mul             _mm512_mul_ps
+#define lv_div             _mm512_div_ps
+#define lv_sqrt            _mm512_sqrt_ps
+#define lv_floor(v)        _mm512_roundscale_ps(v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)
+#define lv_neg(v)          _mm512_xor_ps(v, _mm512_set1_ps(-0.0f))
+#define lm_gt(a, b)        _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ)
+#define lm_ge(a, b)        _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ)
+#define lm_le(a, b)        _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)
+#define lm_lt(a, b)        _mm512_cmp_ps_mask(a, b, _CMP_LT_OQ)
+#define lm_and(a, b)       ((__mmask16)((a) & (b)))
+#define lv_sel(m, a, b)    _mm512_mask_blend_ps(m, b, a)
+#define lv_bits(v)         _mm512_castps_si512(v)
+#define lv_of_bits(i)      _mm512_castsi512_ps(i)
+#define lv_of_int(i)       _mm512_cvtepi32_ps(i)
+#define li_of_float(v)     _mm512_cvttps_epi32(v)
+#define li_and             _mm512_and_si512
+#define li_or              _mm512_or_si512
+#define li_add             _mm512_add_epi32
+#define li_sub             _mm512_sub_epi32
+#define li_mul             _mm512_mullo_epi32
+#define lv_gather(p, i, m) _mm512_mask_i32gather_ps(_mm512_setzero_ps(), m, i, p, 4)
+#define li_srl(i, n)       _mm512_srli_epi32(i, n)
+#define li_sll(i, n)       _mm512_slli_epi32(i, n)
 #include "raster/light_simd.h"
 
 INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
                        int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
-                       const int repeat, const int flat) {
+                       const int repeat, const int flat, const int lit, const int shadow) {
     const int ep = SG_LIT_POS - SG_TRI_ATTRS, en = SG_LIT_NRM - SG_TRI_ATTRS;
     __m512 dx, dy;
     sg_tile_dxdy16(t, x0, y0, &dx, &dy);
@@ -50,9 +53,15 @@ INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                        : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
     for (int k = 0; k < 3; k++) {
         P[k] = _mm512_mul_ps(SG_PLANE(ext->a[ep + k], ext->a_dx[ep + k], ext->a_dy[ep + k]), w);
-        n[k] = _mm512_mul_ps(SG_PLANE(ext->a[en + k], ext->a_dx[en + k], ext->a_dy[en + k]), w);
+        if (lit)
+            n[k] = _mm512_mul_ps(SG_PLANE(ext->a[en + k], ext->a_dx[en + k], ext->a_dy[en + k]), w);
     }
-    lv_light_eval(&c->lights, P, n, base, prim, sec);
+    const __m512 vis =
+        shadow ? lv_shadow_visibility(&c->shadow, P, (__mmask16)mask) : _mm512_set1_ps(1.0f);
+    if (lit)
+        lv_light_eval(&c->lights, P, n, base, shadow ? c->shadow.light : -1, vis, prim, sec);
+    else
+        for (int k = 0; k < 4; k++) prim[k] = base[k];
     if (textured) {
         const tex16 tx = tex16_of(&c->tex, bilinear);
         __m512 s = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
@@ -70,36 +79,49 @@ INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                 prim[k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[k]), _mm512_set1_ps(1.0f / 255.0f)));
     }
 #undef SG_PLANE
-    for (int k = 0; k < 3; k++) prim[k] = _mm512_add_ps(prim[k], sec[k]);
+    if (lit) {
+        for (int k = 0; k < 3; k++) prim[k] = _mm512_add_ps(prim[k], sec[k]);
+    } else {
+        const __m512 dim =
+            _mm512_add_ps(_mm512_set1_ps(0.5f), _mm512_mul_ps(_mm512_set1_ps(0.5f), vis));
+        for (int k = 0; k < 3; k++) prim[k] = _mm512_mul_ps(prim[k], dim);
+    }
     _mm512_mask_storeu_epi32(dst, (__mmask16)mask, pack_unorm8(prim));
 }
 
-#define SG_PHONG_VARIANT(tex, bil, rep)                                                            \
-    static void phong_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,      \
-                                      uint32_t m, uint32_t *dst) {                                 \
+#define SG_PHONG_VARIANT(name, lit, shadow, tex, bil, rep)                                         \
+    static void name##_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,     \
+                                       uint32_t m, uint32_t *dst) {                                \
         const sg_tri_ext *ext = sg_shade_ext(c, t);                                                \
         if (t->flat != SG_FLAT_NONE)                                                               \
-            phong_tile(c, t, ext, x0, y0, m, dst, tex, bil, rep, 1);                               \
+            phong_tile(c, t, ext, x0, y0, m, dst, tex, bil, rep, 1, lit, shadow);                  \
         else                                                                                       \
-            phong_tile(c, t, ext, x0, y0, m, dst, tex, bil, rep, 0);                               \
+            phong_tile(c, t, ext, x0, y0, m, dst, tex, bil, rep, 0, lit, shadow);                  \
     }
-SG_PHONG_VARIANT(0, 0, 0)
-SG_PHONG_VARIANT(1, 0, 1)
-SG_PHONG_VARIANT(1, 0, 0)
-SG_PHONG_VARIANT(1, 1, 1)
-SG_PHONG_VARIANT(1, 1, 0)
+#define SG_PHONG_KIND(name, lit, shadow)                                                           \
+    SG_PHONG_VARIANT(name, lit, shadow, 0, 0, 0)                                                   \
+    SG_PHONG_VARIANT(name, lit, shadow, 1, 0, 1)                                                   \
+    SG_PHONG_VARIANT(name, lit, shadow, 1, 0, 0)                                                   \
+    SG_PHONG_VARIANT(name, lit, shadow, 1, 1, 1)                                                   \
+    SG_PHONG_VARIANT(name, lit, shadow, 1, 1, 0)
+SG_PHONG_KIND(phong, 1, 0)
+SG_PHONG_KIND(phong_shadow, 1, 1)
+SG_PHONG_KIND(unlit_shadow, 0, 1)
+#undef SG_PHONG_KIND
 #undef SG_PHONG_VARIANT
 
-sg_shade_fn sg_shade_phong_avx512(int variant) {
-    static const sg_shade_fn table[SG_SHADE_VARIANTS] = {phong_000, phong_101, phong_100, phong_111,
-                                                         phong_110};
-    return table[variant];
+#define SG_PHONG_ROW(name) name##_000, name##_101, name##_100, name##_111, name##_110
+
+sg_shade_fn sg_shade_phong_avx512(int index) {
+    static const sg_shade_fn table[SG_PIXEL_VARIANTS] = {
+        SG_PHONG_ROW(phong), SG_PHONG_ROW(phong_shadow), SG_PHONG_ROW(unlit_shadow)};
+    return table[index];
 }
 
 #else
 
-sg_shade_fn sg_shade_phong_avx512(int variant) {
-    (void)variant;
+sg_shade_fn sg_shade_phong_avx512(int index) {
+    (void)index;
     return NULL;
 }
 
