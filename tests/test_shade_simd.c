@@ -3,7 +3,8 @@
  * equations, 1/q near 0, colours outside [0, 1], texture coordinates far outside [0, 1] (1e4, 1e30,
  * infinite, NaN), random masks over a sentinel-filled tile, and textures from 1x1 to 16384 texels
  * wide; the same for the variants that add a secondary colour (flat and Gouraud lighting with a
- * specular material) and for per-pixel lighting (random positions, normals, lights, materials).
+ * specular material), for per-pixel lighting (random positions, normals, lights, materials), and
+ * for shading that receives a shadow map (random maps, projections, PCF or not).
  * The texels sit in exactly-sized allocations (a stray load shows under AddressSanitizer)
  * and, where there is mmap, also right before or right after an inaccessible page, which catches
  * stray reads in any build, AVX2 and AVX-512 gathers (which AddressSanitizer does not see)
@@ -185,13 +186,22 @@ typedef struct texture {
 #endif
 } texture;
 
-static void texture_make(texture *tex, rng *g, int w, int h) {
+/* Random texels, or with `depth`, a shadow map: depths in [0, 1], many exactly 0 or 1, a few of
+ * any kind. */
+static void texture_make(texture *tex, rng *g, int w, int h, int depth) {
     size_t size = (size_t)w * (size_t)h * 4;
     tex->w = w;
     tex->h = h;
     tex->heap = malloc(size);
     assert_non_null(tex->heap);
-    for (size_t i = 0; i < size; i++) tex->heap[i] = (uint8_t)next(g);
+    for (size_t i = 0; i < size && !depth; i++) tex->heap[i] = (uint8_t)next(g);
+    for (size_t i = 0; i < size && depth; i += 4) {
+        float d = chance(g, 10)  ? 1.0f
+                  : chance(g, 5) ? 0.0f
+                  : chance(g, 2) ? wild(g)
+                                 : frange(g, 0.0f, 1.0f);
+        memcpy(tex->heap + i, &d, 4);
+    }
 #ifdef HAVE_GUARD_PAGES
     size_t page = (size_t)sysconf(_SC_PAGESIZE);
     size_t body = (size + page - 1) / page * page;
@@ -264,7 +274,7 @@ static int same_as_reference(sg_shade_fn fn, const char *isa, const sg_shade_ctx
 /* The lit part of a case: a secondary colour's planes (kind SECONDARY), or a view position and
  * normal and the draw's lights (kind PHONG: positions around the eye, normals of any length or
  * none, one to eight lights of both kinds, specular colours and shininess from 0 to 128). */
-enum { UNLIT, SECONDARY, PHONG };
+enum { UNLIT, SECONDARY, PHONG, PHONG_SHADOW, UNLIT_SHADOW };
 
 static void random_plane(rng *g, float value, float spread, float q, int x0, int y0,
                          const sg_tri *t, float *a, float *adx, float *ady) {
@@ -322,6 +332,55 @@ static void random_lit(rng *g, int kind, int flat, const sg_tri *t, int x0, int 
     assert_true(sg_light_prepare(&l, spec, shine, &ctx->lights, why, sizeof why, &code));
 }
 
+/* The shadow map of a case (kinds PHONG_SHADOW, UNLIT_SHADOW): one of the maps, a light's
+ * orthographic or perspective projection of the positions random_lit makes (most points land
+ * inside the map, with depths around its values), sometimes with points behind the light or wild
+ * entries; PCF or not, and any of the draw's lights. */
+static void random_shadow(rng *g, const texture *maps, int nmaps, sg_shade_ctx *ctx) {
+    const texture *m = &maps[irange(g, 0, nmaps - 1)];
+    sg_shadow_view *s = &ctx->shadow;
+    s->map = (const float *)(const void *)texture_pick(m, g);
+    s->width = m->w;
+    s->height = m->h;
+    s->pcf = chance(g, 50);
+    s->light = ctx->lights.count ? irange(g, 0, ctx->lights.count - 1) : 0;
+    float *a = s->m;
+    memset(a, 0, sizeof s->m);
+    float scale = frange(g, 0.2f, 1.0f);
+    for (int i = 0; i < 16; i++) a[i] = frange(g, -0.05f, 0.05f);
+    a[0] += scale;
+    a[5] += scale;
+    a[3] += frange(g, -0.3f, 0.3f);
+    a[7] += frange(g, -0.3f, 0.3f);
+    if (chance(g, 50)) { /* orthographic: w = 1 */
+        a[10] += -0.33f;
+        a[11] += -1.0f;
+        a[12] = a[13] = a[14] = 0.0f;
+        a[15] = 1.0f;
+    } else { /* perspective: w = -z + c (c < 0 puts near points behind the light) */
+        a[10] += -1.2f;
+        a[11] += -1.5f;
+        a[12] = a[13] = 0.0f;
+        a[14] = -1.0f;
+        a[15] = frange(g, -1.0f, 2.0f);
+    }
+    if (chance(g, 3)) a[irange(g, 0, 15)] = wild(g);
+}
+
+/* How much of the shadowing light reaches the tile's first pixel (0 none, 1 part, 2 all): a
+ * check that the random cases cover every outcome. */
+static int shadow_kind(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                       int y0) {
+    const float dx = (float)(x0 - t->minx), dy = (float)(y0 - t->miny);
+    const float w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+    const int ep = SG_LIT_POS - SG_TRI_ATTRS;
+    float P[3];
+    for (int k = 0; k < 3; k++)
+        P[k] = (ext->a[ep + k] + ext->a_dx[ep + k] * dx + ext->a_dy[ep + k] * dy) * w;
+    float vis = sg_shadow_visibility(&c->shadow, P);
+    return vis == 0.0f ? 0 : vis == 1.0f ? 2 : 1;
+}
+
 static void compare_variant(int variant, int kind) {
     static const int sizes[][2] = {{1, 1},
                                    {1, 7},
@@ -343,15 +402,24 @@ static void compare_variant(int variant, int kind) {
     enum { NSIZES = sizeof sizes / sizeof *sizes };
     rng g = {0x5eed0000u + (uint64_t)variant + 100u * (uint64_t)kind};
     texture tex[NSIZES];
-    for (int i = 0; i < NSIZES; i++) texture_make(&tex[i], &g, sizes[i][0], sizes[i][1]);
+    for (int i = 0; i < NSIZES; i++) texture_make(&tex[i], &g, sizes[i][0], sizes[i][1], 0);
+    static const int map_sizes[][2] = {{1, 1}, {7, 5}, {64, 64}, {300, 17}, {16, 1024}};
+    enum { NMAPS = sizeof map_sizes / sizeof *map_sizes };
+    texture maps[NMAPS];
+    for (int i = 0; i < NMAPS; i++) texture_make(&maps[i], &g, map_sizes[i][0], map_sizes[i][1], 1);
+    const int shadow = kind == PHONG_SHADOW || kind == UNLIT_SHADOW;
     const int textured = variant != 0;
     const sg_isa isa = sg_isa_detect();
     const int index = variant + (kind == SECONDARY ? SG_SHADE_SECONDARY : 0);
     sg_shade_fn scalar, sse2 = NULL, avx2 = NULL, avx512 = NULL;
-    if (kind == PHONG) {
-        scalar = sg_shade_phong_scalar(variant);
-        if (isa >= SG_ISA_AVX2) avx2 = sg_shade_phong_avx2(variant);
-        if (isa >= SG_ISA_AVX512) avx512 = sg_shade_phong_avx512(variant);
+    if (kind >= PHONG) {
+        const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
+                           : kind == PHONG_SHADOW ? SG_PIXEL_PHONG_SHADOW
+                                                  : SG_PIXEL_SHADOW) +
+                          variant;
+        scalar = sg_shade_phong_scalar(pixel);
+        if (isa >= SG_ISA_AVX2) avx2 = sg_shade_phong_avx2(pixel);
+        if (isa >= SG_ISA_AVX512) avx512 = sg_shade_phong_avx512(pixel);
     } else {
         scalar = sg_shade_scalar(index);
         sse2 = sg_shade_sse2(index);
@@ -363,7 +431,8 @@ static void compare_variant(int variant, int kind) {
         if (isa >= SG_ISA_AVX512) assert_non_null(avx512);
 #endif
     }
-    const long cases = kind == PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
+    const long cases = kind >= PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
+    long seen[3] = {0, 0, 0}; /* shadow kinds: pixel 0 hidden, partly seen, seen */
     long failures = 0;
     for (int flat = 0; flat < FLATS; flat++) {
         for (long n = 0; n < cases && failures < 5; n++) {
@@ -376,7 +445,12 @@ static void compare_variant(int variant, int kind) {
             sg_tri_ext ext, *e = kind == UNLIT ? NULL : &ext;
             int x0, y0;
             random_tri(&g, &t, flat, tx->w, tx->h, &x0, &y0);
-            if (kind != UNLIT) random_lit(&g, kind, flat, &t, x0, y0, &ext, &ctx);
+            if (kind != UNLIT)
+                random_lit(&g, kind == SECONDARY ? SECONDARY : PHONG, flat, &t, x0, y0, &ext, &ctx);
+            if (shadow) {
+                random_shadow(&g, maps, NMAPS, &ctx);
+                seen[shadow_kind(&ctx, &t, &ext, x0, y0)]++;
+            }
             uint32_t mask = random_mask(&g), sentinel = (uint32_t)next(&g);
             uint32_t ref[16];
             for (int i = 0; i < 16; i++) ref[i] = sentinel;
@@ -397,7 +471,13 @@ static void compare_variant(int variant, int kind) {
         }
     }
     for (int i = 0; i < NSIZES; i++) texture_free(&tex[i]);
+    for (int i = 0; i < NMAPS; i++) texture_free(&maps[i]);
     assert_int_equal(failures, 0);
+    if (shadow) { /* the cases reach every outcome of the comparison */
+        printf("pixel 0 hidden %ld, partly seen %ld, seen %ld\n", seen[0], seen[1], seen[2]);
+        assert_true(seen[0] > cases / 20 && seen[2] > cases / 20);
+        if (cases > 0) assert_true(seen[1] > cases / 100);
+    }
 }
 
 static void vertex_colour(void **state) {
@@ -475,6 +555,56 @@ static void bilinear_clamp_phong(void **state) {
     compare_variant(4, PHONG);
 }
 
+static void vertex_colour_phong_shadow(void **state) {
+    (void)state;
+    compare_variant(0, PHONG_SHADOW);
+}
+
+static void vertex_colour_unlit_shadow(void **state) {
+    (void)state;
+    compare_variant(0, UNLIT_SHADOW);
+}
+
+static void nearest_repeat_phong_shadow(void **state) {
+    (void)state;
+    compare_variant(1, PHONG_SHADOW);
+}
+
+static void nearest_repeat_unlit_shadow(void **state) {
+    (void)state;
+    compare_variant(1, UNLIT_SHADOW);
+}
+
+static void nearest_clamp_phong_shadow(void **state) {
+    (void)state;
+    compare_variant(2, PHONG_SHADOW);
+}
+
+static void nearest_clamp_unlit_shadow(void **state) {
+    (void)state;
+    compare_variant(2, UNLIT_SHADOW);
+}
+
+static void bilinear_repeat_phong_shadow(void **state) {
+    (void)state;
+    compare_variant(3, PHONG_SHADOW);
+}
+
+static void bilinear_repeat_unlit_shadow(void **state) {
+    (void)state;
+    compare_variant(3, UNLIT_SHADOW);
+}
+
+static void bilinear_clamp_phong_shadow(void **state) {
+    (void)state;
+    compare_variant(4, PHONG_SHADOW);
+}
+
+static void bilinear_clamp_unlit_shadow(void **state) {
+    (void)state;
+    compare_variant(4, UNLIT_SHADOW);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(vertex_colour),
@@ -492,6 +622,16 @@ int main(void) {
         cmocka_unit_test(nearest_clamp_phong),
         cmocka_unit_test(bilinear_repeat_phong),
         cmocka_unit_test(bilinear_clamp_phong),
+        cmocka_unit_test(vertex_colour_phong_shadow),
+        cmocka_unit_test(vertex_colour_unlit_shadow),
+        cmocka_unit_test(nearest_repeat_phong_shadow),
+        cmocka_unit_test(nearest_repeat_unlit_shadow),
+        cmocka_unit_test(nearest_clamp_phong_shadow),
+        cmocka_unit_test(nearest_clamp_unlit_shadow),
+        cmocka_unit_test(bilinear_repeat_phong_shadow),
+        cmocka_unit_test(bilinear_repeat_unlit_shadow),
+        cmocka_unit_test(bilinear_clamp_phong_shadow),
+        cmocka_unit_test(bilinear_clamp_unlit_shadow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
