@@ -80,7 +80,7 @@ typedef struct sc_light {
  * them is one change. The biases are in window-depth units of the shadow map. */
 #define SC_SHADOW_SIZE       2048
 #define SC_SHADOW_BIAS       0.0015f
-#define SC_SHADOW_SLOPE_BIAS 1.5f
+#define SC_SHADOW_SLOPE_BIAS 2.0f
 #define SC_SHADOW_PCF        true
 
 /* The shadow one light of a scene casts: the depth of the casters seen from the light, rendered
