@@ -5,6 +5,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 #include "image_io.h"
 #include "obj.h"
 #include "scene.h"
+#include "shadow.h"
 
 /* ---- helpers --------------------------------------------------------------------------------- */
 
@@ -395,6 +397,9 @@ static void heightmap_mesh(void **state) {
 
 static void write_assets(tmp_dir *t) {
     write_file(t, "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    /* Casters a shadow light cannot be fitted to: one point, and no finite vertex. */
+    write_file(t, "dot.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n");
+    write_file(t, "nan.obj", "v nan 0 0\nv 0 nan 0\nv 0 0 inf\nf 1 2 3\n");
     const unsigned char px[4] = {255, 0, 0, 255};
     char err[256];
     assert_true(sc_image_write_png(tmp_path(t, "red.png"), 1, 1, px, err, sizeof err));
@@ -441,6 +446,9 @@ static void scene_defaults(void **state) {
     assert_float_equal(d->shininess, 0.0f, 0);
     for (int i = 0; i < 3; i++) assert_float_equal(s->ambient[i], 0.0f, 0);
     assert_int_equal(s->light_count, 0);
+    assert_false(s->has_shadow);
+    assert_true(d->casts_shadow);
+    assert_true(d->receives_shadow);
     assert_float_equal(d->world_view[0], 1.0f, 0);
     assert_float_equal(d->proj[15], 1.0f, 0);
     sc_free(&f);
@@ -640,6 +648,201 @@ static void scene_mesh_normals(void **state) {
     sc_free(&f);
 }
 
+/* The shadow keys: the scene's (or the file's) "shadow" with its defaults, and the draws'
+ * "casts_shadow" and "receives_shadow". */
+static void scene_shadow(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    if (!load_scene(
+            t, "shadow.json",
+            "{\"width\": 4, \"height\": 4,"
+            " \"lights\": [{\"type\": \"directional\", \"direction\": [0, 0, -1],"
+            " \"color\": [1, 1, 1]}],"
+            " \"shadow\": {\"light\": 0},"
+            " \"scenes\": ["
+            "{\"name\": \"inherits\", \"draws\": [{\"mesh\": \"tri.obj\", " MATRICES "}]},"
+            "{\"name\": \"own\", \"lights\": ["
+            "  {\"type\": \"directional\", \"direction\": [0, -1, 0], \"color\": [1, 1, 1]},"
+            "  {\"type\": \"point\", \"position\": [0, 0, 5], \"color\": [1, 1, 1]}],"
+            " \"shadow\": {\"light\": 1, \"size\": 512, \"bias\": -0.5, \"slope_bias\": 0,"
+            "  \"pcf\": false},"
+            " \"draws\": ["
+            "  {\"mesh\": \"tri.obj\", \"lighting\": \"phong\", \"casts_shadow\": false, " MATRICES
+            "},"
+            "  {\"mesh\": \"tri.obj\", \"lighting\": \"flat\", \"receives_shadow\": false,"
+            "   \"casts_shadow\": true, " MATRICES "},"
+            "  {\"mesh\": \"tri.obj\", \"lighting\": \"gouraud\", \"receives_shadow\": "
+            "false, " MATRICES "},"
+            "  {\"mesh\": \"tri.obj\", \"receives_shadow\": true, " MATRICES "}]},"
+            "{\"name\": \"none\", \"shadow\": null, \"draws\": ["
+            "  {\"mesh\": \"tri.obj\", \"lighting\": \"gouraud\", " MATRICES "}]},"
+            "{\"name\": \"no_casters\", \"draws\": ["
+            "  {\"mesh\": \"tri.obj\", \"casts_shadow\": false, " MATRICES "}]},"
+            "{\"name\": \"empty\", \"draws\": []}]}",
+            &f, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(f.scene_count, 5);
+
+    /* The file's shadow, with every default. */
+    const sc_scene *s = &f.scenes[0];
+    assert_true(s->has_shadow);
+    assert_int_equal(s->shadow.light, 0);
+    assert_int_equal(s->shadow.size, 2048);
+    assert_int_equal(s->shadow.size, SC_SHADOW_SIZE);
+    assert_true(s->shadow.bias == SC_SHADOW_BIAS);
+    assert_true(s->shadow.slope_bias == SC_SHADOW_SLOPE_BIAS);
+    assert_true(s->shadow.pcf);
+    assert_true(s->draws[0].casts_shadow);
+    assert_true(s->draws[0].receives_shadow);
+
+    /* A scene's own replaces the file's as a whole. */
+    s = &f.scenes[1];
+    assert_true(s->has_shadow);
+    assert_int_equal(s->shadow.light, 1);
+    assert_int_equal(s->shadow.size, 512);
+    assert_float_equal(s->shadow.bias, -0.5f, 0);
+    assert_float_equal(s->shadow.slope_bias, 0.0f, 0);
+    assert_false(s->shadow.pcf);
+    assert_false(s->draws[0].casts_shadow);
+    assert_true(s->draws[0].receives_shadow);
+    assert_true(s->draws[1].casts_shadow);
+    assert_false(s->draws[1].receives_shadow);
+    assert_false(s->draws[2].receives_shadow);
+    assert_true(s->draws[3].receives_shadow);
+
+    /* null: none, so a Gouraud draw may keep receiving by default. */
+    assert_false(f.scenes[2].has_shadow);
+    assert_true(f.scenes[2].draws[0].receives_shadow);
+    /* No draw casts: no shadow. */
+    assert_false(f.scenes[3].has_shadow);
+    assert_false(f.scenes[4].has_shadow);
+    sc_free(&f);
+}
+
+/* Corners of [0, 1]^3 in view space after the cube's worldView (a translation by (0, 0, -5)). */
+static void cube_corner(int k, double out[3]) {
+    out[0] = k & 1 ? 1.0 : 0.0;
+    out[1] = k & 2 ? 1.0 : 0.0;
+    out[2] = (k & 4 ? 1.0 : 0.0) - 5.0;
+}
+
+/* The light's clip coordinates of a view-space point: proj x view x (p, 1). */
+static void light_clip(const double view[16], const double proj[16], const double p[3],
+                       double out[4]) {
+    double v[4];
+    for (int r = 0; r < 4; r++)
+        v[r] =
+            view[r * 4] * p[0] + view[r * 4 + 1] * p[1] + view[r * 4 + 2] * p[2] + view[r * 4 + 3];
+    for (int r = 0; r < 4; r++)
+        out[r] = proj[r * 4] * v[0] + proj[r * 4 + 1] * v[1] + proj[r * 4 + 2] * v[2] +
+                 proj[r * 4 + 3] * v[3];
+}
+
+#define CUBE_OBJ                                                                                   \
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"                     \
+    "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n"
+#define CUBE_WORLD_VIEW "[1,0,0,0, 0,1,0,0, 0,0,1,-5, 0,0,0,1]"
+
+/* A directional light straight down on a unit cube: an orthographic projection that maps the
+ * cube onto [-1, 1] in x and y exactly, with its depth inside (-1, 1), the top nearest. */
+static void shadow_light_directional(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    write_file(t, "cube.obj", CUBE_OBJ);
+    if (!load_scene(t, "sun.json",
+                    "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"sun\","
+                    " \"lights\": [{\"type\": \"directional\", \"direction\": [0, -2, 0],"
+                    " \"color\": [1, 1, 1]}], \"shadow\": {\"light\": 0},"
+                    " \"draws\": [{\"mesh\": \"cube.obj\", \"worldView\": " CUBE_WORLD_VIEW
+                    ", \"proj\": " IDENTITY "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    double view[16], proj[16];
+    assert_true(sc_shadow_light(&f, &f.scenes[0], view, proj));
+    /* Orthographic: the last row is (0, 0, 0, 1). */
+    assert_true(proj[12] == 0.0 && proj[13] == 0.0 && proj[14] == 0.0 && proj[15] == 1.0);
+    double lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9}, top = 0.0, bottom = 0.0;
+    for (int k = 0; k < 8; k++) {
+        double p[3], c[4];
+        cube_corner(k, p);
+        light_clip(view, proj, p, c);
+        assert_true(fabs(c[3] - 1.0) < 1e-12);
+        for (int i = 0; i < 3; i++) {
+            if (!(c[i] >= -1.0 - 1e-12 && c[i] <= 1.0 + 1e-12))
+                fail_msg("corner %d: clip[%d] = %.17g is outside [-1, 1]", k, i, c[i]);
+            lo[i] = fmin(lo[i], c[i]);
+            hi[i] = fmax(hi[i], c[i]);
+        }
+        if (k == 2) top = c[2];
+        if (k == 0) bottom = c[2];
+    }
+    /* x and y fit the cube exactly; depth has 1 % of its range on each side. */
+    for (int i = 0; i < 2; i++) {
+        assert_true(fabs(lo[i] + 1.0) < 1e-12);
+        assert_true(fabs(hi[i] - 1.0) < 1e-12);
+    }
+    assert_true(fabs(lo[2] + 1.0 / 1.02) < 1e-12);
+    assert_true(fabs(hi[2] - 1.0 / 1.02) < 1e-12);
+    assert_true(top < bottom); /* the light comes from above: the top is nearer */
+
+    /* The caster's world-view into the map, and the receivers' matrix, rounded from double. */
+    float wv[16], m[16];
+    const double ident[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    sc_shadow_caster_world_view(view, f.scenes[0].draws[0].world_view, wv);
+    sc_mat4_mul_to_float(view, ident, m);
+    for (int i = 0; i < 16; i++) {
+        double want = i % 4 == 3 ? view[i] + (i < 12 ? -5.0 * view[i - 1] : 0.0) : view[i];
+        assert_true(wv[i] == (float)want);
+        assert_true(m[i] == (float)view[i]);
+    }
+    sc_free(&f);
+}
+
+/* A point light above the cube, and one inside it: every caster vertex inside the first one's
+ * frustum; the second still fitted, with its widest cone. */
+static void shadow_light_point(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    write_file(t, "cube.obj", CUBE_OBJ);
+    if (!load_scene(t, "lamp.json",
+                    "{\"width\": 4, \"height\": 4, \"scenes\": ["
+                    "{\"name\": \"above\", \"lights\": [{\"type\": \"point\","
+                    " \"position\": [0.9, 2.5, -4.2], \"color\": [1, 1, 1]}],"
+                    " \"shadow\": {\"light\": 0},"
+                    " \"draws\": [{\"mesh\": \"cube.obj\", \"worldView\": " CUBE_WORLD_VIEW
+                    ", \"proj\": " IDENTITY "}]},"
+                    "{\"name\": \"inside\", \"lights\": [{\"type\": \"point\","
+                    " \"position\": [0.5, 0.5, -4.5], \"color\": [1, 1, 1]}],"
+                    " \"shadow\": {\"light\": 0},"
+                    " \"draws\": [{\"mesh\": \"cube.obj\", \"worldView\": " CUBE_WORLD_VIEW
+                    ", \"proj\": " IDENTITY "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    double view[16], proj[16];
+    assert_true(sc_shadow_light(&f, &f.scenes[0], view, proj));
+    assert_true(proj[14] == -1.0); /* perspective: w is the distance in front of the light */
+    for (int k = 0; k < 8; k++) {
+        double p[3], c[4];
+        cube_corner(k, p);
+        light_clip(view, proj, p, c);
+        assert_true(c[3] > 0.0);
+        for (int i = 0; i < 3; i++)
+            if (!(fabs(c[i]) <= c[3]))
+                fail_msg("corner %d: |clip[%d]| = %.17g > w = %.17g", k, i, fabs(c[i]), c[3]);
+    }
+    /* The light sits at the cube's centre: a 170 degree cone, near plane at 1e-3 R. */
+    assert_true(sc_shadow_light(&f, &f.scenes[1], view, proj));
+    double R = sqrt(0.75), c = 1.0 / tan(85.0 * 3.14159265358979323846 / 180.0);
+    assert_true(fabs(proj[0] - c) < 1e-12 && fabs(proj[5] - c) < 1e-12);
+    double n = proj[11] / (proj[10] - 1.0), far = proj[11] / (proj[10] + 1.0);
+    assert_true(fabs(n - 1e-3 * R) < 1e-12);
+    assert_true(fabs(far - R) < 1e-9);
+    sc_free(&f);
+}
+
 /* Scene files that must fail, each with words its message must contain. */
 static void scene_errors(void **state) {
     tmp_dir *t = *state;
@@ -805,6 +1008,77 @@ static void scene_errors(void **state) {
         {"{\"width\": 4, \"height\": 4, \"lights\": [{\"type\": \"point\", \"position\":"
          " [0, 0, 1], \"color\": [1, 1, -1]}], \"scenes\": [{\"name\": \"a\", \"draws\": []}]}",
          "errors.json: lights[0]: ", "'color'[2] = -1 must be >= 0"},
+    /* Shadows. */
+#define SHADOW_SCENE(lights, shadow, draw)                                                         \
+    "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": [" lights "],"       \
+    " \"shadow\": " shadow ", \"draws\": [{\"mesh\": \"tri.obj\", " draw MATRICES "}]}]}"
+#define SUN "{\"type\": \"directional\", \"direction\": [0, 0, -1], \"color\": [1, 1, 1]}"
+        {SHADOW_SCENE(SUN, "{\"light\": 1}", ""),
+         "scenes[0] ('a'), shadow: ", "'light' is 1, but the scene has 1 light (0..0)"},
+        {SHADOW_SCENE(SUN "," SUN, "{\"light\": 3}", ""),
+         "scenes[0] ('a'), shadow: ", "'light' is 3, but the scene has 2 lights (0..1)"},
+        {SHADOW_SCENE("", "{\"light\": 0}", ""),
+         "scenes[0] ('a'), shadow: ", "'light' is 0, but the scene has no lights"},
+        {SHADOW_SCENE(SUN, "{\"size\": 16}", ""), "scenes[0] ('a'), shadow: ", "missing 'light'"},
+        {SHADOW_SCENE(SUN, "{\"light\": 8}", ""), "shadow: ", "'light' must be an integer in 0..7"},
+        {SHADOW_SCENE(SUN, "{\"light\": -1}", ""), "shadow: ", "'light' must be an integer"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0.5}", ""), "shadow: ", "'light' must be an integer"},
+        {SHADOW_SCENE(SUN, "{\"light\": \"0\"}", ""), "shadow: ", "'light' must be an integer"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0, \"size\": 0}", ""),
+         "scenes[0] ('a'), shadow: ", "'size' must be an integer in 1..16384 (got 0)"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0, \"size\": 16385}", ""),
+         "shadow: ", "'size' must be an integer in 1..16384 (got 16385)"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0, \"size\": 100.5}", ""), "shadow: ", "'size'"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0, \"bias\": \"small\"}", ""),
+         "shadow: ", "'bias' must be a number"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0, \"bias\": 1e39}", ""),
+         "shadow: ", "'bias' = 1e+39 does not fit a float"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0, \"slope_bias\": null}", ""),
+         "shadow: ", "'slope_bias' must be a number"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0, \"slope_bias\": -1e300}", ""),
+         "shadow: ", "'slope_bias' = -1e+300 does not fit a float"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0, \"pcf\": 1}", ""),
+         "scenes[0] ('a'), shadow: ", "'pcf' must be true or false"},
+        {SHADOW_SCENE(SUN, "3", ""), "scenes[0] ('a'): ", "'shadow' must be an object or null"},
+        {SHADOW_SCENE(SUN, "[0]", ""), "scenes[0] ('a'): ", "'shadow' must be an object or null"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0}", "\"casts_shadow\": \"yes\", "),
+         "scenes[0] ('a'), draws[0]: ", "'casts_shadow' must be true or false"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0}", "\"receives_shadow\": 0, "),
+         "scenes[0] ('a'), draws[0]: ", "'receives_shadow' must be true or false"},
+        {SHADOW_SCENE(SUN, "null", "\"receives_shadow\": 0, "),
+         "draws[0]: ", "'receives_shadow' must be true or false"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0}", "\"lighting\": \"flat\", "),
+         "scenes[0] ('a'), draws[0]: ",
+         "a draw lit 'flat' cannot receive the scene's shadow: shadows fall on 'phong' and unlit "
+         "draws only (set \"receives_shadow\": false)"},
+        {SHADOW_SCENE(SUN, "{\"light\": 0}",
+                      "\"lighting\": \"gouraud\", \"casts_shadow\": false, "),
+         "scenes[0] ('a'), draws[0]: ", "a draw lit 'gouraud' cannot receive the scene's shadow"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": [" SUN "],"
+         " \"shadow\": {\"light\": 0}, \"draws\": [{\"mesh\": \"dot.obj\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), shadow: ", "the light cannot be fitted to the casters"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": [" SUN "],"
+         " \"shadow\": {\"light\": 0}, \"draws\": [{\"mesh\": \"nan.obj\", " MATRICES "},"
+         " {\"mesh\": \"tri.obj\", \"casts_shadow\": false, " MATRICES "}]}]}",
+         "scenes[0] ('a'), shadow: ", "they have no finite vertex"},
+        /* A light seen end-on: the triangle is a line from a light along its plane. */
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": ["
+         "{\"type\": \"directional\", \"direction\": [1, 0, 0], \"color\": [1, 1, 1]}],"
+         " \"shadow\": {\"light\": 0}, \"draws\": [{\"mesh\": \"tri.obj\", \"worldView\":"
+         " [1,0,0,0, 0,0,0,0, 0,0,1,0, 0,0,0,1], \"proj\": " IDENTITY "}]}]}",
+         "scenes[0] ('a'), shadow: ", "they span no area as seen from the light"},
+        /* The file's shadow: named alone, and against each scene's lights. */
+        {"{\"width\": 4, \"height\": 4, \"shadow\": {\"light\": 0, \"size\": -3},"
+         " \"scenes\": []}",
+         "errors.json: shadow: ", "'size' must be an integer in 1..16384 (got -3)"},
+        {"{\"width\": 4, \"height\": 4, \"shadow\": true, \"scenes\": []}",
+         "errors.json: ", "'shadow' must be an object or null"},
+        {"{\"width\": 4, \"height\": 4, \"lights\": [" SUN "], \"shadow\": {\"light\": 0},"
+         " \"scenes\": [{\"name\": \"a\", \"draws\": []}, {\"name\": \"b\", \"lights\": [],"
+         " \"draws\": []}]}",
+         "scenes[1] ('b'), shadow: ", "'light' is 0, but the scene has no lights"},
+#undef SHADOW_SCENE
+#undef SUN
         {"{\n\"width\": 4,\n\"height\": x\n}", "invalid JSON", "line 3"},
         {"[1, 2]", "errors.json", "top level"},
     };
@@ -920,6 +1194,9 @@ int main(void) {
         cmocka_unit_test(scene_transparency),
         cmocka_unit_test(scene_lighting),
         cmocka_unit_test(scene_mesh_normals),
+        cmocka_unit_test(scene_shadow),
+        cmocka_unit_test(shadow_light_directional),
+        cmocka_unit_test(shadow_light_point),
         cmocka_unit_test(scene_errors),
         cmocka_unit_test(sort_order_and_ties),
         cmocka_unit_test(sort_stable_at_scale),

@@ -6,7 +6,8 @@
  * For every scene of the files it measures:
  *   - sgapi's steady-state time per frame at 1 and at T threads (one device per thread count):
  *     3 warm-up frames, then the median of N frames (default 100), each timed from
- * sgBeginRenderPass to the return of sgEndRenderPass (loading, uploads and pipeline creation are
+ * sgBeginRenderPass to the return of sgEndRenderPass (with a shadow, from the start of its
+ * depth-only pass to the end of the scene's pass; loading, uploads and pipeline creation are
  * not counted);
  *   - lavapipe's, at 1 and T threads, by running sgapi-ref (found beside this program) on the
  *     scene and reading the time it prints;
@@ -397,6 +398,7 @@ static bool measure_scene(sgDevice *dev, ss_pso_cache *cache, const sc_file *f, 
                           unsigned char *pixels) {
     bool ok = false;
     sgImage2D color = {0}, depth = {0};
+    ss_shadow shadow = {0};
     sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
     double *times = calloc((size_t)o->frames, sizeof *times);
     if (!psos || !times) {
@@ -408,12 +410,15 @@ static bool measure_scene(sgDevice *dev, ss_pso_cache *cache, const sc_file *f, 
         if (!ss_get_pso(PROG, dev, cache, &desc, &psos[i])) goto done;
     }
     sgPassDesc pass;
-    if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass)) goto done;
+    if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass) ||
+        !ss_create_shadow(PROG, dev, cache, f, s, &shadow))
+        goto done;
     sgResult r;
 
+    /* A frame is the shadow's pass and the scene's, as the reference's frame is. */
     for (int frame = -o->warmup; frame < o->frames; frame++) {
         double t0 = ss_now_ms();
-        if (!ss_draw_frame(PROG, dev, f, s, u, psos, &pass)) goto done;
+        if (!ss_draw_frame(PROG, dev, f, s, u, psos, &pass, &shadow)) goto done;
         double t = ss_now_ms() - t0;
         if (frame >= 0) times[frame] = t;
     }
@@ -427,6 +432,7 @@ static bool measure_scene(sgDevice *dev, ss_pso_cache *cache, const sc_file *f, 
     *ms = ss_median(times, o->frames);
     ok = true;
 done:
+    ss_destroy_shadow(dev, &shadow);
     if (depth.id) sgDestroyImage2D(dev, depth);
     if (color.id) sgDestroyImage2D(dev, color);
     free(psos);
@@ -484,19 +490,18 @@ static bool create_device(int threads, const sc_file *files, int file_count, sgD
         if (files[i].texture_count > images) images = files[i].texture_count;
         if (files[i].mesh_count > geoms) geoms = files[i].mesh_count;
     }
-    /* Pools for the largest file (its textures plus the two targets) and for every distinct
-     * pipeline_of() result of every setting: 5 colour sources (vertex colour; texture x
-     * 2 filters x 2 wraps) x 8 compares x 2 depth writes x 3 culls x 2 front faces. */
-    if (images > 65535 - 2 || geoms > 65535) {
+    /* Pools for the largest file (its textures plus the two targets and a shadow map) and for
+     * every pipeline the draws and shadows can need in every setting. */
+    if (images > 65535 - 3 || geoms > 65535) {
         fprintf(stderr, "sgapi-bench: too many meshes or textures in one file\n");
         return false;
     }
     sgDeviceDesc dd;
     memset(&dd, 0, sizeof dd);
     dd.thread_count = threads;
-    if (images + 2 > 256) dd.image_pool_size = (int)images + 2;
+    if (images + 3 > 256) dd.image_pool_size = (int)images + 3;
     if (geoms > 1024) dd.geom_pool_size = (int)geoms;
-    dd.pipeline_pool_size = 5 * 8 * 2 * 3 * 2 * SETTING_COUNT;
+    dd.pipeline_pool_size = ss_pipeline_pool_size(files, file_count, SETTING_COUNT);
     sgResult r = sgCreateDevice(&dd, dev);
     if (r != SG_OK) return sg_fail(NULL, r, "sgCreateDevice with %d thread(s)", threads);
     return true;

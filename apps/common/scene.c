@@ -6,6 +6,7 @@
 #define _POSIX_C_SOURCE 200809L /* stat */
 
 #include "scene.h"
+#include "shadow.h"
 
 #include <limits.h>
 #include <math.h>
@@ -19,13 +20,14 @@
 #include <cJSON.h>
 #include <sgapi/sgapi_util.h>
 
-/* Where in the file an error is: -1 for "not inside one". */
+/* Where in the file an error is: -1 (NULL) for "not inside one". */
 typedef struct loc {
     int scene, draw, light;
     const char *scene_name;
+    const char *object; /* a named object of the scene or top level, such as "shadow" */
 } loc;
 
-#define NOWHERE ((loc){.scene = -1, .draw = -1, .light = -1, .scene_name = NULL})
+#define NOWHERE ((loc){.scene = -1, .draw = -1, .light = -1, .scene_name = NULL, .object = NULL})
 
 enum { MESH_OBJ, MESH_HEIGHTMAP };
 
@@ -49,11 +51,12 @@ typedef struct ctx {
 static bool fail(ctx *c, const loc *l, const char *fmt, ...) PRINTF_LIKE(3, 4);
 
 /* Formats "file: scenes[i] ('name'), draws[j]: message" (or ", lights[k]" for a light of the
- * scene, or "lights[k]" for one of the top level); always returns false. */
+ * scene, or "lights[k]" for one of the top level, and likewise ", shadow"); always returns
+ * false. */
 static bool fail(ctx *c, const loc *l, const char *fmt, ...) {
     if (!c->err || c->errlen == 0) return false;
     int n = snprintf(c->err, c->errlen, "%s: ", c->path);
-    bool where = l && (l->scene >= 0 || l->light >= 0);
+    bool where = l && (l->scene >= 0 || l->light >= 0 || l->object);
     if (n >= 0 && (size_t)n < c->errlen && l && l->scene >= 0) {
         n += snprintf(c->err + n, c->errlen - (size_t)n, "scenes[%d]", l->scene);
         if ((size_t)n < c->errlen && l->scene_name)
@@ -64,6 +67,9 @@ static bool fail(ctx *c, const loc *l, const char *fmt, ...) {
     if (n >= 0 && (size_t)n < c->errlen && l && l->light >= 0)
         n += snprintf(c->err + n, c->errlen - (size_t)n, "%slights[%d]", l->scene >= 0 ? ", " : "",
                       l->light);
+    if (n >= 0 && (size_t)n < c->errlen && l && l->object)
+        n += snprintf(c->err + n, c->errlen - (size_t)n, "%s%s",
+                      l->scene >= 0 || l->light >= 0 ? ", " : "", l->object);
     if (n >= 0 && (size_t)n < c->errlen && where)
         n += snprintf(c->err + n, c->errlen - (size_t)n, ": ");
     if (n >= 0 && (size_t)n < c->errlen) {
@@ -173,6 +179,26 @@ static bool get_number(ctx *c, const loc *l, const cJSON *obj, const char *key, 
     if (!(d >= lo && d <= hi))
         return fail(c, l, "'%s' must be a number in %g..%g (got %g)", key, lo, hi, d);
     *out = (float)d;
+    return true;
+}
+
+/* A finite number (one a float holds); absent keeps *out (the default). */
+static bool get_finite(ctx *c, const loc *l, const cJSON *obj, const char *key, float *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v) return true;
+    if (!cJSON_IsNumber(v)) return fail(c, l, "'%s' must be a number", key);
+    float f = (float)v->valuedouble;
+    if (!isfinite(f)) return fail(c, l, "'%s' = %g does not fit a float", key, v->valuedouble);
+    *out = f;
+    return true;
+}
+
+/* true or false; absent keeps *out (the default). */
+static bool get_bool(ctx *c, const loc *l, const cJSON *obj, const char *key, bool *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v) return true;
+    if (!cJSON_IsBool(v)) return fail(c, l, "'%s' must be true or false", key);
+    *out = cJSON_IsTrue(v);
     return true;
 }
 
@@ -479,7 +505,8 @@ static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
 
 /* ---- scenes and draws ------------------------------------------------------------------------ */
 
-static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
+/* has_shadow: the scene has a shadow, which flat and Gouraud draws cannot receive. */
+static bool parse_draw(ctx *c, const loc *l, const cJSON *v, bool has_shadow, sc_draw *d) {
     if (!cJSON_IsObject(v)) return fail(c, l, "a draw must be an object");
     if (!get_mesh(c, l, v, &d->mesh)) return false;
     if (!get_texture(c, l, v, &d->texture)) return false;
@@ -510,6 +537,19 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     const cJSON *dw = cJSON_GetObjectItemCaseSensitive(v, "depth_write");
     if (dw && !cJSON_IsBool(dw)) return fail(c, l, "'depth_write' must be true or false");
     d->depth_write = !dw || cJSON_IsTrue(dw);
+    d->casts_shadow = true;
+    d->receives_shadow = true;
+    if (!get_bool(c, l, v, "casts_shadow", &d->casts_shadow) ||
+        !get_bool(c, l, v, "receives_shadow", &d->receives_shadow))
+        return false;
+    /* sgapi shadows only per-pixel lit and unlit draws: a flat or Gouraud colour is lit before
+     * the pixel whose visibility it would need is known. */
+    if (has_shadow && d->receives_shadow &&
+        (d->lighting == SC_LIGHTING_FLAT || d->lighting == SC_LIGHTING_GOURAUD))
+        return fail(c, l,
+                    "a draw lit '%s' cannot receive the scene's shadow: shadows fall on 'phong' "
+                    "and unlit draws only (set \"receives_shadow\": false)",
+                    d->lighting == SC_LIGHTING_FLAT ? "flat" : "gouraud");
 
     bool present;
     for (int i = 0; i < 4; i++) d->color[i] = 1.0f;
@@ -580,6 +620,35 @@ static bool parse_lighting(ctx *c, const loc *l, const cJSON *obj, float ambient
     return true;
 }
 
+/* A "shadow" object, or null (none), into *has and *out; absent keeps both. Its light is checked
+ * against the scene's lights by the scene. */
+static bool parse_shadow(ctx *c, const loc *where, const cJSON *obj, bool *has, sc_shadow *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "shadow");
+    if (!v) return true;
+    if (cJSON_IsNull(v)) {
+        *has = false;
+        return true;
+    }
+    loc l = *where;
+    l.object = "shadow";
+    if (!cJSON_IsObject(v)) return fail(c, where, "'shadow' must be an object or null");
+    sc_shadow s = {.light = 0,
+                   .size = SC_SHADOW_SIZE,
+                   .bias = SC_SHADOW_BIAS,
+                   .slope_bias = SC_SHADOW_SLOPE_BIAS,
+                   .pcf = SC_SHADOW_PCF};
+    bool present;
+    if (!get_int(c, &l, v, "light", 0, SC_MAX_LIGHTS - 1, &s.light, &present)) return false;
+    if (!present) return fail(c, &l, "missing 'light' (the index of the light in 'lights')");
+    if (!get_int(c, &l, v, "size", 1, SC_MAX_IMAGE_SIZE, &s.size, &present) ||
+        !get_finite(c, &l, v, "bias", &s.bias) ||
+        !get_finite(c, &l, v, "slope_bias", &s.slope_bias) || !get_bool(c, &l, v, "pcf", &s.pcf))
+        return false;
+    *has = true;
+    *out = s;
+    return true;
+}
+
 /* File-level values every scene starts from. */
 typedef struct defaults {
     int width, height;
@@ -588,6 +657,8 @@ typedef struct defaults {
     float ambient[3];
     int light_count;
     sc_light lights[SC_MAX_LIGHTS];
+    bool has_shadow;
+    sc_shadow shadow;
 } defaults;
 
 static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, sc_scene *s) {
@@ -625,6 +696,17 @@ static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, 
     memcpy(s->lights, def->lights, sizeof s->lights);
     s->light_count = def->light_count;
     if (!parse_lighting(c, &l, v, s->ambient, s->lights, &s->light_count)) return false;
+    s->has_shadow = def->has_shadow;
+    s->shadow = def->shadow;
+    if (!parse_shadow(c, &l, v, &s->has_shadow, &s->shadow)) return false;
+    if (s->has_shadow && s->shadow.light >= s->light_count) {
+        loc ls = l;
+        ls.object = "shadow";
+        if (s->light_count == 0)
+            return fail(c, &ls, "'light' is %d, but the scene has no lights", s->shadow.light);
+        return fail(c, &ls, "'light' is %d, but the scene has %d light%s (0..%d)", s->shadow.light,
+                    s->light_count, s->light_count == 1 ? "" : "s", s->light_count - 1);
+    }
 
     const cJSON *draws = cJSON_GetObjectItemCaseSensitive(v, "draws");
     if (!draws) return fail(c, &l, "missing 'draws'");
@@ -637,9 +719,25 @@ static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, 
     const cJSON *d;
     cJSON_ArrayForEach(d, draws) {
         l.draw = (int)s->draw_count;
-        if (!parse_draw(c, &l, d, &s->draws[s->draw_count])) return false;
+        if (!parse_draw(c, &l, d, s->has_shadow, &s->draws[s->draw_count])) return false;
         s->draw_count++;
     }
+    if (!s->has_shadow) return true;
+    /* Without a caster there is nothing to see from the light: no map, no pass. */
+    bool casters = false;
+    for (size_t i = 0; i < s->draw_count; i++) casters |= s->draws[i].casts_shadow;
+    if (!casters) {
+        s->has_shadow = false;
+        return true;
+    }
+    /* Fitted here once, so that a renderer never meets a scene whose light cannot be fitted. */
+    double view[16], proj[16];
+    l.draw = -1;
+    l.object = "shadow";
+    if (!sc_shadow_light(c->f, s, view, proj))
+        return fail(c, &l,
+                    "the light cannot be fitted to the casters: they have no finite vertex, or "
+                    "they span no area as seen from the light");
     return true;
 }
 
@@ -652,7 +750,8 @@ static bool parse_root(ctx *c, const cJSON *root) {
         return false;
     bool present;
     if (!get_floats(c, &none, root, "clear_color", 4, 0.0, 1.0, def.clear_color, &present) ||
-        !parse_lighting(c, &none, root, def.ambient, def.lights, &def.light_count))
+        !parse_lighting(c, &none, root, def.ambient, def.lights, &def.light_count) ||
+        !parse_shadow(c, &none, root, &def.has_shadow, &def.shadow))
         return false;
 
     const cJSON *scenes = cJSON_GetObjectItemCaseSensitive(root, "scenes");

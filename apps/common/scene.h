@@ -76,6 +76,23 @@ typedef struct sc_light {
                              default 1, 0, 0 */
 } sc_light;
 
+/* Defaults of a scene's "shadow" (docs/scene-format.md, "Shadows"), kept here alone so that tuning
+ * them is one change. The biases are in window-depth units of the shadow map. */
+#define SC_SHADOW_SIZE       2048
+#define SC_SHADOW_BIAS       0.0015f
+#define SC_SHADOW_SLOPE_BIAS 2.0f
+#define SC_SHADOW_PCF        true
+
+/* The shadow one light of a scene casts: the depth of the casters seen from the light, rendered
+ * into a size x size map before the scene's draws, then looked up by the receivers. */
+typedef struct sc_shadow {
+    int light;        /* index into sc_scene.lights, < light_count */
+    int size;         /* side of the square map, 1 .. SC_MAX_IMAGE_SIZE */
+    float bias;       /* constant depth bias of the casters, finite */
+    float slope_bias; /* times max(|dz/dx|, |dz/dy|) of each caster triangle, finite */
+    bool pcf;         /* 2 x 2 percentage-closer filtering, else the one texel under the point */
+} sc_shadow;
+
 /* One draw call. */
 typedef struct sc_draw {
     int mesh;    /* index into sc_file.meshes */
@@ -93,6 +110,9 @@ typedef struct sc_draw {
     sc_lighting lighting;
     float specular[3];    /* r, g, b of the specular material, each finite and >= 0; default 0 */
     float shininess;      /* specular exponent, 0 .. 128; default 0 */
+    bool casts_shadow;    /* drawn into the scene's shadow map; default true */
+    bool receives_shadow; /* darkened where the scene's shadow falls; default true (never true
+                             with a shadow and flat or Gouraud lighting: the loader refuses it) */
     float world_view[16]; /* row-major: elements 0..3 are the first row */
     float proj[16];       /* row-major; clip = proj * world_view * position */
 } sc_draw;
@@ -107,6 +127,8 @@ typedef struct sc_scene {
     float ambient[3]; /* r, g, b of the scene's ambient light, each finite and >= 0; default 0 */
     int light_count;  /* 0 .. SC_MAX_LIGHTS */
     sc_light lights[SC_MAX_LIGHTS];
+    bool has_shadow;  /* the scene has a shadow and at least one draw casts it */
+    sc_shadow shadow; /* when has_shadow */
 } sc_scene;
 
 /* A loaded scene file: the scenes and everything their draws refer to. */

@@ -3,10 +3,13 @@
 #include "scene_sgapi.h"
 
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+
+#include "shadow.h"
 
 static const sgCompare compare_map[] = {
     [SC_COMPARE_LESS] = SG_COMPARE_LESS,
@@ -69,8 +72,9 @@ static void scene_lighting(const sc_scene *s, sgLighting *out) {
 static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
     return a->shade == b->shade && a->filter == b->filter && a->wrap == b->wrap &&
            a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
-           a->cull == b->cull && a->front_face == b->front_face && a->blend == b->blend &&
-           a->lighting == b->lighting;
+           a->depth.bias_constant == b->depth.bias_constant &&
+           a->depth.bias_slope == b->depth.bias_slope && a->cull == b->cull &&
+           a->front_face == b->front_face && a->blend == b->blend && a->lighting == b->lighting;
 }
 
 bool ss_get_pso(const char *prog, sgDevice *dev, ss_pso_cache *c, const sgPipelineDesc *desc,
@@ -104,6 +108,25 @@ void ss_pso_cache_free(ss_pso_cache *c) {
     free(c->descs);
     free(c->psos);
     memset(c, 0, sizeof *c);
+}
+
+int ss_pipeline_pool_size(const sc_file *files, int file_count, int settings) {
+    /* ss_pipeline_desc has 5 colour sources (vertex colour; texture x 2 filters x 2 wraps) x
+     * 8 compares x 2 depth writes x 3 culls x 2 front faces x 2 blends x 4 lighting modes; a
+     * file may use fewer states than it has draws. A shadow's casters take at most 3 culls x
+     * 2 front faces with the scene's depth bias. */
+    uint64_t draws = 0, casters = 0;
+    for (int i = 0; i < file_count; i++) {
+        for (size_t j = 0; j < files[i].scene_count; j++) {
+            const sc_scene *s = &files[i].scenes[j];
+            draws += s->draw_count;
+            if (s->has_shadow) casters += s->draw_count < 6 ? s->draw_count : 6;
+        }
+    }
+    const uint64_t states = 5 * 8 * 2 * 3 * 2 * 2 * 4, limit = 65535;
+    uint64_t n = (draws < states ? draws : states) * (uint64_t)(settings > 0 ? settings : 1);
+    n += casters;
+    return n < 64 ? 64 : n > limit ? (int)limit : (int)n;
 }
 
 void ss_destroy_uploads(sgDevice *dev, ss_uploads *u) {
@@ -169,8 +192,103 @@ bool ss_create_targets(const char *prog, sgDevice *dev, const sc_scene *s, sgIma
     return true;
 }
 
+bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, const sc_file *f,
+                      const sc_scene *s, ss_shadow *out) {
+    memset(out, 0, sizeof *out);
+    if (!s->has_shadow) return true;
+    double view[16], proj[16];
+    /* The loader has fitted this scene's light already; failing here is a bug. */
+    if (!sc_shadow_light(f, s, view, proj)) {
+        fprintf(stderr, "%s: scene '%s': the shadow light cannot be fitted\n", prog, s->name);
+        return false;
+    }
+    out->psos = calloc(s->draw_count, sizeof *out->psos);
+    out->world_view = calloc(s->draw_count, sizeof *out->world_view);
+    if (!out->psos || !out->world_view) {
+        fprintf(stderr, "%s: out of memory\n", prog);
+        ss_destroy_shadow(dev, out);
+        return false;
+    }
+    int size = s->shadow.size;
+    sgImage2DDesc md = {size, size, SG_FORMAT_D32_FLOAT, NULL};
+    sgResult r = sgCreateImage2D(dev, &md, &out->map);
+    if (r != SG_OK) {
+        ss_destroy_shadow(dev, out);
+        return ss_fail(prog, dev, r, "scene '%s': shadow map of %dx%d", s->name, size, size);
+    }
+    out->pass.depth = out->map; /* no colour: a depth-only pass */
+    out->pass.depth_load = SG_LOAD_CLEAR;
+    out->pass.clear_depth = 1.0f;
+    out->pass.depth_store = SG_STORE_STORE; /* the receivers read it */
+    for (int i = 0; i < 16; i++) out->proj[i] = (float)proj[i];
+    for (size_t i = 0; i < s->draw_count; i++) {
+        const sc_draw *d = &s->draws[i];
+        if (!d->casts_shadow) continue;
+        /* Only depth is written: the colour source is the cheapest, and the caster's own cull
+         * and winding decide which of its faces are in the map. */
+        sgPipelineDesc p;
+        memset(&p, 0, sizeof p);
+        p.shade = SG_SHADE_VERTEX_COLOR;
+        p.depth.compare = SG_COMPARE_LESS;
+        p.depth.write = true;
+        p.depth.bias_constant = s->shadow.bias;
+        p.depth.bias_slope = s->shadow.slope_bias;
+        p.cull = ss_pipeline_desc(d).cull;
+        p.front_face = ss_pipeline_desc(d).front_face;
+        p.blend = SG_BLEND_OPAQUE;
+        p.lighting = SG_LIGHTING_NONE;
+        if (!ss_get_pso(prog, dev, cache, &p, &out->psos[i])) {
+            ss_destroy_shadow(dev, out);
+            return false;
+        }
+        sc_shadow_caster_world_view(view, d->world_view, out->world_view[i]);
+    }
+    out->receiver.map = out->map;
+    sc_mat4_mul_to_float(proj, view, out->receiver.matrix);
+    out->receiver.light = s->shadow.light;
+    out->receiver.pcf = s->shadow.pcf;
+    return true;
+}
+
+void ss_destroy_shadow(sgDevice *dev, ss_shadow *sh) {
+    if (sh->map.id) sgDestroyImage2D(dev, sh->map);
+    free(sh->psos);
+    free(sh->world_view);
+    memset(sh, 0, sizeof *sh);
+}
+
+/* The shadow's depth-only pass: every caster, unlit and untextured, into the map. */
+static bool draw_shadow_pass(const char *prog, sgDevice *dev, const sc_file *f, const sc_scene *s,
+                             const ss_uploads *u, const ss_shadow *sh) {
+    sgResult r = sgBeginRenderPass(dev, &sh->pass);
+    if (r != SG_OK)
+        return ss_fail(prog, dev, r, "scene '%s': shadow pass: sgBeginRenderPass", s->name);
+    for (size_t i = 0; i < s->draw_count; i++) {
+        const sc_draw *d = &s->draws[i];
+        if (!d->casts_shadow) continue;
+        sgDrawParams params;
+        memset(&params, 0, sizeof params);
+        memcpy(params.world_view, sh->world_view[i], sizeof params.world_view);
+        memcpy(params.proj, sh->proj, sizeof params.proj);
+        r = sgDraw(dev, sh->psos[i], u->geoms[d->mesh], &params);
+        if (r != SG_OK) {
+            ss_fail(prog, dev, r, "scene '%s', shadow pass, draw %zu (%s): sgDraw", s->name, i,
+                    f->mesh_sources[d->mesh]);
+            sgEndRenderPass(dev, &sh->pass);
+            return false;
+        }
+    }
+    r = sgEndRenderPass(dev, &sh->pass);
+    if (r != SG_OK)
+        return ss_fail(prog, dev, r, "scene '%s': shadow pass: sgEndRenderPass", s->name);
+    return true;
+}
+
 bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *f, const sc_scene *s,
-                   const ss_uploads *u, const sgPipelineStateObject *psos, const sgPassDesc *pass) {
+                   const ss_uploads *u, const sgPipelineStateObject *psos, const sgPassDesc *pass,
+                   const ss_shadow *shadow) {
+    const bool shadowed = shadow && shadow->map.id;
+    if (shadowed && !draw_shadow_pass(prog, dev, f, s, u, shadow)) return false;
     sgLighting lighting;
     scene_lighting(s, &lighting);
     sgResult r = sgBeginRenderPass(dev, pass);
@@ -192,6 +310,7 @@ bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *f, const sc_s
             memcpy(params.specular, d->specular, sizeof params.specular);
             params.shininess = d->shininess;
         }
+        if (shadowed && d->receives_shadow) params.shadow = &shadow->receiver;
         r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
         if (r != SG_OK) {
             ss_fail(prog, dev, r, "scene '%s', draw %zu (%s): sgDraw", s->name, i,

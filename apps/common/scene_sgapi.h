@@ -26,6 +26,9 @@ bool ss_get_pso(const char *prog, sgDevice *dev, ss_pso_cache *cache, const sgPi
                 sgPipelineStateObject *out);
 /** Frees the cache's arrays (the pipelines go with their device). */
 void ss_pso_cache_free(ss_pso_cache *cache);
+/** A pipeline pool size (sgDeviceDesc.pipeline_pool_size) that holds every pipeline the files'
+ *  draws and shadows can need, times `settings` variants of each, within sgapi's limit. */
+int ss_pipeline_pool_size(const sc_file *files, int file_count, int settings);
 
 /* What one file's meshes and textures became on a device. */
 typedef struct ss_uploads {
@@ -43,9 +46,30 @@ void ss_destroy_uploads(sgDevice *dev, ss_uploads *u);
  *  the scene's clear colour and depth 1.0). */
 bool ss_create_targets(const char *prog, sgDevice *dev, const sc_scene *scene, sgImage2D *color,
                        sgImage2D *depth, sgPassDesc *pass);
-/** One frame: sgBeginRenderPass, every draw of the scene with psos[i], sgEndRenderPass. */
+/* A scene's shadow on a device: the map and its depth-only pass, the casters' pipelines and
+ * world-views into it, and what the receivers get. All zero for a scene without a shadow. */
+typedef struct ss_shadow {
+    sgImage2D map;               /* D32, size x size */
+    sgPassDesc pass;             /* depth only: clears the map to 1.0 */
+    sgPipelineStateObject *psos; /* per draw of the scene; set for casters */
+    float (*world_view)[16];     /* per draw: the light's view x the draw's worldView */
+    float proj[16];              /* the light's projection */
+    sgShadow receiver;           /* given to every draw that receives the shadow */
+} ss_shadow;
+
+/** Creates what a scene's shadow needs (nothing when the scene has none), once, with its
+ *  targets: the map, the casters' pipelines (from the cache) and their matrices. */
+bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, const sc_file *file,
+                      const sc_scene *scene, ss_shadow *out);
+/** Destroys the map and frees what ss_create_shadow made; a zeroed one is fine. */
+void ss_destroy_shadow(sgDevice *dev, ss_shadow *shadow);
+
+/** One frame: the shadow's depth-only pass when the scene has one (every caster into the map),
+ *  then sgBeginRenderPass, every draw of the scene with psos[i] (receivers with the shadow),
+ *  sgEndRenderPass. shadow may be NULL for a scene without one. */
 bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *file, const sc_scene *scene,
-                   const ss_uploads *u, const sgPipelineStateObject *psos, const sgPassDesc *pass);
+                   const ss_uploads *u, const sgPipelineStateObject *psos, const sgPassDesc *pass,
+                   const ss_shadow *shadow);
 
 /** Prints "prog: <message>: <result name>: <device's last error>" to stderr; returns false. */
 bool ss_fail(const char *prog, sgDevice *dev, sgResult r, const char *fmt, ...)

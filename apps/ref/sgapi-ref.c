@@ -8,7 +8,9 @@
  * bottom row, RGBA8 unorm colour, D32 float depth, no mipmaps; alpha blending is pipeline state,
  * the draw colour a uniform the vertex shader multiplies by, back-to-front sorting done on the CPU;
  * lit draws evaluate sgapi's lighting equation in GLSL per vertex (Gouraud), per pixel (Phong) or
- * per triangle in a geometry shader (flat), with the lights in the same per-draw uniform block.
+ * per triangle in a geometry shader (flat), with the lights in the same per-draw uniform block;
+ * a scene's shadow is a depth-only pass into a D32 map before the scene's pass, the bias written by
+ * the fragment shader, and the receivers' test done in GLSL with texelFetch.
  * Writes DIR/<scene>.png and prints the time per frame (submit to fence, median of N). --threads
  * sets LP_NUM_THREADS.
  */
@@ -30,8 +32,13 @@
 #include "depth_sort.h"
 #include "image_io.h"
 #include "scene.h"
+#include "shadow.h"
 #include "spv_color_frag.h"
+#include "spv_color_shadow_frag.h"
+#include "spv_color_shadow_vert.h"
 #include "spv_color_vert.h"
+#include "spv_depth_frag.h"
+#include "spv_depth_vert.h"
 #include "spv_flat_geom.h"
 #include "spv_lit_flat_frag.h"
 #include "spv_lit_flat_texture_frag.h"
@@ -40,15 +47,20 @@
 #include "spv_lit_gouraud_texture_frag.h"
 #include "spv_lit_gouraud_vert.h"
 #include "spv_lit_phong_frag.h"
+#include "spv_lit_phong_shadow_frag.h"
+#include "spv_lit_phong_shadow_texture_frag.h"
 #include "spv_lit_phong_texture_frag.h"
 #include "spv_lit_phong_vert.h"
 #include "spv_texture_frag.h"
+#include "spv_texture_shadow_frag.h"
+#include "spv_texture_shadow_vert.h"
 #include "spv_texture_vert.h"
 
 #define MAX_PIPELINES 512
 
 /* The shader modules. Lit stages are indexed by mode: SC_LIGHTING_FLAT - 1, GOURAUD - 1,
- * PHONG - 1; lit fragment stages by mode * 2 + textured. */
+ * PHONG - 1; lit fragment stages by mode * 2 + textured. The _SHADOW ones are those of draws that
+ * receive the scene's shadow; SH_DEPTH_* draw the casters into its map. */
 enum {
     SH_COLOR_VERT,
     SH_COLOR_FRAG,
@@ -57,11 +69,22 @@ enum {
     SH_LIT_VERT,                   /* 3 modes */
     SH_LIT_FRAG = SH_LIT_VERT + 3, /* 3 modes x (untextured, textured) */
     SH_FLAT_GEOM = SH_LIT_FRAG + 6,
+    SH_COLOR_SHADOW_VERT,
+    SH_COLOR_SHADOW_FRAG,
+    SH_TEXTURE_SHADOW_VERT,
+    SH_TEXTURE_SHADOW_FRAG,
+    SH_PHONG_SHADOW_FRAG, /* untextured, textured */
+    SH_DEPTH_VERT = SH_PHONG_SHADOW_FRAG + 2,
+    SH_DEPTH_FRAG,
     SH_COUNT
 };
 
-/* The per-draw uniform block of the shaders, std140 (apps/ref/shaders/lighting.glsl): the draw
- * colour, which every shader reads, then what lit shaders read. */
+/* What a pipeline draws: a draw of the scene's pass, one of them that receives the scene's
+ * shadow, or a caster into the shadow map. */
+typedef enum draw_kind { DRAW_PLAIN, DRAW_RECEIVER, DRAW_CASTER } draw_kind;
+
+/* The per-draw uniform block of the shaders, std140 (apps/ref/shaders/draw.glsl): the draw
+ * colour, which every shader reads, then what lit shaders read, then the scene's shadow. */
 typedef struct draw_block {
     float color[4];
     float ambient[4];  /* rgb */
@@ -73,8 +96,11 @@ typedef struct draw_block {
         float color[4];
         float attenuation[4];
     } lights[SC_MAX_LIGHTS];
+    float shadow_matrix[16]; /* row-major: view space -> the light's clip space */
+    float shadow[4];         /* the map's size, bias, slope bias */
+    int32_t shadow_flags[4]; /* the shadowed light, PCF */
 } draw_block;
-_Static_assert(sizeof(draw_block) == 496, "draw_block must match the std140 block of the shaders");
+_Static_assert(sizeof(draw_block) == 592, "draw_block must match the std140 block of the shaders");
 
 typedef struct buffer {
     VkBuffer buffer;
@@ -107,10 +133,13 @@ typedef struct ref {
     bool has_geometry;                    /* geometryShader: needed by flat lighting */
     VkDescriptorSetLayout color_layout;   /* set 0: the draws' uniform blocks, dynamic offset */
     VkDescriptorSetLayout texture_layout; /* set 1: the texture and its sampler */
+    VkDescriptorSetLayout shadow_layout;  /* set 2: the shadow map, a sampled image */
     VkPipelineLayout layout_color, layout_texture;
-    VkDeviceSize draw_stride; /* bytes between draws in a scene's uniform buffer */
-    VkSampler samplers[4];    /* [filter bilinear?][wrap clamp?] */
+    VkPipelineLayout layout_shadow; /* sets 0, 1 and 2: a receiver, textured or not */
+    VkDeviceSize draw_stride;       /* bytes between draws in a scene's uniform buffer */
+    VkSampler samplers[4];          /* [filter bilinear?][wrap clamp?] */
     VkRenderPass render_pass;
+    VkRenderPass depth_pass; /* the shadow map's: depth only, left ready for sampling */
     pipeline_entry pipelines[MAX_PIPELINES];
     int pipeline_count;
     char err[1024];
@@ -240,6 +269,15 @@ static bool create_shaders_and_layouts(ref *r) {
         [SH_LIT_FRAG + 4] = {spv_lit_phong_frag, sizeof spv_lit_phong_frag},
         [SH_LIT_FRAG + 5] = {spv_lit_phong_texture_frag, sizeof spv_lit_phong_texture_frag},
         [SH_FLAT_GEOM] = {spv_flat_geom, sizeof spv_flat_geom},
+        [SH_COLOR_SHADOW_VERT] = {spv_color_shadow_vert, sizeof spv_color_shadow_vert},
+        [SH_COLOR_SHADOW_FRAG] = {spv_color_shadow_frag, sizeof spv_color_shadow_frag},
+        [SH_TEXTURE_SHADOW_VERT] = {spv_texture_shadow_vert, sizeof spv_texture_shadow_vert},
+        [SH_TEXTURE_SHADOW_FRAG] = {spv_texture_shadow_frag, sizeof spv_texture_shadow_frag},
+        [SH_PHONG_SHADOW_FRAG + 0] = {spv_lit_phong_shadow_frag, sizeof spv_lit_phong_shadow_frag},
+        [SH_PHONG_SHADOW_FRAG + 1] = {spv_lit_phong_shadow_texture_frag,
+                                      sizeof spv_lit_phong_shadow_texture_frag},
+        [SH_DEPTH_VERT] = {spv_depth_vert, sizeof spv_depth_vert},
+        [SH_DEPTH_FRAG] = {spv_depth_frag, sizeof spv_depth_frag},
     };
     for (int i = 0; i < SH_COUNT; i++) {
         /* A module with the Geometry capability needs the feature enabled. */
@@ -267,9 +305,16 @@ static bool create_shaders_and_layouts(ref *r) {
                                        .stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT};
     dli.pBindings = &tb;
     VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &dli, NULL, &r->texture_layout));
+    /* The shadow map is read with texelFetch: an image without a sampler. */
+    VkDescriptorSetLayoutBinding sb = {.binding = 0,
+                                       .descriptorType = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
+                                       .descriptorCount = 1,
+                                       .stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT};
+    dli.pBindings = &sb;
+    VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &dli, NULL, &r->shadow_layout));
     /* 128 bytes, the two matrices: the least every Vulkan device offers, and lavapipe's limit. */
     VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_VERTEX_BIT, .size = 128};
-    VkDescriptorSetLayout sets[2] = {r->color_layout, r->texture_layout};
+    VkDescriptorSetLayout sets[3] = {r->color_layout, r->texture_layout, r->shadow_layout};
     VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
                                       .setLayoutCount = 1,
                                       .pSetLayouts = sets,
@@ -278,6 +323,9 @@ static bool create_shaders_and_layouts(ref *r) {
     VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_color));
     pli.setLayoutCount = 2;
     VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_texture));
+    /* An untextured receiver leaves set 1 unbound: its shaders do not use it. */
+    pli.setLayoutCount = 3;
+    VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_shadow));
     for (int f = 0; f < 2; f++)
         for (int w = 0; w < 2; w++) {
             VkSamplerAddressMode am =
@@ -323,14 +371,52 @@ static bool create_shaders_and_layouts(ref *r) {
                                   .subpassCount = 1,
                                   .pSubpasses = &sub};
     VK_CHECK(r, vkCreateRenderPass(r->device, &rpi, NULL, &r->render_pass));
+
+    /* The shadow map's pass: cleared to 1.0, stored, and left in the layout the scene's pass
+     * samples it in, its depth writes made visible to those reads. */
+    VkAttachmentDescription map = att[1];
+    map.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    map.finalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    VkAttachmentReference mref = {0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription dsub = {.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                 .pDepthStencilAttachment = &mref};
+    VkSubpassDependency deps[2] = {
+        /* The previous frame's reads of the map come before this frame's clear. */
+        {.srcSubpass = VK_SUBPASS_EXTERNAL,
+         .dstSubpass = 0,
+         .srcStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+         .dstStageMask =
+             VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+         .srcAccessMask = 0,
+         .dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT},
+        {.srcSubpass = 0,
+         .dstSubpass = VK_SUBPASS_EXTERNAL,
+         .srcStageMask =
+             VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+         .dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+         .srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+         .dstAccessMask = VK_ACCESS_SHADER_READ_BIT}};
+    VkRenderPassCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO,
+                                  .attachmentCount = 1,
+                                  .pAttachments = &map,
+                                  .subpassCount = 1,
+                                  .pSubpasses = &dsub,
+                                  .dependencyCount = 2,
+                                  .pDependencies = deps};
+    VK_CHECK(r, vkCreateRenderPass(r->device, &dpi, NULL, &r->depth_pass));
     return true;
 }
 
-/* The pipeline state a draw needs, packed into a key. */
-static uint32_t pipeline_key(const sc_draw *d, bool textured) {
+/* The pipeline state a draw needs, packed into a key. A caster's depth-only pipeline depends on
+ * its cull and winding alone (the bias is in the uniform block). */
+static uint32_t pipeline_key(const sc_draw *d, bool textured, draw_kind kind) {
+    if (kind == DRAW_CASTER)
+        return (uint32_t)d->cull << 1 | (uint32_t)d->front_face << 3 | 1u << 13;
     return (uint32_t)textured | (uint32_t)d->cull << 1 | (uint32_t)d->front_face << 3 |
            (uint32_t)d->depth_compare << 4 | (uint32_t)d->depth_write << 8 |
-           (uint32_t)d->blend << 9 | (uint32_t)d->lighting << 10;
+           (uint32_t)d->blend << 9 | (uint32_t)d->lighting << 10 |
+           (uint32_t)(kind == DRAW_RECEIVER) << 12;
 }
 
 static const VkCompareOp compare_ops[] = {
@@ -344,16 +430,23 @@ static const VkCompareOp compare_ops[] = {
     [SC_COMPARE_ALWAYS] = VK_COMPARE_OP_ALWAYS,
 };
 
-static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *out) {
-    uint32_t key = pipeline_key(d, textured);
+/* The layout of a pipeline's descriptor sets and push constants. */
+static VkPipelineLayout layout_of(const ref *r, bool textured, draw_kind kind) {
+    if (kind == DRAW_RECEIVER) return r->layout_shadow;
+    return textured && kind == DRAW_PLAIN ? r->layout_texture : r->layout_color;
+}
+
+static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind, VkPipeline *out) {
+    if (kind == DRAW_CASTER) textured = false;
+    uint32_t key = pipeline_key(d, textured, kind);
     for (int i = 0; i < r->pipeline_count; i++)
         if (r->pipelines[i].key == key) {
             *out = r->pipelines[i].pipeline;
             return true;
         }
     if (r->pipeline_count == MAX_PIPELINES) return fail(r, "too many pipeline states");
-    const bool lit = d->lighting != SC_LIGHTING_NONE;
-    if (d->lighting == SC_LIGHTING_FLAT && !r->has_geometry)
+    const bool lit = d->lighting != SC_LIGHTING_NONE && kind != DRAW_CASTER;
+    if (lit && d->lighting == SC_LIGHTING_FLAT && !r->has_geometry)
         return fail(r, "flat lighting needs geometry shaders, which this lavapipe does not offer "
                        "(VkPhysicalDeviceFeatures.geometryShader)");
     VkPipelineShaderStageCreateInfo stages[3] = {
@@ -367,10 +460,18 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *ou
          .stage = VK_SHADER_STAGE_GEOMETRY_BIT,
          .module = r->modules[SH_FLAT_GEOM],
          .pName = "main"}};
-    if (lit) {
+    if (kind == DRAW_CASTER) {
+        stages[0].module = r->modules[SH_DEPTH_VERT];
+        stages[1].module = r->modules[SH_DEPTH_FRAG];
+    } else if (lit) {
+        /* The loader lets only Phong-lit draws receive a shadow. */
         int mode = (int)d->lighting - 1;
         stages[0].module = r->modules[SH_LIT_VERT + mode];
-        stages[1].module = r->modules[SH_LIT_FRAG + mode * 2 + textured];
+        stages[1].module = kind == DRAW_RECEIVER ? r->modules[SH_PHONG_SHADOW_FRAG + textured]
+                                                 : r->modules[SH_LIT_FRAG + mode * 2 + textured];
+    } else if (kind == DRAW_RECEIVER) {
+        stages[0].module = r->modules[textured ? SH_TEXTURE_SHADOW_VERT : SH_COLOR_SHADOW_VERT];
+        stages[1].module = r->modules[textured ? SH_TEXTURE_SHADOW_FRAG : SH_COLOR_SHADOW_FRAG];
     } else {
         stages[0].module = r->modules[textured ? SH_TEXTURE_VERT : SH_COLOR_VERT];
         stages[1].module = r->modules[textured ? SH_TEXTURE_FRAG : SH_COLOR_FRAG];
@@ -385,7 +486,7 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *ou
                                                  {1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
                                                  {2, 2, VK_FORMAT_R32G32_SFLOAT, 0},
                                                  {3, 3, VK_FORMAT_R32G32B32_SFLOAT, 0}};
-    uint32_t inputs = lit ? 4 : textured ? 3 : 2;
+    uint32_t inputs = kind == DRAW_CASTER ? 1 : lit ? 4 : textured ? 3 : 2;
     VkPipelineVertexInputStateCreateInfo vi = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
         .vertexBindingDescriptionCount = inputs,
@@ -412,13 +513,14 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *ou
     VkPipelineMultisampleStateCreateInfo ms = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
         .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
+    /* Casters: the nearest depth wins, whatever the draw's own depth state. */
     VkPipelineDepthStencilStateCreateInfo ds = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
         .depthTestEnable = VK_TRUE,
-        .depthWriteEnable = d->depth_write ? VK_TRUE : VK_FALSE,
-        .depthCompareOp = compare_ops[d->depth_compare]};
+        .depthWriteEnable = d->depth_write || kind == DRAW_CASTER ? VK_TRUE : VK_FALSE,
+        .depthCompareOp = kind == DRAW_CASTER ? VK_COMPARE_OP_LESS : compare_ops[d->depth_compare]};
     VkPipelineColorBlendAttachmentState cba = {.colorWriteMask = 0xf};
-    if (d->blend == SC_BLEND_ALPHA) {
+    if (d->blend == SC_BLEND_ALPHA && kind != DRAW_CASTER) {
         /* src * src_alpha + dst * (1 - src_alpha) on all four channels, as sgapi's
          * SG_BLEND_ALPHA and OpenGL's glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA). */
         cba.blendEnable = VK_TRUE;
@@ -431,26 +533,27 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, VkPipeline *ou
     }
     VkPipelineColorBlendStateCreateInfo cb = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
-        .attachmentCount = 1,
+        .attachmentCount = kind == DRAW_CASTER ? 0 : 1, /* the map's pass has no colour */
         .pAttachments = &cba};
     VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     VkPipelineDynamicStateCreateInfo dy = {.sType =
                                                VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
                                            .dynamicStateCount = 2,
                                            .pDynamicStates = dyn};
-    VkGraphicsPipelineCreateInfo gpi = {.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-                                        .stageCount = d->lighting == SC_LIGHTING_FLAT ? 3 : 2,
-                                        .pStages = stages,
-                                        .pVertexInputState = &vi,
-                                        .pInputAssemblyState = &ia,
-                                        .pViewportState = &vp,
-                                        .pRasterizationState = &rs,
-                                        .pMultisampleState = &ms,
-                                        .pDepthStencilState = &ds,
-                                        .pColorBlendState = &cb,
-                                        .pDynamicState = &dy,
-                                        .layout = textured ? r->layout_texture : r->layout_color,
-                                        .renderPass = r->render_pass};
+    VkGraphicsPipelineCreateInfo gpi = {
+        .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+        .stageCount = lit && d->lighting == SC_LIGHTING_FLAT ? 3 : 2,
+        .pStages = stages,
+        .pVertexInputState = &vi,
+        .pInputAssemblyState = &ia,
+        .pViewportState = &vp,
+        .pRasterizationState = &rs,
+        .pMultisampleState = &ms,
+        .pDepthStencilState = &ds,
+        .pColorBlendState = &cb,
+        .pDynamicState = &dy,
+        .layout = layout_of(r, textured, kind),
+        .renderPass = kind == DRAW_CASTER ? r->depth_pass : r->render_pass};
     VK_CHECK(r, vkCreateGraphicsPipelines(r->device, VK_NULL_HANDLE, 1, &gpi, NULL, out));
     r->pipelines[r->pipeline_count].key = key;
     r->pipelines[r->pipeline_count].pipeline = *out;
@@ -654,12 +757,66 @@ static int cmp_double(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-/* Records one scene: clear, every draw, copy of the colour image to `readback`. */
+/* A scene's shadow on lavapipe (all zero without one): its map, the framebuffer of the map's
+ * pass, the set the receivers read the map through, and the matrices of the casters. */
+typedef struct shadow_pass {
+    texture map;             /* D32, size x size, cleared to 1.0 by its pass */
+    VkFramebuffer fb;        /* of r->depth_pass */
+    VkDescriptorSet set;     /* set 2 of the receivers */
+    float (*world_view)[16]; /* per draw: the light's view x worldView (casters) */
+    float proj[16];          /* the light's projection */
+    float matrix[16];        /* view space -> the light's clip space, for the receivers */
+} shadow_pass;
+
+/* Records the shadow's depth-only pass: every caster into the map, with the light's matrices. */
+static bool record_shadow(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
+                          const shadow_pass *sh, VkDescriptorSet color_set) {
+    uint32_t size = (uint32_t)s->shadow.size;
+    VkClearValue clear = {.depthStencil = {1.0f, 0}};
+    VkRenderPassBeginInfo rbi = {.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
+                                 .renderPass = r->depth_pass,
+                                 .framebuffer = sh->fb,
+                                 .renderArea = {{0, 0}, {size, size}},
+                                 .clearValueCount = 1,
+                                 .pClearValues = &clear};
+    vkCmdBeginRenderPass(r->cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+    VkViewport vp = {0, 0, (float)size, (float)size, 0.0f, 1.0f};
+    VkRect2D sc = {{0, 0}, {size, size}};
+    vkCmdSetViewport(r->cmd, 0, 1, &vp);
+    vkCmdSetScissor(r->cmd, 0, 1, &sc);
+    for (size_t i = 0; i < s->draw_count; i++) {
+        const sc_draw *d = &s->draws[i];
+        if (!d->casts_shadow) continue;
+        VkPipeline pipe;
+        if (!get_pipeline(r, d, false, DRAW_CASTER, &pipe)) return false;
+        vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        float pc[32];
+        memcpy(pc, sh->world_view[i], 64);
+        memcpy(pc + 16, sh->proj, 64);
+        vkCmdPushConstants(r->cmd, r->layout_color, VK_SHADER_STAGE_VERTEX_BIT, 0, 128, pc);
+        /* Any draw's block holds the scene's bias; this draw's will do. */
+        uint32_t offset = (uint32_t)(i * r->draw_stride);
+        vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->layout_color, 0, 1,
+                                &color_set, 1, &offset);
+        const sc_mesh *m = &f->meshes[d->mesh];
+        VkDeviceSize zero = 0;
+        vkCmdBindVertexBuffers(r->cmd, 0, 1, &u->vertex[d->mesh].buffer, &zero);
+        /* The nearest depth wins whatever the order: the mesh's own indices, even when sorted. */
+        vkCmdBindIndexBuffer(r->cmd, u->index[d->mesh].buffer, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(r->cmd, m->index_count, 1, 0, 0, 0);
+    }
+    vkCmdEndRenderPass(r->cmd);
+    return true;
+}
+
+/* Records one scene: the shadow's pass when it has one, then clear, every draw, copy of the colour
+ * image to `readback`. */
 static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          VkFramebuffer fb, VkImage color, const buffer *readback,
                          VkDescriptorSet color_set, const VkDescriptorSet *sets,
-                         const buffer *sorted) {
+                         const buffer *sorted, const shadow_pass *sh) {
     if (!begin_commands(r)) return false;
+    if (s->has_shadow && !record_shadow(r, f, s, u, sh, color_set)) return false;
     VkClearValue clear[2];
     memcpy(clear[0].color.float32, s->clear_color, sizeof s->clear_color);
     clear[1].depthStencil.depth = 1.0f;
@@ -679,10 +836,11 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         const sc_draw *d = &s->draws[i];
         /* As in sgapi-render: a texture draw without a texture is drawn with vertex colour. */
         bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
+        draw_kind kind = s->has_shadow && d->receives_shadow ? DRAW_RECEIVER : DRAW_PLAIN;
         VkPipeline pipe;
-        if (!get_pipeline(r, d, textured, &pipe)) return false;
+        if (!get_pipeline(r, d, textured, kind, &pipe)) return false;
         vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-        VkPipelineLayout layout = textured ? r->layout_texture : r->layout_color;
+        VkPipelineLayout layout = layout_of(r, textured, kind);
         float pc[32];
         memcpy(pc, d->world_view, 64);
         memcpy(pc + 16, d->proj, 64);
@@ -692,6 +850,9 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
                                 1, &color_offset);
         if (textured)
             vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &sets[i],
+                                    0, NULL);
+        if (kind == DRAW_RECEIVER)
+            vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 2, 1, &sh->set,
                                     0, NULL);
         const sc_mesh *m = &f->meshes[d->mesh];
         VkDeviceSize n = m->vertex_count;
@@ -742,11 +903,21 @@ static void normal_matrix(const float *wv, float out[3][4]) {
     if (!ok) memset(out, 0, 3 * sizeof out[0]);
 }
 
-/* What the shaders of a draw read: its colour and, when lit, the material, the normal matrix and
- * the scene's ambient and lights. */
-static void fill_draw_block(const sc_scene *s, const sc_draw *d, draw_block *b) {
+/* What the shaders of a draw read: its colour, the scene's shadow when it has one (the casters'
+ * bias, the receivers' matrix and map) and, when lit, the material, the normal matrix and the
+ * scene's ambient and lights. */
+static void fill_draw_block(const sc_scene *s, const sc_draw *d, const shadow_pass *sh,
+                            draw_block *b) {
     memset(b, 0, sizeof *b);
     memcpy(b->color, d->color, sizeof d->color);
+    if (s->has_shadow) {
+        memcpy(b->shadow_matrix, sh->matrix, sizeof b->shadow_matrix);
+        b->shadow[0] = (float)s->shadow.size;
+        b->shadow[1] = s->shadow.bias;
+        b->shadow[2] = s->shadow.slope_bias;
+        b->shadow_flags[0] = s->shadow.light;
+        b->shadow_flags[1] = s->shadow.pcf;
+    }
     if (d->lighting == SC_LIGHTING_NONE) return;
     memcpy(b->ambient, s->ambient, sizeof s->ambient);
     memcpy(b->specular, d->specular, sizeof d->specular);
@@ -775,8 +946,8 @@ static void fill_draw_block(const sc_scene *s, const sc_draw *d, draw_block *b) 
 
 /* The per-draw data of a scene: each draw's uniform block, at draw_stride bytes apart, and for
  * each draw sorted back to front its own index buffer, in that order. */
-static bool prepare_draws(ref *r, const sc_file *f, const sc_scene *s, buffer *blocks,
-                          buffer *sorted) {
+static bool prepare_draws(ref *r, const sc_file *f, const sc_scene *s, const shadow_pass *sh,
+                          buffer *blocks, buffer *sorted) {
     if (s->draw_count > UINT32_MAX / r->draw_stride)
         return fail(r, "too many draws (%zu)", s->draw_count);
     VkDeviceSize stride = r->draw_stride;
@@ -786,7 +957,7 @@ static bool prepare_draws(ref *r, const sc_file *f, const sc_scene *s, buffer *b
     for (size_t i = 0; i < s->draw_count; i++) {
         const sc_draw *d = &s->draws[i];
         draw_block block;
-        fill_draw_block(s, d, &block);
+        fill_draw_block(s, d, sh, &block);
         memcpy((uint8_t *)blocks->mapped + i * stride, &block, sizeof block);
         if (d->sort != SC_SORT_BACK_TO_FRONT) continue;
         const sc_mesh *m = &f->meshes[d->mesh];
@@ -800,8 +971,46 @@ static bool prepare_draws(ref *r, const sc_file *f, const sc_scene *s, buffer *b
     return true;
 }
 
+/* The scene's shadow, when it has one: the light's matrices (apps/common/shadow.h, as sgapi-render
+ * takes them), the map and the framebuffer of its pass. */
+static bool create_shadow(ref *r, const sc_file *f, const sc_scene *s, shadow_pass *sh) {
+    if (!s->has_shadow) return true;
+    double view[16], proj[16];
+    /* The loader has fitted this scene's light already; failing here is a bug. */
+    if (!sc_shadow_light(f, s, view, proj)) return fail(r, "the shadow light cannot be fitted");
+    sh->world_view = calloc(s->draw_count, sizeof *sh->world_view);
+    if (!sh->world_view) return fail(r, "out of memory");
+    for (size_t i = 0; i < s->draw_count; i++)
+        if (s->draws[i].casts_shadow)
+            sc_shadow_caster_world_view(view, s->draws[i].world_view, sh->world_view[i]);
+    for (int i = 0; i < 16; i++) sh->proj[i] = (float)proj[i];
+    sc_mat4_mul_to_float(proj, view, sh->matrix);
+    int size = s->shadow.size;
+    if (!create_image(r, size, size, VK_FORMAT_D32_SFLOAT,
+                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                      VK_IMAGE_ASPECT_DEPTH_BIT, &sh->map))
+        return false;
+    VkFramebufferCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO,
+                                   .renderPass = r->depth_pass,
+                                   .attachmentCount = 1,
+                                   .pAttachments = &sh->map.view,
+                                   .width = (uint32_t)size,
+                                   .height = (uint32_t)size,
+                                   .layers = 1};
+    VK_CHECK(r, vkCreateFramebuffer(r->device, &fci, NULL, &sh->fb));
+    return true;
+}
+
+static void destroy_shadow(ref *r, shadow_pass *sh) {
+    if (sh->fb) vkDestroyFramebuffer(r->device, sh->fb, NULL);
+    destroy_image(r, &sh->map);
+    free(sh->world_view);
+    memset(sh, 0, sizeof *sh);
+}
+
 static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          const char *out_dir, int frames) {
+    shadow_pass sh = {0};
     texture color = {0}, depth = {0};
     buffer readback = {0}, blocks = {0};
     VkFramebuffer fb = VK_NULL_HANDLE;
@@ -812,7 +1021,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     double *times = calloc((size_t)frames, sizeof *times);
     bool ok = sets && sorted && times;
     if (!ok) fail(r, "out of memory");
-    ok = ok && prepare_draws(r, f, s, &blocks, sorted);
+    ok = ok && create_shadow(r, f, s, &sh) && prepare_draws(r, f, s, &sh, &blocks, sorted);
     ok = ok &&
          create_image(r, s->width, s->height, VK_FORMAT_R8G8B8A8_UNORM,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -835,12 +1044,13 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
              fail(r, "vkCreateFramebuffer failed");
     }
     if (ok && s->draw_count) {
-        VkDescriptorPoolSize ps[2] = {
+        VkDescriptorPoolSize ps[3] = {
             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, (uint32_t)s->draw_count},
-            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1}};
+            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
+            {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 1}};
         VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-                                          .maxSets = (uint32_t)s->draw_count + 1,
-                                          .poolSizeCount = 2,
+                                          .maxSets = (uint32_t)s->draw_count + 2,
+                                          .poolSizeCount = 3,
                                           .pPoolSizes = ps};
         ok = vkCreateDescriptorPool(r->device, &dpi, NULL, &pool) == VK_SUCCESS ||
              fail(r, "vkCreateDescriptorPool failed");
@@ -859,6 +1069,22 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
                                       .descriptorCount = 1,
                                       .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
                                       .pBufferInfo = &bi};
+            vkUpdateDescriptorSets(r->device, 1, &w, 0, NULL);
+        }
+        /* One set for the map, which every receiver samples. */
+        if (ok && s->has_shadow) {
+            cai.pSetLayouts = &r->shadow_layout;
+            ok = vkAllocateDescriptorSets(r->device, &cai, &sh.set) == VK_SUCCESS ||
+                 fail(r, "vkAllocateDescriptorSets failed");
+        }
+        if (ok && s->has_shadow) {
+            VkDescriptorImageInfo ii = {.imageView = sh.map.view,
+                                        .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                      .dstSet = sh.set,
+                                      .descriptorCount = 1,
+                                      .descriptorType = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
+                                      .pImageInfo = &ii};
             vkUpdateDescriptorSets(r->device, 1, &w, 0, NULL);
         }
         for (size_t i = 0; ok && i < s->draw_count; i++) {
@@ -885,7 +1111,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
             vkUpdateDescriptorSets(r->device, 1, &w, 0, NULL);
         }
     }
-    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, color_set, sets, sorted);
+    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, color_set, sets, sorted, &sh);
     for (int i = 0; ok && i < frames; i++) {
         double t0 = now_ms();
         ok = submit_and_wait(r);
@@ -920,6 +1146,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     for (size_t i = 0; sorted && i < s->draw_count; i++) destroy_buffer(r, &sorted[i]);
     destroy_image(r, &color);
     destroy_image(r, &depth);
+    destroy_shadow(r, &sh);
     free(sets);
     free(sorted);
     free(times);
@@ -932,14 +1159,17 @@ static void destroy_ref(ref *r) {
         for (int i = 0; i < r->pipeline_count; i++)
             vkDestroyPipeline(r->device, r->pipelines[i].pipeline, NULL);
         if (r->render_pass) vkDestroyRenderPass(r->device, r->render_pass, NULL);
+        if (r->depth_pass) vkDestroyRenderPass(r->device, r->depth_pass, NULL);
         for (int i = 0; i < 4; i++)
             if (r->samplers[i]) vkDestroySampler(r->device, r->samplers[i], NULL);
         for (int i = 0; i < SH_COUNT; i++)
             if (r->modules[i]) vkDestroyShaderModule(r->device, r->modules[i], NULL);
         if (r->layout_color) vkDestroyPipelineLayout(r->device, r->layout_color, NULL);
         if (r->layout_texture) vkDestroyPipelineLayout(r->device, r->layout_texture, NULL);
+        if (r->layout_shadow) vkDestroyPipelineLayout(r->device, r->layout_shadow, NULL);
         if (r->color_layout) vkDestroyDescriptorSetLayout(r->device, r->color_layout, NULL);
         if (r->texture_layout) vkDestroyDescriptorSetLayout(r->device, r->texture_layout, NULL);
+        if (r->shadow_layout) vkDestroyDescriptorSetLayout(r->device, r->shadow_layout, NULL);
         if (r->fence) vkDestroyFence(r->device, r->fence, NULL);
         if (r->cmd_pool) vkDestroyCommandPool(r->device, r->cmd_pool, NULL);
         vkDestroyDevice(r->device, NULL);

@@ -3,8 +3,9 @@
  *   sgapi-render [--frames N] [--scene NAME]... [--threads T] [--simd SET] SCENE.json... -o DIR
  *
  * Writes DIR/<scene name>.png and prints, per scene, the wall-clock time of one frame: the time
- * from sgBeginRenderPass to the return of sgEndRenderPass (loading and uploads are not counted),
- * the median over N frames.
+ * from sgBeginRenderPass to the return of sgEndRenderPass, of the shadow's depth-only pass and the
+ * scene's pass together when the scene has a shadow (loading and uploads are not counted), the
+ * median over N frames.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -41,7 +42,7 @@ typedef struct options {
 static void usage(FILE *f) {
     fprintf(f, "usage: sgapi-render [options] SCENE.json... -o DIR\n"
                "Renders every scene of the files to DIR/<scene name>.png and prints each scene's\n"
-               "time per frame (render pass only).\n"
+               "time per frame (render passes only).\n"
                "  -o DIR          output folder, created if missing (required)\n"
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
@@ -226,6 +227,7 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
                          const ss_uploads *u, ss_pso_cache *cache) {
     bool ok = false;
     sgImage2D color = {0}, depth = {0};
+    ss_shadow shadow = {0};
     sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
     double *times = calloc((size_t)o->frames, sizeof *times);
     unsigned char *pixels = malloc((size_t)s->width * (size_t)s->height * 4);
@@ -243,12 +245,14 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
     }
 
     sgPassDesc pass;
-    if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass)) goto done;
+    if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass) ||
+        !ss_create_shadow(PROG, dev, cache, f, s, &shadow))
+        goto done;
     sgResult r;
 
     for (int frame = 0; frame < o->frames; frame++) {
         double t0 = ss_now_ms();
-        if (!ss_draw_frame(PROG, dev, f, s, u, psos, &pass)) goto done;
+        if (!ss_draw_frame(PROG, dev, f, s, u, psos, &pass, &shadow)) goto done;
         times[frame] = ss_now_ms() - t0;
     }
 
@@ -271,6 +275,7 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
     ok = o->compare_dir ? compare_scene(o, s, pixels) : (printf("\n"), true);
     fflush(stdout);
 done:
+    ss_destroy_shadow(dev, &shadow);
     if (depth.id) sgDestroyImage2D(dev, depth);
     if (color.id) sgDestroyImage2D(dev, color);
     free(psos);
@@ -346,10 +351,9 @@ int main(int argc, char **argv) {
     }
     if (!make_dirs(o.out_dir)) goto done;
 
-    /* Pools big enough for the largest file (its textures plus the two targets) and for every
-     * distinct pipeline_of() result: 5 colour sources (vertex colour; texture x 2 filters x
-     * 2 wraps) x 8 compares x 2 depth writes x 3 culls x 2 front faces. */
-    if (max_images > INT_MAX - 2 || max_geoms > INT_MAX) {
+    /* Pools big enough for the largest file (its textures plus the two targets and a shadow
+     * map) and for every pipeline the files' draws and shadows can need. */
+    if (max_images > INT_MAX - 3 || max_geoms > INT_MAX) {
         fprintf(stderr, "sgapi-render: too many meshes or textures in one file\n");
         goto done;
     }
@@ -357,9 +361,9 @@ int main(int argc, char **argv) {
     memset(&dd, 0, sizeof dd);
     dd.thread_count = o.threads;
     dd.simd = o.simd;
-    if (max_images + 2 > 256) dd.image_pool_size = (int)max_images + 2;
+    if (max_images + 3 > 256) dd.image_pool_size = (int)max_images + 3;
     if (max_geoms > 1024) dd.geom_pool_size = (int)max_geoms;
-    dd.pipeline_pool_size = 5 * 8 * 2 * 3 * 2;
+    dd.pipeline_pool_size = ss_pipeline_pool_size(files, o.file_count, 1);
     sgResult r = sgCreateDevice(&dd, &dev);
     if (r != SG_OK) {
         sg_fail(NULL, r, "sgCreateDevice");

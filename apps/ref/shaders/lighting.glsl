@@ -1,24 +1,8 @@
 // lighting.glsl - the lighting equation of sgapi (docs/scene-format.md, "Lighting"), shared by the
 // lit shaders. Intermediate values are `precise` (SPIR-V NoContraction) so that no multiply-add is
-// fused and sums are formed left to right, as sgapi's C does.
-
-// The draw's uniform block: colour, material, normal matrix and the scene's lights (std140; the
-// C side is sgapi-ref.c's draw_block). The unlit shaders read only `color`.
-struct Light {
-    vec4 vec;         // w = 0: directional, xyz = L = -normalize(direction) (done in double on
-                      // the CPU); w = 1: point, xyz = position
-    vec4 color;       // rgb
-    vec4 attenuation; // constant, linear, quadratic
-};
-
-layout(set = 0, binding = 0) uniform Draw {
-    vec4 color;        // the draw colour: base = vertex colour * color
-    vec4 ambient;      // rgb: the scene's ambient light
-    vec4 specular;     // rgb: the material's specular colour; w: shininess
-    vec4 nm[3];        // rows of the inverse transpose of worldView's 3x3 (zero when singular)
-    ivec4 light_count; // x
-    Light lights[8];
-} u;
+// fused and sums are formed left to right, as sgapi's C does. With SHADOW, shade() takes the
+// visibility of the scene's shadowed light at the point (shadow.glsl).
+#include "draw.glsl"
 
 const float SMALLEST_NORMAL = 1.17549435e-38;
 
@@ -38,12 +22,6 @@ vec3 normal_matrix_times(vec3 n) {
     return vec3(dot3(u.nm[0].xyz, n), dot3(u.nm[1].xyz, n), dot3(u.nm[2].xyz, n));
 }
 
-// Row i of a row-major matrix declared row_major (GLSL indexes it [column][row]) times p, summed
-// left to right.
-precise float row_times(mat4 m, int i, vec4 p) {
-    return ((m[0][i] * p.x + m[1][i] * p.y) + m[2][i] * p.z) + m[3][i] * p.w;
-}
-
 // The view-space position (worldView * p).xyz / (worldView * p).w.
 vec3 view_position(mat4 world_view, vec4 p) {
     precise vec4 e = vec4(row_times(world_view, 0, p), row_times(world_view, 1, p),
@@ -54,8 +32,12 @@ vec3 view_position(mat4 world_view, vec4 p) {
 
 // OpenGL 1.x lighting with a local viewer, colour material on ambient and diffuse and a separate
 // specular colour. base: vertex colour * draw colour; P: view-space position; N: unit normal, or
-// zero.
-void shade(vec4 base, vec3 P, vec3 N, out vec4 primary, out vec3 secondary) {
+// zero; with SHADOW, vis: the visibility of light u.shadow_flags.x at P, in [0, 1].
+void shade(vec4 base, vec3 P, vec3 N,
+#if defined(SHADOW)
+           float vis,
+#endif
+           out vec4 primary, out vec3 secondary) {
     vec3 V = safe_normalize(-P);
     float shininess = u.specular.w;
     precise vec3 sum = base.rgb * u.ambient.rgb;
@@ -75,6 +57,11 @@ void shade(vec4 base, vec3 P, vec3 N, out vec4 primary, out vec3 secondary) {
             precise float den = (k.x + k.y * d) + k.z * (d * d);
             att = 1.0 / max(den, SMALLEST_NORMAL);
         }
+#if defined(SHADOW)
+        // Where the map hides the point from the shadowed light, its diffuse and specular terms
+        // both go: att scales the two alike.
+        if (i == u.shadow_flags.x) att = att * vis;
+#endif
         precise float nl = dot3(N, L);
         sum += ((att * max(nl, 0.0)) * base.rgb) * u.lights[i].color.rgb;
         if (nl > 0.0) {

@@ -3,8 +3,13 @@
 // a textured draw: rgb = clamp(primary * texel + secondary, 0, 1), alpha = primary alpha * texel
 // alpha (texel = 1 untextured). GOURAUD interpolates the vertices' colours (perspective-correct),
 // FLAT takes the triangle's (flat), PHONG evaluates the equation here with the interpolated base
-// colour, view position and normal, renormalised.
+// colour, view position and normal, renormalised. PHONG with SHADOW: the shadowed light scaled by
+// the visibility of the interpolated view position (shadow.glsl).
 #extension GL_GOOGLE_include_directive : require
+#if defined(SHADOW)
+#extension GL_EXT_samplerless_texture_functions : require
+#include "shadow.glsl"
+#endif
 #include "lighting.glsl"
 
 #if defined(PHONG)
@@ -30,7 +35,12 @@ void main() {
 #if defined(PHONG)
     vec4 primary;
     vec3 secondary;
+#if defined(SHADOW)
+    float vis = shadow_visibility(shadow_coord(vec4(v_view, 1.0)));
+    shade(v_base, v_view, safe_normalize(v_normal), vis, primary, secondary);
+#else
     shade(v_base, v_view, safe_normalize(v_normal), primary, secondary);
+#endif
 #else
     vec4 primary = v_primary;
     vec3 secondary = v_secondary;

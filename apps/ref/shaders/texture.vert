@@ -1,5 +1,10 @@
 #version 450
 // Vertex stage of a textured draw: as color.vert, plus the texture coordinate.
+#if defined(SHADOW)
+#extension GL_GOOGLE_include_directive : require
+#include "draw.glsl"
+#define DRAW_COLOR u.color
+#endif
 layout(location = 0) in vec4 a_position;
 layout(location = 1) in vec4 a_color;
 layout(location = 2) in vec2 a_texcoord;
@@ -9,16 +14,29 @@ layout(push_constant, row_major) uniform Transform {
     mat4 proj;
 } pc;
 
+#if !defined(SHADOW)
 layout(set = 0, binding = 0) uniform DrawColor {
     vec4 color;
 } u_draw;
+#define DRAW_COLOR u_draw.color
+#endif
 
 layout(location = 0) out vec4 v_color;
 layout(location = 1) out vec2 v_texcoord;
+#if defined(SHADOW)
+layout(location = 2) out vec4 v_shadow;
+#endif
 
 void main() {
     vec4 clip = pc.proj * (pc.world_view * a_position);
     gl_Position = vec4(clip.x, -clip.y, 0.5 * (clip.z + clip.w), clip.w);
-    v_color = a_color * u_draw.color;
+    v_color = a_color * DRAW_COLOR;
     v_texcoord = a_texcoord;
+#if defined(SHADOW)
+    precise vec4 e = vec4(row_times(pc.world_view, 0, a_position),
+                          row_times(pc.world_view, 1, a_position),
+                          row_times(pc.world_view, 2, a_position),
+                          row_times(pc.world_view, 3, a_position));
+    v_shadow = shadow_coord(e);
+#endif
 }
