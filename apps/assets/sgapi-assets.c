@@ -1170,6 +1170,7 @@ typedef struct draw {
     double color[4];      /* "color", when has_color */
     const char *lighting; /* NULL: none */
     double specular[3], shininess;
+    bool no_cast, no_receive; /* "casts_shadow": false, "receives_shadow": false */
     mat4 world_view, proj;
 } draw;
 
@@ -1193,6 +1194,9 @@ typedef struct scene {
     light lights[8];
     int light_count;
     mat4 view;
+    /* The shadow light's index + 1 (0: no shadow); the map's side (0: the default), PCF off. */
+    int shadow_light, shadow_size;
+    bool shadow_no_pcf;
 } scene;
 
 static draw *scene_add(scene *s) {
@@ -1248,6 +1252,12 @@ static void write_scene(FILE *f, const scene *s, bool last) {
         }
         fprintf(f, "      ],\n");
     }
+    if (s->shadow_light) {
+        fprintf(f, "      \"shadow\": {\"light\": %d", s->shadow_light - 1);
+        if (s->shadow_size) fprintf(f, ", \"size\": %d", s->shadow_size);
+        if (s->shadow_no_pcf) fprintf(f, ", \"pcf\": false");
+        fprintf(f, "},\n");
+    }
     fprintf(f, "      \"draws\": [\n");
     for (int i = 0; i < s->count; i++) {
         const draw *d = &s->draws[i];
@@ -1288,6 +1298,8 @@ static void write_scene(FILE *f, const scene *s, bool last) {
                         fmt_num(e, sizeof e, d->shininess, 2));
             fprintf(f, ",\n");
         }
+        if (d->no_cast) fprintf(f, "          \"casts_shadow\": false,\n");
+        if (d->no_receive) fprintf(f, "          \"receives_shadow\": false,\n");
         if (d->has_color) {
             fprintf(f, "          \"color\": [");
             for (int k = 0; k < 4; k++)
@@ -1741,6 +1753,101 @@ static void scene_lit_many(scene *s, mat4 proj, const mesh *teapot) {
 }
 
 /* ---------------------------------------------------------------------------------------------
+ * Shadow scenes (shadows.json): light 0 casts the scene's shadow.
+ */
+
+/* Three teapots on the checker floor under a sun from the left and behind: each teapot's spout,
+ * lid and handle shadow its own body, the first teapot's shadow falls on the second, all of them
+ * on the floor; a dim unshadowed fill light keeps the shadows from going black. */
+static void scene_shadow_teapots(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "shadow_teapots";
+    s->view = mat_look_at(v3(0.0, 2.4, 4.3), v3(-0.1, 0.45, -0.35), v3(0, 1, 0));
+    s->ambient = v3(0.16, 0.16, 0.18);
+    s->lights[s->light_count++] = dir_light(v3(1.0, -0.55, -0.05), v3(1.0, 0.97, 0.9));
+    s->lights[s->light_count++] = dir_light(v3(-0.3, -0.4, -1.0), v3(0.16, 0.18, 0.24));
+    s->shadow_light = 1;
+    draw *d = add_floor(s, proj, s->view, NULL, 4);
+    d->textured = false;
+    set_color(d, 0.95, 0.93, 0.88, 1);
+    set_lit(d, "phong", 0, 0);
+    static const struct {
+        double x, z, yaw, scale, c[3];
+    } pots[3] = {{-1.5, -0.3, 180, 0.75, {0.85, 0.4, 0.25}},
+                 {-0.4, -0.3, -35, 0.5, {0.3, 0.55, 0.85}},
+                 {1.3, -0.35, 50, 0.62, {0.45, 0.75, 0.35}}};
+    for (int i = 0; i < 3; i++) {
+        d = teapot_at(s, proj, teapot, pots[i].x, pots[i].z, pots[i].yaw, pots[i].scale);
+        set_color(d, pots[i].c[0], pots[i].c[1], pots[i].c[2], 1);
+        set_lit(d, "phong", 0.7, 40);
+    }
+}
+
+/* A point light above and in front of a ring of cubes and a teapot: the shadows spread out from
+ * below the light, longer the farther a caster is from it. The floor only receives, so the light's
+ * frustum fits the objects alone. */
+static void scene_shadow_point(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "shadow_point";
+    s->view = mat_look_at(v3(0, 4.2, 5.6), v3(0, 0.3, 0), v3(0, 1, 0));
+    s->ambient = v3(0.08, 0.08, 0.1);
+    s->lights[s->light_count++] =
+        point_light(v3(0.4, 2.0, 0.8), v3(1.0, 0.95, 0.85), 0.6, 0.05, 0.06);
+    s->shadow_light = 1;
+    draw *d = add_floor(s, proj, s->view, A_BRICK, 4);
+    set_lit(d, "phong", 0, 0);
+    d->no_cast = true;
+    d = teapot_at(s, proj, teapot, 0, 0, -20, 0.6);
+    set_color(d, 0.9, 0.85, 0.75, 1);
+    set_lit(d, "phong", 0.6, 30);
+    for (int i = 0; i < 5; i++) {
+        double a = i * 72.0 + 100.0, r = 1.7, size = 0.22 + 0.04 * (i % 3);
+        double c, sn;
+        sin_cos_deg(a, &sn, &c);
+        d = scene_add(s);
+        d->mesh = A_CUBE;
+        d->proj = proj;
+        d->world_view = mat_mul(s->view, model(v3(r * c, size, r * sn), a * 0.6, 0, 0, size));
+        vec3 col = hsv(i / 5.0 + 0.05, 0.5, 0.9);
+        set_color(d, col.x, col.y, col.z, 1);
+        set_lit(d, "phong", 0.4, 20);
+    }
+}
+
+/* A sun 8 degrees above the horizon: long shadows, and the floor seen by the light at a grazing
+ * angle, where too little slope bias shows acne as stripes across the whole floor. The floor is
+ * unlit and textured (darkened to half in shadow); a thin slab stands on edge to show that the
+ * shadow stays attached to its foot; the one-texel lookup (no PCF) keeps edges hard; a dim fill
+ * light from the eye, which casts nothing, shows the objects' shadowed sides. */
+static void scene_shadow_grazing(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "shadow_grazing";
+    s->view = mat_look_at(v3(0.3, 3.0, 5.0), v3(0.3, 0.1, 0), v3(0, 1, 0));
+    s->ambient = v3(0.2, 0.2, 0.22);
+    double es, ec;
+    sin_cos_deg(8.0, &es, &ec);
+    s->lights[s->light_count++] = dir_light(v3(ec * 0.95, -es, ec * 0.3), v3(0.95, 0.85, 0.7));
+    s->lights[s->light_count++] = dir_light(v3(0.2, -0.6, -1.0), v3(0.3, 0.3, 0.35));
+    s->shadow_light = 1;
+    s->shadow_no_pcf = true;
+    add_floor(s, proj, s->view, A_CHECKER, 4);
+    draw *d = teapot_at(s, proj, teapot, -1.2, 0.5, 30, 0.55);
+    set_color(d, 0.8, 0.8, 0.85, 1);
+    set_lit(d, "phong", 0.8, 50);
+    d = scene_add(s);
+    d->mesh = A_CUBE;
+    d->proj = proj;
+    d->world_view =
+        mat_mul(s->view, mat_mul(mat_translate(-1.6, 0.35, -1.0),
+                                 mat_mul(mat_rotate_y(70), mat_scale(0.45, 0.35, 0.04))));
+    set_color(d, 0.9, 0.5, 0.3, 1);
+    set_lit(d, "phong", 0.3, 20);
+    d = scene_add(s);
+    d->mesh = A_CUBE;
+    d->proj = proj;
+    d->world_view = mat_mul(s->view, model(v3(-0.2, 0.22, 1.5), 40, 0, 0, 0.22));
+    set_color(d, 0.35, 0.6, 0.85, 1);
+    set_lit(d, "phong", 0.3, 20);
+}
+
+/* ---------------------------------------------------------------------------------------------
  * Output.
  */
 
@@ -1775,6 +1882,9 @@ enum {
     S_LIT_POINT,
     S_LIT_BEHIND,
     S_LIT_MANY,
+    S_SHADOW_TEAPOTS,
+    S_SHADOW_POINT,
+    S_SHADOW_GRAZING,
     S_END = -1
 };
 static const int DEFAULT_SCENES[] = {S_01, S_02, S_03, S_04, S_05, S_06, S_07, S_08, S_END};
@@ -1783,6 +1893,7 @@ static const int TRANSPARENCY_SCENES[] = {S_ALPHA_CUBES,           S_ALPHA_TEAPO
                                           S_ALPHA_STACK,           S_END};
 static const int LIGHTING_SCENES[] = {S_LIT_MODES,  S_LIT_TEXTURED, S_LIT_POINT,
                                       S_LIT_BEHIND, S_LIT_MANY,     S_END};
+static const int SHADOW_SCENES[] = {S_SHADOW_TEAPOTS, S_SHADOW_POINT, S_SHADOW_GRAZING, S_END};
 
 static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
     switch (which) {
@@ -1837,8 +1948,17 @@ static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
     case S_LIT_BEHIND:
         scene_lit_behind(s, proj, teapot);
         break;
-    default:
+    case S_LIT_MANY:
         scene_lit_many(s, proj, teapot);
+        break;
+    case S_SHADOW_TEAPOTS:
+        scene_shadow_teapots(s, proj, teapot);
+        break;
+    case S_SHADOW_POINT:
+        scene_shadow_point(s, proj, teapot);
+        break;
+    default:
+        scene_shadow_grazing(s, proj, teapot);
         break;
     }
 }
@@ -1963,6 +2083,8 @@ int main(int argc, char **argv) {
                                 TRANSPARENCY_SCENES, proj, &teapot);
     ok = ok && write_scene_file(join(path, out, "lighting.json"), "0.1, 0.12, 0.16, 1",
                                 LIGHTING_SCENES, proj, &teapot);
+    ok = ok && write_scene_file(join(path, out, "shadows.json"), "0.1, 0.12, 0.16, 1",
+                                SHADOW_SCENES, proj, &teapot);
     mesh_free(&teapot);
     return ok ? 0 : 1;
 }

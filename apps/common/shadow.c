@@ -73,6 +73,80 @@ static void add_casters(const sc_file *f, const sc_scene *s, const double *to, b
     }
 }
 
+/* A caster vertex in the light's view (v): (worldView * p).xyz / w, then v; false when not finite. */
+static bool light_space(const float *wv, const float *p, const double v[16], double out[3]) {
+    double e[4], q[3];
+    for (int r = 0; r < 4; r++)
+        e[r] = (double)wv[r * 4] * p[0] + (double)wv[r * 4 + 1] * p[1] +
+               (double)wv[r * 4 + 2] * p[2] + (double)wv[r * 4 + 3] * p[3];
+    for (int k = 0; k < 3; k++) q[k] = e[k] / e[3];
+    for (int r = 0; r < 3; r++)
+        out[r] = v[r * 4] * q[0] + v[r * 4 + 1] * q[1] + v[r * 4 + 2] * q[2] + v[r * 4 + 3];
+    return isfinite(out[0]) && isfinite(out[1]) && isfinite(out[2]);
+}
+
+/* Clips a convex polygon (n points, room for n + 5) to a * x + b * y + c * z >= 0. */
+static int clip_plane(double (*poly)[3], int n, double a, double b, double c) {
+    double out[12][3];
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        const double *p = poly[i], *q = poly[(i + 1) % n];
+        double dp = a * p[0] + b * p[1] + c * p[2], dq = a * q[0] + b * q[1] + c * q[2];
+        if (dp >= 0.0) memcpy(out[m++], p, sizeof out[0]);
+        if ((dp >= 0.0) != (dq >= 0.0)) {
+            double t = dp / (dp - dq);
+            for (int k = 0; k < 3; k++) out[m][k] = p[k] + t * (q[k] - p[k]);
+            m++;
+        }
+    }
+    memcpy(poly, out, (size_t)m * sizeof out[0]);
+    return m;
+}
+
+/* The nearest and farthest depth, along the light's -z, of the casters' triangles within its
+ * square frustum of half-angle tangent t (view v): each triangle clipped to the frustum's four
+ * sides, so one that passes close to the light between its vertices counts there. Also the
+ * largest half-angle tangent of any caster vertex (infinite for one at or behind the light).
+ * False when nothing lies within the frustum. */
+static bool view_depths(const sc_file *f, const sc_scene *s, const double v[16], double t,
+                        double *lo, double *hi, double *spread) {
+    bool any = false;
+    *spread = 0.0;
+    for (size_t d = 0; d < s->draw_count; d++) {
+        const sc_draw *draw = &s->draws[d];
+        if (!draw->casts_shadow) continue;
+        const sc_mesh *m = &f->meshes[draw->mesh];
+        for (uint32_t i = 0; i < m->vertex_count; i++) {
+            double l[3];
+            if (!light_space(draw->world_view, m->positions + (size_t)i * 4, v, l)) continue;
+            double depth = -l[2];
+            double off = depth > 0.0 ? fmax(fabs(l[0]), fabs(l[1])) / depth : INFINITY;
+            if (off > *spread) *spread = off;
+        }
+        for (uint32_t i = 0; i + 2 < m->index_count; i += 3) {
+            double poly[12][3];
+            bool ok = true;
+            for (int k = 0; k < 3 && ok; k++)
+                ok = light_space(draw->world_view, m->positions + (size_t)m->indices[i + k] * 4, v,
+                                 poly[k]);
+            if (!ok) continue;
+            /* Inside: |x| <= t * depth and |y| <= t * depth, depth = -z. */
+            int n = clip_plane(poly, 3, -1.0, 0.0, -t);
+            n = n ? clip_plane(poly, n, 1.0, 0.0, -t) : 0;
+            n = n ? clip_plane(poly, n, 0.0, -1.0, -t) : 0;
+            n = n ? clip_plane(poly, n, 0.0, 1.0, -t) : 0;
+            for (int k = 0; k < n; k++) {
+                double depth = -poly[k][2];
+                if (!(depth >= 0.0)) continue;
+                if (!any || depth < *lo) *lo = depth;
+                if (!any || depth > *hi) *hi = depth;
+                any = true;
+            }
+        }
+    }
+    return any;
+}
+
 /* gluLookAt from eye along the unit vector fwd: the light looks down its -z. Up is view-space +y,
  * or +x when fwd is within about 8 degrees of the y axis (a cross product with a near-parallel
  * vector would lose its precision). */
@@ -174,6 +248,22 @@ bool sc_shadow_light(const sc_file *f, const sc_scene *s, double view[16], doubl
             n = fmax(fmax(dist - R, 0.01 * R), 1e-3);
         }
         double fa = dist + R;
+        /* Near and far fitted to the caster vertices the light sees: the depth a perspective map
+         * resolves between two points grows with near, so a light close to or among the casters
+         * keeps the precision it would have far away. A caster crossing the near plane between
+         * its vertices loses that part. */
+        double lo = 0.0, hi = 0.0, spread = 0.0;
+        if (view_depths(f, s, v, tan(0.5 * fovy), &lo, &hi, &spread)) {
+            /* The cone that holds every caster vertex, and 2 degrees more, when narrower: a light
+             * among the casters need not spread its texels over 170 degrees. */
+            double tight = 2.0 * atan(spread) + 2.0 * PI / 180.0;
+            if (tight < fovy) {
+                fovy = tight;
+                view_depths(f, s, v, tan(0.5 * fovy), &lo, &hi, &spread);
+            }
+            n = fmax(0.99 * lo, 1e-3 * R);
+            fa = fmin(1.01 * hi, fa);
+        }
         if (!(fa > n)) return false;
         perspective(fovy, n, fa, p);
     }

@@ -5,14 +5,14 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "shadow.glsl"
-layout(location = 1) in vec4 v_shadow;
+layout(location = 1) in vec3 v_view;
 #endif
 layout(location = 0) in vec4 v_color;
 layout(location = 0) out vec4 o_color;
 
 void main() {
 #if defined(SHADOW)
-    precise float k = 0.5 + 0.5 * shadow_visibility(v_shadow);
+    precise float k = 0.5 + 0.5 * shadow_visibility(shadow_coord(vec4(v_view, 1.0)));
     precise vec3 rgb = v_color.rgb * k;
     o_color = vec4(rgb, v_color.a);
 #else

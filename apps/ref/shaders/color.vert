@@ -1,7 +1,7 @@
 #version 450
 // Vertex stage of a vertex-colour draw: the fixed-function transform of the reference, with sgapi's
 // conventions (OpenGL clip space, NDC y = +1 at the top) mapped to Vulkan's. With SHADOW (a draw
-// that receives the scene's shadow), also the point in the light's clip space, interpolated.
+// that receives the scene's shadow), also the view position, interpolated.
 #if defined(SHADOW)
 #extension GL_GOOGLE_include_directive : require
 #include "draw.glsl"
@@ -27,7 +27,7 @@ layout(set = 0, binding = 0) uniform DrawColor {
 
 layout(location = 0) out vec4 v_color;
 #if defined(SHADOW)
-layout(location = 1) out vec4 v_shadow;
+layout(location = 1) out vec3 v_view;
 #endif
 
 void main() {
@@ -36,11 +36,7 @@ void main() {
     gl_Position = vec4(clip.x, -clip.y, 0.5 * (clip.z + clip.w), clip.w);
     v_color = a_color * DRAW_COLOR;
 #if defined(SHADOW)
-    // shadow_matrix x (worldView x p), undivided: interpolated perspective-correct like a colour.
-    precise vec4 e = vec4(row_times(pc.world_view, 0, a_position),
-                          row_times(pc.world_view, 1, a_position),
-                          row_times(pc.world_view, 2, a_position),
-                          row_times(pc.world_view, 3, a_position));
-    v_shadow = shadow_coord(e);
+    // The view position, interpolated perspective-correct; the fragment takes it to the light.
+    v_view = view_position(pc.world_view, a_position);
 #endif
 }

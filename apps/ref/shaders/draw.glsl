@@ -31,6 +31,14 @@ precise float row_times(mat4 m, int i, vec4 p) {
     return ((m[0][i] * p.x + m[1][i] * p.y) + m[2][i] * p.z) + m[3][i] * p.w;
 }
 
+// The view-space position (worldView * p).xyz / (worldView * p).w.
+vec3 view_position(mat4 world_view, vec4 p) {
+    precise vec4 e = vec4(row_times(world_view, 0, p), row_times(world_view, 1, p),
+                          row_times(world_view, 2, p), row_times(world_view, 3, p));
+    precise vec3 v = e.xyz / e.w;
+    return v;
+}
+
 // The light's clip coordinates of a view-space point e (w = 1 for a divided position):
 // shadow_matrix * e, each row summed left to right.
 vec4 shadow_coord(vec4 e) {

@@ -22,14 +22,6 @@ vec3 normal_matrix_times(vec3 n) {
     return vec3(dot3(u.nm[0].xyz, n), dot3(u.nm[1].xyz, n), dot3(u.nm[2].xyz, n));
 }
 
-// The view-space position (worldView * p).xyz / (worldView * p).w.
-vec3 view_position(mat4 world_view, vec4 p) {
-    precise vec4 e = vec4(row_times(world_view, 0, p), row_times(world_view, 1, p),
-                          row_times(world_view, 2, p), row_times(world_view, 3, p));
-    precise vec3 v = e.xyz / e.w;
-    return v;
-}
-
 // OpenGL 1.x lighting with a local viewer, colour material on ambient and diffuse and a separate
 // specular colour. base: vertex colour * draw colour; P: view-space position; N: unit normal, or
 // zero; with SHADOW, vis: the visibility of light u.shadow_flags.x at P, in [0, 1].

@@ -26,7 +26,7 @@ float shadow_visibility(vec4 s) {
     float size = u.shadow.x;
     precise float x = (ndc.x * 0.5 + 0.5) * size;
     precise float y = (0.5 - ndc.y * 0.5) * size;
-    precise float depth = ndc.z * 0.5 + 0.5;
+    precise float depth = min(ndc.z * 0.5 + 0.5, 1.0); // beyond the far plane: as on it
     if (u.shadow_flags.y == 0) return shadow_texel(floor(x), floor(y), depth);
     precise float i0 = floor(x - 0.5), j0 = floor(y - 0.5);
     float sum = ((shadow_texel(i0, j0, depth) + shadow_texel(i0 + 1.0, j0, depth)) +

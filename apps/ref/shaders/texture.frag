@@ -6,7 +6,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "shadow.glsl"
-layout(location = 2) in vec4 v_shadow;
+layout(location = 2) in vec3 v_view;
 #endif
 layout(location = 0) in vec4 v_color;
 layout(location = 1) in vec2 v_texcoord;
@@ -16,7 +16,7 @@ layout(location = 0) out vec4 o_color;
 void main() {
 #if defined(SHADOW)
     vec4 c = v_color * texture(u_texture, v_texcoord);
-    precise float k = 0.5 + 0.5 * shadow_visibility(v_shadow);
+    precise float k = 0.5 + 0.5 * shadow_visibility(shadow_coord(vec4(v_view, 1.0)));
     precise vec3 rgb = c.rgb * k;
     o_color = vec4(rgb, c.a);
 #else

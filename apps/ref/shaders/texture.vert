@@ -24,7 +24,7 @@ layout(set = 0, binding = 0) uniform DrawColor {
 layout(location = 0) out vec4 v_color;
 layout(location = 1) out vec2 v_texcoord;
 #if defined(SHADOW)
-layout(location = 2) out vec4 v_shadow;
+layout(location = 2) out vec3 v_view;
 #endif
 
 void main() {
@@ -33,10 +33,7 @@ void main() {
     v_color = a_color * DRAW_COLOR;
     v_texcoord = a_texcoord;
 #if defined(SHADOW)
-    precise vec4 e = vec4(row_times(pc.world_view, 0, a_position),
-                          row_times(pc.world_view, 1, a_position),
-                          row_times(pc.world_view, 2, a_position),
-                          row_times(pc.world_view, 3, a_position));
-    v_shadow = shadow_coord(e);
+    // The view position, interpolated perspective-correct; the fragment takes it to the light.
+    v_view = view_position(pc.world_view, a_position);
 #endif
 }
