@@ -73,7 +73,8 @@ static void add_casters(const sc_file *f, const sc_scene *s, const double *to, b
     }
 }
 
-/* A caster vertex in the light's view (v): (worldView * p).xyz / w, then v; false when not finite. */
+/* A caster vertex in the light's view (v): (worldView * p).xyz / w, then v; false when not
+ * finite. */
 static bool light_space(const float *wv, const float *p, const double v[16], double out[3]) {
     double e[4], q[3];
     for (int r = 0; r < 4; r++)
