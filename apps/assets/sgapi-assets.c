@@ -1836,7 +1836,7 @@ static void scene_shadow_grazing(scene *s, mat4 proj, const mesh *teapot) {
     d->proj = proj;
     d->world_view =
         mat_mul(s->view, mat_mul(mat_translate(-1.6, 0.35, -1.0),
-                                 mat_mul(mat_rotate_y(70), mat_scale(0.45, 0.35, 0.04))));
+                                 mat_mul(mat_rotate_y(45), mat_scale(0.45, 0.35, 0.04))));
     set_color(d, 0.9, 0.5, 0.3, 1);
     set_lit(d, "phong", 0.3, 20);
     d = scene_add(s);

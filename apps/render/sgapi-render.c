@@ -37,6 +37,7 @@ typedef struct options {
     int scene_count;
     const char *compare_dir; /* --compare: reference images, one DIR/<scene>.png per scene */
     double min_psnr, max_over2, max_coverage; /* thresholds of --compare; < 0: none */
+    bool depth_only; /* --depth-only: the scene's pass without its colour target */
 } options;
 
 static void usage(FILE *f) {
@@ -54,6 +55,10 @@ static void usage(FILE *f) {
                "                  and write DIR_OUT/<scene name>-heat.png\n"
                "  --min-psnr DB, --max-over2 PCT, --max-coverage PCT\n"
                "                  with --compare: fail (exit 1) when a scene is past a threshold\n"
+               "  --depth-only    render each scene's pass with its depth target alone (a\n"
+               "                  depth-only pass, no shadow pass) and write the depth as a grey\n"
+               "                  image, white near, black at the far plane: the time of\n"
+               "                  visibility alone\n"
                "  -h, --help      show this help\n");
 }
 
@@ -111,6 +116,8 @@ static int parse_args(int argc, char **argv, options *o) {
                         value);
                 return 2;
             }
+        } else if (!strcmp(a, "--depth-only")) {
+            o->depth_only = true;
         } else if (!strcmp(a, "--scene")) {
             o->scenes[o->scene_count++] = value;
         } else if (!strcmp(a, "--compare")) {
@@ -222,6 +229,23 @@ static bool compare_scene(const options *o, const sc_scene *s, const unsigned ch
     return ok;
 }
 
+/* The depth target as grey RGBA8: (1 - depth) x 255, opaque. */
+static sgResult read_depth(sgDevice *dev, sgImage2D depth, const sc_scene *s,
+                           unsigned char *pixels) {
+    size_t n = (size_t)s->width * (size_t)s->height;
+    float *d = malloc(n * sizeof *d);
+    if (!d) return SG_ERROR_OUT_OF_MEMORY;
+    sgResult r = sgReadImage2D(dev, depth, d, 0);
+    for (size_t i = 0; r == SG_OK && i < n; i++) {
+        float v = 1.0f - d[i];
+        unsigned char g = (unsigned char)(v <= 0.0f ? 0 : v >= 1.0f ? 255 : lroundf(v * 255.0f));
+        pixels[i * 4] = pixels[i * 4 + 1] = pixels[i * 4 + 2] = g;
+        pixels[i * 4 + 3] = 255;
+    }
+    free(d);
+    return r;
+}
+
 /* Renders one scene frames times, writes its PNG and prints its median time per frame. */
 static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, const sc_scene *s,
                          const ss_uploads *u, ss_pso_cache *cache) {
@@ -246,9 +270,13 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
 
     sgPassDesc pass;
     if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass) ||
-        !ss_create_shadow(PROG, dev, cache, f, s, &shadow))
+        (!o->depth_only && !ss_create_shadow(PROG, dev, cache, f, s, &shadow)))
         goto done;
     sgResult r;
+    if (o->depth_only) {
+        pass.color.id = 0;
+        pass.depth_store = SG_STORE_STORE;
+    }
 
     for (int frame = 0; frame < o->frames; frame++) {
         double t0 = ss_now_ms();
@@ -256,7 +284,7 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
         times[frame] = ss_now_ms() - t0;
     }
 
-    r = sgReadImage2D(dev, color, pixels, 0);
+    r = o->depth_only ? read_depth(dev, depth, s, pixels) : sgReadImage2D(dev, color, pixels, 0);
     if (r != SG_OK) {
         sg_fail(dev, r, "scene '%s': sgReadImage2D", s->name);
         goto done;
