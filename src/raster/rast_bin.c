@@ -152,6 +152,25 @@ static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }
 
+/* Visibility of a bin's triangles in submission order (depth.h): each draw's raster function
+ * into the bin's depth and ids. */
+static inline __attribute__((always_inline)) void visibility(const sg_bin_pass *p,
+                                                             const sg_bin *bin, sg_vis_ctx *vis) {
+    const sg_binner *b = p->binner;
+    for (uint32_t i = 0; i < bin->count; i++) {
+        uint32_t ti = bin->tris[i];
+        const sg_tri *t = &b->tris[ti];
+        if (i + 2 < bin->count) { /* a triangle is four cache lines, often not in cache */
+            const char *next = (const char *)&b->tris[bin->tris[i + 2]];
+            for (size_t off = 0; off < sizeof(sg_tri); off += 64) __builtin_prefetch(next + off);
+        }
+        const sg_draw_state *d = &p->draws[t->draw];
+        vis->id = ti + 1;
+        vis->compare = d->compare;
+        d->raster_fn(t, vis->bx0, vis->by0, vis->bx0 + SG_BIN_SIZE, vis->by0 + SG_BIN_SIZE, vis);
+    }
+}
+
 /* A bin of a depth-only pass: visibility alone, then the depth written (sgDraw gave every draw
  * its plain depth function, blended or not). The ids the depth functions leave are never read
  * (cleared all the same: some functions merge into them). */
@@ -164,17 +183,9 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
     SG_STAGE_START(clock);
     start_depth(p, v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
-    const sg_binner *b = p->binner;
     int x0 = v->x0, y0 = v->y0;
     sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, NULL, NULL, NULL};
-    for (uint32_t i = 0; i < bin->count; i++) {
-        uint32_t ti = bin->tris[i];
-        const sg_tri *t = &b->tris[ti];
-        const sg_draw_state *d = &p->draws[t->draw];
-        vis.id = ti + 1;
-        vis.compare = d->compare;
-        d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
-    }
+    visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
     if (p->store_depth) sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
@@ -223,18 +234,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  touched, x0,  y0, 0,
                       SG_COMPARE_ALWAYS,      NULL, NULL,    NULL};
-    for (uint32_t i = 0; i < bin->count; i++) {
-        uint32_t ti = bin->tris[i];
-        const sg_tri *t = &b->tris[ti];
-        if (i + 2 < bin->count) { /* a triangle is four cache lines, often not in cache */
-            const char *next = (const char *)&b->tris[bin->tris[i + 2]];
-            for (size_t off = 0; off < sizeof(sg_tri); off += 64) __builtin_prefetch(next + off);
-        }
-        const sg_draw_state *d = &p->draws[t->draw];
-        vis.id = ti + 1;
-        vis.compare = d->compare;
-        d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
-    }
+    visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
 
     start_color(p, &v, color);

@@ -89,34 +89,9 @@ INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     _mm512_mask_storeu_epi32(dst, (__mmask16)mask, pack_unorm8(prim));
 }
 
-#define SG_PHONG_VARIANT(name, lit, shadow, tex, bil, rep)                                         \
-    static void name##_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,     \
-                                       uint32_t m, uint32_t *dst) {                                \
-        const sg_tri_ext *ext = sg_shade_ext(c, t);                                                \
-        if (t->flat != SG_FLAT_NONE)                                                               \
-            phong_tile(c, t, ext, x0, y0, m, dst, tex, bil, rep, 1, lit, shadow);                  \
-        else                                                                                       \
-            phong_tile(c, t, ext, x0, y0, m, dst, tex, bil, rep, 0, lit, shadow);                  \
-    }
-#define SG_PHONG_KIND(name, lit, shadow)                                                           \
-    SG_PHONG_VARIANT(name, lit, shadow, 0, 0, 0)                                                   \
-    SG_PHONG_VARIANT(name, lit, shadow, 1, 0, 1)                                                   \
-    SG_PHONG_VARIANT(name, lit, shadow, 1, 0, 0)                                                   \
-    SG_PHONG_VARIANT(name, lit, shadow, 1, 1, 1)                                                   \
-    SG_PHONG_VARIANT(name, lit, shadow, 1, 1, 0)
-SG_PHONG_KIND(phong, 1, 0)
-SG_PHONG_KIND(phong_shadow, 1, 1)
-SG_PHONG_KIND(unlit_shadow, 0, 1)
-#undef SG_PHONG_KIND
-#undef SG_PHONG_VARIANT
-
-#define SG_PHONG_ROW(name) name##_000, name##_101, name##_100, name##_111, name##_110
-
-sg_shade_fn sg_shade_phong_avx512(int index) {
-    static const sg_shade_fn table[SG_PIXEL_VARIANTS] = {
-        SG_PHONG_ROW(phong), SG_PHONG_ROW(phong_shadow), SG_PHONG_ROW(unlit_shadow)};
-    return table[index];
-}
+#define SG_PHONG_BODY  phong_tile
+#define SG_PHONG_TABLE sg_shade_phong_avx512
+#include "raster/shade_phong_variants.h"
 
 #else
 
