@@ -131,7 +131,7 @@ static void render(const tri_scene *s, int threads, sgSimd simd, bool per_triang
         for (int w = 0; w < 2; w++)
             assert_int_equal(sgCreatePipelineStateObject(
                                  dev,
-                                 &(sgPipelineDesc){.depth = {SG_COMPARE_LESS_EQUAL, w},
+                                 &(sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS_EQUAL, .write = w},
                                                    .blend = b ? SG_BLEND_ALPHA : SG_BLEND_OPAQUE},
                                  &pso[b][w]),
                              SG_OK);
