@@ -854,7 +854,7 @@ static void pso_create_errors(void **state) {
 
     /* Every valid value of every field is accepted. */
     for (int v = 0; v <= SG_COMPARE_ALWAYS; v++) {
-        d = (sgPipelineDesc){.depth = {(sgCompare)v, v & 1}};
+        d = (sgPipelineDesc){.depth = {.compare = (sgCompare)v, .write = v & 1}};
         if (v <= SG_SHADE_TEXTURE_MODULATE) {
             d.shade = (sgShade)v;
             d.filter = (sgFilter)v;
