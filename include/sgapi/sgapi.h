@@ -168,6 +168,7 @@ typedef enum sgPrimitive {
     SG_PRIMITIVE_DEFAULT = 0, /* triangles */
     SG_PRIMITIVE_TRIANGLES,   /* 3 indices each */
     SG_PRIMITIVE_QUADS,       /* 4 indices each (a b c d), drawn as triangles a b c and a c d */
+    SG_PRIMITIVE_LINES, /* 2 indices each: a line list, segment a -> b (docs/api.md, "Lines") */
 } sgPrimitive;
 
 typedef enum sgStorage {
@@ -184,7 +185,7 @@ typedef struct sgGeomDesc {
     const float *texcoords; /* optional: vertex_count * 2 floats (s, t) */
     const float *normals; /* optional: vertex_count * 3 floats (x, y, z), object space; read by lit
                              pipelines (SG_LIGHTING_GOURAUD and _PHONG require them) */
-    int index_count;      /* >= 1, a multiple of 3 (triangles) or 4 (quads) */
+    int index_count;      /* >= 1, a multiple of 3 (triangles), 4 (quads) or 2 (lines) */
     const uint32_t *indices; /* required: each < vertex_count */
     sgPrimitive primitive;
     sgStorage storage;
@@ -260,6 +261,15 @@ typedef enum sgLightingMode {
     SG_LIGHTING_PHONG,   /* per pixel (needs normals): normal and position interpolated */
 } sgLightingMode;
 
+/* How a pipeline draws triangles and quads. */
+typedef enum sgPolygonMode {
+    SG_POLYGON_MODE_DEFAULT = 0, /* fill */
+    SG_POLYGON_MODE_FILL,
+    SG_POLYGON_MODE_LINE, /* wireframe: each triangle's edges that survive culling, as lines (a
+                             quad's four outer edges, not its diagonal); an edge two triangles
+                             share is drawn by each */
+} sgPolygonMode;
+
 typedef struct sgPipelineDesc {
     sgShade shade;
     sgFilter filter; /* used by SG_SHADE_TEXTURE_MODULATE */
@@ -276,6 +286,7 @@ typedef struct sgPipelineDesc {
     sgFrontFace front_face;
     sgBlend blend;
     sgLightingMode lighting;
+    sgPolygonMode polygon_mode; /* how triangles and quads are drawn; lines are always lines */
 } sgPipelineDesc;
 
 /** Creates an immutable pipeline state object and selects the code specialised for its state. */
