@@ -711,13 +711,14 @@ static void geom_create_errors(void **state) {
         assert_int_equal(LIVE(f), live);                                                           \
     } while (0)
 
-    const int bad_enum[] = {-1, 3, 1000};
+    const int bad_enum[] = {-1, SG_PRIMITIVE_LINES + 1, 1000};
     for (size_t i = 0; i < sizeof bad_enum / sizeof bad_enum[0]; i++) {
         d = base;
         d.primitive = (sgPrimitive)bad_enum[i];
         GEOM_FAILS(SG_ERROR_INVALID_ENUM);
         d = base;
-        d.storage = (sgStorage)bad_enum[i];
+        d.storage = (sgStorage)(bad_enum[i] == SG_PRIMITIVE_LINES + 1 ? SG_STORAGE_REFERENCE + 1
+                                                                      : bad_enum[i]);
         GEOM_FAILS(SG_ERROR_INVALID_ENUM);
     }
 
@@ -743,6 +744,15 @@ static void geom_create_errors(void **state) {
         d.primitive = SG_PRIMITIVE_QUADS;
         d.index_count = bad_quad_count[i];
         GEOM_FAILS(SG_ERROR_INVALID_COUNT);
+    }
+    /* Lines: a positive even count (an odd one leaves a segment without its end). */
+    const int bad_line_count[] = {0, -2, 1, 3, 5};
+    for (size_t i = 0; i < sizeof bad_line_count / sizeof bad_line_count[0]; i++) {
+        d = base;
+        d.primitive = SG_PRIMITIVE_LINES;
+        d.index_count = bad_line_count[i];
+        GEOM_FAILS(SG_ERROR_INVALID_COUNT);
+        assert_non_null(strstr(sgGetLastError(f->dev), "lines"));
     }
 
     /* An index equal to vertex_count, in either storage mode, anywhere in the list. */
@@ -848,6 +858,12 @@ static void pso_create_errors(void **state) {
     PSO_FAILS(SG_ERROR_INVALID_ENUM, "blend");
     d = (sgPipelineDesc){.blend = (sgBlend)(SG_BLEND_ALPHA + 1)};
     PSO_FAILS(SG_ERROR_INVALID_ENUM, "blend");
+    d = (sgPipelineDesc){.lighting = (sgLightingMode)-1};
+    PSO_FAILS(SG_ERROR_INVALID_ENUM, "lighting");
+    d = (sgPipelineDesc){.polygon_mode = (sgPolygonMode)-1};
+    PSO_FAILS(SG_ERROR_INVALID_ENUM, "polygon_mode");
+    d = (sgPipelineDesc){.polygon_mode = (sgPolygonMode)(SG_POLYGON_MODE_LINE + 1)};
+    PSO_FAILS(SG_ERROR_INVALID_ENUM, "polygon_mode");
 
 #undef PSO_FAILS
     assert_int_equal(LIVE(f), live);
@@ -861,6 +877,7 @@ static void pso_create_errors(void **state) {
             d.wrap = (sgWrap)v;
             d.front_face = (sgFrontFace)v;
             d.blend = (sgBlend)(v % 3);
+            d.polygon_mode = (sgPolygonMode)(v % 3);
         }
         if (v <= SG_CULL_FRONT) d.cull = (sgCull)v;
         assert_ok(f, sgCreatePipelineStateObject(f->dev, &d, &p));

@@ -325,7 +325,7 @@ static void check_sort(const float m[16], const float *pos, int nv, const uint32
     qsort(k, (size_t)ntri, sizeof *k, cmp_keyed);
     void *scratch = malloc(sg_sort_scratch_size(nv, (size_t)ntri));
     uint32_t *out = malloc((size_t)ntri * 3 * sizeof *out);
-    sg_sort_back_to_front(m, pos, nv, idx, ni, quads, scratch, out);
+    sg_sort_back_to_front(m, pos, nv, idx, ni, quads ? 4 : 3, scratch, out);
     for (int t = 0; t < ntri; t++)
         if (memcmp(out + 3 * t, tris + 3 * k[t].tri, 3 * sizeof *out) != 0)
             fail_msg("triangle %d of the order differs", t);

@@ -107,7 +107,10 @@ static bool list_parallel(sgDevice *dev, const fe_chunk *chunks, int n, size_t f
 
 /* Assembles a draw on every thread; false when it is too small to be worth it. */
 static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
-    int per = a->quads ? 4 : 3, tris_per = a->quads ? 2 : 1;
+    /* Per primitive: its indices and the raster primitives it makes at most (a wireframe
+     * triangle three lines, a quad four). */
+    int per = a->lines ? 2 : a->quads ? 4 : 3;
+    int tris_per = a->wire ? (a->quads ? 4 : 3) : a->quads ? 2 : 1;
     int prims = a->index_count / per;
     if (dev->thread_count < 2 || prims * tris_per < FE_MIN_TRIANGLES) return false;
     int n = 4 * dev->thread_count < FE_MAX_CHUNKS ? 4 * dev->thread_count : FE_MAX_CHUNKS;
@@ -243,13 +246,14 @@ static bool grow_lit(sgDevice *dev, size_t floats) {
     return true;
 }
 
-/* A back-to-front draw's triangles, sorted into the device's scratch (sort.h): a.indices then
- * lists them as plain triangles. False: out of memory. */
-static bool sort_triangles(sgDevice *dev, const sg_geom *geom, const float world_view[16],
-                           sg_assembly *a) {
-    size_t tris = (size_t)(geom->index_count / (a->quads ? 4 : 3)) * (a->quads ? 2u : 1u);
-    size_t scratch = sg_sort_scratch_size(geom->vertex_count, tris);
-    size_t need = scratch + 3 * tris * sizeof(uint32_t);
+/* A back-to-front draw's primitives, sorted into the device's scratch (sort.h): a.indices then
+ * lists them as plain triangles (or lines). False: out of memory. */
+static bool sort_primitives(sgDevice *dev, const sg_geom *geom, const float world_view[16],
+                            sg_assembly *a) {
+    const int per = a->lines ? 2 : a->quads ? 4 : 3, out_per = a->lines ? 2 : 3;
+    size_t prims = (size_t)(geom->index_count / per) * (a->quads ? 2u : 1u);
+    size_t scratch = sg_sort_scratch_size(geom->vertex_count, prims);
+    size_t need = scratch + (size_t)out_per * prims * sizeof(uint32_t);
     if (need > dev->sort_scratch_capacity) {
         void *p = sg_alloc(dev, need);
         if (!p) return false;
@@ -259,9 +263,9 @@ static bool sort_triangles(sgDevice *dev, const sg_geom *geom, const float world
     }
     uint32_t *out = (uint32_t *)(void *)((char *)dev->sort_scratch + scratch);
     sg_sort_back_to_front(world_view, geom->positions, geom->vertex_count, geom->indices,
-                          geom->index_count, a->quads, dev->sort_scratch, out);
+                          geom->index_count, per, dev->sort_scratch, out);
     a->indices = out;
-    a->index_count = (int)(3 * tris);
+    a->index_count = (int)((size_t)out_per * prims);
     a->quads = 0;
     return true;
 }
@@ -314,6 +318,10 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         if (!sg_light_prepare(params->lighting, params->specular, params->shininess, &ctx.lights,
                               why, sizeof why, &code))
             return sg_error(dev, (sgResult)code, "sgDraw: %s", why);
+        if (lighting == SG_LIGHTING_FLAT && geom->primitive == SG_PRIMITIVE_LINES)
+            return sg_error(dev, SG_ERROR_UNSUPPORTED,
+                            "sgDraw: flat lighting needs a face normal, and the geom holds lines: "
+                            "light lines per vertex or per pixel, with normals");
         if (lighting != SG_LIGHTING_FLAT && !geom->normals)
             return sg_error(dev, SG_ERROR_MISSING_ATTRIBUTE,
                             "sgDraw: the pipeline lights per %s but the geom has no normals",
@@ -441,6 +449,8 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.indices = geom->indices;
     a.index_count = geom->index_count;
     a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
+    a.lines = geom->primitive == SG_PRIMITIVE_LINES;
+    a.wire = !a.lines && pso->desc.polygon_mode == SG_POLYGON_MODE_LINE;
     a.clip = (const float(*)[4])dev->clip;
     a.outcodes = dev->outcodes;
     a.colors = depth_only ? NULL : geom->colors;
@@ -465,7 +475,8 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         a.vstride = vstride;
         if (lighting == SG_LIGHTING_FLAT) a.flat = &ctx.lights;
     }
-    if (params->sort == SG_SORT_BACK_TO_FRONT && !sort_triangles(dev, geom, params->world_view, &a))
+    if (params->sort == SG_SORT_BACK_TO_FRONT &&
+        !sort_primitives(dev, geom, params->world_view, &a))
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                         "sgDraw: out of memory to sort %d indices back to front",
                         geom->index_count);

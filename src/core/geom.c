@@ -23,7 +23,7 @@ sgResult sgCreateGeom(sgDevice *dev, const sgGeomDesc *desc, sgGeom *out) {
     if (!desc || !out)
         return sg_error(dev, SG_ERROR_NULL_POINTER, "sgCreateGeom: %s is NULL",
                         !desc ? "desc" : "out_geom");
-    if ((int)desc->primitive < SG_PRIMITIVE_DEFAULT || desc->primitive > SG_PRIMITIVE_QUADS)
+    if ((int)desc->primitive < SG_PRIMITIVE_DEFAULT || desc->primitive > SG_PRIMITIVE_LINES)
         return sg_error(dev, SG_ERROR_INVALID_ENUM,
                         "sgCreateGeom: primitive %d is not an sgPrimitive", (int)desc->primitive);
     if ((int)desc->storage < SG_STORAGE_DEFAULT || desc->storage > SG_STORAGE_REFERENCE)
@@ -33,15 +33,18 @@ sgResult sgCreateGeom(sgDevice *dev, const sgGeomDesc *desc, sgGeom *out) {
         return sg_error(dev, SG_ERROR_NULL_POINTER, "sgCreateGeom: positions is NULL");
     if (!desc->indices)
         return sg_error(dev, SG_ERROR_NULL_POINTER, "sgCreateGeom: indices is NULL");
-    bool quads = desc->primitive == SG_PRIMITIVE_QUADS;
-    int per = quads ? 4 : 3;
+    const sgPrimitive prim = desc->primitive ? desc->primitive : SG_PRIMITIVE_TRIANGLES;
+    const int per = prim == SG_PRIMITIVE_QUADS ? 4 : prim == SG_PRIMITIVE_LINES ? 2 : 3;
     if (desc->vertex_count < 1)
         return sg_error(dev, SG_ERROR_INVALID_COUNT, "sgCreateGeom: vertex_count %d is below 1",
                         desc->vertex_count);
     if (desc->index_count < 1 || desc->index_count % per != 0)
         return sg_error(dev, SG_ERROR_INVALID_COUNT,
                         "sgCreateGeom: index_count %d is not a positive multiple of %d (%s)",
-                        desc->index_count, per, quads ? "quads" : "triangles");
+                        desc->index_count, per,
+                        prim == SG_PRIMITIVE_QUADS   ? "quads"
+                        : prim == SG_PRIMITIVE_LINES ? "lines"
+                                                     : "triangles");
     for (int i = 0; i < desc->index_count; i++)
         if (desc->indices[i] >= (uint32_t)desc->vertex_count)
             return sg_error(dev, SG_ERROR_INDEX_OUT_OF_RANGE,
@@ -52,7 +55,7 @@ sgResult sgCreateGeom(sgDevice *dev, const sgGeomDesc *desc, sgGeom *out) {
     memset(&g, 0, sizeof g);
     g.vertex_count = desc->vertex_count;
     g.index_count = desc->index_count;
-    g.primitive = quads ? SG_PRIMITIVE_QUADS : SG_PRIMITIVE_TRIANGLES;
+    g.primitive = prim;
     if (desc->storage == SG_STORAGE_REFERENCE) {
         g.positions = desc->positions;
         g.colors = desc->colors;

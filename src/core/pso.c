@@ -29,6 +29,7 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     CHECK_ENUM(front_face, SG_FRONT_FACE_DEFAULT, SG_FRONT_FACE_CW, "sgFrontFace")
     CHECK_ENUM(blend, SG_BLEND_DEFAULT, SG_BLEND_ALPHA, "sgBlend")
     CHECK_ENUM(lighting, SG_LIGHTING_DEFAULT, SG_LIGHTING_PHONG, "sgLightingMode")
+    CHECK_ENUM(polygon_mode, SG_POLYGON_MODE_DEFAULT, SG_POLYGON_MODE_LINE, "sgPolygonMode")
     if (!isfinite(desc->depth.bias_constant) || !isfinite(desc->depth.bias_slope))
         return sg_error(dev, SG_ERROR_INVALID_VALUE,
                         "sgCreatePipelineStateObject: depth.bias_constant = %g, depth.bias_slope = "
@@ -47,6 +48,7 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     if (!d->front_face) d->front_face = SG_FRONT_FACE_CCW;
     if (!d->blend) d->blend = SG_BLEND_OPAQUE;
     if (!d->lighting) d->lighting = SG_LIGHTING_NONE;
+    if (!d->polygon_mode) d->polygon_mode = SG_POLYGON_MODE_FILL;
     const bool lit = d->lighting != SG_LIGHTING_NONE;
     /* Opaque draws find the visible triangle first; blended ones blend as they go (blend.h),
      * with the unlit shading inlined where the instruction set allows. */

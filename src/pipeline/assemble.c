@@ -1,6 +1,7 @@
 /* assemble.c - builds triangles from indices and sends them through clipping and setup. */
 #include "pipeline/assemble.h"
 
+#include "pipeline/line.h"
 #include "pipeline/vertex.h"
 
 #include <float.h>
@@ -74,10 +75,10 @@ static inline bool screen_vertex(const sg_assembly *a, uint32_t idx, sg_svert *s
  * interpolated with a resolution of 1e-3, a visible drift in the bilinear weights. The shift is
  * exact (the values are close to the integer), so the result does not depend on where the
  * texture's period starts. attr[0] is the triangle's first vertex. */
-static void rebase_texcoords(float *const attr[3]) {
+static void rebase_texcoords(float *const attr[], int n) {
     for (int k = 4; k < 6; k++) {
         float base = floorf(attr[0][k]);
-        for (int i = 0; i < 3; i++) attr[i][k] -= base;
+        for (int i = 0; i < n; i++) attr[i][k] -= base;
     }
 }
 
@@ -96,7 +97,7 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
             fetch_attributes(a, idx[i], poly[i].attr, 0);
     }
     if (a->rebase_texcoords)
-        rebase_texcoords((float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
+        rebase_texcoords((float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr}, 3);
     if (a->flat) light_flat(a->flat, (float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
     int n = sg_clip_polygon(poly, 3, planes, a->setup.nattr, &a->guard);
     /* Each vertex is projected once, though the fan uses poly[0] in every triangle. */
@@ -140,7 +141,7 @@ SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint
     fetch_attributes(a, i0, attr[0], lit);
     fetch_attributes(a, i1, attr[1], lit);
     fetch_attributes(a, i2, attr[2], lit);
-    if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]});
+    if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]}, 3);
     if (lit && a->flat) light_flat(a->flat, (float *const[3]){attr[0], attr[1], attr[2]});
     sg_setup_planes(&a->setup, s, order, tri);
     if (lit && ext) sg_setup_planes_ext(&a->setup, s, order, tri, ext);
@@ -164,8 +165,122 @@ static void __attribute__((noinline)) assemble_lit(const sg_assembly *a) {
     assemble(a, 1);
 }
 
-void sg_assemble(const sg_assembly *a) {
+/* ---- lines: line primitives and wireframe edges (line.h) ---- */
+
+static void emit_line(const sg_assembly *a, const sg_svert s[2], const float *const attr[2]) {
+    sg_tri_ext *ext = NULL;
+    sg_tri *tri = a->slot(a->user, &ext);
+    if (tri && sg_setup_line(&a->setup, s, attr, tri, ext)) a->emit(a->user);
+}
+
+/* A segment that crosses a clip plane: clipped, keeping its direction, then projected. */
+static void clipped_segment(const sg_assembly *a, const float *p0, const float *p1,
+                            const float *attr0, const float *attr1, uint32_t planes) {
+    sg_cvert v[2];
+    const int n = a->setup.nattr;
+    memcpy(v[0].pos, p0, sizeof v[0].pos);
+    memcpy(v[1].pos, p1, sizeof v[1].pos);
+    memcpy(v[0].attr, attr0, (size_t)n * sizeof(float));
+    memcpy(v[1].attr, attr1, (size_t)n * sizeof(float));
+    if (planes && !sg_clip_line(v, planes, n, &a->guard)) return;
+    sg_svert s[2];
+    if (!sg_setup_project(&a->setup, v[0].pos, &s[0]) ||
+        !sg_setup_project(&a->setup, v[1].pos, &s[1]))
+        return;
+    emit_line(a, s, (const float *const[2]){v[0].attr, v[1].attr});
+}
+
+SG_ASM_INLINE void segment(const sg_assembly *a, uint32_t i0, uint32_t i1, const int lit) {
+    uint32_t c0 = a->outcodes[i0], c1 = a->outcodes[i1];
+    if ((c0 & c1) || ((c0 | c1) & SG_CLIP_NONFINITE)) return;
+    if (!attributes_finite(a, i0, lit) || !attributes_finite(a, i1, lit)) return;
+    float attr[2][SG_MAX_ATTRS];
+    fetch_attributes(a, i0, attr[0], lit);
+    fetch_attributes(a, i1, attr[1], lit);
+    if (a->rebase_texcoords) rebase_texcoords((float *const[2]){attr[0], attr[1]}, 2);
+    sg_svert s[2];
+    if (c0 | c1)
+        clipped_segment(a, a->clip[i0], a->clip[i1], attr[0], attr[1], c0 | c1);
+    else if (screen_vertex(a, i0, &s[0]) && screen_vertex(a, i1, &s[1]))
+        emit_line(a, s, (const float *const[2]){attr[0], attr[1]});
+}
+
+/* A triangle's edges `edges` (bit e: v[e] -> v[e + 1]), when the triangle survives culling. One
+ * that crosses a clip plane faces the way its clipped polygon does on screen; its edges are cut
+ * at the planes, and the polygon's new edges along them are not drawn. */
+SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], unsigned edges,
+                                 const int lit) {
+    const uint32_t c[3] = {a->outcodes[idx[0]], a->outcodes[idx[1]], a->outcodes[idx[2]]};
+    if ((c[0] & c[1] & c[2]) || ((c[0] | c[1] | c[2]) & SG_CLIP_NONFINITE)) return;
+    float attr[3][SG_MAX_ATTRS];
+    for (int i = 0; i < 3; i++) {
+        if (!attributes_finite(a, idx[i], lit)) return;
+        fetch_attributes(a, idx[i], attr[i], lit);
+    }
+    if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]}, 3);
+    if (lit && a->flat) light_flat(a->flat, (float *const[3]){attr[0], attr[1], attr[2]});
+    if (!(c[0] | c[1] | c[2])) {
+        sg_svert s[3];
+        for (int i = 0; i < 3; i++)
+            if (!screen_vertex(a, idx[i], &s[i])) return;
+        if (sg_setup_culled(&a->setup, sg_setup_area(s))) return;
+        for (int e = 0; e < 3; e++) {
+            int f = e == 2 ? 0 : e + 1;
+            if (edges >> e & 1)
+                emit_line(a, (const sg_svert[2]){s[e], s[f]},
+                          (const float *const[2]){attr[e], attr[f]});
+        }
+        return;
+    }
+    sg_cvert poly[SG_CLIP_MAX_VERTS];
+    for (int i = 0; i < 3; i++) {
+        memcpy(poly[i].pos, a->clip[idx[i]], sizeof poly[i].pos);
+        memset(poly[i].attr, 0, sizeof poly[i].attr); /* facing needs positions only */
+    }
+    int n = sg_clip_polygon(poly, 3, c[0] | c[1] | c[2], 0, &a->guard);
+    sg_svert s[SG_CLIP_MAX_VERTS];
+    bool ok[SG_CLIP_MAX_VERTS];
+    for (int i = 0; i < n; i++) ok[i] = sg_setup_project(&a->setup, poly[i].pos, &s[i]);
+    int64_t area = 0;
+    for (int k = 1; k + 1 < n; k++)
+        if (ok[0] && ok[k] && ok[k + 1])
+            area += sg_setup_area((const sg_svert[3]){s[0], s[k], s[k + 1]});
+    if (n == 0 || sg_setup_culled(&a->setup, area)) return;
+    for (int e = 0; e < 3; e++) {
+        int f = e == 2 ? 0 : e + 1;
+        if (edges >> e & 1)
+            clipped_segment(a, a->clip[idx[e]], a->clip[idx[f]], attr[e], attr[f], c[e] | c[f]);
+    }
+}
+
+SG_ASM_INLINE void assemble_edges(const sg_assembly *a, const int lit) {
+    const uint32_t *ix = a->indices;
+    if (a->lines) {
+        for (int i = 0; i + 1 < a->index_count; i += 2) segment(a, ix[i], ix[i + 1], lit);
+    } else if (a->quads) { /* the four outer edges: a b c without c -> a, a c d without a -> c */
+        for (int i = 0; i + 3 < a->index_count; i += 4) {
+            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 1], ix[i + 2]}, 3u, lit);
+            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 2], ix[i + 3]}, 6u, lit);
+        }
+    } else {
+        for (int i = 0; i + 2 < a->index_count; i += 3)
+            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 1], ix[i + 2]}, 7u, lit);
+    }
+}
+
+/* Lines and wireframes are assembled apart, so the triangle path has no test of its own for
+ * them. */
+static void __attribute__((noinline)) assemble_lines(const sg_assembly *a) {
     if (a->vattr)
+        assemble_edges(a, 1);
+    else
+        assemble_edges(a, 0);
+}
+
+void sg_assemble(const sg_assembly *a) {
+    if (a->lines || a->wire)
+        assemble_lines(a);
+    else if (a->vattr)
         assemble_lit(a);
     else
         assemble(a, 0);

@@ -11,6 +11,8 @@ typedef struct sg_assembly {
     const uint32_t *indices;
     int index_count;
     int quads;              /* 4 indices a primitive (a b c d -> a b c, a c d), else 3 */
+    int lines;              /* 2 indices a primitive: segments a -> b (line.h) */
+    int wire;               /* triangles and quads drawn as their edges (polygon mode line) */
     const float (*clip)[4]; /* transformed positions, from the vertex stage */
     const uint32_t *outcodes;
     const sg_svert *screen;   /* projections of the vertices inside every plane (vertex stage) */

@@ -113,3 +113,17 @@ int sg_clip_polygon(sg_cvert *poly, int n, uint32_t planes, int nattr, const sg_
     }
     return n >= 3 ? n : 0;
 }
+
+bool sg_clip_line(sg_cvert v[2], uint32_t planes, int nattr, const sg_guard *guard) {
+    for (int i = 0; i < SG_CLIP_PLANE_COUNT; i++) {
+        uint32_t plane = 1u << i;
+        if (!(planes & plane)) continue;
+        float d0 = plane_dist(plane, v[0].pos, guard), d1 = plane_dist(plane, v[1].pos, guard);
+        bool in0 = d0 >= 0.0f, in1 = d1 >= 0.0f;
+        if (!in0 && !in1) return false;
+        /* From the inside end, as a triangle's edge is clipped: the same point. */
+        if (!in1) intersect(&v[1], plane, guard, &v[0], d0, &v[1], d1, nattr);
+        if (!in0) intersect(&v[0], plane, guard, &v[1], d1, &v[0], d0, nattr);
+    }
+    return true;
+}

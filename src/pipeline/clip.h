@@ -1,4 +1,4 @@
-/* clip.h - homogeneous clipping of triangles.
+/* clip.h - homogeneous clipping of triangles and lines.
  *
  * Triangles are clipped in clip space against: the near and far planes (-w <= z <= w), a
  * minimum w (so no vertex with w <= 0 reaches the divide), and a guard band in x and y that is far
@@ -8,6 +8,7 @@
 #ifndef SG_CLIP_H
 #define SG_CLIP_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 /* Attributes a vertex may carry through clipping and setup: r g b a, s t, then up to ten more
@@ -82,5 +83,8 @@ uint32_t sg_clip_outcode(const float pos[4], const sg_guard *guard);
 /** Clips the polygon poly[0..n) against `planes`, in place; returns the new vertex count
  *  (0 when nothing is left). poly must hold SG_CLIP_MAX_VERTS vertices. */
 int sg_clip_polygon(sg_cvert *poly, int n, uint32_t planes, int nattr, const sg_guard *guard);
+/** Clips the segment v[0] -> v[1] against `planes`, in place, keeping its direction; false when
+ *  nothing is left. */
+bool sg_clip_line(sg_cvert v[2], uint32_t planes, int nattr, const sg_guard *guard);
 
 #endif

@@ -40,14 +40,22 @@ bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s)
     return true;
 }
 
-bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out) {
-    /* Twice the signed area in y-down pixel space: exact. Positive is clockwise on screen. */
-    int64_t area = (int64_t)(s[1].x - s[0].x) * (s[2].y - s[0].y) -
-                   (int64_t)(s[2].x - s[0].x) * (s[1].y - s[0].y);
-    if (area == 0) return false;
+int64_t sg_setup_area(const sg_svert s[3]) {
+    return (int64_t)(s[1].x - s[0].x) * (s[2].y - s[0].y) -
+           (int64_t)(s[2].x - s[0].x) * (s[1].y - s[0].y);
+}
+
+bool sg_setup_culled(const sg_setup_params *p, int64_t area) {
+    if (area == 0) return true;
     bool ccw = area < 0; /* counter-clockwise as seen with y up */
     bool front = (p->front_face == SG_FRONT_FACE_CW) ? !ccw : ccw;
-    if ((p->cull == SG_CULL_BACK && !front) || (p->cull == SG_CULL_FRONT && front)) return false;
+    return (p->cull == SG_CULL_BACK && !front) || (p->cull == SG_CULL_FRONT && front);
+}
+
+bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out) {
+    /* Twice the signed area in y-down pixel space: exact. Positive is clockwise on screen. */
+    int64_t area = sg_setup_area(s);
+    if (sg_setup_culled(p, area)) return false;
     if (area < 0) { /* one orientation for the edge functions below */
         sg_svert t = s[1];
         s[1] = s[2];

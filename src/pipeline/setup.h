@@ -84,6 +84,11 @@ typedef struct sg_svert {
 
 /** Projects a clip-space position (w > 0); false: it does not fit the raster's range. */
 bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s);
+/** Twice the signed area of a projected triangle, in 1/256 pixel squared (exact); positive is
+ *  clockwise on screen. */
+int64_t sg_setup_area(const sg_svert s[3]);
+/** Whether a triangle of that signed area is culled (zero area always is). */
+bool sg_setup_culled(const sg_setup_params *p, int64_t area);
 /** Area, culling, pixel bounds and edge functions. Puts s[] (and attr[] alongside) in the order
  *  sg_setup_planes wants; false: nothing to draw. Reads no attribute: attr[] may still be empty. */
 bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out);

@@ -29,19 +29,20 @@ static float view_z(const float m[16], const float *p) {
 }
 
 void sg_sort_back_to_front(const float world_view[16], const float *positions, int vertex_count,
-                           const uint32_t *indices, int index_count, int quads, void *scratch,
+                           const uint32_t *indices, int index_count, int per, void *scratch,
                            uint32_t *out) {
+    const int quads = per == 4, lines = per == 2;
     float *z = scratch;
     size_t zbytes = ((size_t)vertex_count * sizeof(float) + 15) & ~(size_t)15;
     uint64_t *a = (uint64_t *)(void *)((char *)scratch + zbytes);
     for (int i = 0; i < vertex_count; i++) z[i] = view_z(world_view, positions + (size_t)i * 4);
 
-    /* Triangle k is (out triangle order before sorting): for quads, 2 per quad. */
+    /* Primitive k is (out order before sorting): for quads, 2 triangles per quad. */
     size_t n = 0;
-    int per = quads ? 4 : 3;
     for (int i = 0; i + per <= index_count; i += per) {
         const uint32_t *ix = indices + i;
-        float key = ((z[ix[0]] + z[ix[1]]) + z[ix[2]]) / 3.0f;
+        float key =
+            lines ? (z[ix[0]] + z[ix[1]]) / 2.0f : ((z[ix[0]] + z[ix[1]]) + z[ix[2]]) / 3.0f;
         a[n] = (uint64_t)order_key(key) << 32 | (uint32_t)n;
         n++;
         if (quads) {
@@ -74,6 +75,10 @@ void sg_sort_back_to_front(const float world_view[16], const float *positions, i
     for (size_t k = 0; k < n; k++) {
         uint32_t tri = (uint32_t)a[k];
         const uint32_t *ix = indices + (size_t)(quads ? tri / 2 : tri) * (size_t)per;
+        if (lines) {
+            out[2 * k] = ix[0], out[2 * k + 1] = ix[1];
+            continue;
+        }
         uint32_t *o = out + 3 * k;
         if (!quads) {
             o[0] = ix[0], o[1] = ix[1], o[2] = ix[2];
