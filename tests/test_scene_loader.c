@@ -278,7 +278,7 @@ static void obj_garbage_is_an_error(void **state) {
 
     /* Random lines of OBJ-like tokens: any result is fine as long as it is a clean one. */
     static const char *const tokens[] = {"v", "vt", "vn",  "f",  " ", "1",    "2",  "-1", "-3",
-                                         "/", "//", "0.5", "\n", "#", "1e30", "\t", "x"};
+                                         "/", "//", "0.5", "\n", "#", "1e30", "\t", "x",  "l"};
     const size_t ntok = sizeof tokens / sizeof tokens[0];
     uint32_t seed = 12345;
     char text[512];
@@ -296,6 +296,9 @@ static void obj_garbage_is_an_error(void **state) {
         }
         if (parse_obj(text, &m, err, sizeof err)) {
             for (uint32_t k = 0; k < m.index_count; k++) assert_true(m.indices[k] < m.vertex_count);
+            for (uint32_t k = 0; k < m.line_index_count; k++)
+                assert_true(m.line_indices[k] < m.vertex_count);
+            assert_int_equal(m.line_index_count % 2, 0);
             sc_mesh_free(&m);
         } else {
             assert_true(err[0] != '\0');
@@ -327,6 +330,88 @@ static void obj_shares_equal_tuples(void **state) {
     assert_float_equal(m.texcoords[3 * 2], 1.0f, 0);
     assert_float_equal(m.texcoords[4 * 2], 0.0f, 0); /* none: zeros */
     sc_mesh_free(&m);
+}
+
+static void assert_line_indices(const sc_mesh *m, const uint32_t *want, uint32_t n) {
+    assert_int_equal(m->line_index_count, n);
+    for (uint32_t i = 0; i < n; i++) assert_int_equal(m->line_indices[i], want[i]);
+}
+
+/* "l a b c ..." is a polyline: segments a-b, b-c, ...; its vertices are shared with faces that
+ * name the same position and texcoord. */
+static void obj_polylines(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    if (!parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 1 0 0\nvt 0.5 0.25\n"
+                   "f 1 2 3\n"
+                   "l 1 2 3 4 1\n"
+                   "l -1/1 2\t# a comment\n",
+                   &m, err, sizeof err))
+        fail_msg("%s", err);
+    const uint32_t tri[3] = {0, 1, 2};
+    assert_indices(&m, tri, 3);
+    /* 4/1 is a new vertex (the texcoord makes it one); 1 2 3 are the face's. */
+    const uint32_t lines[10] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 1};
+    assert_line_indices(&m, lines, 10);
+    assert_int_equal(m.vertex_count, 5);
+    assert_non_null(m.texcoords);
+    const float tc[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0.5f, 0.25f};
+    assert_floats(m.texcoords, tc, 10);
+    const float red[4] = {1, 0, 0, 1};
+    assert_floats(m.colors + 3 * 4, red, 4);
+    sc_mesh_free(&m);
+
+    /* Lines only: no triangles at all. */
+    if (!parse_obj("v 0 0 0\nv 2 0 0\nv 0 3 0\nl 1 2\nl 3 1\n", &m, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(m.index_count, 0);
+    assert_null(m.indices);
+    const uint32_t segs[4] = {0, 1, 2, 0};
+    assert_line_indices(&m, segs, 4);
+    assert_null(m.texcoords);
+    assert_null(m.normals);
+    sc_mesh_free(&m);
+
+    /* Faces only: no line list. */
+    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &m, err, sizeof err));
+    assert_int_equal(m.line_index_count, 0);
+    assert_null(m.line_indices);
+    sc_mesh_free(&m);
+}
+
+/* Bad lines name the file and line: too few vertices, an index out of range, a normal, garbage. */
+static void obj_bad_lines(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    static const struct {
+        const char *text, *want1, *want2;
+    } cases[] = {
+        {"v 0 0 0\nv 1 0 0\nl 1\n", "test.obj:3:", "a line needs at least 2 vertices (got 1)"},
+        {"v 0 0 0\nv 1 0 0\nl\n", "test.obj:3:", "a line needs at least 2 vertices (got 0)"},
+        {"v 0 0 0\nv 1 0 0\nl 2 # 1\n", "test.obj:3:", "(got 1)"},
+        {"v 0 0 0\nv 1 0 0\nl 1 3\n", "test.obj:3:", "position index 3 out of range"},
+        {"v 0 0 0\nv 1 0 0\nl 1 -3\n", "test.obj:3:", "out of range"},
+        {"v 0 0 0\nv 1 0 0\nl 0 1\n", "test.obj:3:", "index 0"},
+        {"v 0 0 0\nv 1 0 0\nl 1/1 2\n", "test.obj:3:", "texture coordinate index 1"},
+        {"v 0 0 0\nv 1 0 0\nvn 0 0 1\nl 1//1 2//1\n",
+         "test.obj:4:", "bad line vertex '1//1' (expected a or a/b)"},
+        {"v 0 0 0\nv 1 0 0\nvt 0 0\nvn 0 0 1\nl 1/1/1 2\n", "test.obj:5:", "bad line vertex"},
+        {"v 0 0 0\nv 1 0 0\nl 1 2x\n", "test.obj:3:", "bad line vertex '2x'"},
+        {"v 0 0 0\nv 1 0 0\nl 1 2/\n", "test.obj:3:", "bad line vertex"},
+        /* A line may only use what is defined before it. */
+        {"v 0 0 0\nl 1 2\nv 1 0 0\n", "test.obj:2:", "out of range"},
+        {"v 0 0 0\nv 1 0 0\n", "test.obj: ", "no faces or lines"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        memset(err, 0, sizeof err);
+        assert_false(parse_obj(cases[i].text, &m, err, sizeof err));
+        if (!strstr(err, cases[i].want1) || !strstr(err, cases[i].want2))
+            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, err, cases[i].want1, cases[i].want2);
+        assert_null(m.positions);
+        assert_null(m.line_indices);
+    }
 }
 
 static void obj_load_from_file(void **state) {
@@ -1188,6 +1273,8 @@ int main(void) {
         cmocka_unit_test(obj_bad_index_is_an_error),
         cmocka_unit_test(obj_garbage_is_an_error),
         cmocka_unit_test(obj_shares_equal_tuples),
+        cmocka_unit_test(obj_polylines),
+        cmocka_unit_test(obj_bad_lines),
         cmocka_unit_test(obj_load_from_file),
         cmocka_unit_test(heightmap_mesh),
         cmocka_unit_test(scene_defaults),
