@@ -485,6 +485,9 @@ static void write_assets(tmp_dir *t) {
     /* Casters a shadow light cannot be fitted to: one point, and no finite vertex. */
     write_file(t, "dot.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n");
     write_file(t, "nan.obj", "v nan 0 0\nv 0 nan 0\nv 0 0 inf\nf 1 2 3\n");
+    /* Lines only; and a triangle with a line off it, whose far end no face gives a normal. */
+    write_file(t, "lines.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nl 1 2 3\n");
+    write_file(t, "stray.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nl 1 4\n");
     const unsigned char px[4] = {255, 0, 0, 255};
     char err[256];
     assert_true(sc_image_write_png(tmp_path(t, "red.png"), 1, 1, px, err, sizeof err));
@@ -534,6 +537,7 @@ static void scene_defaults(void **state) {
     assert_false(s->has_shadow);
     assert_true(d->casts_shadow);
     assert_true(d->receives_shadow);
+    assert_int_equal(d->polygon_mode, SC_POLYGON_MODE_FILL);
     assert_float_equal(d->world_view[0], 1.0f, 0);
     assert_float_equal(d->proj[15], 1.0f, 0);
     sc_free(&f);
@@ -730,6 +734,64 @@ static void scene_mesh_normals(void **state) {
     assert_non_null(f.meshes[0].normals);
     assert_floats(f.meshes[0].normals, up, 9);
     assert_floats(f.meshes[1].normals, own, 9);
+    sc_free(&f);
+}
+
+/* "polygon_mode", and what a draw of a mesh with lines may be: lit Gouraud or Phong when faces give
+ * every line vertex a normal, unlit always. */
+static void scene_lines(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    /* The outline of the triangle, vertex for vertex: its smooth normals reach the lines. */
+    write_file(t, "outlined.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2 3 1\n");
+    if (!load_scene(
+            t, "lines.json",
+            "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"l\", \"draws\": ["
+            "{\"mesh\": \"tri.obj\", \"polygon_mode\": \"line\", \"cull\": \"back\", " MATRICES "},"
+            "{\"mesh\": \"tri.obj\", \"polygon_mode\": \"fill\", \"lighting\": \"flat\", " MATRICES
+            "},"
+            "{\"mesh\": \"outlined.obj\", \"lighting\": \"phong\", " MATRICES "},"
+            "{\"mesh\": \"outlined.obj\", \"lighting\": \"gouraud\", \"polygon_mode\": "
+            "\"line\", " MATRICES "},"
+            "{\"mesh\": \"stray.obj\", \"blend\": \"alpha\", " MATRICES "},"
+            "{\"mesh\": \"lines.obj\", \"texture\": \"red.png\", " MATRICES "}]}]}",
+            &f, err, sizeof err))
+        fail_msg("%s", err);
+    const sc_scene *s = &f.scenes[0];
+    assert_int_equal(s->draws[0].polygon_mode, SC_POLYGON_MODE_LINE);
+    assert_int_equal(s->draws[0].cull, SC_CULL_BACK);
+    assert_int_equal(s->draws[1].polygon_mode, SC_POLYGON_MODE_FILL);
+    assert_int_equal(s->draws[3].polygon_mode, SC_POLYGON_MODE_LINE);
+    const sc_mesh *outlined = &f.meshes[s->draws[2].mesh];
+    assert_int_equal(outlined->index_count, 3);
+    assert_int_equal(outlined->line_index_count, 6);
+    const float up[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    assert_floats(outlined->normals, up, 9);
+    /* Lines only: every mesh still gets normals (zero, without faces), and no triangles. */
+    const sc_mesh *lines = &f.meshes[s->draws[5].mesh];
+    assert_int_equal(lines->index_count, 0);
+    assert_null(lines->indices);
+    assert_int_equal(lines->line_index_count, 4);
+    assert_non_null(lines->normals);
+    assert_int_equal(s->draws[5].mode, SC_MODE_TEXTURE);
+    sc_free(&f);
+
+    /* Lines alone cast a shadow: the point light's near and far planes fit their segments. */
+    if (!load_scene(t, "lines.json",
+                    "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"l\", \"lights\": ["
+                    "{\"type\": \"point\", \"position\": [0.5, 0.5, 2], \"color\": [1, 1, 1]}],"
+                    " \"shadow\": {\"light\": 0}, \"draws\": ["
+                    "{\"mesh\": \"lines.obj\", " MATRICES "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    double view[16], proj[16];
+    assert_true(f.scenes[0].has_shadow);
+    assert_true(sc_shadow_light(&f, &f.scenes[0], view, proj));
+    /* The segments lie at depth 2 from the light: near = 0.99 * 2, far = 1.01 * 2. */
+    double n = proj[11] / (proj[10] - 1.0), far = proj[11] / (proj[10] + 1.0);
+    if (!(fabs(n - 1.98) < 1e-9) || !(fabs(far - 2.02) < 1e-9))
+        fail_msg("near %.17g, far %.17g", n, far);
     sc_free(&f);
 }
 
@@ -1009,6 +1071,28 @@ static void scene_errors(void **state) {
          "\"tri.obj\", \"color\": 1, " MATRICES "}]}]}",
          "draws[0]", "'color' must be an array of 4 numbers"},
         /* Lighting. */
+        /* Lines and wireframes. */
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"polygon_mode\": \"point\", " MATRICES "}]}]}",
+         "errors.json: scenes[0] ('a'), draws[0]: ",
+         "'polygon_mode' must be one of fill, line (got 'point')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"polygon_mode\": true, " MATRICES "}]}]}",
+         "draws[0]", "'polygon_mode' must be a string, one of fill, line"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", " MATRICES "}, {\"mesh\": \"stray.obj\", \"lighting\": \"flat\", " MATRICES
+         "}]}]}",
+         "errors.json: scenes[0] ('a'), draws[1]: ", "'lighting' 'flat' lights faces, and mesh '"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"lines.obj\", \"sort\": \"back_to_front\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]: ", "'sort' 'back_to_front' orders triangles, and mesh '"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"stray.obj\", \"lighting\": \"phong\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]: ",
+         "'lighting' 'phong' needs a normal at every line vertex, and line vertex (5, 5, 5)"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"lines.obj\", \"lighting\": \"gouraud\", " MATRICES "}]}]}",
+         "draws[0]: ", "line vertex (0, 0, 0) of mesh '"},
         {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
          "\"tri.obj\", \"lighting\": \"toon\", " MATRICES "}]}]}",
          "scenes[0] ('a'), draws[0]",
@@ -1283,6 +1367,7 @@ int main(void) {
         cmocka_unit_test(scene_transparency),
         cmocka_unit_test(scene_lighting),
         cmocka_unit_test(scene_mesh_normals),
+        cmocka_unit_test(scene_lines),
         cmocka_unit_test(scene_shadow),
         cmocka_unit_test(shadow_light_directional),
         cmocka_unit_test(shadow_light_point),
