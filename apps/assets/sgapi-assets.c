@@ -2087,8 +2087,8 @@ static void scene_line_fan(scene *s) {
 }
 
 /* Lines that leave the view: the ground grid and rails crossing the near plane under the eye, the
- * burst reaching far beyond the image and behind the eye, and a colour cube drawn as a wireframe
- * that the near plane cuts. */
+ * burst reaching far beyond the image and behind the eye, and two wireframes that the near plane
+ * cuts: a colour cube stretched into a beam, and a small triangle just in front of the eye. */
 static void scene_line_clip(scene *s, mat4 proj) {
     s->name = "line_clip";
     mat4 view = mat_look_at(v3(0, 1.2, 4.0), v3(0, 0.4, -2.0), v3(0, 1, 0));
@@ -2115,6 +2115,15 @@ static void scene_line_clip(scene *s, mat4 proj) {
     d->world_view =
         mat_mul(mat_translate(0.7, -0.55, -2.4),
                 mat_mul(mat_mul(mat_rotate_y(12), mat_rotate_x(8)), mat_scale(0.18, 0.18, 3.0)));
+    /* A small triangle tilted through the near plane right in front of the eye: its clipped
+     * edges cross the image, and the cut along the near plane is no edge. */
+    d = scene_add(s);
+    d->mesh = A_TRIANGLE;
+    d->wireframe = true;
+    set_color(d, 1.0, 0.8, 0.25, 1);
+    d->proj = proj;
+    d->world_view = mat_mul(mat_translate(0.01, -0.012, -0.12),
+                            mat_mul(mat_rotate_x(-70), mat_scale(0.06, 0.06, 0.06)));
 }
 
 /* ---------------------------------------------------------------------------------------------
