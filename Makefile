@@ -15,7 +15,7 @@ build: deps
 	cmake --build $(BUILD) -j $(JOBS)
 
 # The project's scene files: the eight default scenes, then one file per feature.
-SCENES = scenes/default.json scenes/transparency.json scenes/lighting.json scenes/shadows.json
+SCENES = scenes/default.json scenes/transparency.json scenes/lighting.json scenes/shadows.json scenes/lines.json
 
 # Renders the project's scenes to $(OUT)/ and prints, per scene, the time per frame next to the
 # error against its golden (lavapipe) image; heat maps go to $(OUT)/<scene>-heat.png.

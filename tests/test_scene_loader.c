@@ -278,7 +278,7 @@ static void obj_garbage_is_an_error(void **state) {
 
     /* Random lines of OBJ-like tokens: any result is fine as long as it is a clean one. */
     static const char *const tokens[] = {"v", "vt", "vn",  "f",  " ", "1",    "2",  "-1", "-3",
-                                         "/", "//", "0.5", "\n", "#", "1e30", "\t", "x"};
+                                         "/", "//", "0.5", "\n", "#", "1e30", "\t", "x",  "l"};
     const size_t ntok = sizeof tokens / sizeof tokens[0];
     uint32_t seed = 12345;
     char text[512];
@@ -296,6 +296,9 @@ static void obj_garbage_is_an_error(void **state) {
         }
         if (parse_obj(text, &m, err, sizeof err)) {
             for (uint32_t k = 0; k < m.index_count; k++) assert_true(m.indices[k] < m.vertex_count);
+            for (uint32_t k = 0; k < m.line_index_count; k++)
+                assert_true(m.line_indices[k] < m.vertex_count);
+            assert_int_equal(m.line_index_count % 2, 0);
             sc_mesh_free(&m);
         } else {
             assert_true(err[0] != '\0');
@@ -327,6 +330,88 @@ static void obj_shares_equal_tuples(void **state) {
     assert_float_equal(m.texcoords[3 * 2], 1.0f, 0);
     assert_float_equal(m.texcoords[4 * 2], 0.0f, 0); /* none: zeros */
     sc_mesh_free(&m);
+}
+
+static void assert_line_indices(const sc_mesh *m, const uint32_t *want, uint32_t n) {
+    assert_int_equal(m->line_index_count, n);
+    for (uint32_t i = 0; i < n; i++) assert_int_equal(m->line_indices[i], want[i]);
+}
+
+/* "l a b c ..." is a polyline: segments a-b, b-c, ...; its vertices are shared with faces that
+ * name the same position and texcoord. */
+static void obj_polylines(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    if (!parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 1 0 0\nvt 0.5 0.25\n"
+                   "f 1 2 3\n"
+                   "l 1 2 3 4 1\n"
+                   "l -1/1 2\t# a comment\n",
+                   &m, err, sizeof err))
+        fail_msg("%s", err);
+    const uint32_t tri[3] = {0, 1, 2};
+    assert_indices(&m, tri, 3);
+    /* 4/1 is a new vertex (the texcoord makes it one); 1 2 3 are the face's. */
+    const uint32_t lines[10] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 1};
+    assert_line_indices(&m, lines, 10);
+    assert_int_equal(m.vertex_count, 5);
+    assert_non_null(m.texcoords);
+    const float tc[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0.5f, 0.25f};
+    assert_floats(m.texcoords, tc, 10);
+    const float red[4] = {1, 0, 0, 1};
+    assert_floats(m.colors + 3 * 4, red, 4);
+    sc_mesh_free(&m);
+
+    /* Lines only: no triangles at all. */
+    if (!parse_obj("v 0 0 0\nv 2 0 0\nv 0 3 0\nl 1 2\nl 3 1\n", &m, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(m.index_count, 0);
+    assert_null(m.indices);
+    const uint32_t segs[4] = {0, 1, 2, 0};
+    assert_line_indices(&m, segs, 4);
+    assert_null(m.texcoords);
+    assert_null(m.normals);
+    sc_mesh_free(&m);
+
+    /* Faces only: no line list. */
+    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &m, err, sizeof err));
+    assert_int_equal(m.line_index_count, 0);
+    assert_null(m.line_indices);
+    sc_mesh_free(&m);
+}
+
+/* Bad lines name the file and line: too few vertices, an index out of range, a normal, garbage. */
+static void obj_bad_lines(void **state) {
+    (void)state;
+    char err[256];
+    sc_mesh m;
+    static const struct {
+        const char *text, *want1, *want2;
+    } cases[] = {
+        {"v 0 0 0\nv 1 0 0\nl 1\n", "test.obj:3:", "a line needs at least 2 vertices (got 1)"},
+        {"v 0 0 0\nv 1 0 0\nl\n", "test.obj:3:", "a line needs at least 2 vertices (got 0)"},
+        {"v 0 0 0\nv 1 0 0\nl 2 # 1\n", "test.obj:3:", "(got 1)"},
+        {"v 0 0 0\nv 1 0 0\nl 1 3\n", "test.obj:3:", "position index 3 out of range"},
+        {"v 0 0 0\nv 1 0 0\nl 1 -3\n", "test.obj:3:", "out of range"},
+        {"v 0 0 0\nv 1 0 0\nl 0 1\n", "test.obj:3:", "index 0"},
+        {"v 0 0 0\nv 1 0 0\nl 1/1 2\n", "test.obj:3:", "texture coordinate index 1"},
+        {"v 0 0 0\nv 1 0 0\nvn 0 0 1\nl 1//1 2//1\n",
+         "test.obj:4:", "bad line vertex '1//1' (expected a or a/b)"},
+        {"v 0 0 0\nv 1 0 0\nvt 0 0\nvn 0 0 1\nl 1/1/1 2\n", "test.obj:5:", "bad line vertex"},
+        {"v 0 0 0\nv 1 0 0\nl 1 2x\n", "test.obj:3:", "bad line vertex '2x'"},
+        {"v 0 0 0\nv 1 0 0\nl 1 2/\n", "test.obj:3:", "bad line vertex"},
+        /* A line may only use what is defined before it. */
+        {"v 0 0 0\nl 1 2\nv 1 0 0\n", "test.obj:2:", "out of range"},
+        {"v 0 0 0\nv 1 0 0\n", "test.obj: ", "no faces or lines"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        memset(err, 0, sizeof err);
+        assert_false(parse_obj(cases[i].text, &m, err, sizeof err));
+        if (!strstr(err, cases[i].want1) || !strstr(err, cases[i].want2))
+            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, err, cases[i].want1, cases[i].want2);
+        assert_null(m.positions);
+        assert_null(m.line_indices);
+    }
 }
 
 static void obj_load_from_file(void **state) {
@@ -400,6 +485,9 @@ static void write_assets(tmp_dir *t) {
     /* Casters a shadow light cannot be fitted to: one point, and no finite vertex. */
     write_file(t, "dot.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n");
     write_file(t, "nan.obj", "v nan 0 0\nv 0 nan 0\nv 0 0 inf\nf 1 2 3\n");
+    /* Lines only; and a triangle with a line off it, whose far end no face gives a normal. */
+    write_file(t, "lines.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nl 1 2 3\n");
+    write_file(t, "stray.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nl 1 4\n");
     const unsigned char px[4] = {255, 0, 0, 255};
     char err[256];
     assert_true(sc_image_write_png(tmp_path(t, "red.png"), 1, 1, px, err, sizeof err));
@@ -449,6 +537,7 @@ static void scene_defaults(void **state) {
     assert_false(s->has_shadow);
     assert_true(d->casts_shadow);
     assert_true(d->receives_shadow);
+    assert_int_equal(d->polygon_mode, SC_POLYGON_MODE_FILL);
     assert_float_equal(d->world_view[0], 1.0f, 0);
     assert_float_equal(d->proj[15], 1.0f, 0);
     sc_free(&f);
@@ -645,6 +734,64 @@ static void scene_mesh_normals(void **state) {
     assert_non_null(f.meshes[0].normals);
     assert_floats(f.meshes[0].normals, up, 9);
     assert_floats(f.meshes[1].normals, own, 9);
+    sc_free(&f);
+}
+
+/* "polygon_mode", and what a draw of a mesh with lines may be: lit Gouraud or Phong when faces give
+ * every line vertex a normal, unlit always. */
+static void scene_lines(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    /* The outline of the triangle, vertex for vertex: its smooth normals reach the lines. */
+    write_file(t, "outlined.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2 3 1\n");
+    if (!load_scene(
+            t, "lines.json",
+            "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"l\", \"draws\": ["
+            "{\"mesh\": \"tri.obj\", \"polygon_mode\": \"line\", \"cull\": \"back\", " MATRICES "},"
+            "{\"mesh\": \"tri.obj\", \"polygon_mode\": \"fill\", \"lighting\": \"flat\", " MATRICES
+            "},"
+            "{\"mesh\": \"outlined.obj\", \"lighting\": \"phong\", " MATRICES "},"
+            "{\"mesh\": \"outlined.obj\", \"lighting\": \"gouraud\", \"polygon_mode\": "
+            "\"line\", " MATRICES "},"
+            "{\"mesh\": \"stray.obj\", \"blend\": \"alpha\", " MATRICES "},"
+            "{\"mesh\": \"lines.obj\", \"texture\": \"red.png\", " MATRICES "}]}]}",
+            &f, err, sizeof err))
+        fail_msg("%s", err);
+    const sc_scene *s = &f.scenes[0];
+    assert_int_equal(s->draws[0].polygon_mode, SC_POLYGON_MODE_LINE);
+    assert_int_equal(s->draws[0].cull, SC_CULL_BACK);
+    assert_int_equal(s->draws[1].polygon_mode, SC_POLYGON_MODE_FILL);
+    assert_int_equal(s->draws[3].polygon_mode, SC_POLYGON_MODE_LINE);
+    const sc_mesh *outlined = &f.meshes[s->draws[2].mesh];
+    assert_int_equal(outlined->index_count, 3);
+    assert_int_equal(outlined->line_index_count, 6);
+    const float up[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    assert_floats(outlined->normals, up, 9);
+    /* Lines only: every mesh still gets normals (zero, without faces), and no triangles. */
+    const sc_mesh *lines = &f.meshes[s->draws[5].mesh];
+    assert_int_equal(lines->index_count, 0);
+    assert_null(lines->indices);
+    assert_int_equal(lines->line_index_count, 4);
+    assert_non_null(lines->normals);
+    assert_int_equal(s->draws[5].mode, SC_MODE_TEXTURE);
+    sc_free(&f);
+
+    /* Lines alone cast a shadow: the point light's near and far planes fit their segments. */
+    if (!load_scene(t, "lines.json",
+                    "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"l\", \"lights\": ["
+                    "{\"type\": \"point\", \"position\": [0.5, 0.5, 2], \"color\": [1, 1, 1]}],"
+                    " \"shadow\": {\"light\": 0}, \"draws\": ["
+                    "{\"mesh\": \"lines.obj\", " MATRICES "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    double view[16], proj[16];
+    assert_true(f.scenes[0].has_shadow);
+    assert_true(sc_shadow_light(&f, &f.scenes[0], view, proj));
+    /* The segments lie at depth 2 from the light: near = 0.99 * 2, far = 1.01 * 2. */
+    double n = proj[11] / (proj[10] - 1.0), far = proj[11] / (proj[10] + 1.0);
+    if (!(fabs(n - 1.98) < 1e-9) || !(fabs(far - 2.02) < 1e-9))
+        fail_msg("near %.17g, far %.17g", n, far);
     sc_free(&f);
 }
 
@@ -924,6 +1071,28 @@ static void scene_errors(void **state) {
          "\"tri.obj\", \"color\": 1, " MATRICES "}]}]}",
          "draws[0]", "'color' must be an array of 4 numbers"},
         /* Lighting. */
+        /* Lines and wireframes. */
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"polygon_mode\": \"point\", " MATRICES "}]}]}",
+         "errors.json: scenes[0] ('a'), draws[0]: ",
+         "'polygon_mode' must be one of fill, line (got 'point')"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", \"polygon_mode\": true, " MATRICES "}]}]}",
+         "draws[0]", "'polygon_mode' must be a string, one of fill, line"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"tri.obj\", " MATRICES "}, {\"mesh\": \"stray.obj\", \"lighting\": \"flat\", " MATRICES
+         "}]}]}",
+         "errors.json: scenes[0] ('a'), draws[1]: ", "'lighting' 'flat' lights faces, and mesh '"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"lines.obj\", \"sort\": \"back_to_front\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]: ", "'sort' 'back_to_front' orders triangles, and mesh '"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"stray.obj\", \"lighting\": \"phong\", " MATRICES "}]}]}",
+         "scenes[0] ('a'), draws[0]: ",
+         "'lighting' 'phong' needs a normal at every line vertex, and line vertex (5, 5, 5)"},
+        {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
+         "\"lines.obj\", \"lighting\": \"gouraud\", " MATRICES "}]}]}",
+         "draws[0]: ", "line vertex (0, 0, 0) of mesh '"},
         {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"draws\": [{\"mesh\": "
          "\"tri.obj\", \"lighting\": \"toon\", " MATRICES "}]}]}",
          "scenes[0] ('a'), draws[0]",
@@ -1188,6 +1357,8 @@ int main(void) {
         cmocka_unit_test(obj_bad_index_is_an_error),
         cmocka_unit_test(obj_garbage_is_an_error),
         cmocka_unit_test(obj_shares_equal_tuples),
+        cmocka_unit_test(obj_polylines),
+        cmocka_unit_test(obj_bad_lines),
         cmocka_unit_test(obj_load_from_file),
         cmocka_unit_test(heightmap_mesh),
         cmocka_unit_test(scene_defaults),
@@ -1196,6 +1367,7 @@ int main(void) {
         cmocka_unit_test(scene_transparency),
         cmocka_unit_test(scene_lighting),
         cmocka_unit_test(scene_mesh_normals),
+        cmocka_unit_test(scene_lines),
         cmocka_unit_test(scene_shadow),
         cmocka_unit_test(shadow_light_directional),
         cmocka_unit_test(shadow_light_point),

@@ -2,9 +2,10 @@
  *
  *   sgapi-assets OUTDIR
  *
- * Writes OUTDIR/default.json (eight scenes, format in docs/scene-format.md) and OUTDIR/assets/:
- * OBJ meshes (triangles, quad, plane, pyramid, cubes, the Utah teapot tessellated from its Bezier
- * patches) and PNG textures (checker, mosaic, brick, terrain height map and colour). Every value
+ * Writes OUTDIR/default.json (eight scenes, format in docs/scene-format.md), the feature files
+ * (transparency.json, lighting.json, shadows.json, lines.json) and OUTDIR/assets/: OBJ meshes
+ * (triangles, quad, plane, pyramid, cubes, the Utah teapot tessellated from its Bezier patches,
+ * line sets) and PNG textures (checker, mosaic, brick, terrain height map and colour). Every value
  * comes from code and fixed seeds, never from the clock or the C library's rand(), so two runs
  * give byte-identical files: the assets_reproducible test compares a fresh run with the committed
  * scenes/ folder. Meshes that scenes draw with culling are checked for outward winding before
@@ -621,8 +622,8 @@ static bool make_terrain_color(const char *path, const unsigned char *hm) {
 }
 
 /* ---------------------------------------------------------------------------------------------
- * Meshes in OBJ terms: separate position (with colour), texcoord and normal lists, and faces whose
- * corners index each list on its own, so shared data is written once.
+ * Meshes in OBJ terms: separate position (with colour), texcoord and normal lists, and faces and
+ * polylines whose corners index each list on its own, so shared data is written once.
  */
 
 typedef struct corner {
@@ -643,6 +644,9 @@ typedef struct mesh {
     size_t nn, cap_n;
     face *faces;
     size_t nf, cap_f;
+    corner *lines; /* polylines ("l"), one after the other, each ended by a corner with v = 0 */
+    size_t nlc, cap_lc;
+    bool exact; /* positions are written exactly (writing fails when they cannot be) */
 } mesh;
 
 /* Grows an array to hold `need` elements; a generator has no way round a failed allocation. */
@@ -690,12 +694,20 @@ static void mesh_face(mesh *m, int count, const corner *c) {
     for (int i = 0; i < count; i++) f->c[i] = c[i];
 }
 
+/* A polyline of count corners (position and texcoord; normals are not part of OBJ lines). */
+static void mesh_line(mesh *m, int count, const corner *c) {
+    m->lines = grow(m->lines, &m->cap_lc, m->nlc + (size_t)count + 1, sizeof *m->lines);
+    for (int i = 0; i < count; i++) m->lines[m->nlc++] = c[i];
+    m->lines[m->nlc++] = (corner){0, 0, 0};
+}
+
 static void mesh_free(mesh *m) {
     free(m->pos);
     free(m->col);
     free(m->tex);
     free(m->nrm);
     free(m->faces);
+    free(m->lines);
     memset(m, 0, sizeof *m);
 }
 
@@ -714,6 +726,16 @@ static const char *fmt_num(char *buf, size_t size, double x, int decimals) {
     return buf;
 }
 
+/* A coordinate of an exact mesh: a float whose decimal expansion is short enough (a dyadic
+ * fraction of at most 17 bits after the point, as window coordinates in 1/256 pixel are), written
+ * out in full, so the loader reads back the very float. NULL when it is not one. */
+static const char *fmt_exact(char *buf, size_t size, double x) {
+    fmt_num(buf, size, x, 17);
+    if ((double)(float)x != x || strtof(buf, NULL) != (float)x || strtod(buf, NULL) != x)
+        return NULL;
+    return buf;
+}
+
 static bool write_obj(const mesh *m, const char *path, const char *comment) {
     FILE *f = fopen(path, "wb");
     if (!f) {
@@ -723,10 +745,24 @@ static bool write_obj(const mesh *m, const char *path, const char *comment) {
     char a[32], b[32], c[32], d[32], e[32], g[32];
     fprintf(f, "# %s\n", comment);
     for (size_t i = 0; i < m->nv; i++) {
-        fprintf(f, "v %s %s %s %s %s %s\n", fmt_num(a, sizeof a, m->pos[i].x, 5),
-                fmt_num(b, sizeof b, m->pos[i].y, 5), fmt_num(c, sizeof c, m->pos[i].z, 5),
-                fmt_num(d, sizeof d, m->col[i].x, 4), fmt_num(e, sizeof e, m->col[i].y, 4),
-                fmt_num(g, sizeof g, m->col[i].z, 4));
+        const char *x, *y, *z;
+        if (m->exact) {
+            x = fmt_exact(a, sizeof a, m->pos[i].x);
+            y = fmt_exact(b, sizeof b, m->pos[i].y);
+            z = fmt_exact(c, sizeof c, m->pos[i].z);
+            if (!x || !y || !z) {
+                fprintf(stderr, "sgapi-assets: %s: position %zu cannot be written exactly\n", path,
+                        i + 1);
+                fclose(f);
+                return false;
+            }
+        } else {
+            x = fmt_num(a, sizeof a, m->pos[i].x, 5);
+            y = fmt_num(b, sizeof b, m->pos[i].y, 5);
+            z = fmt_num(c, sizeof c, m->pos[i].z, 5);
+        }
+        fprintf(f, "v %s %s %s %s %s %s\n", x, y, z, fmt_num(d, sizeof d, m->col[i].x, 4),
+                fmt_num(e, sizeof e, m->col[i].y, 4), fmt_num(g, sizeof g, m->col[i].z, 4));
     }
     for (size_t i = 0; i < m->nt; i++) {
         fprintf(f, "vt %s %s\n", fmt_num(a, sizeof a, m->tex[i][0], 5),
@@ -750,6 +786,18 @@ static bool write_obj(const mesh *m, const char *path, const char *comment) {
                 fprintf(f, " %d", q.v);
         }
         fputc('\n', f);
+    }
+    for (size_t i = 0; i < m->nlc; i++) {
+        corner q = m->lines[i];
+        if (q.v == 0) {
+            fputc('\n', f);
+            continue;
+        }
+        if (i == 0 || m->lines[i - 1].v == 0) fputc('l', f);
+        if (q.t)
+            fprintf(f, " %d/%d", q.v, q.t);
+        else
+            fprintf(f, " %d", q.v);
     }
     bool ok = !ferror(f);
     if (fclose(f) != 0) ok = false;
@@ -1171,6 +1219,7 @@ typedef struct draw {
     const char *lighting; /* NULL: none */
     double specular[3], shininess;
     bool no_cast, no_receive; /* "casts_shadow": false, "receives_shadow": false */
+    bool wireframe;           /* "polygon_mode": "line" */
     mat4 world_view, proj;
 } draw;
 
@@ -1186,6 +1235,7 @@ enum { MAX_DRAWS = 48 };
 
 typedef struct scene {
     const char *name;
+    int width, height;   /* 0: the file's default */
     const double *clear; /* NULL: the file's default */
     draw draws[MAX_DRAWS];
     int count;
@@ -1223,6 +1273,7 @@ static void write_matrix(FILE *f, const char *key, mat4 m) {
 static void write_scene(FILE *f, const scene *s, bool last) {
     char a[32];
     fprintf(f, "    {\n      \"name\": \"%s\",\n", s->name);
+    if (s->width) fprintf(f, "      \"width\": %d, \"height\": %d,\n", s->width, s->height);
     if (s->clear) {
         fprintf(f, "      \"clear_color\": [");
         for (int i = 0; i < 4; i++)
@@ -1282,6 +1333,7 @@ static void write_scene(FILE *f, const scene *s, bool last) {
             fprintf(f, "          \"mode\": \"vertex_color\",\n");
         }
         if (d->cull) fprintf(f, "          \"cull\": \"%s\",\n", d->cull);
+        if (d->wireframe) fprintf(f, "          \"polygon_mode\": \"line\",\n");
         if (d->depth_compare)
             fprintf(f, "          \"depth_compare\": \"%s\",\n", d->depth_compare);
         if (d->no_depth_write) fprintf(f, "          \"depth_write\": false,\n");
@@ -1331,6 +1383,10 @@ static void write_scene(FILE *f, const scene *s, bool last) {
 #define A_HEIGHT       "assets/height.png"
 #define A_TERRAIN      "assets/terrain_color.png"
 #define A_CUTOUT       "assets/cutout.png"
+#define A_LINE_FAN     "assets/line_fan.obj"
+#define A_LINE_GRID    "assets/line_grid.obj"
+#define A_LINE_RAILS   "assets/line_rails.obj"
+#define A_LINE_BURST   "assets/line_burst.obj"
 
 /* Model transform T x Ry(yaw) x Rx(pitch) x Rz(roll) x S: scaled first, then rolled, pitched and
  * turned about the vertical last, then placed. */
@@ -1848,6 +1904,229 @@ static void scene_shadow_grazing(scene *s, mat4 proj, const mesh *teapot) {
 }
 
 /* ---------------------------------------------------------------------------------------------
+ * Line scenes (lines.json) and their line meshes.
+ */
+
+/* line_fan is FAN_SIZE pixels square and drawn with identity matrices, so the vertex at window
+ * position (x, y) (pixels, y down) is at NDC (x / 512 - 1, 1 - y / 512): exact for any x and y in
+ * 1/256 pixel, the grid both rasterisers snap to, so they see the same end points to the bit. */
+enum { FAN_SIZE = 1024 };
+
+static int fan_vertex(mesh *m, double x, double y, vec3 color) {
+    const double half = FAN_SIZE / 2;
+    return mesh_v(m, v3(x / half - 1.0, 1.0 - y / half, 0.0), color);
+}
+
+/* One segment, or its reverse: the rule treats a line's first and last pixel differently. */
+static void fan_segment(mesh *m, int a, int b, bool reverse) {
+    corner c[2] = {{reverse ? b : a, 0, 0}, {reverse ? a : b, 0, 0}};
+    mesh_line(m, 2, c);
+}
+
+/* 360 segments at 1-degree steps (counter-clockwise as displayed) from (cx, cy), r pixels long,
+ * white at the centre and coloured by angle at the far end; even angles drawn outwards, odd ones
+ * inwards. The ends are rounded to whole pixels (so they sit on the same kind of point as the
+ * centre: pixel centres or pixel corners) or, with subpixel, to 1/256 pixel. The axis-aligned
+ * and diagonal ones are exact. */
+static void build_fan(mesh *m, double cx, double cy, double r, bool subpixel) {
+    int centre = fan_vertex(m, cx, cy, WHITE);
+    const double unit = subpixel ? 256.0 : 1.0;
+    for (int k = 0; k < 360; k++) {
+        double sn, cs;
+        sin_cos_deg(k, &sn, &cs);
+        if (k % 45 == 0 && k % 90 != 0) {
+            /* |cos| = |sin| exactly, whatever the library's last bits. */
+            double d = sqrt(0.5);
+            cs = cs < 0 ? -d : d;
+            sn = sn < 0 ? -d : d;
+        }
+        double dx = floor(r * cs * unit + 0.5) / unit, dy = floor(-r * sn * unit + 0.5) / unit;
+        int end = fan_vertex(m, cx + dx, cy + dy, hsv(k / 360.0, 0.75, 1.0));
+        fan_segment(m, centre, end, k % 2 == 1);
+    }
+}
+
+/* Short segments from one start point (x, y) to its 16 neighbours at (+-1, 0), (0, +-1),
+ * (+-1, +-1), (+-2, +-1) and (+-1, +-2) times scale pixels, alternately outwards and inwards: the
+ * diamond-exit rule's cases for a line that starts or ends on that kind of point. */
+static void build_star(mesh *m, double x, double y, double scale) {
+    static const int dirs[16][2] = {{1, 0},   {1, 1},   {0, 1},  {-1, 1}, {-1, 0}, {-1, -1},
+                                    {0, -1},  {1, -1},  {2, 1},  {1, 2},  {-1, 2}, {-2, 1},
+                                    {-2, -1}, {-1, -2}, {1, -2}, {2, -1}};
+    int start = fan_vertex(m, x, y, WHITE);
+    for (int k = 0; k < 16; k++) {
+        int end =
+            fan_vertex(m, x + dirs[k][0] * scale, y + dirs[k][1] * scale, hsv(k / 16.0, 0.8, 1.0));
+        fan_segment(m, start, end, k % 2 == 1);
+    }
+}
+
+/* Two fans around a pixel centre and a pixel corner with whole-pixel ends, two with ends in
+ * 1/256 pixel, and rows of short segments from starts at every kind of point of a pixel: its
+ * centre, its corner, the diamond's corners and edges, just inside and outside them. */
+static void build_line_fan(mesh *m) {
+    m->exact = true;
+    build_fan(m, 256.5, 256.5, 240, false);
+    build_fan(m, 768.0, 256.0, 240, false);
+    build_fan(m, 256.5, 672.5, 160, true);
+    build_fan(m, 768.0, 672.0, 160, true);
+    /* Where a start lies in its pixel, from the pixel's top-left corner. */
+    static const double starts[12][2] = {{0.5, 0.5},
+                                         {0, 0},
+                                         {0.5, 0},
+                                         {0, 0.5},
+                                         {0.25, 0.75},
+                                         {0.75, 0.25},
+                                         {0.5 + 1.0 / 256, 0.5},
+                                         {0.5, 0.5 - 1.0 / 256},
+                                         {1.0 / 256, 0},
+                                         {0.125, 0.125},
+                                         {0.75, 0.75},
+                                         {0.25, 0.5}};
+    for (int row = 0; row < 3; row++) {
+        double scale = row + 1, y = 872 + 48 * row;
+        int i = 0;
+        for (double x = 24; x + 2 * scale < FAN_SIZE - 16; x += 4 * scale + 10, i++)
+            build_star(m, x + starts[i % 12][0], y + starts[i % 12][1], scale);
+    }
+}
+
+/* A ground grid of lines across the view at y = 0, from z = 3 to -28.5; the nearest four reach
+ * x = +-60, the others +-20; red at the left end, blue at the right. */
+static void build_line_grid(mesh *m) {
+    for (int j = 0; j < 22; j++) {
+        double z = 3.0 - 1.5 * j, half = j < 4 ? 60.0 : 20.0;
+        int a = mesh_v(m, v3(-half, 0, z), v3(1.0, 0.45, 0.4));
+        int b = mesh_v(m, v3(half, 0, z), v3(0.45, 0.55, 1.0));
+        mesh_line(m, 2, (corner[]){{a, 0, 0}, {b, 0, 0}});
+    }
+}
+
+/* 17 white rails at y = 0 along z, from z = 10 (behind the eye of line_clip) to -30, with
+ * texcoord s running along them (a texture repeat every 8 units) and t = 0.3: seen in
+ * perspective, textured dashes shorten with distance. */
+static void build_line_rails(mesh *m) {
+    int near_t = mesh_vt(m, 0.0, 0.3), far_t = mesh_vt(m, 5.0, 0.3);
+    for (int i = -8; i <= 8; i++) {
+        int a = mesh_v(m, v3(i, 0, 10), WHITE), b = mesh_v(m, v3(i, 0, -30), WHITE);
+        mesh_line(m, 2, (corner[]){{a, near_t, 0}, {b, far_t, 0}});
+    }
+}
+
+/* In view space (drawn with an identity worldView): a burst of 24 segments from a point 6 units
+ * ahead to 250 units sideways (some 50000 pixels off the image, beyond the guard band), 8 from it
+ * to points behind the eye, and segments that cross the image with both ends beyond the guard
+ * band, lie wholly above it, lie wholly behind the eye, or run from behind the eye to far beyond
+ * the image. */
+static void build_line_burst(mesh *m) {
+    const vec3 centre = v3(0.9, 1.1, -6.0);
+    int c0 = mesh_v(m, centre, WHITE);
+    for (int k = 0; k < 24; k++) {
+        /* Each its own colour at the centre: what shows of it is the first percent or two. */
+        double sn, cs;
+        sin_cos_deg(15.0 * k + 7.5, &sn, &cs);
+        int a = mesh_v(m, centre, hsv(k / 24.0, 0.7, 1));
+        int e = mesh_v(m, v3_add(centre, v3(250.0 * cs, 250.0 * sn, 0)), v3(0.2, 0.2, 0.2));
+        mesh_line(m, 2, (corner[]){{a, 0, 0}, {e, 0, 0}});
+    }
+    for (int k = 0; k < 8; k++) {
+        double sn, cs;
+        sin_cos_deg(45.0 * k + 22.5, &sn, &cs);
+        int e = mesh_v(m, v3(1.5 * cs, 1.5 * sn, 2.0), hsv(k / 8.0 + 0.5, 0.9, 0.9));
+        mesh_line(m, 2, (corner[]){{e, 0, 0}, {c0, 0, 0}});
+    }
+    static const struct {
+        double a[3], b[3], ca[3], cb[3];
+    } segs[] = {
+        {{-300, -1.0, -6}, {300, -1.6, -6}, {1, 1, 0.2}, {0.2, 1, 1}},   /* across the image */
+        {{-1.2, -300, -9}, {-1.0, 300, -9}, {1, 0.3, 1}, {0.3, 1, 0.3}}, /* top to bottom */
+        {{-250, 9, -6}, {250, 9.5, -6}, {1, 0, 0}, {1, 0, 0}},           /* above the image */
+        {{-1, 0, 1}, {1, 0.5, 2}, {1, 0, 0}, {1, 0, 0}},                 /* behind the eye */
+        {{-0.3, -0.4, 0.5}, {400, -60, -30}, {1, 1, 1}, {1, 0.5, 0}},    /* behind to far off */
+    };
+    for (size_t i = 0; i < sizeof segs / sizeof segs[0]; i++) {
+        int a = mesh_v(m, v3(segs[i].a[0], segs[i].a[1], segs[i].a[2]),
+                       v3(segs[i].ca[0], segs[i].ca[1], segs[i].ca[2]));
+        int b = mesh_v(m, v3(segs[i].b[0], segs[i].b[1], segs[i].b[2]),
+                       v3(segs[i].cb[0], segs[i].cb[1], segs[i].cb[2]));
+        mesh_line(m, 2, (corner[]){{a, 0, 0}, {b, 0, 0}});
+    }
+}
+
+/* A lit teapot with its wireframe over it (depth test less-equal, so the edges win ties with the
+ * surface they lie on), and beside it a wireframe alone with back faces culled, on the checker
+ * floor. */
+static void scene_wire_teapot(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "wire_teapot";
+    s->view = mat_look_at(v3(0, 2.5, 3.3), v3(0, 0.25, 0), v3(0, 1, 0));
+    s->ambient = v3(0.15, 0.15, 0.16);
+    s->lights[s->light_count++] = dir_light(v3(-0.4, -1.0, -0.6), v3(0.9, 0.88, 0.84));
+    add_floor(s, proj, s->view, A_CHECKER, 3);
+    draw *d = teapot_at(s, proj, teapot, -0.82, 0.1, -30, 0.72);
+    set_color(d, 0.9, 0.55, 0.3, 1);
+    set_lit(d, "phong", 0.6, 40);
+    draw *w = scene_add(s);
+    *w = *d;
+    w->lighting = NULL;
+    w->wireframe = true;
+    w->depth_compare = "less_equal";
+    set_color(w, 0.12, 0.1, 0.1, 1);
+    d = teapot_at(s, proj, teapot, 0.85, -0.1, 35, 0.72);
+    d->wireframe = true;
+    d->cull = "back";
+    set_color(d, 0.35, 1.0, 0.7, 1);
+}
+
+/* The fans and short segments of build_line_fan, unlit, no depth test. */
+static void scene_line_fan(scene *s) {
+    s->name = "line_fan";
+    s->width = s->height = FAN_SIZE;
+    draw *d = scene_add(s);
+    d->mesh = A_LINE_FAN;
+    d->depth_compare = "always";
+}
+
+/* Lines that leave the view: the ground grid and rails crossing the near plane under the eye, the
+ * burst reaching far beyond the image and behind the eye, and two wireframes that the near plane
+ * cuts: a colour cube stretched into a beam, and a small triangle just in front of the eye. */
+static void scene_line_clip(scene *s, mat4 proj) {
+    s->name = "line_clip";
+    mat4 view = mat_look_at(v3(0, 1.2, 4.0), v3(0, 0.4, -2.0), v3(0, 1, 0));
+    draw *d = scene_add(s);
+    d->mesh = A_LINE_GRID;
+    d->proj = proj;
+    d->world_view = view;
+    d = scene_add(s);
+    d->mesh = A_LINE_RAILS;
+    d->textured = true;
+    d->texture = A_CHECKER;
+    d->nearest = true;
+    d->proj = proj;
+    d->world_view = view;
+    d = scene_add(s);
+    d->mesh = A_LINE_BURST;
+    d->proj = proj;
+    d = scene_add(s);
+    d->mesh = A_CUBE_RGB;
+    d->wireframe = true;
+    d->proj = proj;
+    /* A beam 6 units long from behind the eye into the distance, right of and below the view
+     * axis, turned a little. */
+    d->world_view =
+        mat_mul(mat_translate(0.7, -0.55, -2.4),
+                mat_mul(mat_mul(mat_rotate_y(12), mat_rotate_x(8)), mat_scale(0.18, 0.18, 3.0)));
+    /* A small triangle tilted through the near plane right in front of the eye: its clipped
+     * edges cross the image, and the cut along the near plane is no edge. */
+    d = scene_add(s);
+    d->mesh = A_TRIANGLE;
+    d->wireframe = true;
+    set_color(d, 1.0, 0.8, 0.25, 1);
+    d->proj = proj;
+    d->world_view = mat_mul(mat_translate(0.01, -0.012, -0.12),
+                            mat_mul(mat_rotate_x(-70), mat_scale(0.06, 0.06, 0.06)));
+}
+
+/* ---------------------------------------------------------------------------------------------
  * Output.
  */
 
@@ -1885,6 +2164,9 @@ enum {
     S_SHADOW_TEAPOTS,
     S_SHADOW_POINT,
     S_SHADOW_GRAZING,
+    S_WIRE_TEAPOT,
+    S_LINE_FAN,
+    S_LINE_CLIP,
     S_END = -1
 };
 static const int DEFAULT_SCENES[] = {S_01, S_02, S_03, S_04, S_05, S_06, S_07, S_08, S_END};
@@ -1894,6 +2176,7 @@ static const int TRANSPARENCY_SCENES[] = {S_ALPHA_CUBES,           S_ALPHA_TEAPO
 static const int LIGHTING_SCENES[] = {S_LIT_MODES,  S_LIT_TEXTURED, S_LIT_POINT,
                                       S_LIT_BEHIND, S_LIT_MANY,     S_END};
 static const int SHADOW_SCENES[] = {S_SHADOW_TEAPOTS, S_SHADOW_POINT, S_SHADOW_GRAZING, S_END};
+static const int LINE_SCENES[] = {S_WIRE_TEAPOT, S_LINE_FAN, S_LINE_CLIP, S_END};
 
 static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
     switch (which) {
@@ -1956,6 +2239,15 @@ static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
         break;
     case S_SHADOW_POINT:
         scene_shadow_point(s, proj, teapot);
+        break;
+    case S_WIRE_TEAPOT:
+        scene_wire_teapot(s, proj, teapot);
+        break;
+    case S_LINE_FAN:
+        scene_line_fan(s);
+        break;
+    case S_LINE_CLIP:
+        scene_line_clip(s, proj);
         break;
     default:
         scene_shadow_grazing(s, proj, teapot);
@@ -2060,6 +2352,26 @@ int main(int argc, char **argv) {
         mesh_free(&m);
         if (!ok) return 1;
     }
+    /* Line sets: no faces to check. */
+    static const struct {
+        const char *file, *comment;
+        mesh_builder build;
+    } line_meshes[] = {
+        {A_LINE_FAN, "Fans and short segments in NDC, exact in 1/256 pixel of a 1024 x 1024 image.",
+         build_line_fan},
+        {A_LINE_GRID, "Ground grid of coloured lines across the view at y = 0.", build_line_grid},
+        {A_LINE_RAILS, "Textured rails at y = 0 along z, reaching behind the eye.",
+         build_line_rails},
+        {A_LINE_BURST, "Segments in view space, far beyond the image and behind the eye.",
+         build_line_burst},
+    };
+    for (size_t i = 0; i < sizeof line_meshes / sizeof line_meshes[0]; i++) {
+        mesh m = {0};
+        line_meshes[i].build(&m);
+        bool ok = write_obj(&m, join(path, out, line_meshes[i].file), line_meshes[i].comment);
+        mesh_free(&m);
+        if (!ok) return 1;
+    }
     mesh teapot = {0};
     if (!build_teapot(&teapot) ||
         !write_obj(&teapot, join(path, out, A_TEAPOT),
@@ -2085,6 +2397,8 @@ int main(int argc, char **argv) {
                                 LIGHTING_SCENES, proj, &teapot);
     ok = ok && write_scene_file(join(path, out, "shadows.json"), "0.1, 0.12, 0.16, 1",
                                 SHADOW_SCENES, proj, &teapot);
+    ok = ok && write_scene_file(join(path, out, "lines.json"), "0.05, 0.06, 0.08, 1", LINE_SCENES,
+                                proj, &teapot);
     mesh_free(&teapot);
     return ok ? 0 : 1;
 }

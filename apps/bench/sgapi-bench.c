@@ -488,7 +488,7 @@ static bool create_device(int threads, const sc_file *files, int file_count, sgD
     size_t images = 0, geoms = 0;
     for (int i = 0; i < file_count; i++) {
         if (files[i].texture_count > images) images = files[i].texture_count;
-        if (files[i].mesh_count > geoms) geoms = files[i].mesh_count;
+        if (ss_geom_count(&files[i]) > geoms) geoms = ss_geom_count(&files[i]);
     }
     /* Pools for the largest file (its textures plus the two targets and a shadow map) and for
      * every pipeline the draws and shadows can need in every setting. */

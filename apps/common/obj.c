@@ -1,5 +1,6 @@
 /* obj.c - Wavefront OBJ loader: positions (with the "v x y z r g b [a]" colour extension), texture
- * coordinates, normals and polygonal faces, turned into an indexed triangle list.
+ * coordinates, normals, polygonal faces and polylines, turned into an indexed triangle list and an
+ * indexed line list over the same vertices.
  *
  * Input is untrusted: every index is checked, every size is checked against overflow, and any
  * malformed line is an error naming its line number.
@@ -13,9 +14,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define NONE UINT32_MAX /* a face vertex without texture coordinate or normal */
+#define NONE UINT32_MAX /* a face or line vertex without texture coordinate or normal */
 
-/* A face vertex after resolving its indices: one output vertex per distinct key. */
+/* A face or line vertex after resolving its indices: one output vertex per distinct key. */
 typedef struct key3 {
     uint32_t v, vt, vn;
 } key3;
@@ -38,8 +39,10 @@ typedef struct parser {
     uint32_t *table; /* open addressing: key index + 1, 0 = empty slot */
     size_t tablecap; /* a power of two */
 
-    uint32_t *idx;
+    uint32_t *idx; /* triangles, 3 each */
     size_t nidx, capidx;
+    uint32_t *lidx; /* line segments, 2 each */
+    size_t nlidx, caplidx;
 } parser;
 
 /* Lets the compiler check the format arguments of the error helpers. */
@@ -258,8 +261,9 @@ static bool vertex_of(parser *p, key3 k, uint32_t *out) {
     return true;
 }
 
-/* One face vertex: a, a/b, a//c or a/b/c. */
-static bool face_vertex(parser *p, const char *tb, const char *te, uint32_t *out) {
+/* One face vertex: a, a/b, a//c or a/b/c; or one line vertex: a or a/b (the OBJ format gives line
+ * vertices no normal). */
+static bool obj_vertex(parser *p, bool line, const char *tb, const char *te, uint32_t *out) {
     const char *s = tb;
     long long a, b = 0, c = 0;
     bool has_b = false, has_c = false;
@@ -272,7 +276,7 @@ static bool face_vertex(parser *p, const char *tb, const char *te, uint32_t *out
         }
         if (s < te && *s == '/') {
             s++;
-            if (!parse_int(&s, te, &c)) goto bad;
+            if (line || !parse_int(&s, te, &c)) goto bad;
             has_c = true;
         }
         if (!has_b && !has_c) goto bad;
@@ -285,8 +289,9 @@ static bool face_vertex(parser *p, const char *tb, const char *te, uint32_t *out
     if (has_c && !resolve(p, c, p->nvn, "normal", &k.vn)) return false;
     return vertex_of(p, k, out);
 bad:
-    return fail(p, "bad face vertex '%.*s' (expected a, a/b, a//c or a/b/c)",
-                (int)(te - tb < 40 ? te - tb : 40), tb);
+    return fail(p, "bad %s vertex '%.*s' (expected %s)", line ? "line" : "face",
+                (int)(te - tb < 40 ? te - tb : 40), tb,
+                line ? "a or a/b" : "a, a/b, a//c or a/b/c");
 }
 
 static bool emit(parser *p, uint32_t a, uint32_t b, uint32_t c) {
@@ -306,13 +311,35 @@ static bool add_face(parser *p, const char *s, const char *e) {
     size_t n = 0;
     while (next_token(&s, e, &tb, &te)) {
         uint32_t cur = 0;
-        if (!face_vertex(p, tb, te, &cur)) return false;
+        if (!obj_vertex(p, false, tb, te, &cur)) return false;
         if (n == 0) first = cur;
         if (n >= 2 && !emit(p, first, prev, cur)) return false;
         prev = cur;
         n++;
     }
     if (n < 3) return fail(p, "a face needs at least 3 vertices (got %zu)", n);
+    return true;
+}
+
+/* A polyline a b c ...: the segments a-b, b-c, ..., each as its two indices. */
+static bool add_line(parser *p, const char *s, const char *e) {
+    const char *tb, *te;
+    uint32_t prev = 0;
+    size_t n = 0;
+    while (next_token(&s, e, &tb, &te)) {
+        uint32_t cur = 0;
+        if (!obj_vertex(p, true, tb, te, &cur)) return false;
+        if (n >= 1) {
+            if (p->nlidx > SC_MESH_MAX_COUNT - 2) return fail(p, "too many line segments");
+            if (!grow((void **)&p->lidx, &p->caplidx, p->nlidx + 2, sizeof(uint32_t)))
+                return fail(p, "out of memory");
+            p->lidx[p->nlidx++] = prev;
+            p->lidx[p->nlidx++] = cur;
+        }
+        prev = cur;
+        n++;
+    }
+    if (n < 2) return fail(p, "a line needs at least 2 vertices (got %zu)", n);
     return true;
 }
 
@@ -325,7 +352,8 @@ static bool parse_line(parser *p, const char *s, const char *e) {
     if (n == 2 && tb[0] == 'v' && tb[1] == 't') return add_texcoord(p, s, e);
     if (n == 2 && tb[0] == 'v' && tb[1] == 'n') return add_normal(p, s, e);
     if (n == 1 && tb[0] == 'f') return add_face(p, s, e);
-    return true; /* o, g, s, usemtl, mtllib, l, p, ...: not needed for drawing */
+    if (n == 1 && tb[0] == 'l') return add_line(p, s, e);
+    return true; /* o, g, s, usemtl, mtllib, p, ...: not needed for drawing */
 }
 
 /* n elements of elem bytes, or NULL on overflow or no memory. */
@@ -337,7 +365,7 @@ static void *alloc_array(size_t n, size_t elem) {
 /* Builds the output arrays from the keys. */
 static bool finish(parser *p, sc_mesh *out) {
     p->line = 0;
-    if (p->nidx == 0) return fail(p, "no faces");
+    if (p->nidx == 0 && p->nlidx == 0) return fail(p, "no faces or lines");
     bool any_vt = false, any_vn = false;
     for (size_t i = 0; i < p->nkeys; i++) {
         any_vt |= p->keys[i].vt != NONE;
@@ -359,7 +387,7 @@ static bool finish(parser *p, sc_mesh *out) {
         float *pos = m.positions + i * 4, *col = m.colors + i * 4;
         pos[0] = v[0], pos[1] = v[1], pos[2] = v[2], pos[3] = 1.0f;
         col[0] = v[3], col[1] = v[4], col[2] = v[5], col[3] = v[6];
-        /* A face vertex without one, in a mesh where others have one, gets zeros. */
+        /* A vertex without one, in a mesh where others have one, gets zeros. */
         if (any_vt) {
             m.texcoords[i * 2] = k.vt != NONE ? p->vt[(size_t)k.vt * 2] : 0.0f;
             m.texcoords[i * 2 + 1] = k.vt != NONE ? p->vt[(size_t)k.vt * 2 + 1] : 0.0f;
@@ -371,8 +399,11 @@ static bool finish(parser *p, sc_mesh *out) {
     }
     m.vertex_count = (uint32_t)n;
     m.index_count = (uint32_t)p->nidx;
-    m.indices = p->idx; /* handed over */
+    m.indices = p->idx; /* handed over; NULL when there are no faces */
     p->idx = NULL;
+    m.line_index_count = (uint32_t)p->nlidx;
+    m.line_indices = p->lidx; /* likewise */
+    p->lidx = NULL;
     *out = m;
     return true;
 }
@@ -398,6 +429,7 @@ bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, 
     free(p.keys);
     free(p.table);
     free(p.idx);
+    free(p.lidx);
     return ok;
 }
 
@@ -453,5 +485,6 @@ void sc_mesh_free(sc_mesh *mesh) {
     free(mesh->texcoords);
     free(mesh->normals);
     free(mesh->indices);
+    free(mesh->line_indices);
     memset(mesh, 0, sizeof *mesh);
 }

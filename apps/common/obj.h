@@ -1,4 +1,5 @@
-/* obj.h - triangle meshes in plain arrays, and a Wavefront OBJ loader that produces them.
+/* obj.h - meshes of triangles and lines in plain arrays, and a Wavefront OBJ loader that produces
+ * them.
  *
  * API-neutral: nothing here knows about any graphics API, so every renderer can share it.
  */
@@ -9,18 +10,23 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* Upper bound of vertex_count and index_count: small enough for a signed 32-bit count. */
+/* Upper bound of vertex_count, index_count and line_index_count: small enough for a signed 32-bit
+ * count. */
 #define SC_MESH_MAX_COUNT 0x7fffffffu
 
-/* An indexed triangle list. Every array has one entry per vertex; the mesh owns them all. */
+/* An indexed triangle list and an indexed line list over the same vertices. Every vertex array has
+ * one entry per vertex; the mesh owns them all. A mesh has triangles, lines or both. */
 typedef struct sc_mesh {
     uint32_t vertex_count;
-    float *positions; /* vertex_count * 4: x, y, z, w (w = 1) */
-    float *colors;    /* vertex_count * 4: r, g, b, a (a = 1 unless given; white when none) */
-    float *texcoords; /* vertex_count * 2: s, t, or NULL when no face uses a texture coordinate */
-    float *normals;   /* vertex_count * 3, or NULL when no face uses a normal */
-    uint32_t index_count; /* a multiple of 3, >= 3 */
-    uint32_t *indices;    /* each < vertex_count */
+    float *positions;     /* vertex_count * 4: x, y, z, w (w = 1) */
+    float *colors;        /* vertex_count * 4: r, g, b, a (a = 1 unless given; white when none) */
+    float *texcoords;     /* vertex_count * 2: s, t, or NULL when no face or line uses a texture
+                             coordinate */
+    float *normals;       /* vertex_count * 3, or NULL when no face uses a normal */
+    uint32_t index_count; /* triangles: a multiple of 3; 0 when the mesh has lines only */
+    uint32_t *indices;    /* each < vertex_count; NULL when index_count is 0 */
+    uint32_t line_index_count; /* line segments a -> b: a multiple of 2; 0 when there are none */
+    uint32_t *line_indices;    /* each < vertex_count; NULL when line_index_count is 0 */
 } sc_mesh;
 
 /** Parses OBJ text of len bytes (NUL bytes are an error); name is used in error messages only. */

@@ -235,6 +235,8 @@ static const enum_name lightings[] = {{"none", SC_LIGHTING_NONE},
                                       {"gouraud", SC_LIGHTING_GOURAUD},
                                       {"phong", SC_LIGHTING_PHONG},
                                       {NULL, 0}};
+static const enum_name polygon_modes[] = {
+    {"fill", SC_POLYGON_MODE_FILL}, {"line", SC_POLYGON_MODE_LINE}, {NULL, 0}};
 static const enum_name light_types[] = {
     {"directional", SC_LIGHT_DIRECTIONAL}, {"point", SC_LIGHT_POINT}, {NULL, 0}};
 
@@ -505,6 +507,39 @@ static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
 
 /* ---- scenes and draws ------------------------------------------------------------------------ */
 
+/* What a draw of a mesh with lines cannot do (docs/scene-format.md, "Lines"): flat lighting needs a
+ * face, Gouraud and Phong a normal at every line vertex, which only faces give; back-to-front
+ * sorting orders triangles. */
+static bool check_lines(ctx *c, const loc *l, const sc_draw *d) {
+    const sc_mesh *m = &c->f->meshes[d->mesh];
+    const char *src = c->f->mesh_sources[d->mesh];
+    if (m->line_index_count == 0) return true;
+    if (d->sort == SC_SORT_BACK_TO_FRONT)
+        return fail(c, l,
+                    "'sort' 'back_to_front' orders triangles, and mesh '%s' has lines ('l'): draw "
+                    "them from a mesh of their own",
+                    src);
+    if (d->lighting == SC_LIGHTING_FLAT)
+        return fail(c, l,
+                    "'lighting' 'flat' lights faces, and mesh '%s' has lines ('l'), which have "
+                    "none: light it 'gouraud' or 'phong', or draw the lines from a mesh of their "
+                    "own",
+                    src);
+    if (d->lighting == SC_LIGHTING_NONE) return true;
+    for (uint32_t i = 0; i < m->line_index_count; i++) {
+        const float *n = m->normals + (size_t)m->line_indices[i] * 3;
+        if (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f) continue;
+        const float *p = m->positions + (size_t)m->line_indices[i] * 4;
+        return fail(c, l,
+                    "'lighting' '%s' needs a normal at every line vertex, and line vertex (%g, %g, "
+                    "%g) of mesh '%s' has none: an 'l' vertex gets one only from the faces at its "
+                    "position, in a file without 'vn'",
+                    d->lighting == SC_LIGHTING_GOURAUD ? "gouraud" : "phong", (double)p[0],
+                    (double)p[1], (double)p[2], src);
+    }
+    return true;
+}
+
 /* has_shadow: the scene has a shadow, which flat and Gouraud draws cannot receive. */
 static bool parse_draw(ctx *c, const loc *l, const cJSON *v, bool has_shadow, sc_draw *d) {
     if (!cJSON_IsObject(v)) return fail(c, l, "a draw must be an object");
@@ -516,13 +551,15 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, bool has_shadow, sc
     int filter = SC_FILTER_BILINEAR, wrap = SC_WRAP_REPEAT, cull = SC_CULL_NONE;
     int front = SC_FRONT_FACE_CCW, compare = SC_COMPARE_LESS;
     int blend = SC_BLEND_OPAQUE, sort = SC_SORT_NONE, lighting = SC_LIGHTING_NONE;
+    int polygon_mode = SC_POLYGON_MODE_FILL;
     if (!get_enum(c, l, v, "mode", modes, &mode) ||
         !get_enum(c, l, v, "filter", filters, &filter) ||
         !get_enum(c, l, v, "wrap", wraps, &wrap) || !get_enum(c, l, v, "cull", culls, &cull) ||
         !get_enum(c, l, v, "front_face", front_faces, &front) ||
         !get_enum(c, l, v, "depth_compare", compares, &compare) ||
         !get_enum(c, l, v, "blend", blends, &blend) || !get_enum(c, l, v, "sort", sorts, &sort) ||
-        !get_enum(c, l, v, "lighting", lightings, &lighting))
+        !get_enum(c, l, v, "lighting", lightings, &lighting) ||
+        !get_enum(c, l, v, "polygon_mode", polygon_modes, &polygon_mode))
         return false;
     d->mode = (sc_mode)mode;
     d->filter = (sc_filter)filter;
@@ -533,6 +570,8 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, bool has_shadow, sc
     d->blend = (sc_blend)blend;
     d->sort = (sc_sort)sort;
     d->lighting = (sc_lighting)lighting;
+    d->polygon_mode = (sc_polygon_mode)polygon_mode;
+    if (!check_lines(c, l, d)) return false;
 
     const cJSON *dw = cJSON_GetObjectItemCaseSensitive(v, "depth_write");
     if (dw && !cJSON_IsBool(dw)) return fail(c, l, "'depth_write' must be true or false");

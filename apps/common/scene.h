@@ -58,6 +58,11 @@ typedef enum sc_lighting {
     SC_LIGHTING_PHONG,   /* per pixel, normal and view position interpolated */
 } sc_lighting;
 
+typedef enum sc_polygon_mode {
+    SC_POLYGON_MODE_FILL, /* triangles are filled */
+    SC_POLYGON_MODE_LINE, /* wireframe: each triangle's three edges (after culling), as lines */
+} sc_polygon_mode;
+
 /* Most lights of a scene (sgapi's SG_MAX_LIGHTS). */
 #define SC_MAX_LIGHTS 8
 
@@ -93,7 +98,7 @@ typedef struct sc_shadow {
     bool pcf;         /* 2 x 2 percentage-closer filtering, else the one texel under the point */
 } sc_shadow;
 
-/* One draw call. */
+/* One draw call: the mesh's triangles, then its lines, with the same state. */
 typedef struct sc_draw {
     int mesh;    /* index into sc_file.meshes */
     int texture; /* index into sc_file.textures, or -1 when the draw names none (null) */
@@ -113,8 +118,9 @@ typedef struct sc_draw {
     bool casts_shadow;    /* drawn into the scene's shadow map; default true */
     bool receives_shadow; /* darkened where the scene's shadow falls; default true (never true
                              with a shadow and flat or Gouraud lighting: the loader refuses it) */
-    float world_view[16]; /* row-major: elements 0..3 are the first row */
-    float proj[16];       /* row-major; clip = proj * world_view * position */
+    sc_polygon_mode polygon_mode; /* how the mesh's triangles are drawn; its lines are lines */
+    float world_view[16];         /* row-major: elements 0..3 are the first row */
+    float proj[16];               /* row-major; clip = proj * world_view * position */
 } sc_draw;
 
 /* One image to render. */

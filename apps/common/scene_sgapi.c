@@ -50,6 +50,8 @@ sgPipelineDesc ss_pipeline_desc(const sc_draw *d) {
     p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
     p.blend = d->blend == SC_BLEND_ALPHA ? SG_BLEND_ALPHA : SG_BLEND_OPAQUE;
     p.lighting = lighting_map[d->lighting];
+    p.polygon_mode =
+        d->polygon_mode == SC_POLYGON_MODE_LINE ? SG_POLYGON_MODE_LINE : SG_POLYGON_MODE_FILL;
     return p;
 }
 
@@ -74,7 +76,8 @@ static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
            a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
            a->depth.bias_constant == b->depth.bias_constant &&
            a->depth.bias_slope == b->depth.bias_slope && a->cull == b->cull &&
-           a->front_face == b->front_face && a->blend == b->blend && a->lighting == b->lighting;
+           a->front_face == b->front_face && a->blend == b->blend && a->lighting == b->lighting &&
+           a->polygon_mode == b->polygon_mode;
 }
 
 bool ss_get_pso(const char *prog, sgDevice *dev, ss_pso_cache *c, const sgPipelineDesc *desc,
@@ -112,36 +115,71 @@ void ss_pso_cache_free(ss_pso_cache *c) {
 
 int ss_pipeline_pool_size(const sc_file *files, int file_count, int settings) {
     /* ss_pipeline_desc has 5 colour sources (vertex colour; texture x 2 filters x 2 wraps) x
-     * 8 compares x 2 depth writes x 3 culls x 2 front faces x 2 blends x 4 lighting modes; a
-     * file may use fewer states than it has draws. A shadow's casters take at most 3 culls x
-     * 2 front faces with the scene's depth bias. */
+     * 8 compares x 2 depth writes x 3 culls x 2 front faces x 2 blends x 4 lighting modes x
+     * 2 polygon modes; a file may use fewer states than it has draws. A shadow's casters take at
+     * most 3 culls x 2 front faces x 2 polygon modes with the scene's depth bias. */
     uint64_t draws = 0, casters = 0;
     for (int i = 0; i < file_count; i++) {
         for (size_t j = 0; j < files[i].scene_count; j++) {
             const sc_scene *s = &files[i].scenes[j];
             draws += s->draw_count;
-            if (s->has_shadow) casters += s->draw_count < 6 ? s->draw_count : 6;
+            if (s->has_shadow) casters += s->draw_count < 12 ? s->draw_count : 12;
         }
     }
-    const uint64_t states = 5 * 8 * 2 * 3 * 2 * 2 * 4, limit = 65535;
+    const uint64_t states = 5 * 8 * 2 * 3 * 2 * 2 * 4 * 2, limit = 65535;
     uint64_t n = (draws < states ? draws : states) * (uint64_t)(settings > 0 ? settings : 1);
     n += casters;
     return n < 64 ? 64 : n > limit ? (int)limit : (int)n;
 }
 
 void ss_destroy_uploads(sgDevice *dev, ss_uploads *u) {
-    for (size_t i = 0; i < u->geom_count; i++) sgDestroyGeom(dev, u->geoms[i]);
+    for (size_t i = 0; i < u->geom_count; i++) {
+        if (u->geoms[i].id) sgDestroyGeom(dev, u->geoms[i]);
+        if (u->line_geoms[i].id) sgDestroyGeom(dev, u->line_geoms[i]);
+    }
     for (size_t i = 0; i < u->image_count; i++) sgDestroyImage2D(dev, u->images[i]);
     free(u->geoms);
+    free(u->line_geoms);
     free(u->images);
     memset(u, 0, sizeof *u);
+}
+
+size_t ss_geom_count(const sc_file *f) {
+    size_t n = 0;
+    for (size_t i = 0; i < f->mesh_count; i++)
+        n += (f->meshes[i].index_count > 0) + (f->meshes[i].line_index_count > 0);
+    return n;
+}
+
+/* One geom of a mesh: its triangles or its lines, over the mesh's vertex arrays. */
+static bool upload_geom(const char *prog, sgDevice *dev, const sc_file *f, size_t mesh, bool lines,
+                        sgGeom *out) {
+    const sc_mesh *m = &f->meshes[mesh];
+    /* The loader caps every count at INT32_MAX, so they fit. The loaded file outlives the geom,
+     * so the arrays need not be copied. */
+    sgGeomDesc desc = {
+        .vertex_count = (int)m->vertex_count,
+        .positions = m->positions,
+        .colors = m->colors,
+        .texcoords = m->texcoords,
+        .normals = m->normals,
+        .index_count = (int)(lines ? m->line_index_count : m->index_count),
+        .indices = lines ? m->line_indices : m->indices,
+        .primitive = lines ? SG_PRIMITIVE_LINES : SG_PRIMITIVE_TRIANGLES,
+        .storage = SG_STORAGE_REFERENCE,
+    };
+    sgResult r = sgCreateGeom(dev, &desc, out);
+    if (r != SG_OK)
+        return ss_fail(prog, dev, r, "mesh '%s'%s", f->mesh_sources[mesh], lines ? ": lines" : "");
+    return true;
 }
 
 bool ss_upload(const char *prog, sgDevice *dev, const sc_file *f, ss_uploads *u) {
     memset(u, 0, sizeof *u);
     u->geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->geoms);
+    u->line_geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->line_geoms);
     u->images = calloc(f->texture_count ? f->texture_count : 1, sizeof *u->images);
-    if (!u->geoms || !u->images) {
+    if (!u->geoms || !u->line_geoms || !u->images) {
         fprintf(stderr, "%s: out of memory\n", prog);
         return false;
     }
@@ -153,23 +191,12 @@ bool ss_upload(const char *prog, sgDevice *dev, const sc_file *f, ss_uploads *u)
         u->image_count++;
     }
     for (size_t i = 0; i < f->mesh_count; i++) {
-        const sc_mesh *m = &f->meshes[i];
-        sgGeomDesc desc;
-        memset(&desc, 0, sizeof desc);
-        /* The loader caps both counts at INT32_MAX, so they fit. */
-        desc.vertex_count = (int)m->vertex_count;
-        desc.positions = m->positions;
-        desc.colors = m->colors;
-        desc.texcoords = m->texcoords;
-        desc.normals = m->normals;
-        desc.index_count = (int)m->index_count;
-        desc.indices = m->indices;
-        desc.primitive = SG_PRIMITIVE_TRIANGLES;
-        /* The loaded file outlives the geom, so the arrays need not be copied. */
-        desc.storage = SG_STORAGE_REFERENCE;
-        sgResult r = sgCreateGeom(dev, &desc, &u->geoms[i]);
-        if (r != SG_OK) return ss_fail(prog, dev, r, "mesh '%s'", f->mesh_sources[i]);
+        /* Counted first, so that ss_destroy_uploads frees what a failure leaves. */
         u->geom_count++;
+        const sc_mesh *m = &f->meshes[i];
+        if (m->index_count > 0 && !upload_geom(prog, dev, f, i, false, &u->geoms[i])) return false;
+        if (m->line_index_count > 0 && !upload_geom(prog, dev, f, i, true, &u->line_geoms[i]))
+            return false;
     }
     return true;
 }
@@ -235,6 +262,7 @@ bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, cons
         p.depth.bias_slope = s->shadow.slope_bias;
         p.cull = ss_pipeline_desc(d).cull;
         p.front_face = ss_pipeline_desc(d).front_face;
+        p.polygon_mode = ss_pipeline_desc(d).polygon_mode; /* a wireframe casts its edges */
         p.blend = SG_BLEND_OPAQUE;
         p.lighting = SG_LIGHTING_NONE;
         if (!ss_get_pso(prog, dev, cache, &p, &out->psos[i])) {
@@ -257,6 +285,20 @@ void ss_destroy_shadow(sgDevice *dev, ss_shadow *sh) {
     memset(sh, 0, sizeof *sh);
 }
 
+/* A mesh's triangles, then its lines, with one pipeline: lines are lines whatever its polygon
+ * mode. The order of triangles applies to triangles only (the loader sorts no mesh with lines). */
+static sgResult draw_mesh(sgDevice *dev, sgPipelineStateObject pso, const ss_uploads *u, int mesh,
+                          const sgDrawParams *params) {
+    sgResult r = SG_OK;
+    if (u->geoms[mesh].id) r = sgDraw(dev, pso, u->geoms[mesh], params);
+    if (r == SG_OK && u->line_geoms[mesh].id) {
+        sgDrawParams lp = *params;
+        lp.sort = SG_SORT_NONE;
+        r = sgDraw(dev, pso, u->line_geoms[mesh], &lp);
+    }
+    return r;
+}
+
 /* The shadow's depth-only pass: every caster, unlit and untextured, into the map. */
 static bool draw_shadow_pass(const char *prog, sgDevice *dev, const sc_file *f, const sc_scene *s,
                              const ss_uploads *u, const ss_shadow *sh) {
@@ -270,7 +312,7 @@ static bool draw_shadow_pass(const char *prog, sgDevice *dev, const sc_file *f, 
         memset(&params, 0, sizeof params);
         memcpy(params.world_view, sh->world_view[i], sizeof params.world_view);
         memcpy(params.proj, sh->proj, sizeof params.proj);
-        r = sgDraw(dev, sh->psos[i], u->geoms[d->mesh], &params);
+        r = draw_mesh(dev, sh->psos[i], u, d->mesh, &params);
         if (r != SG_OK) {
             ss_fail(prog, dev, r, "scene '%s', shadow pass, draw %zu (%s): sgDraw", s->name, i,
                     f->mesh_sources[d->mesh]);
@@ -311,7 +353,7 @@ bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *f, const sc_s
             params.shininess = d->shininess;
         }
         if (shadowed && d->receives_shadow) params.shadow = &shadow->receiver;
-        r = sgDraw(dev, psos[i], u->geoms[d->mesh], &params);
+        r = draw_mesh(dev, psos[i], u, d->mesh, &params);
         if (r != SG_OK) {
             ss_fail(prog, dev, r, "scene '%s', draw %zu (%s): sgDraw", s->name, i,
                     f->mesh_sources[d->mesh]);

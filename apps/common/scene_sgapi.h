@@ -30,15 +30,21 @@ void ss_pso_cache_free(ss_pso_cache *cache);
  *  draws and shadows can need, times `settings` variants of each, within sgapi's limit. */
 int ss_pipeline_pool_size(const sc_file *files, int file_count, int settings);
 
-/* What one file's meshes and textures became on a device. */
+/* What one file's meshes and textures became on a device. A mesh's triangles and its lines are
+ * two geoms over the same vertex arrays; a geom whose id is 0 does not exist (no such primitives).
+ */
 typedef struct ss_uploads {
-    sgGeom *geoms;
+    sgGeom *geoms;      /* per mesh: its triangles (SG_PRIMITIVE_TRIANGLES) */
+    sgGeom *line_geoms; /* per mesh: its lines (SG_PRIMITIVE_LINES) */
     sgImage2D *images;
-    size_t geom_count, image_count;
+    size_t geom_count, image_count; /* meshes and textures uploaded so far */
 } ss_uploads;
 
-/** Creates a geom per mesh (referencing the file's arrays) and an image per texture. */
+/** Creates the geoms of every mesh (referencing the file's arrays) and an image per texture. */
 bool ss_upload(const char *prog, sgDevice *dev, const sc_file *file, ss_uploads *out);
+/** How many geoms ss_upload creates for a file: one per mesh with triangles, one per mesh with
+ *  lines. */
+size_t ss_geom_count(const sc_file *file);
 /** Destroys what ss_upload created. */
 void ss_destroy_uploads(sgDevice *dev, ss_uploads *u);
 
@@ -66,7 +72,8 @@ void ss_destroy_shadow(sgDevice *dev, ss_shadow *shadow);
 
 /** One frame: the shadow's depth-only pass when the scene has one (every caster into the map),
  *  then sgBeginRenderPass, every draw of the scene with psos[i] (receivers with the shadow),
- *  sgEndRenderPass. shadow may be NULL for a scene without one. */
+ *  sgEndRenderPass. A draw is its mesh's triangles, then its lines, both with its pipeline (lines
+ *  are lines whatever the polygon mode). shadow may be NULL for a scene without one. */
 bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *file, const sc_scene *scene,
                    const ss_uploads *u, const sgPipelineStateObject *psos, const sgPassDesc *pass,
                    const ss_shadow *shadow);

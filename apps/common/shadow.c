@@ -104,11 +104,29 @@ static int clip_plane(double (*poly)[3], int n, double a, double b, double c) {
     return m;
 }
 
-/* The nearest and farthest depth, along the light's -z, of the casters' triangles within its
- * square frustum of half-angle tangent t (view v): each triangle clipped to the frustum's four
- * sides, so one that passes close to the light between its vertices counts there. Also the
- * largest half-angle tangent of any caster vertex (infinite for one at or behind the light).
- * False when nothing lies within the frustum. */
+/* Adds the depths (along the light's -z) of what remains of a convex polygon of n points (n <= 3;
+ * 2 for a line segment, walked there and back) inside the square frustum of half-angle tangent t
+ * to the range [*lo, *hi]; *any says whether the range has a point. */
+static void clip_depths(double (*poly)[3], int n, double t, double *lo, double *hi, bool *any) {
+    /* Inside: |x| <= t * depth and |y| <= t * depth, depth = -z. */
+    n = clip_plane(poly, n, -1.0, 0.0, -t);
+    n = n ? clip_plane(poly, n, 1.0, 0.0, -t) : 0;
+    n = n ? clip_plane(poly, n, 0.0, -1.0, -t) : 0;
+    n = n ? clip_plane(poly, n, 0.0, 1.0, -t) : 0;
+    for (int k = 0; k < n; k++) {
+        double depth = -poly[k][2];
+        if (!(depth >= 0.0)) continue;
+        if (!*any || depth < *lo) *lo = depth;
+        if (!*any || depth > *hi) *hi = depth;
+        *any = true;
+    }
+}
+
+/* The nearest and farthest depth, along the light's -z, of the casters' triangles and line
+ * segments within its square frustum of half-angle tangent t (view v): each clipped to the
+ * frustum's four sides, so one that passes close to the light between its vertices counts there.
+ * Also the largest half-angle tangent of any caster vertex (infinite for one at or behind the
+ * light). False when nothing lies within the frustum. */
 static bool view_depths(const sc_file *f, const sc_scene *s, const double v[16], double t,
                         double *lo, double *hi, double *spread) {
     bool any = false;
@@ -130,19 +148,15 @@ static bool view_depths(const sc_file *f, const sc_scene *s, const double v[16],
             for (int k = 0; k < 3 && ok; k++)
                 ok = light_space(draw->world_view, m->positions + (size_t)m->indices[i + k] * 4, v,
                                  poly[k]);
-            if (!ok) continue;
-            /* Inside: |x| <= t * depth and |y| <= t * depth, depth = -z. */
-            int n = clip_plane(poly, 3, -1.0, 0.0, -t);
-            n = n ? clip_plane(poly, n, 1.0, 0.0, -t) : 0;
-            n = n ? clip_plane(poly, n, 0.0, -1.0, -t) : 0;
-            n = n ? clip_plane(poly, n, 0.0, 1.0, -t) : 0;
-            for (int k = 0; k < n; k++) {
-                double depth = -poly[k][2];
-                if (!(depth >= 0.0)) continue;
-                if (!any || depth < *lo) *lo = depth;
-                if (!any || depth > *hi) *hi = depth;
-                any = true;
-            }
+            if (ok) clip_depths(poly, 3, t, lo, hi, &any);
+        }
+        for (uint32_t i = 0; i + 1 < m->line_index_count; i += 2) {
+            double poly[12][3];
+            bool ok = true;
+            for (int k = 0; k < 2 && ok; k++)
+                ok = light_space(draw->world_view,
+                                 m->positions + (size_t)m->line_indices[i + k] * 4, v, poly[k]);
+            if (ok) clip_depths(poly, 2, t, lo, hi, &any);
         }
     }
     return any;

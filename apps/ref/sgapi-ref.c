@@ -10,7 +10,9 @@
  * lit draws evaluate sgapi's lighting equation in GLSL per vertex (Gouraud), per pixel (Phong) or
  * per triangle in a geometry shader (flat), with the lights in the same per-draw uniform block;
  * a scene's shadow is a depth-only pass into a D32 map before the scene's pass, the bias written by
- * the fragment shader, and the receivers' test done in GLSL with texelFetch.
+ * the fragment shader, and the receivers' test done in GLSL with texelFetch; a mesh's lines are a
+ * line list drawn after its triangles, and wireframes polygon mode LINE, both rasterised as
+ * Bresenham lines (VK_EXT_line_rasterization).
  * Writes DIR/<scene>.png and prints the time per frame (submit to fence, median of N). --threads
  * sets LP_NUM_THREADS.
  */
@@ -130,7 +132,9 @@ typedef struct ref {
     VkCommandBuffer cmd;
     VkFence fence;
     VkShaderModule modules[SH_COUNT];
-    bool has_geometry;                    /* geometryShader: needed by flat lighting */
+    bool has_geometry;  /* geometryShader: needed by flat lighting */
+    bool has_lines;     /* VK_EXT_line_rasterization's bresenhamLines: needed by lines */
+    bool has_wireframe; /* fillModeNonSolid: needed by polygon mode line */
     VkDescriptorSetLayout color_layout;   /* set 0: the draws' uniform blocks, dynamic offset */
     VkDescriptorSetLayout texture_layout; /* set 1: the texture and its sampler */
     VkDescriptorSetLayout shadow_layout;  /* set 2: the shadow map, a sampled image */
@@ -208,11 +212,34 @@ static bool create_device(ref *r) {
     /* One block per draw, each at an offset the device accepts for a dynamic uniform buffer. */
     VkDeviceSize align = props.limits.minUniformBufferOffsetAlignment, size = sizeof(draw_block);
     r->draw_stride = align > 1 ? (size + align - 1) / align * align : size;
-    /* Flat lighting runs in a geometry shader; without one, only flat-lit draws fail. */
-    VkPhysicalDeviceFeatures have, want = {0};
-    vkGetPhysicalDeviceFeatures(r->phys, &have);
-    r->has_geometry = have.geometryShader == VK_TRUE;
-    want.geometryShader = have.geometryShader;
+    /* sgapi's lines follow the diamond-exit rule: Bresenham lines, an extension's feature. */
+    bool line_ext = false;
+    uint32_t next = 0;
+    vkEnumerateDeviceExtensionProperties(r->phys, NULL, &next, NULL);
+    VkExtensionProperties *exts = calloc(next ? next : 1, sizeof *exts);
+    if (!exts) return fail(r, "out of memory");
+    vkEnumerateDeviceExtensionProperties(r->phys, NULL, &next, exts);
+    for (uint32_t i = 0; i < next; i++)
+        line_ext |= strcmp(exts[i].extensionName, VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME) == 0;
+    free(exts);
+    VkPhysicalDeviceLineRasterizationFeaturesEXT lines_have = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
+    VkPhysicalDeviceFeatures2 have = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                      .pNext = line_ext ? &lines_have : NULL};
+    vkGetPhysicalDeviceFeatures2(r->phys, &have);
+    /* Flat lighting runs in a geometry shader, wireframes need fillModeNonSolid, lines the
+     * extension; without one, only the draws that need it fail. */
+    r->has_geometry = have.features.geometryShader == VK_TRUE;
+    r->has_wireframe = have.features.fillModeNonSolid == VK_TRUE;
+    r->has_lines = line_ext && lines_have.bresenhamLines == VK_TRUE;
+    VkPhysicalDeviceLineRasterizationFeaturesEXT lines_want = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT,
+        .bresenhamLines = r->has_lines ? VK_TRUE : VK_FALSE};
+    VkPhysicalDeviceFeatures2 want = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                      .pNext = r->has_lines ? &lines_want : NULL};
+    want.features.geometryShader = have.features.geometryShader;
+    want.features.fillModeNonSolid = have.features.fillModeNonSolid;
+    const char *line_ext_name = VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME;
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(r->phys, &n, NULL);
     VkQueueFamilyProperties qf[16];
@@ -231,9 +258,11 @@ static bool create_device(ref *r) {
                                    .queueCount = 1,
                                    .pQueuePriorities = &prio};
     VkDeviceCreateInfo dci = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                              .pNext = &want,
                               .queueCreateInfoCount = 1,
                               .pQueueCreateInfos = &qci,
-                              .pEnabledFeatures = &want};
+                              .enabledExtensionCount = r->has_lines ? 1 : 0,
+                              .ppEnabledExtensionNames = &line_ext_name};
     VK_CHECK(r, vkCreateDevice(r->phys, &dci, NULL, &r->device));
     vkGetDeviceQueue(r->device, r->queue_family, 0, &r->queue);
     VkCommandPoolCreateInfo cpi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
@@ -408,15 +437,17 @@ static bool create_shaders_and_layouts(ref *r) {
     return true;
 }
 
-/* The pipeline state a draw needs, packed into a key. A caster's depth-only pipeline depends on
- * its cull and winding alone (the bias is in the uniform block). */
-static uint32_t pipeline_key(const sc_draw *d, bool textured, draw_kind kind) {
+/* The pipeline state a draw needs, packed into a key: for its triangles, or (lines) for its mesh's
+ * line list, where the polygon mode plays no part. A caster's depth-only pipeline depends on its
+ * cull, winding and polygon mode alone (the bias is in the uniform block). */
+static uint32_t pipeline_key(const sc_draw *d, bool textured, draw_kind kind, bool lines) {
+    uint32_t prim = lines ? 1u << 14 : (uint32_t)d->polygon_mode << 15;
     if (kind == DRAW_CASTER)
-        return (uint32_t)d->cull << 1 | (uint32_t)d->front_face << 3 | 1u << 13;
+        return (uint32_t)d->cull << 1 | (uint32_t)d->front_face << 3 | 1u << 13 | prim;
     return (uint32_t)textured | (uint32_t)d->cull << 1 | (uint32_t)d->front_face << 3 |
            (uint32_t)d->depth_compare << 4 | (uint32_t)d->depth_write << 8 |
            (uint32_t)d->blend << 9 | (uint32_t)d->lighting << 10 |
-           (uint32_t)(kind == DRAW_RECEIVER) << 12;
+           (uint32_t)(kind == DRAW_RECEIVER) << 12 | prim;
 }
 
 static const VkCompareOp compare_ops[] = {
@@ -436,9 +467,10 @@ static VkPipelineLayout layout_of(const ref *r, bool textured, draw_kind kind) {
     return textured && kind == DRAW_PLAIN ? r->layout_texture : r->layout_color;
 }
 
-static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind, VkPipeline *out) {
+static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind, bool lines,
+                         VkPipeline *out) {
     if (kind == DRAW_CASTER) textured = false;
-    uint32_t key = pipeline_key(d, textured, kind);
+    uint32_t key = pipeline_key(d, textured, kind, lines);
     for (int i = 0; i < r->pipeline_count; i++)
         if (r->pipelines[i].key == key) {
             *out = r->pipelines[i].pipeline;
@@ -449,6 +481,14 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
     if (lit && d->lighting == SC_LIGHTING_FLAT && !r->has_geometry)
         return fail(r, "flat lighting needs geometry shaders, which this lavapipe does not offer "
                        "(VkPhysicalDeviceFeatures.geometryShader)");
+    /* The loader lets no flat-lit draw have lines: the geometry shader takes triangles. */
+    const bool wireframe = !lines && d->polygon_mode == SC_POLYGON_MODE_LINE;
+    if (wireframe && !r->has_wireframe)
+        return fail(r, "polygon mode line needs VkPhysicalDeviceFeatures.fillModeNonSolid, which "
+                       "this lavapipe does not offer");
+    if ((lines || wireframe) && !r->has_lines)
+        return fail(r, "lines need Bresenham line rasterisation (VK_EXT_line_rasterization, "
+                       "bresenhamLines), which this lavapipe does not offer");
     VkPipelineShaderStageCreateInfo stages[3] = {
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
          .stage = VK_SHADER_STAGE_VERTEX_BIT,
@@ -495,15 +535,22 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
         .pVertexAttributeDescriptions = attr};
     VkPipelineInputAssemblyStateCreateInfo ia = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
-        .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+        .topology = lines ? VK_PRIMITIVE_TOPOLOGY_LINE_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
     VkPipelineViewportStateCreateInfo vp = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
         .viewportCount = 1,
         .scissorCount = 1};
-    /* The y flip in the vertex shader keeps on-screen winding, so CCW means CCW as displayed. */
+    /* sgapi's lines: one pixel wide, diamond exit, whether a line list or a triangle's edges.
+     * Filled triangles go without it, as they always have. */
+    VkPipelineRasterizationLineStateCreateInfoEXT ls = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT,
+        .lineRasterizationMode = VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT};
+    /* The y flip in the vertex shader keeps on-screen winding, so CCW means CCW as displayed.
+     * Culling applies to triangles only, before a wireframe's edges are drawn. */
     VkPipelineRasterizationStateCreateInfo rs = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
-        .polygonMode = VK_POLYGON_MODE_FILL,
+        .pNext = lines || wireframe ? &ls : NULL,
+        .polygonMode = wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL,
         .cullMode = d->cull == SC_CULL_BACK    ? VK_CULL_MODE_BACK_BIT
                     : d->cull == SC_CULL_FRONT ? VK_CULL_MODE_FRONT_BIT
                                                : VK_CULL_MODE_NONE,
@@ -692,8 +739,9 @@ static bool upload_texture(ref *r, const sc_image *img, texture *t) {
 
 /* GPU copies of one scene file's meshes and textures. */
 typedef struct uploads {
-    buffer *vertex; /* per mesh: positions | colours | texcoords | normals, back to back */
-    buffer *index;
+    buffer *vertex;     /* per mesh: positions | colours | texcoords | normals, back to back */
+    buffer *index;      /* per mesh: its triangles (no buffer when it has none) */
+    buffer *line_index; /* per mesh: its line list (no buffer when it has none) */
     texture *textures;
     size_t mesh_count, texture_count;
 } uploads;
@@ -701,8 +749,9 @@ typedef struct uploads {
 static bool upload_file(ref *r, const sc_file *f, uploads *u) {
     u->vertex = calloc(f->mesh_count + 1, sizeof *u->vertex);
     u->index = calloc(f->mesh_count + 1, sizeof *u->index);
+    u->line_index = calloc(f->mesh_count + 1, sizeof *u->line_index);
     u->textures = calloc(f->texture_count + 1, sizeof *u->textures);
-    if (!u->vertex || !u->index || !u->textures) return fail(r, "out of memory");
+    if (!u->vertex || !u->index || !u->line_index || !u->textures) return fail(r, "out of memory");
     for (size_t i = 0; i < f->mesh_count; i++) {
         const sc_mesh *m = &f->meshes[i];
         size_t n = m->vertex_count;
@@ -722,10 +771,18 @@ static bool upload_file(ref *r, const sc_file *f, uploads *u) {
             memcpy(p + n * 40, m->normals, n * 12);
         else
             memset(p + n * 40, 0, n * 12);
-        if (!create_buffer(r, (VkDeviceSize)m->index_count * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
-                           &u->index[i]))
-            return false;
-        memcpy(u->index[i].mapped, m->indices, (size_t)m->index_count * 4);
+        if (m->index_count > 0) {
+            if (!create_buffer(r, (VkDeviceSize)m->index_count * 4,
+                               VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &u->index[i]))
+                return false;
+            memcpy(u->index[i].mapped, m->indices, (size_t)m->index_count * 4);
+        }
+        if (m->line_index_count > 0) {
+            if (!create_buffer(r, (VkDeviceSize)m->line_index_count * 4,
+                               VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &u->line_index[i]))
+                return false;
+            memcpy(u->line_index[i].mapped, m->line_indices, (size_t)m->line_index_count * 4);
+        }
     }
     for (size_t i = 0; i < f->texture_count; i++) {
         if (!upload_texture(r, &f->textures[i], &u->textures[i])) return false;
@@ -738,10 +795,12 @@ static void destroy_uploads(ref *r, uploads *u) {
     for (size_t i = 0; i < u->mesh_count; i++) {
         destroy_buffer(r, &u->vertex[i]);
         destroy_buffer(r, &u->index[i]);
+        destroy_buffer(r, &u->line_index[i]);
     }
     for (size_t i = 0; i < u->texture_count; i++) destroy_image(r, &u->textures[i]);
     free(u->vertex);
     free(u->index);
+    free(u->line_index);
     free(u->textures);
     memset(u, 0, sizeof *u);
 }
@@ -787,25 +846,74 @@ static bool record_shadow(ref *r, const sc_file *f, const sc_scene *s, const upl
     for (size_t i = 0; i < s->draw_count; i++) {
         const sc_draw *d = &s->draws[i];
         if (!d->casts_shadow) continue;
-        VkPipeline pipe;
-        if (!get_pipeline(r, d, false, DRAW_CASTER, &pipe)) return false;
-        vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-        float pc[32];
-        memcpy(pc, sh->world_view[i], 64);
-        memcpy(pc + 16, sh->proj, 64);
-        vkCmdPushConstants(r->cmd, r->layout_color, VK_SHADER_STAGE_VERTEX_BIT, 0, 128, pc);
-        /* Any draw's block holds the scene's bias; this draw's will do. */
-        uint32_t offset = (uint32_t)(i * r->draw_stride);
-        vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->layout_color, 0, 1,
-                                &color_set, 1, &offset);
         const sc_mesh *m = &f->meshes[d->mesh];
-        VkDeviceSize zero = 0;
-        vkCmdBindVertexBuffers(r->cmd, 0, 1, &u->vertex[d->mesh].buffer, &zero);
-        /* The nearest depth wins whatever the order: the mesh's own indices, even when sorted. */
-        vkCmdBindIndexBuffer(r->cmd, u->index[d->mesh].buffer, 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(r->cmd, m->index_count, 1, 0, 0, 0);
+        /* The mesh's triangles, then its lines, each with its own pipeline. */
+        for (int lines = 0; lines < 2; lines++) {
+            uint32_t count = lines ? m->line_index_count : m->index_count;
+            if (count == 0) continue;
+            VkPipeline pipe;
+            if (!get_pipeline(r, d, false, DRAW_CASTER, lines, &pipe)) return false;
+            vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            float pc[32];
+            memcpy(pc, sh->world_view[i], 64);
+            memcpy(pc + 16, sh->proj, 64);
+            vkCmdPushConstants(r->cmd, r->layout_color, VK_SHADER_STAGE_VERTEX_BIT, 0, 128, pc);
+            /* Any draw's block holds the scene's bias; this draw's will do. */
+            uint32_t offset = (uint32_t)(i * r->draw_stride);
+            vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->layout_color, 0, 1,
+                                    &color_set, 1, &offset);
+            VkDeviceSize zero = 0;
+            vkCmdBindVertexBuffers(r->cmd, 0, 1, &u->vertex[d->mesh].buffer, &zero);
+            /* The nearest depth wins whatever the order: the mesh's own indices, even when
+             * sorted. */
+            VkBuffer ib = lines ? u->line_index[d->mesh].buffer : u->index[d->mesh].buffer;
+            vkCmdBindIndexBuffer(r->cmd, ib, 0, VK_INDEX_TYPE_UINT32);
+            vkCmdDrawIndexed(r->cmd, count, 1, 0, 0, 0);
+        }
     }
     vkCmdEndRenderPass(r->cmd);
+    return true;
+}
+
+/* Records one draw of the scene's pass: its mesh's triangles, or its mesh's lines (count indices).
+ */
+static bool record_draw(ref *r, const sc_file *f, const sc_scene *s, const uploads *u, size_t i,
+                        bool lines, uint32_t count, VkDescriptorSet color_set,
+                        const VkDescriptorSet *sets, const buffer *sorted, const shadow_pass *sh) {
+    const sc_draw *d = &s->draws[i];
+    /* As in sgapi-render: a texture draw without a texture is drawn with vertex colour. */
+    bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
+    draw_kind kind = s->has_shadow && d->receives_shadow ? DRAW_RECEIVER : DRAW_PLAIN;
+    VkPipeline pipe;
+    if (!get_pipeline(r, d, textured, kind, lines, &pipe)) return false;
+    vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    VkPipelineLayout layout = layout_of(r, textured, kind);
+    float pc[32];
+    memcpy(pc, d->world_view, 64);
+    memcpy(pc + 16, d->proj, 64);
+    vkCmdPushConstants(r->cmd, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 128, pc);
+    uint32_t color_offset = (uint32_t)(i * r->draw_stride);
+    vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &color_set, 1,
+                            &color_offset);
+    if (textured)
+        vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &sets[i], 0,
+                                NULL);
+    if (kind == DRAW_RECEIVER)
+        vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 2, 1, &sh->set, 0,
+                                NULL);
+    VkDeviceSize n = f->meshes[d->mesh].vertex_count;
+    VkBuffer vb[4] = {u->vertex[d->mesh].buffer, u->vertex[d->mesh].buffer,
+                      u->vertex[d->mesh].buffer, u->vertex[d->mesh].buffer};
+    VkDeviceSize off[4] = {0, n * 16, n * 32, n * 40};
+    uint32_t inputs = d->lighting != SC_LIGHTING_NONE ? 4 : textured ? 3 : 2;
+    vkCmdBindVertexBuffers(r->cmd, 0, inputs, vb, off);
+    /* A sorted draw has its own index buffer: the mesh's is shared with other draws. The loader
+     * sorts no mesh with lines. */
+    VkBuffer ib = lines              ? u->line_index[d->mesh].buffer
+                  : sorted[i].buffer ? sorted[i].buffer
+                                     : u->index[d->mesh].buffer;
+    vkCmdBindIndexBuffer(r->cmd, ib, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(r->cmd, count, 1, 0, 0, 0);
     return true;
 }
 
@@ -834,37 +942,14 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     vkCmdSetScissor(r->cmd, 0, 1, &sc);
     for (size_t i = 0; i < s->draw_count; i++) {
         const sc_draw *d = &s->draws[i];
-        /* As in sgapi-render: a texture draw without a texture is drawn with vertex colour. */
-        bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
-        draw_kind kind = s->has_shadow && d->receives_shadow ? DRAW_RECEIVER : DRAW_PLAIN;
-        VkPipeline pipe;
-        if (!get_pipeline(r, d, textured, kind, &pipe)) return false;
-        vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-        VkPipelineLayout layout = layout_of(r, textured, kind);
-        float pc[32];
-        memcpy(pc, d->world_view, 64);
-        memcpy(pc + 16, d->proj, 64);
-        vkCmdPushConstants(r->cmd, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 128, pc);
-        uint32_t color_offset = (uint32_t)(i * r->draw_stride);
-        vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &color_set,
-                                1, &color_offset);
-        if (textured)
-            vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &sets[i],
-                                    0, NULL);
-        if (kind == DRAW_RECEIVER)
-            vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 2, 1, &sh->set,
-                                    0, NULL);
         const sc_mesh *m = &f->meshes[d->mesh];
-        VkDeviceSize n = m->vertex_count;
-        VkBuffer vb[4] = {u->vertex[d->mesh].buffer, u->vertex[d->mesh].buffer,
-                          u->vertex[d->mesh].buffer, u->vertex[d->mesh].buffer};
-        VkDeviceSize off[4] = {0, n * 16, n * 32, n * 40};
-        uint32_t inputs = d->lighting != SC_LIGHTING_NONE ? 4 : textured ? 3 : 2;
-        vkCmdBindVertexBuffers(r->cmd, 0, inputs, vb, off);
-        /* A sorted draw has its own index buffer: the mesh's is shared with other draws. */
-        VkBuffer ib = sorted[i].buffer ? sorted[i].buffer : u->index[d->mesh].buffer;
-        vkCmdBindIndexBuffer(r->cmd, ib, 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(r->cmd, m->index_count, 1, 0, 0, 0);
+        /* The mesh's triangles, then its lines (as sgapi-render draws them), each with its own
+         * pipeline and the same bindings. */
+        for (int lines = 0; lines < 2; lines++) {
+            uint32_t count = lines ? m->line_index_count : m->index_count;
+            if (count > 0 && !record_draw(r, f, s, u, i, lines, count, color_set, sets, sorted, sh))
+                return false;
+        }
     }
     vkCmdEndRenderPass(r->cmd);
     VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},

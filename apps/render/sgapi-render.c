@@ -351,7 +351,7 @@ int main(int argc, char **argv) {
     for (int i = 0; i < o.file_count; i++) {
         const sc_file *f = &files[i];
         max_images = max_size(max_images, f->texture_count);
-        max_geoms = max_size(max_geoms, f->mesh_count);
+        max_geoms = max_size(max_geoms, ss_geom_count(f));
         for (size_t j = 0; j < f->scene_count; j++) {
             const char *name = f->scenes[j].name;
             if (!selected(&o, name)) continue;

@@ -57,8 +57,11 @@ static void make_scratch(void) {
 }
 
 static void check_mesh(const sc_mesh *m) {
-    FUZZ_CHECK(m->index_count >= 3 && m->index_count % 3 == 0 && m->vertex_count >= 1);
+    FUZZ_CHECK(m->index_count % 3 == 0 && m->line_index_count % 2 == 0 && m->vertex_count >= 1);
+    FUZZ_CHECK(m->index_count + (uint64_t)m->line_index_count > 0);
     for (uint32_t i = 0; i < m->index_count; i++) FUZZ_CHECK(m->indices[i] < m->vertex_count);
+    for (uint32_t i = 0; i < m->line_index_count; i++)
+        FUZZ_CHECK(m->line_indices[i] < m->vertex_count);
     fuzz_touch(m->positions, (size_t)m->vertex_count * 4 * sizeof(float));
     fuzz_touch(m->colors, (size_t)m->vertex_count * 4 * sizeof(float));
 }
