@@ -9,6 +9,8 @@
 #   render (gapi_<scene>).
 # Each check renders its scene with sgapi-render --compare, which also writes a heat map.
 set(CHECK_OUT ${CMAKE_CURRENT_BINARY_DIR}/image_checks)
+# Debian's interpreter (another python3 may come first on PATH).
+find_program(PYTHON3 NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
 set(GAPI_TASK ${PROJECT_SOURCE_DIR}/../shared/gapi-task/scenes.json)
 set(HARD_DIR ${PROJECT_SOURCE_DIR}/scenes/hard)
 
@@ -71,6 +73,16 @@ foreach(row ${ROWS})
     if(TARGET sgapi-ref)
       sg_image_check(live_${scene} ${file} ${scene} ${CHECK_OUT}/ref_${suite}
                      ${CHECK_OUT}/live ref_${suite} ${psnr} ${over2} ${cov})
+    endif()
+    # Lines: every pixel whose coverage differs from lavapipe's must be one of the kinds
+    # docs/accuracy.md explains (tools/line-mismatch.py sorts them; any other fails).
+    if(suite STREQUAL "lines" AND PYTHON3)
+      set_tests_properties(golden_${scene} PROPERTIES FIXTURES_SETUP golden_${scene}_image)
+      add_test(NAME lines_explained_${scene}
+        COMMAND ${PYTHON3} ${PROJECT_SOURCE_DIR}/tools/line-mismatch.py ${file} ${scene}
+                ${CHECK_OUT}/golden/${scene}.png ${PROJECT_SOURCE_DIR}/golden/${scene}.png)
+      set_tests_properties(lines_explained_${scene} PROPERTIES
+        FIXTURES_REQUIRED golden_${scene}_image)
     endif()
   elseif(suite STREQUAL "hard")
     if(TARGET sgapi-ref)

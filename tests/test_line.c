@@ -81,14 +81,18 @@ static bool holds_end(int64_t bx, int64_t by, int64_t cx, int64_t cy) {
     return sign_of((num){dx.v + dy.v - ONE / 2, dx.a + dy.a, dx.b + dy.b}) < 0;
 }
 
-static void reference(const sg_svert s[2], uint8_t out[H][W]) {
-    memset(out, 0, (size_t)W * H);
-    for (int j = 0; j < H; j++)
-        for (int i = 0; i < W; i++) {
+/* The pixels of a w x h image the rule draws for segment s[0] -> s[1], row by row. */
+static void reference_sized(const sg_svert s[2], int w, int h, uint8_t *out) {
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
             int64_t cx = (int64_t)i * ONE + ONE / 2, cy = (int64_t)j * ONE + ONE / 2;
-            out[j][i] =
+            out[j * w + i] =
                 meets(s[0].x, s[0].y, s[1].x, s[1].y, cx, cy) && !holds_end(s[1].x, s[1].y, cx, cy);
         }
+}
+
+static void reference(const sg_svert s[2], uint8_t out[H][W]) {
+    reference_sized(s, W, H, &out[0][0]);
 }
 
 /* ---- sgapi: line setup, then the tile raster ---- */
@@ -341,7 +345,69 @@ static void segments_through_the_api(void **state) {
     sgDestroyDevice(a.dev);
 }
 
-/* Wireframe: a triangle's three edges, each by the rule, in index order; a back face culled; a
+/* Long segments across several 64 x 64 screen bins of a larger image, drawn alone through the
+ * API at one and two threads: each bin gets exactly the line's pixels (lines are binned along
+ * their major axis, line.h). */
+static void long_segments_across_bins(void **state) {
+    (void)state;
+    enum { BW = 200, BH = 150 };
+    for (int threads = 1; threads <= 2; threads++) {
+        sgDevice *dev;
+        assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads}, &dev), SG_OK);
+        sgImage2D color;
+        assert_int_equal(
+            sgCreateImage2D(
+                dev, &(sgImage2DDesc){.width = BW, .height = BH, .format = SG_FORMAT_RGBA8_UNORM},
+                &color),
+            SG_OK);
+        sgPipelineStateObject p;
+        assert_int_equal(sgCreatePipelineStateObject(dev, &(sgPipelineDesc){0}, &p), SG_OK);
+        static uint8_t img[BH][BW][4], ref[BH * BW];
+        for (int k = 0; k < 60; k++) {
+            sg_svert s[2];
+            memset(s, 0, sizeof s);
+            for (int i = 0; i < 2; i++) {
+                s[i].x = coord(BW);
+                s[i].y = coord(BH);
+            }
+            float pos[8];
+            for (int i = 0; i < 2; i++) {
+                pos[4 * i] = (float)s[i].x / (float)(ONE * BW) * 2.0f - 1.0f;
+                pos[4 * i + 1] = 1.0f - (float)s[i].y / (float)(ONE * BH) * 2.0f;
+                pos[4 * i + 2] = 0.0f;
+                pos[4 * i + 3] = 1.0f;
+            }
+            const uint32_t idx[2] = {0, 1};
+            sgGeom g;
+            assert_int_equal(sgCreateGeom(dev,
+                                          &(sgGeomDesc){.vertex_count = 2,
+                                                        .positions = pos,
+                                                        .index_count = 2,
+                                                        .indices = idx,
+                                                        .primitive = SG_PRIMITIVE_LINES},
+                                          &g),
+                             SG_OK);
+            sgDrawParams dp = {0};
+            memcpy(dp.world_view, IDENTITY, sizeof IDENTITY);
+            memcpy(dp.proj, IDENTITY, sizeof IDENTITY);
+            sgPassDesc pass = {.color = color};
+            assert_int_equal(sgBeginRenderPass(dev, &pass), SG_OK);
+            assert_int_equal(sgDraw(dev, p, g, &dp), SG_OK);
+            assert_int_equal(sgEndRenderPass(dev, &pass), SG_OK);
+            assert_int_equal(sgReadImage2D(dev, color, img, 0), SG_OK);
+            sgDestroyGeom(dev, g);
+            reference_sized(s, BW, BH, ref);
+            for (int j = 0; j < BH; j++)
+                for (int i = 0; i < BW; i++)
+                    if ((img[j][i][0] == 255) != (ref[j * BW + i] == 1))
+                        fail_msg("segment (%d, %d) -> (%d, %d), %d threads: pixel (%d, %d)", s[0].x,
+                                 s[0].y, s[1].x, s[1].y, threads, i, j);
+        }
+        sgDestroyDevice(dev);
+    }
+}
+
+/* Wireframe: a triangle's three edges, each by the rule; a back face culled; a
  * quad's four outer edges and not its diagonal. */
 static void wireframe(void **state) {
     (void)state;
@@ -468,6 +534,7 @@ int main(void) {
         cmocka_unit_test(fans_through_centres_and_corners),
         cmocka_unit_test(random_segments),
         cmocka_unit_test(segments_through_the_api),
+        cmocka_unit_test(long_segments_across_bins),
         cmocka_unit_test(wireframe),
         cmocka_unit_test(clipped_lines),
         cmocka_unit_test(flat_lit_lines_are_refused),

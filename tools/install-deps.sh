@@ -5,7 +5,7 @@ set -eu
 
 PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev
     libvulkan-dev mesa-vulkan-drivers glslang-tools
-    clang libclang-rt-14-dev valgrind gnuplot-nox"
+    clang libclang-rt-14-dev valgrind gnuplot-nox python3"
 
 missing=""
 for p in $PACKAGES; do

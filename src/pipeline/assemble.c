@@ -205,7 +205,9 @@ SG_ASM_INLINE void segment(const sg_assembly *a, uint32_t i0, uint32_t i1, const
         emit_line(a, s, (const float *const[2]){attr[0], attr[1]});
 }
 
-/* A triangle's edges `edges` (bit e: v[e] -> v[e + 1]), when the triangle survives culling. One
+/* A triangle's edges `edges` (bit e: v[e] -> v[e + 1]), in the order v2 -> v0, v0 -> v1, v1 -> v2
+ * (OpenGL's and lavapipe's: it decides which edge wins where two overlap), when the triangle
+ * survives culling. One
  * that crosses a clip plane faces the way its clipped polygon does on screen; its edges are cut
  * at the planes, and the polygon's new edges along them are not drawn. */
 SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], unsigned edges,
@@ -224,8 +226,8 @@ SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], un
         for (int i = 0; i < 3; i++)
             if (!screen_vertex(a, idx[i], &s[i])) return;
         if (sg_setup_culled(&a->setup, sg_setup_area(s))) return;
-        for (int e = 0; e < 3; e++) {
-            int f = e == 2 ? 0 : e + 1;
+        for (int k = 0; k < 3; k++) {
+            int e = k == 0 ? 2 : k - 1, f = e == 2 ? 0 : e + 1; /* v2 -> v0 first */
             if (edges >> e & 1)
                 emit_line(a, (const sg_svert[2]){s[e], s[f]},
                           (const float *const[2]){attr[e], attr[f]});
@@ -246,8 +248,8 @@ SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], un
         if (ok[0] && ok[k] && ok[k + 1])
             area += sg_setup_area((const sg_svert[3]){s[0], s[k], s[k + 1]});
     if (n == 0 || sg_setup_culled(&a->setup, area)) return;
-    for (int e = 0; e < 3; e++) {
-        int f = e == 2 ? 0 : e + 1;
+    for (int k = 0; k < 3; k++) {
+        int e = k == 0 ? 2 : k - 1, f = e == 2 ? 0 : e + 1;
         if (edges >> e & 1)
             clipped_segment(a, a->clip[idx[e]], a->clip[idx[f]], attr[e], attr[f], c[e] | c[f]);
     }

@@ -148,6 +148,7 @@ bool sg_setup_line_coverage(const sg_setup_params *p, const sg_svert s[2], sg_tr
     out->miny = (int)(f.x_major ? jmin : first);
     out->maxy = (int)(f.x_major ? jmax : last);
     out->rect_cut = 1; /* the major range is exact: the raster masks the bounds */
+    out->line = f.x_major ? 1 : 2;
 
     /* The band: F(U, V) = du (L(U) - V), L the line, at pixel centres (U, V):
      *   lower: F + HALF du > 0 (= 0 when low_tie), upper: HALF du - F > 0 (= 0 when up_tie). */

@@ -80,6 +80,7 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
     int64_t maxx = ((int64_t)xmax - half) >> SG_SUBPIXEL_BITS;
     int64_t miny = ((int64_t)ymin - half + one - 1) >> SG_SUBPIXEL_BITS;
     int64_t maxy = ((int64_t)ymax - half) >> SG_SUBPIXEL_BITS;
+    out->line = 0;
     out->rect_cut =
         minx < p->rect_x0 || miny < p->rect_y0 || maxx > p->rect_x1 - 1 || maxy > p->rect_y1 - 1;
     if (minx < p->rect_x0) minx = p->rect_x0;

@@ -52,6 +52,9 @@ typedef struct sg_tri {
      * exclude every pixel outside the bounds (none lies inside the triangle), so the raster
      * need not mask them. */
     int rect_cut;
+    /* A line (line.h): 1 x-major, 2 y-major, 0 a triangle. The raster then walks along its major
+     * axis instead of over its bounds. */
+    int line;
     float color[4];
     uint32_t draw; /* which draw of the pass it belongs to (set by the binner) */
 } sg_tri;

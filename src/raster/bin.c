@@ -2,6 +2,8 @@
  * steady stream of similar frames allocates nothing. */
 #include "raster/bin.h"
 
+#include <stdbool.h>
+
 #include <string.h>
 
 /* Grows an array to hold `need` elements of `size` bytes, doubling; false when out of memory. */
@@ -74,27 +76,75 @@ sg_tri *sg_binner_reserve(sg_binner *b, size_t n) {
     return b->tris + b->tri_count;
 }
 
+static int64_t floor_div(int64_t a, int64_t b) { /* b > 0 */
+    int64_t q = a / b;
+    return q - (a % b < 0);
+}
+
+/* The bins a line's band crosses (line.h): along its major axis, the one or two bins across that
+ * its band reaches in each (its minor coordinate moves at most a pixel a pixel). A long diagonal
+ * line is listed in about twice as many bins as it is long in bins, not in every bin of its
+ * bounds. */
+enum { LINE_BINS_MAX = 2 * (SG_MAX_IMAGE_SIZE / SG_BIN_SIZE + 1) };
+
+static int line_bins(const sg_binner *b, const sg_tri *t, int out[LINE_BINS_MAX]) {
+    const bool xm = t->line == 1;
+    const int64_t major_step = xm ? t->edge_dx[0] : t->edge_dy[0];
+    const int64_t minor_step = -(xm ? t->edge_dy[0] : t->edge_dx[0]); /* > 0 */
+    const int maj_lo = xm ? t->minx : t->miny, maj_hi = xm ? t->maxx : t->maxy;
+    const int min_lo = xm ? t->miny : t->minx, min_hi = xm ? t->maxy : t->maxx;
+    int n = 0;
+    for (int m = maj_lo >> SG_BIN_SHIFT; m <= maj_hi >> SG_BIN_SHIFT; m++) {
+        int u0 = m << SG_BIN_SHIFT, u1 = u0 + SG_BIN_SIZE - 1;
+        if (u0 < maj_lo) u0 = maj_lo;
+        if (u1 > maj_hi) u1 = maj_hi;
+        int64_t v0 = floor_div(t->edge[0] + (int64_t)(u0 - maj_lo) * major_step, minor_step);
+        int64_t v1 = floor_div(t->edge[0] + (int64_t)(u1 - maj_lo) * major_step, minor_step);
+        int64_t lo = (v0 < v1 ? v0 : v1) + min_lo, hi = (v0 < v1 ? v1 : v0) + min_lo;
+        if (lo < min_lo) lo = min_lo;
+        if (hi > min_hi) hi = min_hi;
+        for (int64_t k = lo >> SG_BIN_SHIFT; k <= hi >> SG_BIN_SHIFT; k++)
+            out[n++] = xm ? (int)k * b->bins_x + m : m * b->bins_x + (int)k;
+    }
+    return n;
+}
+
+/* Appends triangle `index` to bin k; false: out of memory. */
+static bool list_in(sg_binner *b, int k, uint32_t index) {
+    sg_bin *bin = &b->bins[k];
+    if (bin->count == bin->capacity) {
+        size_t cap = bin->capacity;
+        if (!grow(b, (void **)&bin->tris, &cap, bin->count + 1u, sizeof *bin->tris)) {
+            b->out_of_memory = true;
+            return false;
+        }
+        bin->capacity = (uint32_t)cap;
+    }
+    bin->tris[bin->count++] = index;
+    return true;
+}
+
 void sg_binner_list(sg_binner *b, uint32_t index) {
     const sg_tri *tri = &b->tris[index];
+    if (tri->line) {
+        int bins[LINE_BINS_MAX], n = line_bins(b, tri, bins);
+        for (int i = 0; i < n && list_in(b, bins[i], index); i++) continue;
+        return;
+    }
     for (int y = tri->miny >> SG_BIN_SHIFT; y <= tri->maxy >> SG_BIN_SHIFT; y++)
-        for (int x = tri->minx >> SG_BIN_SHIFT; x <= tri->maxx >> SG_BIN_SHIFT; x++) {
-            sg_bin *bin = &b->bins[y * b->bins_x + x];
-            if (bin->count == bin->capacity) {
-                size_t cap = bin->capacity;
-                if (!grow(b, (void **)&bin->tris, &cap, bin->count + 1u, sizeof *bin->tris)) {
-                    b->out_of_memory = true;
-                    return;
-                }
-                bin->capacity = (uint32_t)cap;
-            }
-            bin->tris[bin->count++] = index;
-        }
+        for (int x = tri->minx >> SG_BIN_SHIFT; x <= tri->maxx >> SG_BIN_SHIFT; x++)
+            if (!list_in(b, y * b->bins_x + x, index)) return;
 }
 
 void sg_binner_count(const sg_binner *b, size_t first, size_t n, uint32_t *counts) {
     memset(counts, 0, (size_t)(b->bins_x * b->bins_y) * sizeof *counts);
     for (size_t i = first; i < first + n; i++) {
         const sg_tri *t = &b->tris[i];
+        if (t->line) {
+            int bins[LINE_BINS_MAX], nb = line_bins(b, t, bins);
+            for (int k = 0; k < nb; k++) counts[bins[k]]++;
+            continue;
+        }
         for (int y = t->miny >> SG_BIN_SHIFT; y <= t->maxy >> SG_BIN_SHIFT; y++)
             for (int x = t->minx >> SG_BIN_SHIFT; x <= t->maxx >> SG_BIN_SHIFT; x++)
                 counts[y * b->bins_x + x]++;
@@ -129,6 +179,11 @@ bool sg_binner_make_room(sg_binner *b, uint32_t *counts, int runs) {
 void sg_binner_fill(const sg_binner *b, size_t first, size_t n, uint32_t *at) {
     for (size_t i = first; i < first + n; i++) {
         const sg_tri *t = &b->tris[i];
+        if (t->line) {
+            int bins[LINE_BINS_MAX], nb = line_bins(b, t, bins);
+            for (int k = 0; k < nb; k++) b->bins[bins[k]].tris[at[bins[k]]++] = (uint32_t)i;
+            continue;
+        }
         for (int y = t->miny >> SG_BIN_SHIFT; y <= t->maxy >> SG_BIN_SHIFT; y++)
             for (int x = t->minx >> SG_BIN_SHIFT; x <= t->maxx >> SG_BIN_SHIFT; x++) {
                 int bin = y * b->bins_x + x;

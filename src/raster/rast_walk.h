@@ -272,6 +272,47 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
 }
 #endif
 
+static inline int64_t sg_walk_floor_div(int64_t a, int64_t b) { /* b > 0 */
+    int64_t q = a / b;
+    return q - (a % b < 0);
+}
+
+/* A line (line.h) longer than a few tiles: along its major axis a tile column (row) at a time,
+ * visiting only the tiles its band crosses there, one or two, instead of every tile of its
+ * bounds. Its one pixel a major column lies where edge 0 turns negative. */
+SG_WALK_INLINE void line_walk(const walk *w, int tx0, int ty0, int tx1, int ty1, sg_tile_fn fn,
+                              const void *ctx) {
+    const sg_tri *t = w->t;
+    const bool xm = t->line == 1;
+    const int64_t major_step = xm ? t->edge_dx[0] : t->edge_dy[0];
+    const int64_t minor_step = -(xm ? t->edge_dy[0] : t->edge_dx[0]); /* > 0 */
+    const int maj_lo = xm ? t->minx : t->miny, maj_hi = xm ? t->maxx : t->maxy;
+    const int min_lo = xm ? t->miny : t->minx, min_hi = xm ? t->maxy : t->maxx;
+    const int mt0 = xm ? tx0 : ty0, mt1 = xm ? tx1 : ty1, nt0 = xm ? ty0 : tx0,
+              nt1 = xm ? ty1 : tx1;
+    for (int mt = mt0; mt <= mt1; mt++) {
+        int u0 = mt << SG_TILE_SHIFT, u1 = u0 + SG_TILE - 1;
+        if (u0 < maj_lo) u0 = maj_lo;
+        if (u1 > maj_hi) u1 = maj_hi;
+        int64_t v0 =
+            sg_walk_floor_div(t->edge[0] + (int64_t)(u0 - maj_lo) * major_step, minor_step);
+        int64_t v1 =
+            sg_walk_floor_div(t->edge[0] + (int64_t)(u1 - maj_lo) * major_step, minor_step);
+        int64_t lo = (v0 < v1 ? v0 : v1) + min_lo, hi = (v0 < v1 ? v1 : v0) + min_lo;
+        if (lo < min_lo) lo = min_lo;
+        if (hi > min_hi) hi = min_hi;
+        if (lo > hi) continue;
+        int n0 = (int)(lo >> SG_TILE_SHIFT), n1 = (int)(hi >> SG_TILE_SHIFT);
+        if (n0 < nt0) n0 = nt0;
+        if (n1 > nt1) n1 = nt1;
+        if (n0 > n1) continue;
+        if (xm)
+            walk_tiles(w, mt, n0, mt, n1, fn, ctx);
+        else
+            walk_tiles(w, n0, mt, n1, mt, fn, ctx);
+    }
+}
+
 SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
                                  const void *ctx) {
     int tx0 = (t->minx > rx0 ? t->minx : rx0) >> SG_TILE_SHIFT;
@@ -303,6 +344,10 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
             for (int i = 0; i < SG_TILE_PIXELS; i++) w.offs[e][i] = (i & 3) * dx + (i >> 2) * dy;
 #endif
         }
+    if (t->line) {
+        line_walk(&w, tx0, ty0, tx1, ty1, fn, ctx);
+        return;
+    }
     /* Small triangles: one block at most, so go straight to the tiles. */
     if (tx1 - tx0 < 4 && ty1 - ty0 < 4) {
         walk_tiles(&w, tx0, ty0, tx1, ty1, fn, ctx);
