@@ -5,6 +5,7 @@
  * public API, and the checks of bad input.
  */
 #include "test_common.h"
+#include "test_objects.h"
 
 #include <float.h>
 #include <math.h>
@@ -200,16 +201,8 @@ typedef struct api {
 
 static void api_open(api *a) {
     assert_int_equal(sgCreateDevice(NULL, &a->dev), SG_OK);
-    assert_int_equal(
-        sgCreateImage2D(a->dev,
-                        &(sgImage2DDesc){.width = S, .height = S, .format = SG_FORMAT_RGBA8_UNORM},
-                        &a->color),
-        SG_OK);
-    assert_int_equal(
-        sgCreateImage2D(a->dev,
-                        &(sgImage2DDesc){.width = S, .height = S, .format = SG_FORMAT_D32_FLOAT},
-                        &a->depth),
-        SG_OK);
+    a->color = test_image(a->dev, S, S, SG_FORMAT_RGBA8_UNORM);
+    a->depth = test_image(a->dev, S, S, SG_FORMAT_D32_FLOAT);
 }
 
 /* A quad at view depth -2 spanning the view (orthographic), with the given normals (NULL: none)

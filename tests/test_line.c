@@ -8,6 +8,7 @@
  * The seed is fixed. SG_LINE_SEGMENTS sets how many random segments to test (default 100000).
  */
 #include "test_common.h"
+#include "test_objects.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -258,16 +259,8 @@ typedef struct api {
 
 static void api_open(api *a) {
     assert_int_equal(sgCreateDevice(NULL, &a->dev), SG_OK);
-    assert_int_equal(
-        sgCreateImage2D(a->dev,
-                        &(sgImage2DDesc){.width = W, .height = H, .format = SG_FORMAT_RGBA8_UNORM},
-                        &a->color),
-        SG_OK);
-    assert_int_equal(
-        sgCreateImage2D(a->dev,
-                        &(sgImage2DDesc){.width = W, .height = H, .format = SG_FORMAT_D32_FLOAT},
-                        &a->depth),
-        SG_OK);
+    a->color = test_image(a->dev, W, H, SG_FORMAT_RGBA8_UNORM);
+    a->depth = test_image(a->dev, W, H, SG_FORMAT_D32_FLOAT);
 }
 
 /* The clip position whose window position is (x, y) / 256 pixels, at clip w `w` (identity
@@ -354,14 +347,8 @@ static void long_segments_across_bins(void **state) {
     for (int threads = 1; threads <= 2; threads++) {
         sgDevice *dev;
         assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads}, &dev), SG_OK);
-        sgImage2D color;
-        assert_int_equal(
-            sgCreateImage2D(
-                dev, &(sgImage2DDesc){.width = BW, .height = BH, .format = SG_FORMAT_RGBA8_UNORM},
-                &color),
-            SG_OK);
-        sgPipelineStateObject p;
-        assert_int_equal(sgCreatePipelineStateObject(dev, &(sgPipelineDesc){0}, &p), SG_OK);
+        sgImage2D color = test_image(dev, BW, BH, SG_FORMAT_RGBA8_UNORM);
+        sgPipelineStateObject p = test_pso(dev, (sgPipelineDesc){0});
         static uint8_t img[BH][BW][4], ref[BH * BW];
         for (int k = 0; k < 60; k++) {
             sg_svert s[2];

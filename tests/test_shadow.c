@@ -6,6 +6,7 @@
  * off the map are lit; and every bad input is refused with its code, nothing drawn.
  */
 #include "test_common.h"
+#include "test_objects.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -25,24 +26,11 @@ typedef struct api {
     sgImage2D color, depth, map;
 } api;
 
-static sgImage2D image(sgDevice *dev, int w, int h, sgFormat f) {
-    sgImage2D img;
-    assert_int_equal(
-        sgCreateImage2D(dev, &(sgImage2DDesc){.width = w, .height = h, .format = f}, &img), SG_OK);
-    return img;
-}
-
 static void api_open(api *a, int threads) {
     assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads}, &a->dev), SG_OK);
-    a->color = image(a->dev, S, S, SG_FORMAT_RGBA8_UNORM);
-    a->depth = image(a->dev, S, S, SG_FORMAT_D32_FLOAT);
-    a->map = image(a->dev, S, S, SG_FORMAT_D32_FLOAT);
-}
-
-static sgPipelineStateObject pso_of(sgDevice *dev, sgPipelineDesc d) {
-    sgPipelineStateObject p;
-    assert_int_equal(sgCreatePipelineStateObject(dev, &d, &p), SG_OK);
-    return p;
+    a->color = test_image(a->dev, S, S, SG_FORMAT_RGBA8_UNORM);
+    a->depth = test_image(a->dev, S, S, SG_FORMAT_D32_FLOAT);
+    a->map = test_image(a->dev, S, S, SG_FORMAT_D32_FLOAT);
 }
 
 static sgDrawParams params_of(const float proj[16]) {
@@ -88,7 +76,7 @@ static const float PERSP[16] = {1.5f, 0, 0, 0, 0, 1.5f, 0, 0, 0, 0, -1.02f, -0.2
 /* The scene's depth, rendered with or without a colour target. */
 static void render_depth(api *a, bool with_color, sgPipelineDesc d, float *out) {
     sgGeom g = scene_geom(a->dev);
-    sgPipelineStateObject p = pso_of(a->dev, d);
+    sgPipelineStateObject p = test_pso(a->dev, d);
     sgDrawParams dp = params_of(PERSP);
     sgPassDesc pass = {.depth = a->depth,
                        .depth_load = SG_LOAD_CLEAR,
@@ -143,8 +131,8 @@ static void depth_only_pass_input(void **state) {
     assert_int_equal(sgBeginRenderPass(a.dev, &pass), SG_OK);
     sgGeom g = scene_geom(a.dev);
     sgPipelineStateObject p =
-        pso_of(a.dev, (sgPipelineDesc){.shade = SG_SHADE_TEXTURE_MODULATE,
-                                       .depth = {.compare = SG_COMPARE_LESS, .write = true}});
+        test_pso(a.dev, (sgPipelineDesc){.shade = SG_SHADE_TEXTURE_MODULATE,
+                                         .depth = {.compare = SG_COMPARE_LESS, .write = true}});
     sgDrawParams dp = params_of(PERSP);
     assert_int_equal(sgDraw(a.dev, p, g, &dp), SG_ERROR_MISSING_TEXTURE);
     assert_int_equal(sgEndRenderPass(a.dev, &pass), SG_OK);
@@ -175,10 +163,10 @@ static sgGeom quad(sgDevice *dev, float z0, float z1, const float *normals) {
 static void quad_depth(api *a, float z0, float z1, float bc, float bs, float *out) {
     sgGeom g = quad(a->dev, z0, z1, NULL);
     sgPipelineStateObject p =
-        pso_of(a->dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_ALWAYS,
-                                                  .write = true,
-                                                  .bias_constant = bc,
-                                                  .bias_slope = bs}});
+        test_pso(a->dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_ALWAYS,
+                                                    .write = true,
+                                                    .bias_constant = bc,
+                                                    .bias_slope = bs}});
     sgDrawParams dp = params_of(ORTHO);
     sgPassDesc pass = {.depth = a->map, .clear_depth = 1.0f};
     assert_int_equal(sgBeginRenderPass(a->dev, &pass), SG_OK);
@@ -243,7 +231,7 @@ static sgResult draw_receiver(api *a, sgLightingMode mode, const sgLighting *l, 
                               uint8_t *out) {
     const float up[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
     sgGeom g = quad(a->dev, -2, -2, up);
-    sgPipelineStateObject p = pso_of(a->dev, (sgPipelineDesc){.lighting = mode});
+    sgPipelineStateObject p = test_pso(a->dev, (sgPipelineDesc){.lighting = mode});
     sgDrawParams dp = params_of(ORTHO);
     const sgColor color = {0.8f, 0.6f, 0.3f, 1.0f};
     dp.color = &color;
@@ -387,7 +375,7 @@ static void bad_shadow_input_is_refused(void **state) {
     /* The map is the depth target of the open pass: in use. While a pass samples it, it cannot
      * be replaced or destroyed. */
     sgGeom g = quad(a.dev, -2, -2, NULL);
-    sgPipelineStateObject p = pso_of(a.dev, (sgPipelineDesc){.depth = {.write = true}});
+    sgPipelineStateObject p = test_pso(a.dev, (sgPipelineDesc){.depth = {.write = true}});
     sgDrawParams dp = params_of(ORTHO);
     sh = shadow_of(&a, false);
     dp.shadow = &sh;
