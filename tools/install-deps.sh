@@ -3,7 +3,7 @@
 # Runs apt-get as root, or through sudo otherwise.
 set -eu
 
-PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev
+PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev libdeflate-dev
     libvulkan-dev mesa-vulkan-drivers glslang-tools
     clang libclang-rt-14-dev valgrind gnuplot-nox python3"
 
