@@ -219,16 +219,27 @@ bool ss_create_targets(const char *prog, sgDevice *dev, const sc_scene *s, sgIma
     return true;
 }
 
-bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, const sc_file *f,
-                      const sc_scene *s, ss_shadow *out) {
-    memset(out, 0, sizeof *out);
-    if (!s->has_shadow) return true;
+bool ss_fit_shadow(const char *prog, const sc_file *f, const sc_scene *s, ss_shadow *sh) {
+    if (!sh->map.id) return true;
     double view[16], proj[16];
-    /* The loader has fitted this scene's light already; failing here is a bug. */
+    /* The loader has fitted this scene's light already, and a turntable moves casters and light
+     * together; failing here is a bug, or a caster only a turned view sees edge-on. */
     if (!sc_shadow_light(f, s, view, proj)) {
         fprintf(stderr, "%s: scene '%s': the shadow light cannot be fitted\n", prog, s->name);
         return false;
     }
+    for (int i = 0; i < 16; i++) sh->proj[i] = (float)proj[i];
+    for (size_t i = 0; i < s->draw_count; i++)
+        if (s->draws[i].casts_shadow)
+            sc_shadow_caster_world_view(view, s->draws[i].world_view, sh->world_view[i]);
+    sc_mat4_mul_to_float(proj, view, sh->receiver.matrix);
+    return true;
+}
+
+bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, const sc_file *f,
+                      const sc_scene *s, ss_shadow *out) {
+    memset(out, 0, sizeof *out);
+    if (!s->has_shadow) return true;
     out->psos = calloc(s->draw_count, sizeof *out->psos);
     out->world_view = calloc(s->draw_count, sizeof *out->world_view);
     if (!out->psos || !out->world_view) {
@@ -247,7 +258,6 @@ bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, cons
     out->pass.depth_load = SG_LOAD_CLEAR;
     out->pass.clear_depth = 1.0f;
     out->pass.depth_store = SG_STORE_STORE; /* the receivers read it */
-    for (int i = 0; i < 16; i++) out->proj[i] = (float)proj[i];
     for (size_t i = 0; i < s->draw_count; i++) {
         const sc_draw *d = &s->draws[i];
         if (!d->casts_shadow) continue;
@@ -269,12 +279,14 @@ bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, cons
             ss_destroy_shadow(dev, out);
             return false;
         }
-        sc_shadow_caster_world_view(view, d->world_view, out->world_view[i]);
     }
     out->receiver.map = out->map;
-    sc_mat4_mul_to_float(proj, view, out->receiver.matrix);
     out->receiver.light = s->shadow.light;
     out->receiver.pcf = s->shadow.pcf;
+    if (!ss_fit_shadow(prog, f, s, out)) {
+        ss_destroy_shadow(dev, out);
+        return false;
+    }
     return true;
 }
 

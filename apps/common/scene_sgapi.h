@@ -67,6 +67,9 @@ typedef struct ss_shadow {
  *  targets: the map, the casters' pipelines (from the cache) and their matrices. */
 bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, const sc_file *file,
                       const sc_scene *scene, ss_shadow *out);
+/** Fits an existing shadow (of ss_create_shadow) to the scene's casters again, after they or the
+ *  light moved (a turntable frame): the casters' world-views and the receivers' matrix. */
+bool ss_fit_shadow(const char *prog, const sc_file *file, const sc_scene *scene, ss_shadow *shadow);
 /** Destroys the map and frees what ss_create_shadow made; a zeroed one is fine. */
 void ss_destroy_shadow(sgDevice *dev, ss_shadow *shadow);
 

@@ -43,13 +43,16 @@ static void add_point(bounds *b, const double p[3]) {
     b->count++;
 }
 
-/* Adds every finite view-space vertex of every caster to b, after the row-major matrix to (NULL:
- * none). A vertex is (worldView * p).xyz / (worldView * p).w; one whose result is not finite (a
- * NaN vertex, w = 0) cannot be bounded and is left out. */
-static void add_casters(const sc_file *f, const sc_scene *s, const double *to, bounds *b) {
+/* Which draws a box takes: every caster (the shadow's fit), every draw, or one draw (>= 0). */
+enum { CASTERS = -1, ALL_DRAWS = -2 };
+
+/* Adds every finite view-space vertex of the draws `which` names to b, after the row-major matrix
+ * to (NULL: none). A vertex is (worldView * p).xyz / (worldView * p).w; one whose result is not
+ * finite (a NaN vertex, w = 0) cannot be bounded and is left out. */
+static void add_draws(const sc_file *f, const sc_scene *s, int which, const double *to, bounds *b) {
     for (size_t d = 0; d < s->draw_count; d++) {
         const sc_draw *draw = &s->draws[d];
-        if (!draw->casts_shadow) continue;
+        if (which == CASTERS ? !draw->casts_shadow : which >= 0 && (size_t)which != d) continue;
         const sc_mesh *m = &f->meshes[draw->mesh];
         const float *wv = draw->world_view;
         for (uint32_t v = 0; v < m->vertex_count; v++) {
@@ -71,6 +74,16 @@ static void add_casters(const sc_file *f, const sc_scene *s, const double *to, b
             }
         }
     }
+}
+
+bool sc_view_bounds(const sc_file *f, const sc_scene *s, int draw, double lo[3], double hi[3]) {
+    bounds box = {0};
+    add_draws(f, s, draw < 0 ? ALL_DRAWS : draw, NULL, &box);
+    for (int i = 0; i < 3; i++) {
+        lo[i] = box.count ? box.lo[i] : 0.0;
+        hi[i] = box.count ? box.hi[i] : 0.0;
+    }
+    return box.count > 0;
 }
 
 /* A caster vertex in the light's view (v): (worldView * p).xyz / w, then v; false when not
@@ -216,7 +229,7 @@ bool sc_shadow_light(const sc_file *f, const sc_scene *s, double view[16], doubl
     identity(proj);
     if (!s->has_shadow || s->shadow.light < 0 || s->shadow.light >= s->light_count) return false;
     bounds box = {0};
-    add_casters(f, s, NULL, &box);
+    add_draws(f, s, CASTERS, NULL, &box);
     if (box.count == 0) return false;
     double centre[3], half[3];
     for (int i = 0; i < 3; i++) {
@@ -236,7 +249,7 @@ bool sc_shadow_light(const sc_file *f, const sc_scene *s, double view[16], doubl
         for (int i = 0; i < 3; i++) eye[i] = centre[i] - d[i] * 2.0 * R;
         look_at(eye, d, v);
         bounds ls = {0};
-        add_casters(f, s, v, &ls);
+        add_draws(f, s, CASTERS, v, &ls);
         /* Depth gets 1 % of its range on each side, so that no caster touches the near or far
          * plane after rounding; casters flat across the light get 1 % of R. */
         double n = -ls.hi[2], fa = -ls.lo[2], margin = 0.01 * (fa - n);

@@ -19,6 +19,13 @@
 bool sc_shadow_light(const sc_file *file, const sc_scene *scene, double light_view[16],
                      double light_proj[16]);
 
+/** The axis-aligned box of a scene's draws in view space: every finite (worldView * p).xyz /
+ *  (worldView * p).w of every vertex of the mesh of draw `draw`, or of every draw when draw < 0
+ *  (the same points the shadow's fit takes from its casters). False, and a box of zeros, when
+ *  there is no such vertex. */
+bool sc_view_bounds(const sc_file *file, const sc_scene *scene, int draw, double lo[3],
+                    double hi[3]);
+
 /** out = a x b (row-major 4x4), formed in double and each entry rounded once to float. */
 void sc_mat4_mul_to_float(const double a[16], const double b[16], float out[16]);
 
