@@ -1,11 +1,17 @@
-/* sgapi-render - renders every scene of scene files with sgapi and writes one PNG per scene.
+/* sgapi-render - renders every scene of scene files with sgapi and writes one PNG per scene, or a
+ * turntable of each scene (a PNG per frame, and a GIF and an MP4 through ffmpeg).
  *
  *   sgapi-render [--frames N] [--scene NAME]... [--threads T] [--simd SET] SCENE.json... -o DIR
+ *   sgapi-render SCENE.json... -o DIR --turntable N [--spin I] [--video gif,mp4] [--shard I/N]
  *
  * Writes DIR/<scene name>.png and prints, per scene, the wall-clock time of one frame: the time
  * from sgBeginRenderPass to the return of sgEndRenderPass, of the shadow's depth-only pass and the
  * scene's pass together when the scene has a shadow (loading and uploads are not counted), the
- * median over N frames.
+ * median over N frames. A turntable writes DIR/<scene name>/0000.png ... and prints, per scene,
+ * its frames per second from its first frame to its last written file.
+ *
+ * Exit status: 0 done; 1 a failure while loading, rendering or writing; 2 bad arguments or a setup
+ * that cannot work (an unwritable DIR, no ffmpeg for --video), found before any rendering.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -17,14 +23,19 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <sgapi/sgapi.h>
 
 #include "cli.h"
+#include "frame_writer.h"
 #include "image_diff.h"
 #include "image_io.h"
+#include "progress.h"
 #include "scene_sgapi.h"
 #include "scene.h"
+#include "turntable.h"
+#include "video.h"
 
 typedef struct options {
     const char *out_dir;
@@ -38,6 +49,17 @@ typedef struct options {
     const char *compare_dir; /* --compare: reference images, one DIR/<scene>.png per scene */
     double min_psnr, max_over2, max_coverage; /* thresholds of --compare; < 0: none */
     bool depth_only; /* --depth-only: the scene's pass without its colour target */
+    bool frames_given;
+    int turntable;                /* --turntable N: frames of a turn; 0: still images */
+    int spin;                     /* --spin I: the draw that spins; -1: the camera orbits */
+    int shard_index, shard_count; /* --shard I/N: every item k with k mod N = I; 0/1: all */
+    unsigned video;               /* --video: VIDEO_GIF | VIDEO_MP4 */
+    int fps;                      /* --fps: of the videos */
+    int video_width;              /* --video-width: of the videos; 0: the frames' */
+    bool assemble;                /* --assemble: only make the videos of frames on disk */
+    bool quiet;                   /* --quiet: no progress bar */
+    bool no_write;                /* --no-write: render and read back, write nothing */
+    int png_level;                /* --png-level; -1: the run's default */
 } options;
 
 static void usage(FILE *f) {
@@ -59,13 +81,94 @@ static void usage(FILE *f) {
                "                  depth-only pass, no shadow pass) and write the depth as a grey\n"
                "                  image, white near, black at the far plane: the time of\n"
                "                  visibility alone\n"
-               "  -h, --help      show this help\n");
+               "  --png-level L   PNG compression, 0 (stored: fastest, largest) to 12 (smallest);\n"
+               "                  default 6 for still images, 0 for turntable frames\n"
+               "  --no-write      render and read each image back, but write no file (to time\n"
+               "                  the rendering alone against a run that writes)\n"
+               "  --quiet         no progress bar (it is drawn on stderr only when stderr is a\n"
+               "                  terminal: frames done of all, frames per second, time left)\n"
+               "  --shard I/N     render only the items k (scenes in order; with --turntable\n"
+               "                  every frame of every scene, counted on across scenes) with\n"
+               "                  k mod N = I, 0 <= I < N: N such runs together write exactly\n"
+               "                  the files of one run without --shard, byte for byte\n"
+               "Turntables:\n"
+               "  --turntable N   render N frames of each scene to DIR/<scene name>/0000.png ...\n"
+               "                  (more digits past 10000 frames): the camera orbits the centre\n"
+               "                  of the scene's view-space box about the view's vertical axis,\n"
+               "                  frame k at 360 k / N degrees, moving to its right (the scene\n"
+               "                  turns clockwise seen from above); frame 0 is the scene as\n"
+               "                  written; the lights turn with the scene; prints frames/s\n"
+               "  --spin I        instead, only draw I (0: the scene's first) turns, the same\n"
+               "                  way, about the centre of its own box; camera and lights stay\n"
+               "  --video LIST    also write DIR/<scene name>.gif and/or .mp4 (LIST: gif, mp4 or\n"
+               "                  gif,mp4) with ffmpeg: a palette-optimised GIF, H.264 in yuv420p\n"
+               "  --fps F         frames per second of the videos (default 25)\n"
+               "  --video-width W scale the videos to W pixels wide (default: the frames' size)\n"
+               "  --assemble      render nothing: make the videos from the frames already in\n"
+               "                  DIR (the final step after a run split with --shard)\n"
+               "  -h, --help      show this help\n"
+               "Exit status: 0 done, 1 failed while loading, rendering or writing, 2 bad\n"
+               "arguments or setup (found before anything is rendered).\n");
+}
+
+/* "I/N" with 0 <= I < N. */
+static bool parse_shard(const char *value, options *o) {
+    const char *slash = strchr(value, '/');
+    char first[32];
+    if (!slash || slash - value >= (long)sizeof first) return false;
+    memcpy(first, value, (size_t)(slash - value));
+    first[slash - value] = '\0';
+    int i, n;
+    if (!sc_parse_int(first, 0, INT_MAX, &i) || !sc_parse_int(slash + 1, 1, INT_MAX, &n) || i >= n)
+        return false;
+    o->shard_index = i;
+    o->shard_count = n;
+    return true;
+}
+
+/* Options that do not go together, and what --video needs; 0 or 2 (reported). */
+static int check_combination(const options *o) {
+    const char *problem = NULL;
+    if (!o->turntable && (o->spin >= 0 || o->video || o->assemble))
+        problem = o->spin >= 0 ? "--spin needs --turntable"
+                  : o->video   ? "--video needs --turntable: a video of which frames?"
+                               : "--assemble needs --turntable N and --video";
+    else if (o->turntable && (o->frames_given || o->compare_dir || o->depth_only))
+        problem = o->frames_given
+                      ? "--frames times still images; a turntable renders each frame once"
+                  : o->compare_dir ? "--compare checks still images, not turntables"
+                                   : "--depth-only renders still images, not turntables";
+    else if (o->assemble && !o->video)
+        problem = "--assemble needs --video: the formats to make";
+    else if (o->video && o->shard_count > 1)
+        problem = "--video needs every frame, and a shard has some: render the shards without "
+                  "--video, then run the same command once with --video LIST --assemble "
+                  "(docs/scale-out.md)";
+    else if (o->assemble && o->no_write)
+        problem = "--assemble writes videos only; --no-write has nothing to add";
+    else if (o->no_write && (o->video || o->compare_dir))
+        problem = o->video ? "--video needs the frames written: drop --no-write"
+                           : "--compare writes heat maps: drop --no-write";
+    if (problem) {
+        fprintf(stderr, "sgapi-render: %s\n", problem);
+        return 2;
+    }
+    if (o->video && !vd_have_ffmpeg()) {
+        fprintf(stderr, "sgapi-render: --video needs the ffmpeg program, and there is none on PATH "
+                        "(Debian: apt-get install ffmpeg; tools/install-deps.sh installs it)\n");
+        return 2;
+    }
+    return 0;
 }
 
 /* 0: parsed; 1: help was printed; 2: bad arguments (already reported). */
 static int parse_args(int argc, char **argv, options *o) {
     o->frames = 1;
     o->min_psnr = o->max_over2 = o->max_coverage = -1;
+    o->spin = -1;
+    o->shard_count = 1;
+    o->fps = 25;
+    o->png_level = -1;
     o->files = calloc((size_t)argc, sizeof *o->files);
     o->scenes = calloc((size_t)argc, sizeof *o->scenes);
     if (!o->files || !o->scenes) {
@@ -79,7 +182,10 @@ static int parse_args(int argc, char **argv, options *o) {
             !strcmp(a, "--min-psnr") || !strcmp(a, "--max-over2") || !strcmp(a, "--max-coverage");
         bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
                            !strcmp(a, "--threads") || !strcmp(a, "--simd") ||
-                           !strcmp(a, "--compare") || threshold;
+                           !strcmp(a, "--compare") || threshold || !strcmp(a, "--turntable") ||
+                           !strcmp(a, "--spin") || !strcmp(a, "--shard") || !strcmp(a, "--video") ||
+                           !strcmp(a, "--fps") || !strcmp(a, "--video-width") ||
+                           !strcmp(a, "--png-level");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -96,6 +202,64 @@ static int parse_args(int argc, char **argv, options *o) {
                         value);
                 return 2;
             }
+            o->frames_given = true;
+        } else if (!strcmp(a, "--turntable")) {
+            if (!sc_parse_int(value, 1, 1000000, &o->turntable)) {
+                fprintf(stderr,
+                        "sgapi-render: --turntable needs a frame count from 1 to 1000000, not "
+                        "'%s'\n",
+                        value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--spin")) {
+            if (!sc_parse_int(value, 0, INT_MAX, &o->spin)) {
+                fprintf(stderr, "sgapi-render: --spin needs a draw index >= 0, not '%s'\n", value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--shard")) {
+            if (!parse_shard(value, o)) {
+                fprintf(stderr,
+                        "sgapi-render: --shard needs I/N, whole numbers with 0 <= I < N, not "
+                        "'%s'\n",
+                        value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--video")) {
+            char bad[64];
+            if (!vd_parse_formats(value, &o->video, bad, sizeof bad)) {
+                fprintf(stderr,
+                        "sgapi-render: --video takes gif, mp4 or both (gif,mp4), not '%s' in "
+                        "'%s'\n",
+                        bad, value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--fps")) {
+            if (!sc_parse_int(value, 1, 1000, &o->fps)) {
+                fprintf(stderr,
+                        "sgapi-render: --fps needs a whole number from 1 to 1000, not '%s'\n",
+                        value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--video-width")) {
+            if (!sc_parse_int(value, 2, SC_MAX_IMAGE_SIZE, &o->video_width)) {
+                fprintf(stderr,
+                        "sgapi-render: --video-width needs a whole number from 2 to %d, not '%s'\n",
+                        SC_MAX_IMAGE_SIZE, value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--png-level")) {
+            if (!sc_parse_int(value, 0, SC_PNG_LEVEL_MAX, &o->png_level)) {
+                fprintf(stderr,
+                        "sgapi-render: --png-level needs a whole number from 0 to %d, not '%s'\n",
+                        SC_PNG_LEVEL_MAX, value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--assemble")) {
+            o->assemble = true;
+        } else if (!strcmp(a, "--quiet")) {
+            o->quiet = true;
+        } else if (!strcmp(a, "--no-write")) {
+            o->no_write = true;
         } else if (!strcmp(a, "--threads")) {
             if (!sc_parse_int(value, 0, 4096, &o->threads)) {
                 fprintf(stderr, "sgapi-render: --threads needs a whole number >= 0, not '%s'\n",
@@ -145,7 +309,7 @@ static int parse_args(int argc, char **argv, options *o) {
         usage(stderr);
         return 2;
     }
-    return 0;
+    return check_combination(o);
 }
 
 /* Creates a folder and its missing parents, like mkdir -p. */
@@ -246,9 +410,21 @@ static sgResult read_depth(sgDevice *dev, sgImage2D depth, const sc_scene *s,
     return r;
 }
 
+/* What every scene of a run shares. */
+typedef struct run {
+    sgDevice *dev;
+    ss_pso_cache cache;
+    sc_png_writer *png;   /* still images */
+    frame_writer *frames; /* turntable frames */
+    progress bar;
+    int digits; /* of a turntable's frame names */
+} run;
+
 /* Renders one scene frames times, writes its PNG and prints its median time per frame. */
-static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, const sc_scene *s,
-                         const ss_uploads *u, ss_pso_cache *cache) {
+static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_scene *s,
+                         const ss_uploads *u) {
+    sgDevice *dev = rn->dev;
+    ss_pso_cache *cache = &rn->cache;
     bool ok = false;
     sgImage2D color = {0}, depth = {0};
     ss_shadow shadow = {0};
@@ -282,6 +458,7 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
         double t0 = ss_now_ms();
         if (!ss_draw_frame(PROG, dev, f, s, u, psos, &pass, &shadow)) goto done;
         times[frame] = ss_now_ms() - t0;
+        pg_step(&rn->bar, 1);
     }
 
     r = o->depth_only ? read_depth(dev, depth, s, pixels) : sgReadImage2D(dev, color, pixels, 0);
@@ -291,11 +468,14 @@ static bool render_scene(sgDevice *dev, const options *o, const sc_file *f, cons
     }
     sprintf(png, "%s/%s.png", o->out_dir, s->name);
     char err[1024];
-    if (!sc_image_write_png(png, s->width, s->height, pixels, err, sizeof err)) {
+    if (!o->no_write &&
+        !sc_png_writer_write(rn->png, png, s->width, s->height, pixels, err, sizeof err)) {
+        pg_hide(&rn->bar);
         fprintf(stderr, "sgapi-render: %s\n", err);
         goto done;
     }
     double median = ss_median(times, o->frames);
+    pg_hide(&rn->bar);
     if (o->frames > 1)
         printf("%-32s %10.3f ms/frame (median of %d)", s->name, median, o->frames);
     else
@@ -313,10 +493,182 @@ done:
     return ok;
 }
 
+/* Whether item k (a scene, or a turntable's frame, counted across the run) is this shard's. */
+static bool in_shard(const options *o, long long k) {
+    return k % o->shard_count == o->shard_index;
+}
+
+/* How many of a turntable's frames, the first of which is item first, are this shard's. */
+static int shard_frames(const options *o, long long first) {
+    int n = 0;
+    for (int k = 0; k < o->turntable; k++) n += in_shard(o, first + k);
+    return n;
+}
+
+/* DIR/<scene>/<frame>.png, or DIR/<scene> when frame < 0; NULL when out of memory. */
+static char *frame_path(const options *o, const run *rn, const sc_scene *s, int frame) {
+    size_t len = strlen(o->out_dir) + strlen(s->name) + 32;
+    char *p = malloc(len);
+    if (!p) return NULL;
+    if (frame < 0)
+        snprintf(p, len, "%s/%s", o->out_dir, s->name);
+    else
+        snprintf(p, len, "%s/%s/%0*d.png", o->out_dir, s->name, rn->digits, frame);
+    return p;
+}
+
+/* Renders this shard's frames of a scene's turntable (the first frame is item `first` of the
+ * run), hands each to the frame writer, and prints the scene's frames per second: from the start
+ * of its first frame until its last file is written. */
+static bool render_turntable(run *rn, const options *o, const sc_file *f, const sc_scene *s,
+                             const ss_uploads *u, long long first) {
+    const int count = shard_frames(o, first);
+    if (count == 0) return true;
+    sgDevice *dev = rn->dev;
+    bool ok = false;
+    sgImage2D color = {0}, depth = {0};
+    ss_shadow shadow = {0};
+    sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
+    sc_draw *draws = calloc(s->draw_count ? s->draw_count : 1, sizeof *draws);
+    unsigned char *scratch = o->no_write ? malloc((size_t)s->width * (size_t)s->height * 4) : NULL;
+    char *path = frame_path(o, rn, s, o->turntable - 1);
+    if (!psos || !draws || !path || (o->no_write && !scratch)) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        goto done;
+    }
+    for (size_t i = 0; i < s->draw_count; i++) {
+        sgPipelineDesc desc = ss_pipeline_desc(&s->draws[i]);
+        if (!ss_get_pso(PROG, dev, &rn->cache, &desc, &psos[i])) {
+            fprintf(stderr, "sgapi-render: in %s, scene '%s', draw %zu\n", f->path, s->name, i);
+            goto done;
+        }
+    }
+    sgPassDesc pass;
+    if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass) ||
+        !ss_create_shadow(PROG, dev, &rn->cache, f, s, &shadow))
+        goto done;
+    sc_turntable table;
+    sc_turntable_init(f, s, o->spin, &table);
+    const size_t bytes = (size_t)s->width * (size_t)s->height * 4;
+    double t0 = ss_now_ms();
+    for (int k = 0; k < o->turntable; k++) {
+        if (!in_shard(o, first + k)) continue;
+        sc_scene turned;
+        sc_turntable_at(&table, s, 360.0 * k / o->turntable, draws, &turned);
+        /* The casters moved against the light's fit (a spinning draw), or the fit's box is no
+         * longer what it was (an orbit): the map is fitted again. */
+        if (k > 0 && !ss_fit_shadow(PROG, f, &turned, &shadow)) goto done;
+        if (!ss_draw_frame(PROG, dev, f, &turned, u, psos, &pass, &shadow)) goto done;
+        unsigned char *pixels = o->no_write ? scratch : fw_acquire(rn->frames, bytes);
+        if (!pixels) {
+            pg_hide(&rn->bar);
+            fprintf(stderr, "sgapi-render: %s\n", fw_error(rn->frames));
+            goto done;
+        }
+        sgResult r = sgReadImage2D(dev, color, pixels, 0);
+        if (r != SG_OK) {
+            sg_fail(dev, r, "scene '%s', frame %d: sgReadImage2D", s->name, k);
+            goto done;
+        }
+        if (!o->no_write) {
+            snprintf(path + strlen(path) - (size_t)rn->digits - 4, (size_t)rn->digits + 5,
+                     "%0*d.png", rn->digits, k);
+            if (!fw_submit(rn->frames, pixels, s->width, s->height, path)) {
+                pg_hide(&rn->bar);
+                fprintf(stderr, "sgapi-render: %s\n", fw_error(rn->frames));
+                goto done;
+            }
+        }
+        pg_step(&rn->bar, 1);
+    }
+    if (!o->no_write && !fw_drain(rn->frames)) {
+        pg_hide(&rn->bar);
+        fprintf(stderr, "sgapi-render: %s\n", fw_error(rn->frames));
+        goto done;
+    }
+    double seconds = (ss_now_ms() - t0) / 1e3;
+    pg_hide(&rn->bar);
+    if (count == o->turntable)
+        printf("%-32s %10.2f frames/s (%d frames in %.3f s)\n", s->name, count / seconds, count,
+               seconds);
+    else
+        printf("%-32s %10.2f frames/s (%d of %d frames in %.3f s)\n", s->name, count / seconds,
+               count, o->turntable, seconds);
+    fflush(stdout);
+    ok = true;
+done:
+    ss_destroy_shadow(dev, &shadow);
+    if (depth.id) sgDestroyImage2D(dev, depth);
+    if (color.id) sgDestroyImage2D(dev, color);
+    free(psos);
+    free(draws);
+    free(scratch);
+    free(path);
+    return ok;
+}
+
+/* Makes a scene's videos from its frames on disk; with `check`, first that every frame is there.
+ */
+static bool make_videos(const options *o, const run *rn, const sc_scene *s, bool check) {
+    char *dir = frame_path(o, rn, s, -1), *frame = frame_path(o, rn, s, o->turntable - 1);
+    size_t len = strlen(o->out_dir) + strlen(s->name) + 8;
+    char *out = malloc(len);
+    bool ok = dir && frame && out;
+    if (!ok) fprintf(stderr, "sgapi-render: out of memory\n");
+    for (int k = 0; ok && check && k < o->turntable; k++) {
+        struct stat st;
+        snprintf(frame + strlen(dir) + 1, (size_t)rn->digits + 5, "%0*d.png", rn->digits, k);
+        if (stat(frame, &st) != 0 || !S_ISREG(st.st_mode)) {
+            fprintf(stderr,
+                    "sgapi-render: --assemble: %s is missing: every shard must have finished "
+                    "(%d frames of '%s')\n",
+                    frame, o->turntable, s->name);
+            ok = false;
+        }
+    }
+    for (unsigned fmt = VIDEO_GIF; ok && fmt <= VIDEO_MP4; fmt <<= 1) {
+        if (!(o->video & fmt)) continue;
+        snprintf(out, len, "%s/%s.%s", o->out_dir, s->name, vd_extension(fmt));
+        ok = vd_make(PROG, dir, rn->digits, o->turntable, o->fps, o->video_width, fmt, out);
+        if (ok) printf("%-32s %s\n", s->name, out);
+    }
+    fflush(stdout);
+    free(dir);
+    free(frame);
+    free(out);
+    return ok;
+}
+
+/* Whether a file can be created in a folder: tried, since permissions alone do not tell (root
+ * writes anywhere but on a read-only file system). */
+static bool writable_dir(const char *dir) {
+    size_t len = strlen(dir) + 32;
+    char *probe = malloc(len);
+    if (!probe) return false;
+    snprintf(probe, len, "%s/.sgapi-render-XXXXXX", dir);
+    int fd = mkstemp(probe);
+    int saved = errno;
+    if (fd >= 0) {
+        close(fd);
+        remove(probe);
+    } else {
+        fprintf(stderr, "sgapi-render: cannot write in '%s': %s\n", dir, strerror(saved));
+    }
+    free(probe);
+    return fd >= 0;
+}
+
 /* ---- main ------------------------------------------------------------------------------------ */
 
 static size_t max_size(size_t a, size_t b) {
     return a > b ? a : b;
+}
+
+/* The digits of a turntable's frame names: 4, more when the last frame needs them. */
+static int frame_digits(int frames) {
+    int d = 1;
+    for (int n = frames - 1; n >= 10; n /= 10) d++;
+    return d < 4 ? 4 : d;
 }
 
 int main(int argc, char **argv) {
@@ -330,8 +682,7 @@ int main(int argc, char **argv) {
 
     /* Everything is loaded first, so a bad file stops the run before any rendering. */
     sc_file *files = calloc((size_t)o.file_count, sizeof *files);
-    sgDevice *dev = NULL;
-    ss_pso_cache cache = {0};
+    run rn = {.digits = frame_digits(o.turntable)};
     int loaded = 0;
     status = 1;
     if (!files) {
@@ -377,7 +728,48 @@ int main(int argc, char **argv) {
             goto done;
         }
     }
-    if (!make_dirs(o.out_dir)) goto done;
+
+    /* The items of the run, counted as --shard counts them: what this run renders, its folders
+     * and the progress bar's total. Problems of the arguments with these scenes are exit 2. */
+    long long items = 0, total = 0;
+    status = 2;
+    for (int i = 0; i < o.file_count; i++) {
+        for (size_t j = 0; j < files[i].scene_count; j++) {
+            const sc_scene *s = &files[i].scenes[j];
+            if (selected(&o, s->name) && o.spin >= 0 && (size_t)o.spin >= s->draw_count) {
+                fprintf(stderr, "sgapi-render: --spin %d: scene '%s' has %zu draws\n", o.spin,
+                        s->name, s->draw_count);
+                goto done;
+            }
+        }
+    }
+    if (!make_dirs(o.out_dir) || (!o.no_write && !writable_dir(o.out_dir))) goto done;
+    for (int i = 0; i < o.file_count; i++) {
+        for (size_t j = 0; j < files[i].scene_count; j++) {
+            const sc_scene *s = &files[i].scenes[j];
+            if (!selected(&o, s->name)) continue;
+            long long mine = o.turntable ? shard_frames(&o, items) : in_shard(&o, items);
+            items += o.turntable ? o.turntable : 1;
+            total += o.turntable ? mine : mine * o.frames;
+            if (o.turntable && mine > 0 && !o.no_write && !o.assemble) {
+                char *dir = frame_path(&o, &rn, s, -1);
+                bool made = dir && make_dirs(dir);
+                free(dir);
+                if (!made) goto done;
+            }
+        }
+    }
+    status = 1;
+
+    if (o.assemble) {
+        bool ok = true;
+        for (int i = 0; ok && i < o.file_count; i++)
+            for (size_t j = 0; ok && j < files[i].scene_count; j++)
+                if (selected(&o, files[i].scenes[j].name))
+                    ok = make_videos(&o, &rn, &files[i].scenes[j], true);
+        status = ok ? 0 : 1;
+        goto done;
+    }
 
     /* Pools big enough for the largest file (its textures plus the two targets and a shadow
      * map) and for every pipeline the files' draws and shadows can need. */
@@ -392,27 +784,58 @@ int main(int argc, char **argv) {
     if (max_images + 3 > 256) dd.image_pool_size = (int)max_images + 3;
     if (max_geoms > 1024) dd.geom_pool_size = (int)max_geoms;
     dd.pipeline_pool_size = ss_pipeline_pool_size(files, o.file_count, 1);
-    sgResult r = sgCreateDevice(&dd, &dev);
+    sgResult r = sgCreateDevice(&dd, &rn.dev);
     if (r != SG_OK) {
         sg_fail(NULL, r, "sgCreateDevice");
         goto done;
     }
+    /* Still images are written one at a time here; a turntable's frames on writer threads while
+     * the next ones render (docs/performance.md, "Writing frames"). */
+    if (!o.turntable) {
+        rn.png = sc_png_writer_create(o.png_level >= 0 ? o.png_level : SC_PNG_LEVEL_DEFAULT);
+        if (!rn.png) {
+            fprintf(stderr, "sgapi-render: out of memory\n");
+            goto done;
+        }
+    } else if (!o.no_write) {
+        int level = o.png_level >= 0 ? o.png_level : 0;
+        /* A thread per core: compressed levels are bound by the CPU, and at level 0 a second
+         * thread keeps writing while the first waits for the disk. Two frames more than threads
+         * let rendering run ahead without holding more than a few frames. */
+        long cores = sysconf(_SC_NPROCESSORS_ONLN);
+        int writers = cores > 2 ? (cores < 64 ? (int)cores : 64) : 2;
+        rn.frames = fw_start(PROG, writers, writers + 2, level);
+        if (!rn.frames) goto done;
+    }
+    pg_init(&rn.bar, !o.quiet, (long)total);
 
+    items = 0;
     for (int i = 0; i < o.file_count; i++) {
         const sc_file *f = &files[i];
         ss_uploads u;
-        bool ok = ss_upload(PROG, dev, f, &u);
+        bool ok = ss_upload(PROG, rn.dev, f, &u);
         for (size_t j = 0; ok && j < f->scene_count; j++) {
-            if (selected(&o, f->scenes[j].name))
-                ok = render_scene(dev, &o, f, &f->scenes[j], &u, &cache);
+            const sc_scene *s = &f->scenes[j];
+            if (!selected(&o, s->name)) continue;
+            if (o.turntable) {
+                ok = render_turntable(&rn, &o, f, s, &u, items);
+                if (ok && o.video) ok = make_videos(&o, &rn, s, false);
+                items += o.turntable;
+            } else {
+                if (in_shard(&o, items)) ok = render_scene(&rn, &o, f, s, &u);
+                items++;
+            }
         }
-        ss_destroy_uploads(dev, &u);
+        ss_destroy_uploads(rn.dev, &u);
         if (!ok) goto done;
     }
     status = 0;
 done:
-    sgDestroyDevice(dev); /* also destroys the cached pipelines */
-    ss_pso_cache_free(&cache);
+    pg_hide(&rn.bar);
+    fw_stop(rn.frames);
+    sc_png_writer_destroy(rn.png);
+    sgDestroyDevice(rn.dev); /* also destroys the cached pipelines */
+    ss_pso_cache_free(&rn.cache);
     for (int i = 0; i < loaded; i++) sc_free(&files[i]);
     free(files);
     free(o.files);

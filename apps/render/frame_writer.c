@@ -1,0 +1,187 @@
+/* frame_writer.c - a bounded queue of frames and the threads that write them (frame_writer.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "frame_writer.h"
+
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image_io.h"
+
+/* One frame buffer, free or holding a frame to write. */
+typedef struct slot {
+    unsigned char *pixels;
+    size_t cap;
+    int width, height;
+    char *path;
+} slot;
+
+struct frame_writer {
+    pthread_mutex_t lock;
+    pthread_cond_t changed; /* a frame was queued, written, or the writer is stopping */
+    pthread_t *threads;
+    int thread_count, level;
+    slot *slots;
+    int slot_count;
+    /* Slot indices: free ones (a stack) and queued ones (a ring, oldest first). */
+    int *free_list, free_count;
+    int *queue, queue_head, queue_count;
+    int busy; /* frames being written right now */
+    bool stopping, failed;
+    char error[1100];
+};
+
+static void *writer_main(void *arg) {
+    frame_writer *w = arg;
+    char err[1024];
+    sc_png_writer *png = sc_png_writer_create(w->level);
+    pthread_mutex_lock(&w->lock);
+    if (!png && !w->failed) {
+        w->failed = true;
+        snprintf(w->error, sizeof w->error, "out of memory for a PNG writer");
+    }
+    for (;;) {
+        while (w->queue_count == 0 && !w->stopping) pthread_cond_wait(&w->changed, &w->lock);
+        if (w->queue_count == 0) break; /* stopping, and nothing left */
+        int i = w->queue[w->queue_head];
+        w->queue_head = (w->queue_head + 1) % w->slot_count;
+        w->queue_count--;
+        w->busy++;
+        slot *s = &w->slots[i];
+        /* After a failure the rest are dropped: the run ends with an error anyway. */
+        bool skip = w->failed || !png;
+        pthread_mutex_unlock(&w->lock);
+        bool ok = skip || sc_png_writer_write(png, s->path, s->width, s->height, s->pixels, err,
+                                              sizeof err);
+        pthread_mutex_lock(&w->lock);
+        if (!ok && !w->failed) {
+            w->failed = true;
+            snprintf(w->error, sizeof w->error, "%s", err);
+        }
+        free(s->path);
+        s->path = NULL;
+        w->free_list[w->free_count++] = i;
+        w->busy--;
+        pthread_cond_broadcast(&w->changed);
+    }
+    pthread_mutex_unlock(&w->lock);
+    sc_png_writer_destroy(png);
+    return NULL;
+}
+
+static void free_writer(frame_writer *w) {
+    for (int i = 0; i < w->slot_count; i++) {
+        free(w->slots[i].pixels);
+        free(w->slots[i].path);
+    }
+    free(w->slots);
+    free(w->free_list);
+    free(w->queue);
+    free(w->threads);
+    pthread_cond_destroy(&w->changed);
+    pthread_mutex_destroy(&w->lock);
+    free(w);
+}
+
+frame_writer *fw_start(const char *prog, int threads, int slots, int level) {
+    frame_writer *w = calloc(1, sizeof *w);
+    if (!w) {
+        fprintf(stderr, "%s: out of memory\n", prog);
+        return NULL;
+    }
+    pthread_mutex_init(&w->lock, NULL);
+    pthread_cond_init(&w->changed, NULL);
+    w->level = level;
+    w->slot_count = slots;
+    w->slots = calloc((size_t)slots, sizeof *w->slots);
+    w->free_list = calloc((size_t)slots, sizeof *w->free_list);
+    w->queue = calloc((size_t)slots, sizeof *w->queue);
+    w->threads = calloc((size_t)threads, sizeof *w->threads);
+    if (!w->slots || !w->free_list || !w->queue || !w->threads) {
+        fprintf(stderr, "%s: out of memory\n", prog);
+        free_writer(w);
+        return NULL;
+    }
+    for (int i = 0; i < slots; i++) w->free_list[w->free_count++] = i;
+    for (; w->thread_count < threads; w->thread_count++) {
+        if (pthread_create(&w->threads[w->thread_count], NULL, writer_main, w) != 0) {
+            fprintf(stderr, "%s: cannot start a thread to write frames\n", prog);
+            fw_stop(w);
+            return NULL;
+        }
+    }
+    return w;
+}
+
+unsigned char *fw_acquire(frame_writer *w, size_t bytes) {
+    pthread_mutex_lock(&w->lock);
+    while (w->free_count == 0 && !w->failed) pthread_cond_wait(&w->changed, &w->lock);
+    unsigned char *out = NULL;
+    if (!w->failed) {
+        /* A free slot belongs to this thread alone until it is submitted. */
+        slot *s = &w->slots[w->free_list[w->free_count - 1]];
+        if (s->cap < bytes) {
+            free(s->pixels);
+            s->pixels = malloc(bytes);
+            s->cap = s->pixels ? bytes : 0;
+        }
+        if (s->pixels) {
+            w->free_count--;
+            out = s->pixels;
+        } else {
+            w->failed = true;
+            snprintf(w->error, sizeof w->error, "out of memory for a frame");
+        }
+    }
+    pthread_mutex_unlock(&w->lock);
+    return out;
+}
+
+bool fw_submit(frame_writer *w, unsigned char *pixels, int width, int height, const char *path) {
+    pthread_mutex_lock(&w->lock);
+    int i = 0;
+    while (w->slots[i].pixels != pixels) i++;
+    slot *s = &w->slots[i];
+    s->width = width;
+    s->height = height;
+    s->path = strdup(path);
+    if (!s->path && !w->failed) {
+        w->failed = true;
+        snprintf(w->error, sizeof w->error, "out of memory");
+    }
+    if (w->failed) {
+        free(s->path);
+        s->path = NULL;
+        w->free_list[w->free_count++] = i;
+    } else {
+        w->queue[(w->queue_head + w->queue_count) % w->slot_count] = i;
+        w->queue_count++;
+        pthread_cond_broadcast(&w->changed);
+    }
+    bool ok = !w->failed;
+    pthread_mutex_unlock(&w->lock);
+    return ok;
+}
+
+bool fw_drain(frame_writer *w) {
+    pthread_mutex_lock(&w->lock);
+    while (w->queue_count > 0 || w->busy > 0) pthread_cond_wait(&w->changed, &w->lock);
+    bool ok = !w->failed;
+    pthread_mutex_unlock(&w->lock);
+    return ok;
+}
+
+const char *fw_error(const frame_writer *w) {
+    return w->error;
+}
+
+void fw_stop(frame_writer *w) {
+    if (!w) return;
+    pthread_mutex_lock(&w->lock);
+    w->stopping = true;
+    pthread_cond_broadcast(&w->changed);
+    pthread_mutex_unlock(&w->lock);
+    for (int i = 0; i < w->thread_count; i++) pthread_join(w->threads[i], NULL);
+    free_writer(w);
+}
