@@ -1,6 +1,8 @@
 #!/bin/sh
-# Renders every scene file of scenes/ with BUILD_DIR's sgapi-render under valgrind memcheck. Any memory error
-# or definite/indirect leak fails the run (exit 1); the images go to a scratch folder.
+# Runs under valgrind memcheck, with BUILD_DIR's programs: sgapi-render on every scene file of
+# scenes/, a short turntable (its frames written on the writer threads), and the example that
+# creates and destroys objects between the frames of an animation (apps/examples/). Any memory
+# error or definite/indirect leak fails the run (exit 1); the images go to a scratch folder.
 #
 #   tools/memcheck.sh BUILD_DIR
 set -eu
@@ -9,5 +11,10 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect \
-    "$build/apps/sgapi-render" "$src"/scenes/*.json -o "$out"
+memcheck() {
+    valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect "$@"
+}
+memcheck "$build/apps/sgapi-render" "$src"/scenes/*.json -o "$out"
+memcheck "$build/apps/sgapi-render" "$src/scenes/default.json" --scene 03_pyramid_and_cube \
+    -o "$out/turntable" --turntable 3
+memcheck "$build/apps/examples/animate_objects" 200 32
