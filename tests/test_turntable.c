@@ -63,10 +63,10 @@ static void bounds_skip_non_finite_vertices(void **state) {
     assert_true(sc_view_bounds(&f.file, &f.scene, 1, lo, hi));
     assert_true(lo[0] == 3 && hi[0] == 5 && lo[2] == -7 && hi[2] == -5);
     sc_turntable t;
-    sc_turntable_init(&f.file, &f.scene, -1, &t);
+    assert_true(sc_turntable_init(&f.file, &f.scene, -1, -1, &t));
     assert_int_equal(t.draw, -1);
     assert_true(t.centre[0] == 2 && t.centre[1] == 1 && t.centre[2] == -8);
-    sc_turntable_init(&f.file, &f.scene, 1, &t);
+    assert_true(sc_turntable_init(&f.file, &f.scene, 1, -1, &t));
     assert_int_equal(t.draw, 1);
     assert_true(t.centre[0] == 4 && t.centre[1] == 1 && t.centre[2] == -6);
 }
@@ -78,7 +78,7 @@ static void frame_zero_is_the_scene_as_written(void **state) {
     /* A world-view that a product with an identity rotation would round differently. */
     for (int i = 0; i < 12; i++) f.draws[0].world_view[i] += 0.1f * (float)i / 3.0f;
     sc_turntable t;
-    sc_turntable_init(&f.file, &f.scene, -1, &t);
+    assert_true(sc_turntable_init(&f.file, &f.scene, -1, -1, &t));
     sc_draw draws[2];
     sc_scene out;
     for (int turns = 0; turns < 2; turns++) {
@@ -97,7 +97,7 @@ static void orbit_turns_scene_left_about_centre(void **state) {
     fixture f;
     setup(&f);
     sc_turntable t;
-    sc_turntable_init(&f.file, &f.scene, -1, &t);
+    assert_true(sc_turntable_init(&f.file, &f.scene, -1, -1, &t));
     sc_draw draws[2];
     sc_scene out;
     sc_turntable_at(&t, &f.scene, 90.0, draws, &out);
@@ -133,7 +133,7 @@ static void orbit_camera_moves_right(void **state) {
     fixture f;
     setup(&f);
     sc_turntable t;
-    sc_turntable_init(&f.file, &f.scene, -1, &t);
+    assert_true(sc_turntable_init(&f.file, &f.scene, -1, -1, &t));
     sc_draw draws[2];
     sc_scene out;
     sc_turntable_at(&t, &f.scene, 10.0, draws, &out);
@@ -150,7 +150,7 @@ static void spin_turns_one_draw_and_no_light(void **state) {
     fixture f;
     setup(&f);
     sc_turntable t;
-    sc_turntable_init(&f.file, &f.scene, 1, &t);
+    assert_true(sc_turntable_init(&f.file, &f.scene, 1, -1, &t));
     sc_draw draws[2];
     sc_scene out;
     sc_turntable_at(&t, &f.scene, 90.0, draws, &out);
@@ -167,6 +167,45 @@ static void spin_turns_one_draw_and_no_light(void **state) {
     assert_true(fabs(after[0] - 3) < 1e-6 && fabs(after[2] + 5) < 1e-6); /* right-front went left */
 }
 
+/* --up: the axis is a draw's own +y in view space. Turning about a tilted floor's up keeps the
+ * floor in its plane, and the draws' +y (the floor's normal) where it was. */
+static void orbit_about_a_draws_up(void **state) {
+    (void)state;
+    fixture f;
+    setup(&f);
+    /* Draw 0 tilted towards the camera by 30 degrees about x, as a floor looked down on. */
+    const float c = 0.8660254f, s = 0.5f;
+    const float tilted[16] = {1, 0, 0, 0, 0, c, -s, -1, 0, s, c, -10, 0, 0, 0, 1};
+    memcpy(f.draws[0].world_view, tilted, sizeof tilted);
+    sc_turntable t;
+    assert_true(sc_turntable_init(&f.file, &f.scene, -1, 0, &t));
+    assert_true(fabs(t.axis[0]) < 1e-12 && fabs(t.axis[1] - c) < 1e-7 &&
+                fabs(t.axis[2] - s) < 1e-7);
+    sc_draw draws[2];
+    sc_scene out;
+    for (int k = 1; k < 8; k++) {
+        sc_turntable_at(&t, &f.scene, 45.0 * k, draws, &out);
+        /* The floor's normal (its +y) is the axis: unchanged. */
+        const float *wv = draws[0].world_view;
+        assert_true(fabs(wv[1]) < 1e-6 && fabs(wv[5] - c) < 1e-6 && fabs(wv[9] - s) < 1e-6);
+        /* Every point keeps its height along the axis above the centre. */
+        for (int v = 0; v < 5; v++) {
+            if (v == 3) continue;
+            double before[3], after[3], hb = 0, ha = 0;
+            view_pos(f.draws[0].world_view, f.positions + v * 4, before);
+            view_pos(wv, f.positions + v * 4, after);
+            for (int i = 0; i < 3; i++) {
+                hb += (before[i] - t.centre[i]) * t.axis[i];
+                ha += (after[i] - t.centre[i]) * t.axis[i];
+            }
+            assert_true(fabs(ha - hb) < 1e-5);
+        }
+    }
+    /* A draw whose +y is zero has no up. */
+    memset(f.draws[1].world_view, 0, sizeof f.draws[1].world_view);
+    assert_false(sc_turntable_init(&f.file, &f.scene, -1, 1, &t));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(bounds_skip_non_finite_vertices),
@@ -174,6 +213,7 @@ int main(void) {
         cmocka_unit_test(orbit_turns_scene_left_about_centre),
         cmocka_unit_test(orbit_camera_moves_right),
         cmocka_unit_test(spin_turns_one_draw_and_no_light),
+        cmocka_unit_test(orbit_about_a_draws_up),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -42,6 +42,10 @@ cmp -s "$work/all/empty/0000.png" "$work/all/empty/0003.png" || fail "a scene wi
 cmp -s "$work/spin/lit_shadow/0000.png" "$work/plain/lit_shadow.png" || fail "--spin: frame 0"
 cmp -s "$work/spin/lit_shadow/0001.png" "$work/all/lit_shadow/0001.png" && fail "--spin orbits"
 cmp -s "$work/spin/lit_shadow/0001.png" "$work/spin/lit_shadow/0000.png" && fail "--spin: no turn"
+# --up: about the floor's up (draw 0), frame 0 is still the scene as written, the rest differ.
+"$render" "$work/tiny.json" -o "$work/up" --turntable 4 --up 0 --scene lit_shadow >/dev/null
+cmp -s "$work/up/lit_shadow/0000.png" "$work/plain/lit_shadow.png" || fail "--up: frame 0"
+cmp -s "$work/up/lit_shadow/0001.png" "$work/up/lit_shadow/0000.png" && fail "--up: no turn"
 # More than 10000 frames need a fifth digit (one shard of many renders a frame of each name).
 "$render" "$work/tiny.json" -o "$work/long" --turntable 10001 --scene empty --shard 10000/10001 \
     >/dev/null
@@ -109,6 +113,8 @@ bad "$work/bad" --turntable 3 --video gif --shard 0/2
 bad "$work/bad" --video gif
 bad "$work/bad" --spin 0
 bad "$work/bad" --turntable 3 --spin 5
+bad "$work/bad" --turntable 3 --up 0
+bad "$work/bad" --up 0 --scene lit_shadow
 bad "$work/bad" --turntable 3 --frames 2
 bad "$work/bad" --turntable 3 --png-level 13
 

@@ -8,12 +8,20 @@
 
 static const double PI = 3.14159265358979323846;
 
-void sc_turntable_init(const sc_file *f, const sc_scene *s, int spin, sc_turntable *out) {
+bool sc_turntable_init(const sc_file *f, const sc_scene *s, int spin, int up, sc_turntable *out) {
     memset(out, 0, sizeof *out);
     out->draw = spin < 0 ? -1 : spin;
     double lo[3], hi[3];
     if (sc_view_bounds(f, s, out->draw, lo, hi))
         for (int i = 0; i < 3; i++) out->centre[i] = 0.5 * (lo[i] + hi[i]);
+    out->axis[1] = 1.0;
+    if (up < 0) return true;
+    const float *wv = s->draws[up].world_view;
+    double a[3] = {wv[1], wv[5], wv[9]};
+    double len = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    if (!(len > 0.0) || !isfinite(len)) return false;
+    for (int i = 0; i < 3; i++) out->axis[i] = a[i] / len;
+    return true;
 }
 
 /* Sine and cosine of an angle in degrees, exact at multiples of 90 (a quarter turn of a frame
@@ -59,9 +67,27 @@ void sc_turntable_at(const sc_turntable *t, const sc_scene *s, double degrees, s
     double sn, cs;
     sincos_degrees(degrees, &sn, &cs);
     if (sn == 0.0 && cs == 1.0) return; /* the scene as written */
-    /* M = T(c) Ry(-a) T(-c): the scene turns one way as the camera goes the other. */
-    const double *c = t->centre;
-    double m[16] = {cs, 0.0, -sn, 0.0, 0.0, 1.0, 0.0, 0.0, sn, 0.0, cs, 0.0, 0.0, 0.0, 0.0, 1.0};
+    /* M = T(c) R(-a) T(-c): the scene turns one way as the camera goes the other. R(-a) about
+     * the unit axis u is cos a I - sin a [u]x + (1 - cos a) u u^T (Rodrigues); about +y it is
+     * Ry(-a), exactly. */
+    const double *c = t->centre, *u = t->axis;
+    const double k = 1.0 - cs;
+    double m[16] = {cs + k * u[0] * u[0],
+                    k * u[0] * u[1] + sn * u[2],
+                    k * u[0] * u[2] - sn * u[1],
+                    0.0,
+                    k * u[1] * u[0] - sn * u[2],
+                    cs + k * u[1] * u[1],
+                    k * u[1] * u[2] + sn * u[0],
+                    0.0,
+                    k * u[2] * u[0] + sn * u[1],
+                    k * u[2] * u[1] - sn * u[0],
+                    cs + k * u[2] * u[2],
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    1.0};
     for (int r = 0; r < 3; r++)
         m[r * 4 + 3] = c[r] - (m[r * 4] * c[0] + m[r * 4 + 1] * c[1] + m[r * 4 + 2] * c[2]);
     for (size_t i = 0; i < s->draw_count; i++) {

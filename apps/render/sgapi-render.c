@@ -52,6 +52,7 @@ typedef struct options {
     bool frames_given;
     int turntable;                /* --turntable N: frames of a turn; 0: still images */
     int spin;                     /* --spin I: the draw that spins; -1: the camera orbits */
+    int up;                       /* --up I: the axis is draw I's +y; -1: view-space +y */
     int shard_index, shard_count; /* --shard I/N: every item k with k mod N = I; 0/1: all */
     unsigned video;               /* --video: VIDEO_GIF | VIDEO_MP4 */
     int fps;                      /* --fps: of the videos */
@@ -100,6 +101,10 @@ static void usage(FILE *f) {
                "                  written; the lights turn with the scene; prints frames/s\n"
                "  --spin I        instead, only draw I (0: the scene's first) turns, the same\n"
                "                  way, about the centre of its own box; camera and lights stay\n"
+               "  --up I          turn about draw I's own +y as it is in view space instead of\n"
+               "                  the view's vertical: the up of a floor the camera looks down\n"
+               "                  on (about the view's vertical, half a turn would look at the\n"
+               "                  floor from below)\n"
                "  --video LIST    also write DIR/<scene name>.gif and/or .mp4 (LIST: gif, mp4 or\n"
                "                  gif,mp4) with ffmpeg: a palette-optimised GIF, H.264 in yuv420p\n"
                "  --fps F         frames per second of the videos (default 25)\n"
@@ -129,8 +134,9 @@ static bool parse_shard(const char *value, options *o) {
 /* Options that do not go together, and what --video needs; 0 or 2 (reported). */
 static int check_combination(const options *o) {
     const char *problem = NULL;
-    if (!o->turntable && (o->spin >= 0 || o->video || o->assemble))
+    if (!o->turntable && (o->spin >= 0 || o->up >= 0 || o->video || o->assemble))
         problem = o->spin >= 0 ? "--spin needs --turntable"
+                  : o->up >= 0 ? "--up needs --turntable"
                   : o->video   ? "--video needs --turntable: a video of which frames?"
                                : "--assemble needs --turntable N and --video";
     else if (o->turntable && (o->frames_given || o->compare_dir || o->depth_only))
@@ -166,6 +172,7 @@ static int parse_args(int argc, char **argv, options *o) {
     o->frames = 1;
     o->min_psnr = o->max_over2 = o->max_coverage = -1;
     o->spin = -1;
+    o->up = -1;
     o->shard_count = 1;
     o->fps = 25;
     o->png_level = -1;
@@ -183,9 +190,9 @@ static int parse_args(int argc, char **argv, options *o) {
         bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
                            !strcmp(a, "--threads") || !strcmp(a, "--simd") ||
                            !strcmp(a, "--compare") || threshold || !strcmp(a, "--turntable") ||
-                           !strcmp(a, "--spin") || !strcmp(a, "--shard") || !strcmp(a, "--video") ||
-                           !strcmp(a, "--fps") || !strcmp(a, "--video-width") ||
-                           !strcmp(a, "--png-level");
+                           !strcmp(a, "--spin") || !strcmp(a, "--up") || !strcmp(a, "--shard") ||
+                           !strcmp(a, "--video") || !strcmp(a, "--fps") ||
+                           !strcmp(a, "--video-width") || !strcmp(a, "--png-level");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -214,6 +221,11 @@ static int parse_args(int argc, char **argv, options *o) {
         } else if (!strcmp(a, "--spin")) {
             if (!sc_parse_int(value, 0, INT_MAX, &o->spin)) {
                 fprintf(stderr, "sgapi-render: --spin needs a draw index >= 0, not '%s'\n", value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--up")) {
+            if (!sc_parse_int(value, 0, INT_MAX, &o->up)) {
+                fprintf(stderr, "sgapi-render: --up needs a draw index >= 0, not '%s'\n", value);
                 return 2;
             }
         } else if (!strcmp(a, "--shard")) {
@@ -548,7 +560,7 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
         !ss_create_shadow(PROG, dev, &rn->cache, f, s, &shadow))
         goto done;
     sc_turntable table;
-    sc_turntable_init(f, s, o->spin, &table);
+    sc_turntable_init(f, s, o->spin, o->up, &table); /* checked before the run */
     const size_t bytes = (size_t)s->width * (size_t)s->height * 4;
     double t0 = ss_now_ms();
     for (int k = 0; k < o->turntable; k++) {
@@ -736,9 +748,19 @@ int main(int argc, char **argv) {
     for (int i = 0; i < o.file_count; i++) {
         for (size_t j = 0; j < files[i].scene_count; j++) {
             const sc_scene *s = &files[i].scenes[j];
-            if (selected(&o, s->name) && o.spin >= 0 && (size_t)o.spin >= s->draw_count) {
-                fprintf(stderr, "sgapi-render: --spin %d: scene '%s' has %zu draws\n", o.spin,
-                        s->name, s->draw_count);
+            if (!selected(&o, s->name)) continue;
+            int bad = o.spin >= 0 && (size_t)o.spin >= s->draw_count ? o.spin
+                      : o.up >= 0 && (size_t)o.up >= s->draw_count   ? o.up
+                                                                     : -1;
+            if (bad >= 0) {
+                fprintf(stderr, "sgapi-render: --%s %d: scene '%s' has %zu draws\n",
+                        bad == o.spin ? "spin" : "up", bad, s->name, s->draw_count);
+                goto done;
+            }
+            sc_turntable t;
+            if (o.turntable && !sc_turntable_init(&files[i], s, o.spin, o.up, &t)) {
+                fprintf(stderr, "sgapi-render: --up %d: in scene '%s', the draw's +y is %s\n", o.up,
+                        s->name, "zero or not finite");
                 goto done;
             }
         }
