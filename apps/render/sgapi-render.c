@@ -60,7 +60,9 @@ typedef struct options {
     bool assemble;                /* --assemble: only make the videos of frames on disk */
     bool quiet;                   /* --quiet: no progress bar */
     bool no_write;                /* --no-write: render and read back, write nothing */
-    int png_level;                /* --png-level; -1: the run's default */
+    int writers;   /* --writers: threads writing turntable frames; 0: the rendering thread; -1:
+                      default */
+    int png_level; /* --png-level; -1: the run's default */
 } options;
 
 static void usage(FILE *f) {
@@ -111,6 +113,9 @@ static void usage(FILE *f) {
                "  --video-width W scale the videos to W pixels wide (default: the frames' size)\n"
                "  --assemble      render nothing: make the videos from the frames already in\n"
                "                  DIR (the final step after a run split with --shard)\n"
+               "  --writers W     threads that encode and write frames while the next ones\n"
+               "                  render (default: one per core, at least 2; 0: the rendering\n"
+               "                  thread writes each frame before it renders the next)\n"
                "  -h, --help      show this help\n"
                "Exit status: 0 done, 1 failed while loading, rendering or writing, 2 bad\n"
                "arguments or setup (found before anything is rendered).\n");
@@ -173,6 +178,7 @@ static int parse_args(int argc, char **argv, options *o) {
     o->min_psnr = o->max_over2 = o->max_coverage = -1;
     o->spin = -1;
     o->up = -1;
+    o->writers = -1;
     o->shard_count = 1;
     o->fps = 25;
     o->png_level = -1;
@@ -187,12 +193,12 @@ static int parse_args(int argc, char **argv, options *o) {
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool threshold =
             !strcmp(a, "--min-psnr") || !strcmp(a, "--max-over2") || !strcmp(a, "--max-coverage");
-        bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
-                           !strcmp(a, "--threads") || !strcmp(a, "--simd") ||
-                           !strcmp(a, "--compare") || threshold || !strcmp(a, "--turntable") ||
-                           !strcmp(a, "--spin") || !strcmp(a, "--up") || !strcmp(a, "--shard") ||
-                           !strcmp(a, "--video") || !strcmp(a, "--fps") ||
-                           !strcmp(a, "--video-width") || !strcmp(a, "--png-level");
+        bool takes_value =
+            !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
+            !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--compare") ||
+            threshold || !strcmp(a, "--turntable") || !strcmp(a, "--spin") || !strcmp(a, "--up") ||
+            !strcmp(a, "--shard") || !strcmp(a, "--video") || !strcmp(a, "--fps") ||
+            !strcmp(a, "--video-width") || !strcmp(a, "--png-level") || !strcmp(a, "--writers");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -264,6 +270,13 @@ static int parse_args(int argc, char **argv, options *o) {
                 fprintf(stderr,
                         "sgapi-render: --png-level needs a whole number from 0 to %d, not '%s'\n",
                         SC_PNG_LEVEL_MAX, value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--writers")) {
+            if (!sc_parse_int(value, 0, 64, &o->writers)) {
+                fprintf(stderr,
+                        "sgapi-render: --writers needs a whole number from 0 to 64, not '%s'\n",
+                        value);
                 return 2;
             }
         } else if (!strcmp(a, "--assemble")) {
@@ -542,9 +555,10 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
     ss_shadow shadow = {0};
     sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
     sc_draw *draws = calloc(s->draw_count ? s->draw_count : 1, sizeof *draws);
-    unsigned char *scratch = o->no_write ? malloc((size_t)s->width * (size_t)s->height * 4) : NULL;
+    /* Frames go to the writer threads' buffers, or, written here or not at all, to one of ours. */
+    unsigned char *scratch = rn->frames ? NULL : malloc((size_t)s->width * (size_t)s->height * 4);
     char *path = frame_path(o, rn, s, o->turntable - 1);
-    if (!psos || !draws || !path || (o->no_write && !scratch)) {
+    if (!psos || !draws || !path || (!rn->frames && !scratch)) {
         fprintf(stderr, "sgapi-render: out of memory\n");
         goto done;
     }
@@ -571,7 +585,7 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
          * longer what it was (an orbit): the map is fitted again. */
         if (k > 0 && !ss_fit_shadow(PROG, f, &turned, &shadow)) goto done;
         if (!ss_draw_frame(PROG, dev, f, &turned, u, psos, &pass, &shadow)) goto done;
-        unsigned char *pixels = o->no_write ? scratch : fw_acquire(rn->frames, bytes);
+        unsigned char *pixels = rn->frames ? fw_acquire(rn->frames, bytes) : scratch;
         if (!pixels) {
             pg_hide(&rn->bar);
             fprintf(stderr, "sgapi-render: %s\n", fw_error(rn->frames));
@@ -582,18 +596,21 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
             sg_fail(dev, r, "scene '%s', frame %d: sgReadImage2D", s->name, k);
             goto done;
         }
-        if (!o->no_write) {
-            snprintf(path + strlen(path) - (size_t)rn->digits - 4, (size_t)rn->digits + 5,
-                     "%0*d.png", rn->digits, k);
-            if (!fw_submit(rn->frames, pixels, s->width, s->height, path)) {
-                pg_hide(&rn->bar);
-                fprintf(stderr, "sgapi-render: %s\n", fw_error(rn->frames));
-                goto done;
-            }
+        snprintf(path + strlen(path) - (size_t)rn->digits - 4, (size_t)rn->digits + 5, "%0*d.png",
+                 rn->digits, k);
+        char err[1024];
+        bool written = rn->frames ? fw_submit(rn->frames, pixels, s->width, s->height, path)
+                       : rn->png  ? sc_png_writer_write(rn->png, path, s->width, s->height, pixels,
+                                                        err, sizeof err)
+                                  : true;
+        if (!written) {
+            pg_hide(&rn->bar);
+            fprintf(stderr, "sgapi-render: %s\n", rn->frames ? fw_error(rn->frames) : err);
+            goto done;
         }
         pg_step(&rn->bar, 1);
     }
-    if (!o->no_write && !fw_drain(rn->frames)) {
+    if (rn->frames && !fw_drain(rn->frames)) {
         pg_hide(&rn->bar);
         fprintf(stderr, "sgapi-render: %s\n", fw_error(rn->frames));
         goto done;
@@ -811,23 +828,25 @@ int main(int argc, char **argv) {
         sg_fail(NULL, r, "sgCreateDevice");
         goto done;
     }
-    /* Still images are written one at a time here; a turntable's frames on writer threads while
-     * the next ones render (docs/performance.md, "Writing frames"). */
-    if (!o.turntable) {
-        rn.png = sc_png_writer_create(o.png_level >= 0 ? o.png_level : SC_PNG_LEVEL_DEFAULT);
+    /* Still images are written one at a time here; a turntable's frames, stored by default, on
+     * writer threads while the next ones render (docs/performance.md, "Writing frames"). */
+    int level = o.png_level >= 0 ? o.png_level : o.turntable ? 0 : SC_PNG_LEVEL_DEFAULT;
+    /* A thread per core: compressed levels are bound by the CPU, and at level 0 a second thread
+     * keeps writing while the first waits for the disk. Two frames more than threads let
+     * rendering run ahead without holding more than a few frames. */
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    int writers = o.writers >= 0 ? o.writers : cores > 2 ? (cores < 64 ? (int)cores : 64) : 2;
+    if (o.no_write) {
+        /* nothing to write */
+    } else if (o.turntable && writers > 0) {
+        rn.frames = fw_start(PROG, writers, writers + 2, level);
+        if (!rn.frames) goto done;
+    } else {
+        rn.png = sc_png_writer_create(level);
         if (!rn.png) {
             fprintf(stderr, "sgapi-render: out of memory\n");
             goto done;
         }
-    } else if (!o.no_write) {
-        int level = o.png_level >= 0 ? o.png_level : 0;
-        /* A thread per core: compressed levels are bound by the CPU, and at level 0 a second
-         * thread keeps writing while the first waits for the disk. Two frames more than threads
-         * let rendering run ahead without holding more than a few frames. */
-        long cores = sysconf(_SC_NPROCESSORS_ONLN);
-        int writers = cores > 2 ? (cores < 64 ? (int)cores : 64) : 2;
-        rn.frames = fw_start(PROG, writers, writers + 2, level);
-        if (!rn.frames) goto done;
     }
     pg_init(&rn.bar, !o.quiet, (long)total);
 
