@@ -249,20 +249,33 @@ bool sc_png_writer_write(sc_png_writer *w, const char *path, int width, int heig
         snprintf(err, errlen, "cannot write '%s': PNG encoding failed (out of memory)", path);
         return false;
     }
-    FILE *f = fopen(path, "wb");
+    /* Written beside, then renamed over the name: a file of that name is always a whole image,
+     * even when the writer is stopped half-way (a job array's shard killed by its scheduler). */
+    size_t n = strlen(path) + 8;
+    char *part = malloc(n);
+    if (!part) {
+        snprintf(err, errlen, "cannot write '%s': out of memory", path);
+        return false;
+    }
+    snprintf(part, n, "%s.part", path);
+    FILE *f = fopen(part, "wb");
     if (!f) {
-        snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
+        snprintf(err, errlen, "cannot write '%s': %s", part, strerror(errno));
+        free(part);
         return false;
     }
     bool written = fwrite(w->file, 1, len, f) == len;
     int saved = errno;
     bool closed = fclose(f) == 0;
-    if (!written || !closed) {
-        snprintf(err, errlen, "cannot write '%s': %s", path, strerror(written ? errno : saved));
-        remove(path);
-        return false;
+    if (!closed && written) saved = errno;
+    bool renamed = written && closed && rename(part, path) == 0;
+    if (written && closed && !renamed) saved = errno;
+    if (!renamed) {
+        snprintf(err, errlen, "cannot write '%s': %s", path, strerror(saved));
+        remove(part);
     }
-    return true;
+    free(part);
+    return renamed;
 }
 
 bool sc_image_write_png(const char *path, int width, int height, const unsigned char *rgba,

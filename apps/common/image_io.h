@@ -36,7 +36,8 @@ sc_png_writer *sc_png_writer_create(int level);
 /** Frees a writer; NULL is fine. */
 void sc_png_writer_destroy(sc_png_writer *writer);
 /** Writes RGBA8 pixels (top row first, tightly packed) as an RGBA PNG file; the same pixels and
- *  level give the same bytes. On failure no file is left and err says why. */
+ *  level give the same bytes. The file is written as PATH.part and renamed to PATH, so PATH is
+ *  never a partial image. On failure no file is left and err says why. */
 bool sc_png_writer_write(sc_png_writer *writer, const char *path, int width, int height,
                          const unsigned char *rgba, char *err, size_t errlen);
 /** Writes RGBA8 pixels as a PNG file at SC_PNG_LEVEL_DEFAULT. */
