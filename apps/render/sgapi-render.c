@@ -2,7 +2,8 @@
  * turntable of each scene (a PNG per frame, and a GIF and an MP4 through ffmpeg).
  *
  *   sgapi-render [--frames N] [--scene NAME]... [--threads T] [--simd SET] SCENE.json... -o DIR
- *   sgapi-render SCENE.json... -o DIR --turntable N [--spin I] [--video gif,mp4] [--shard I/N]
+ *   sgapi-render SCENE.json... -o DIR --turntable N [--up I] [--spin I] [--video gif,mp4]
+ *                [--shard I/N] [--assemble]
  *
  * Writes DIR/<scene name>.png and prints, per scene, the wall-clock time of one frame: the time
  * from sgBeginRenderPass to the return of sgEndRenderPass, of the shadow's depth-only pass and the
