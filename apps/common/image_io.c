@@ -135,7 +135,7 @@ void sc_image_free(sc_image *image) {
 
 /* ---- PNG writing ------------------------------------------------------------------------------
  * RGBA8, 8 bits a channel, one IDAT chunk compressed by libdeflate: several times faster than
- * stb_image_write at the same size (docs/performance.md, "Writing frames"), and at level 0 a stored
+ * stb_image_write and smaller (docs/performance.md, "Writing frames"), and at level 0 a stored
  * stream that costs little more than a copy. */
 
 struct sc_png_writer {

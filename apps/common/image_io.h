@@ -25,7 +25,7 @@ void sc_image_free(sc_image *image);
 /* Compression levels of written PNG files: libdeflate's, 0 (stored: no compression, the fastest)
  * to 12 (the smallest files). */
 #define SC_PNG_LEVEL_MAX     12
-#define SC_PNG_LEVEL_DEFAULT 6 /* about stb_image_write's sizes in a third of its time */
+#define SC_PNG_LEVEL_DEFAULT 6 /* smaller than stb_image_write, in a quarter of its time */
 
 /* Writes PNG files, keeping its compressor and buffers from one image to the next (the frames of
  * an animation). One writer per thread. */
