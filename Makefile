@@ -26,20 +26,23 @@ demo: build
 	$(BUILD)/apps/sgapi-render scenes/shadows.json --scene shadow_teapots -o $(OUT)/turntable \
 		--turntable 60 --up 0 --video gif --video-width 360 --fps 20
 
-# Every test; then the suite again, built with clang under ASan + UBSan in build-asan/ (without the
-# live lavapipe checks, see tools/sanitize.sh); then the default scenes under valgrind memcheck.
-# Any sanitizer or memcheck report fails.
+# Every test (the allocation-failure injection and the API-sequence corpus among them); then the
+# suite again, built with clang under ASan + UBSan in build-asan/ (without the live lavapipe
+# checks, see tools/sanitize.sh); then the threaded programs under ThreadSanitizer in build-tsan/
+# (tools/tsan.sh); then the default scenes under valgrind memcheck. Any sanitizer or memcheck
+# report fails.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	sh tools/sanitize.sh build-asan $(JOBS)
+	sh tools/tsan.sh build-tsan $(JOBS)
 	sh tools/memcheck.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD) $(OUT)
 
-# Fuzzes the file loaders (OBJ, scene JSON, images) with libFuzzer in build-fuzz/ (clang, ASan +
-# UBSan), FUZZ_SECONDS seconds per target; fails on any crash, found inputs go to
-# build-fuzz/crashes/<target>/ (docs/fuzzing.md).
+# Fuzzes the file loaders (OBJ, scene JSON, images) and sequences of API calls with libFuzzer in
+# build-fuzz/ (clang, ASan + UBSan), FUZZ_SECONDS seconds per target; fails on any crash, found
+# inputs go to build-fuzz/crashes/<target>/ (docs/fuzzing.md).
 FUZZ_SECONDS ?= 60
 .PHONY: fuzz
 fuzz: deps

@@ -1,7 +1,8 @@
 /* replay.c - runs every committed fuzz reproducer through its target's entry point, built with the
  * normal compiler, so a loader crash once fixed stays fixed (ctest: fuzz_regressions).
  *
- * Usage: fuzz_replay DIR, where DIR/obj, DIR/scene and DIR/image hold one input per file.
+ * Usage: fuzz_replay DIR, where DIR/obj, DIR/scene and DIR/image hold one input per file; built
+ * with FUZZ_REPLAY_API (test_api_seq), DIR/api: sequences of API calls (fuzz_api.c).
  */
 #define _POSIX_C_SOURCE 200809L /* opendir, readdir */
 
@@ -14,7 +15,15 @@
 static const struct {
     const char *dir;
     int (*run)(const uint8_t *, size_t);
-} targets[] = {{"obj", fuzz_obj}, {"scene", fuzz_scene}, {"image", fuzz_image}};
+} targets[] = {
+#if defined(FUZZ_REPLAY_API)
+    {"api", fuzz_api},
+#else
+    {"obj", fuzz_obj},
+    {"scene", fuzz_scene},
+    {"image", fuzz_image},
+#endif
+};
 
 /* Reads a whole file; NULL when it cannot (the caller reports it). */
 static uint8_t *read_all(const char *path, size_t *len) {
