@@ -124,15 +124,16 @@ static void mesh_free(mesh *m) {
 typedef struct script {
     injector in;
     log_rec log;
-    const mesh *ball;
+    const mesh *ball, *big; /* big: enough triangles for the front end to run on all threads */
     int threads;
     sgDevice *dev;
     sgImage2D color, depth, tex, shadow_map;
-    sgGeom ball_g, ref_g, floor_g, lines_g, tri_g;
+    sgGeom ball_g, ref_g, floor_g, lines_g, tri_g, big_g;
     sgPipelineStateObject opaque, textured, blend, flat, gouraud, phong, wire, caster, line;
     uint8_t image[W * H * 4];
     int failures;    /* checks that failed */
     int oom_seen;    /* calls that returned SG_ERROR_OUT_OF_MEMORY */
+    int absorbed;    /* calls that succeeded although an allocation failed under them */
     int stopped;     /* the script stopped at a failed call */
     sgPassDesc open; /* the pass the script has open, if any (targets 0: none) */
 } script;
@@ -153,8 +154,9 @@ static void check(script *s, int ok, int line, const char *call, const char *wha
         s->log.count = 0;                                                                          \
         sgResult r_ = (call);                                                                      \
         if (r_ == SG_OK) {                                                                         \
-            check(s, atomic_load(&s->in.failed) == 0, __LINE__, #call,                             \
-                  "succeeded although an allocation failed");                                      \
+            /* Only an optional allocation may fail under a call that succeeds (a faster path      \
+             * falls back to a slower one); the final image then proves nothing changed. */        \
+            s->absorbed += atomic_load(&s->in.failed) != 0;                                        \
             break;                                                                                 \
         }                                                                                          \
         s->oom_seen++;                                                                             \
@@ -253,6 +255,8 @@ static void frame(script *s, int frame_no) {
     perspective(op.proj);
     translate(op.world_view, 0.6f, 2.2f, -1.2f, -5);
     DO(sgDraw(s->dev, s->opaque, s->tri_g, &op));
+    translate(op.world_view, 0.5f, 2.3f, 0.9f, -6);
+    DO(sgDraw(s->dev, s->opaque, s->big_g, &op));
     /* Wireframe and lines. */
     translate(op.world_view, 0.7f, -2.0f, -1.3f, -5);
     DO(sgDraw(s->dev, s->wire, s->ball_g, &op));
@@ -304,6 +308,15 @@ static void run(script *s) {
                            .indices = b->idx,
                            .primitive = SG_PRIMITIVE_QUADS};
     DO(sgCreateGeom(s->dev, &bd, &s->ball_g));
+    sgGeomDesc gd = bd;
+    gd.vertex_count = s->big->nv;
+    gd.positions = s->big->pos;
+    gd.colors = s->big->col;
+    gd.texcoords = s->big->uv;
+    gd.normals = s->big->nrm;
+    gd.index_count = s->big->ni;
+    gd.indices = s->big->idx;
+    DO(sgCreateGeom(s->dev, &gd, &s->big_g));
     sgGeomDesc rd = bd;
     rd.storage = SG_STORAGE_REFERENCE;
     DO(sgCreateGeom(s->dev, &rd, &s->ref_g));
@@ -396,7 +409,7 @@ static void teardown(script *s) {
     for (size_t i = 0; i < sizeof im / sizeof *im; i++)
         if (im[i].id && sgDestroyImage2D(s->dev, im[i]) != SG_OK)
             check(s, 0, __LINE__, "sgDestroyImage2D", sgGetLastError(s->dev));
-    const sgGeom g[] = {s->ball_g, s->ref_g, s->floor_g, s->lines_g, s->tri_g};
+    const sgGeom g[] = {s->ball_g, s->ref_g, s->floor_g, s->lines_g, s->tri_g, s->big_g};
     for (size_t i = 0; i < sizeof g / sizeof *g; i++)
         if (g[i].id && sgDestroyGeom(s->dev, g[i]) != SG_OK)
             check(s, 0, __LINE__, "sgDestroyGeom", sgGetLastError(s->dev));
@@ -410,11 +423,12 @@ static void teardown(script *s) {
 }
 
 /* One run of the script with the given failure; returns its failed checks. */
-static int attempt(const mesh *ball, int threads, int mode, long fail_at, long *allocations,
-                   uint8_t *image, const uint8_t *expect) {
+static int attempt(const mesh *ball, const mesh *big, int threads, int mode, long fail_at,
+                   long *allocations, uint8_t *image, const uint8_t *expect, int *absorbed) {
     script *s = calloc(1, sizeof *s);
     if (!s) abort();
     s->ball = ball;
+    s->big = big;
     s->threads = threads;
     s->in.mode = mode;
     s->in.fail_at = fail_at;
@@ -423,14 +437,17 @@ static int attempt(const mesh *ball, int threads, int mode, long fail_at, long *
     long live = atomic_load(&s->in.live);
     if (live) check(s, 0, __LINE__, "teardown", "allocations outstanding after sgDestroyDevice");
     if (mode == MODE_ONLY && !s->failures) {
-        check(s, s->oom_seen == 1, __LINE__, "script", "not exactly one call ran out of memory");
+        check(s, s->oom_seen + s->absorbed == 1, __LINE__, "script",
+              "not exactly one call met the failed allocation");
         check(s, memcmp(s->image, expect, sizeof s->image) == 0, __LINE__, "script",
               "the final image differs from the unfailed run's");
     }
     if (mode == MODE_FROM && !s->failures)
-        check(s, s->oom_seen == 1, __LINE__, "script", "no call ran out of memory");
+        check(s, s->oom_seen == 1 || s->absorbed, __LINE__, "script",
+              "no call met the failed allocations");
     if (allocations) *allocations = atomic_load(&s->in.count);
     if (image) memcpy(image, s->image, sizeof s->image);
+    if (absorbed) *absorbed += s->absorbed != 0;
     int failures = s->failures;
     free(s);
     return failures;
@@ -439,10 +456,10 @@ static int attempt(const mesh *ball, int threads, int mode, long fail_at, long *
 int main(int argc, char **argv) {
     /* Default 3 threads: the device's worker array is one of the allocation points. */
     int threads = argc > 1 ? atoi(argv[1]) : 3;
-    mesh ball = sphere(10, 16);
+    mesh ball = sphere(10, 16), big = sphere(48, 48);
     static uint8_t expect[W * H * 4];
     long total = 0;
-    int failures = attempt(&ball, threads, MODE_NONE, 0, &total, expect, NULL);
+    int failures = attempt(&ball, &big, threads, MODE_NONE, 0, &total, expect, NULL, NULL);
     if (failures) {
         fprintf(stderr, "the unfailed run failed\n");
         return 1;
@@ -464,19 +481,21 @@ int main(int argc, char **argv) {
     }
     /* Everything must be deterministic: a second unfailed run asks for the same allocations. */
     long again = 0;
-    failures += attempt(&ball, threads, MODE_NONE, 0, &again, NULL, NULL);
+    failures += attempt(&ball, &big, threads, MODE_NONE, 0, &again, NULL, NULL, NULL);
     if (again != total) {
         fprintf(stderr, "the unfailed runs made %ld and %ld allocations\n", total, again);
         return 1;
     }
-    int bad_only = 0, bad_from = 0;
+    int bad_only = 0, bad_from = 0, absorbed = 0;
     for (long n = 1; n <= total; n++) {
-        bad_only += attempt(&ball, threads, MODE_ONLY, n, NULL, NULL, expect) != 0;
-        bad_from += attempt(&ball, threads, MODE_FROM, n, NULL, NULL, NULL) != 0;
+        bad_only += attempt(&ball, &big, threads, MODE_ONLY, n, NULL, NULL, expect, &absorbed) != 0;
+        bad_from += attempt(&ball, &big, threads, MODE_FROM, n, NULL, NULL, NULL, NULL) != 0;
     }
     mesh_free(&ball);
-    printf("%ld allocation points at %d threads; only-N failing: %ld passed, %d failed; "
-           "N-onwards failing: %ld passed, %d failed\n",
-           total, threads, total - bad_only, bad_only, total - bad_from, bad_from);
+    mesh_free(&big);
+    printf("%ld allocation points at %d threads; only-N failing: %ld passed, %d failed (%d of "
+           "them optional: the call succeeded on a slower path, same image); N-onwards failing: "
+           "%ld passed, %d failed\n",
+           total, threads, total - bad_only, bad_only, absorbed, total - bad_from, bad_from);
     return failures || bad_only || bad_from ? 1 : 0;
 }
