@@ -31,21 +31,26 @@ void *__wrap_realloc(void *p, size_t size);
 
 /* The count has to be global: malloc takes no context. Only this test has it. */
 static long alloc_count, fail_at;
+static size_t largest; /* the largest request seen */
 
-static bool fail_now(void) {
-    return ++alloc_count == fail_at;
+/* Requests over this are refused and remembered: no file here needs them. */
+#define HUGE_REQUEST ((size_t)1 << 28)
+
+static bool fail_now(size_t size) {
+    if (size > largest) largest = size;
+    return ++alloc_count == fail_at || size > HUGE_REQUEST;
 }
 
 void *__wrap_malloc(size_t size) {
-    return fail_now() ? NULL : __real_malloc(size);
+    return fail_now(size) ? NULL : __real_malloc(size);
 }
 
 void *__wrap_calloc(size_t n, size_t size) {
-    return fail_now() ? NULL : __real_calloc(n, size);
+    return fail_now(n && size > SIZE_MAX / n ? SIZE_MAX : n * size) ? NULL : __real_calloc(n, size);
 }
 
 void *__wrap_realloc(void *p, size_t size) {
-    return fail_now() ? NULL : __real_realloc(p, size);
+    return fail_now(size) ? NULL : __real_realloc(p, size);
 }
 
 static void write_text(const char *path, const char *text) {
@@ -150,6 +155,32 @@ static int check(const char *what, loader load, const char *path) {
     return bad;
 }
 
+/* A file the loader must refuse by its header alone (a GIF of 16163 x 17746 pixels in 44 bytes):
+ * whichever allocation fails, the load fails without asking for the gigabytes decoding would
+ * take. Before the header was required, a failure of the header's probe let decoding go ahead. */
+static int check_refused(const char *what, const char *path) {
+    char err[1024];
+    uint64_t digest;
+    int bad = 0;
+    long total = 0;
+    for (long n = 0; n == 0 || n <= total; n++) {
+        alloc_count = 0;
+        largest = 0;
+        fail_at = n;
+        bool ok = load_image(path, err, sizeof err, &digest);
+        if (n == 0) total = alloc_count;
+        if (ok || largest > HUGE_REQUEST) {
+            fprintf(stderr, "%s: allocation %ld failed: %s, largest request %zu bytes\n", what, n,
+                    ok ? "loaded" : "refused", largest);
+            bad++;
+        }
+    }
+    fail_at = 0;
+    printf("%s: %ld allocation points, %s\n", what, total,
+           bad ? "FAILED" : "each refused without a huge request");
+    return bad;
+}
+
 int main(int argc, char **argv) {
     if (argc != 3) {
         fprintf(stderr, "usage: test_loader_alloc SOURCE_DIR WORK_DIR\n");
@@ -202,5 +233,8 @@ int main(int argc, char **argv) {
     int bad = check("OBJ", load_obj, obj) + check("PNG", load_image, png) +
               check("BMP", load_image, bmp) + check("JPEG", load_image, jpg) +
               check("scene", load_scene, scene);
+    char gif[4096];
+    snprintf(gif, sizeof gif, "%s/tests/fuzz/regressions/image/gif-huge-declared-size", src);
+    bad += check_refused("huge GIF", gif);
     return bad ? 1 : 0;
 }
