@@ -16,6 +16,7 @@
 #include "fuzz.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <string.h>
 
 #include <sgapi/sgapi.h>
@@ -58,7 +59,34 @@ typedef struct geom_data {
     uint32_t idx[MAX_INDEX];
 } geom_data;
 
+/* Each device's own allocator. A device seeds its handles' generations from its address, so an id
+ * of the other device is accepted when the generations happen to coincide (1 in 16383, as
+ * documented): for the two runs to agree on that, each device must have the same address in
+ * both. Its first allocation, the device itself, therefore comes from a fixed block. */
+typedef struct dev_alloc {
+    _Alignas(64) unsigned char block[1 << 16];
+    bool used;
+} dev_alloc;
+
+static void *fa_alloc(size_t size, void *user) {
+    dev_alloc *a = user;
+    if (!a->used && size <= sizeof a->block) {
+        a->used = true;
+        return a->block;
+    }
+    return aligned_alloc(16, (size + 15) & ~(size_t)15);
+}
+
+static void fa_free(void *p, void *user) {
+    dev_alloc *a = user;
+    if (p == a->block)
+        a->used = false;
+    else
+        free(p);
+}
+
 typedef struct dev_state {
+    dev_alloc alloc;
     sgDevice *dev;
     uint32_t img[SLOTS], geom[SLOTS], pso[SLOTS];
     geom_data geoms[MAX_OPS];
@@ -225,9 +253,11 @@ static void one_run(run *R, const uint8_t *data, size_t size) {
                            .image_pool_size = i ? 4 : 0,
                            .geom_pool_size = i ? 4 : 0,
                            .pipeline_pool_size = i ? 4 : 0,
+                           .allocator = {fa_alloc, fa_free, &D->alloc},
                            .log = log_cb,
                            .log_user_data = D};
         FUZZ_CHECK(sgCreateDevice(&dd, &D->dev) == SG_OK);
+        FUZZ_CHECK((void *)D->dev == (void *)D->alloc.block);
     }
     reader rd = {data, size, 0}, *r = &rd;
     static const uint8_t pattern[4] = {200, 100, 50, 255};
