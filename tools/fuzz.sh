@@ -32,8 +32,9 @@ seed() { # target, files...
     done
     return 0
 }
-seed obj scenes/assets/*.obj
-seed scene scenes/default.json scenes/hard/*.json
+# The committed, minimised corpora (tests/fuzz/corpus/, replayed by make test) seed them too.
+seed obj scenes/assets/*.obj tests/fuzz/corpus/obj/*
+seed scene scenes/default.json scenes/hard/*.json tests/fuzz/corpus/scene/*
 seed image scenes/assets/*.png
 # The API sequences: the committed corpus (replayed by make test) is the seed.
 seed api tests/fuzz/corpus/api/*

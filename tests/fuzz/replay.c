@@ -1,7 +1,8 @@
 /* replay.c - runs every committed fuzz reproducer through its target's entry point, built with the
  * normal compiler, so a loader crash once fixed stays fixed (ctest: fuzz_regressions).
  *
- * Usage: fuzz_replay DIR, where DIR/obj, DIR/scene and DIR/image hold one input per file; built
+ * Usage: fuzz_replay DIR [TARGET...], where DIR/obj, DIR/scene and DIR/image (or only the TARGETs
+ * named) hold one input per file; built
  * with FUZZ_REPLAY_API (test_api_seq), DIR/api: sequences of API calls (fuzz_api.c).
  */
 #define _POSIX_C_SOURCE 200809L /* opendir, readdir */
@@ -56,12 +57,15 @@ static uint8_t *read_all(const char *path, size_t *len) {
 }
 
 int main(int argc, char **argv) {
-    if (argc != 2) {
-        fprintf(stderr, "usage: %s REGRESSIONS_DIR\n", argv[0]);
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s DIR [TARGET...]\n", argv[0]);
         return 2;
     }
     int inputs = 0, errors = 0;
     for (size_t t = 0; t < sizeof targets / sizeof targets[0]; t++) {
+        bool named = argc == 2;
+        for (int i = 2; i < argc; i++) named |= !strcmp(argv[i], targets[t].dir);
+        if (!named) continue;
         char dir[4096];
         snprintf(dir, sizeof dir, "%s/%s", argv[1], targets[t].dir);
         DIR *d = opendir(dir);
