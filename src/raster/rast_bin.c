@@ -10,7 +10,7 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
-#elif defined(__ARM_NEON)
+#elif defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
 #endif
 
@@ -26,7 +26,7 @@ static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
         mask |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(row, v))) << (4 * j);
     }
     return mask;
-#elif defined(__ARM_NEON)
+#elif defined(__aarch64__) && defined(__ARM_NEON)
     const uint32x4_t v = vdupq_n_u32(id), place = {1, 2, 4, 8};
     uint32x4_t bits = vdupq_n_u32(0);
     for (int j = 0; j < 4; j++) /* each row's bits shifted to its place; they are disjoint */

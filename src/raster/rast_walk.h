@@ -16,13 +16,13 @@
 #include <immintrin.h>
 #elif defined(__SSE2__)
 #include <emmintrin.h>
-#elif defined(__ARM_NEON)
+#elif defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
 #endif
 
 #define SG_WALK_INLINE static inline __attribute__((always_inline))
 
-#if defined(__ARM_NEON) && !defined(__SSE2__)
+#if defined(__aarch64__) && defined(__ARM_NEON) && !defined(__SSE2__)
 /* The sign bits of four rows of four int32 lanes as a 16-bit mask, bit 4 j + i for lane i of row j
  * (NEON has no movemask: each sign bit is moved to its place, and the disjoint bits summed). */
 SG_WALK_INLINE uint32_t sg_walk_signs16(const int32x4_t r[4]) {
@@ -82,7 +82,7 @@ typedef struct walk {
     __m512i offs[3]; /* per edge: i dx + j dy of pixel (i, j) of a tile, in 32 bits */
 #elif defined(__SSE2__)
     __m128i lane[3], step[3]; /* per edge: 0, dx, 2 dx, 3 dx; and dy, in 32 bits */
-#elif defined(__ARM_NEON)
+#elif defined(__aarch64__) && defined(__ARM_NEON)
     int32x4_t lane[3], step[3]; /* as with SSE2 */
 #else
     int32_t offs[3][SG_TILE_PIXELS];
@@ -120,7 +120,7 @@ SG_WALK_INLINE uint32_t crossed_mask(const walk *w, const int64_t e0[3]) {
             mask &= ~out; /* sign bit set: outside */
         }
         return mask;
-#elif defined(__ARM_NEON)
+#elif defined(__aarch64__) && defined(__ARM_NEON)
         /* Per row, the OR of the crossing edges' values: its sign bit is "outside some edge". */
         int32x4_t out[SG_TILE] = {vdupq_n_s32(0), vdupq_n_s32(0), vdupq_n_s32(0), vdupq_n_s32(0)};
         for (int e = 0; e < 3; e++) {
@@ -201,7 +201,7 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
     }
 }
 
-#if defined(__SSE2__) || defined(__ARM_NEON)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 /* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512; most of a mesh's): the pixels
  * of those tiles are tested at once in 32-bit edge values, four pixels a vector (a tile with
  * AVX-512), when every edge's values over the square fit in int32 (they are linear, so the
@@ -388,7 +388,7 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
     if (tx1 - tx0 < SG_SMALL_TILES && ty1 - ty0 < SG_SMALL_TILES &&
         small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx))
         return;
-#elif defined(__SSE2__) || defined(__ARM_NEON)
+#elif defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
     if (tx1 - tx0 < 2 && ty1 - ty0 < 2 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
 #endif
     walk w;
@@ -404,7 +404,7 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
 #elif defined(__SSE2__)
             w.lane[e] = _mm_setr_epi32(0, dx, 2 * dx, 3 * dx);
             w.step[e] = _mm_set1_epi32(dy);
-#elif defined(__ARM_NEON)
+#elif defined(__aarch64__) && defined(__ARM_NEON)
             const int32x4_t i = {0, 1, 2, 3};
             w.lane[e] = vmulq_s32(vdupq_n_s32(dx), i);
             w.step[e] = vdupq_n_s32(dy);
