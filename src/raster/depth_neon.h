@@ -2,8 +2,8 @@
  * visibility (depth_neon.c) and blending (blend_neon.c): the NEON side of depth_simd.h.
  *
  * z = (z0 + z_dx dx) + z_dy dy, each product and sum rounded as in the scalar code, then clamped
- * to [0, 1] by compares and selects, as sg_tri_depth does: FMAX/FMIN would not do, since they
- * order -0 below +0 (the scalar clamp keeps a -0) and give NaN for either operand.
+ * to [0, 1] by compares and selects, as sg_tri_depth does (a NaN z stays NaN): FMAX would not
+ * do, since it orders -0 below +0 where the scalar clamp keeps a -0, which a depth write stores.
  */
 #ifndef SG_DEPTH_NEON_H
 #define SG_DEPTH_NEON_H
