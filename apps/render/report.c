@@ -102,7 +102,7 @@ static const char STYLE[] =
     "figcaption{font-size:.85em;text-align:center;margin-top:2px}\n"
     "img{image-rendering:pixelated;display:block;background:repeating-conic-gradient(#bbb 0 "
     "25%,#eee 0 50%) 0 0/16px 16px}\n"
-    ".scene:not(.zoomed) .view img{width:min(100%,360px);height:auto}\n"
+    ".scene:not(.zoomed) .view img{width:360px;height:auto}\n"
     ".flip{cursor:pointer}\n"
     ".swipe{position:relative;display:inline-block}\n"
     ".swipe img.top{position:absolute;left:0;top:0;clip-path:inset(0 50% 0 0)}\n"
