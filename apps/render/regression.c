@@ -48,7 +48,62 @@ void rg_judge(rg_scene *s) {
 void rg_fail_golden(rg_scene *s, const char *reason) {
     s->compared = false;
     s->passed = false;
-    snprintf(s->reason, sizeof s->reason, "%s", reason);
+    size_t n = strlen(reason);
+    if (n >= sizeof s->reason) n = sizeof s->reason - 1; /* cut, not refused */
+    memcpy(s->reason, reason, n);
+    s->reason[n] = '\0';
+}
+
+static char *dup_string(const char *s) {
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+bool rg_compare(rg_scene *s, const unsigned char *pixels, const unsigned char background[4],
+                const char *golden_dir, const char *actual, const char *out_dir, sc_png_writer *png,
+                char *err, size_t errlen) {
+    size_t len = strlen(golden_dir) + strlen(out_dir) + strlen(s->name) + 16;
+    char *path = malloc(len);
+    unsigned char *heat = malloc((size_t)s->width * (size_t)s->height * 4);
+    s->actual = dup_string(actual);
+    if (!path || !heat || !s->actual) {
+        snprintf(err, errlen, "out of memory");
+        free(path);
+        free(heat);
+        return false;
+    }
+    snprintf(path, len, "%s/%s.png", golden_dir, s->name);
+    char why[1024], reason[1200];
+    sc_image ref = {0};
+    bool ok = true;
+    if (!sc_image_load(path, &ref, why, sizeof why)) {
+        snprintf(reason, sizeof reason, "golden image unreadable or missing: %s", why);
+        rg_fail_golden(s, reason);
+    } else if (ref.width != s->width || ref.height != s->height) {
+        snprintf(reason, sizeof reason, "golden image %s is %dx%d, the scene %dx%d", path,
+                 ref.width, ref.height, s->width, s->height);
+        rg_fail_golden(s, reason);
+        s->expected = dup_string(path);
+    } else {
+        s->expected = dup_string(path);
+        s->diff = sc_image_diff(pixels, ref.pixels, s->width, s->height, background, heat);
+        s->compared = true;
+        rg_judge(s);
+        snprintf(path, len, "%s/%s-heat.png", out_dir, s->name);
+        ok = sc_png_writer_write(png, path, s->width, s->height, heat, err, errlen);
+        if (ok) s->heat = dup_string(path);
+    }
+    /* The golden's copy in a report is optional; the heat map's path is needed (JUnit). */
+    if (ok && s->compared && !s->heat) {
+        snprintf(err, errlen, "out of memory");
+        ok = false;
+    }
+    sc_image_free(&ref);
+    free(heat);
+    free(path);
+    return ok;
 }
 
 /* Orders failing scenes: those without figures, then by PSNR rising; ties in run order. */

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "image_diff.h"
+#include "image_io.h"
 #include "thresholds.h"
 
 /* One scene of a run. Paths are NULL when there is no such image (no golden, or no heat map when
@@ -22,13 +23,22 @@ typedef struct rg_scene {
     bool compared; /* diff holds figures (the golden was read and of the scene's size) */
     sc_diff diff;
     bool passed;
-    char reason[512]; /* why it failed: every figure past its target, or the golden's problem */
-    char *expected;   /* the golden image, when it is readable */
-    char *actual;     /* the rendered image */
-    char *heat;       /* the heat map */
+    char reason[1280]; /* why it failed: every figure past its target, or the golden's problem */
+    char *expected;    /* the golden image, when it is readable */
+    char *actual;      /* the rendered image */
+    char *heat;        /* the heat map */
     bool golden_updated;
 } rg_scene;
 
+/** Compares the rendered pixels of a scene (its suite, name, size and limits already in s) with
+ *  golden_dir/<name>.png: sets the figures, the verdict and the reason, keeps the paths of the
+ *  actual image (`actual`, already written) and of the golden, and writes the heat map to
+ *  out_dir/<name>-heat.png with `png`. A golden that is missing, unreadable or of another size is
+ *  a failure of the scene. False only when the comparison itself could not be done (out of
+ *  memory, the heat map not written), with err. */
+bool rg_compare(rg_scene *s, const unsigned char *pixels, const unsigned char background[4],
+                const char *golden_dir, const char *actual, const char *out_dir, sc_png_writer *png,
+                char *err, size_t errlen);
 /** Checks figures against the scene's limits: sets passed and, on failure, reason. */
 void rg_judge(rg_scene *s);
 /** Marks a scene failed because its golden could not be compared, with the reason. */

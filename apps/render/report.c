@@ -365,6 +365,37 @@ static bool write_html(const char *path, const rg_scene *scenes, size_t n, const
     return fclose(f) == 0 && ok;
 }
 
+char *rg_command_line(int argc, char **argv) {
+    static const char plain_chars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                      "0123456789-_./=,:+@%";
+    size_t len = 1;
+    for (int i = 0; i < argc; i++) len += strlen(argv[i]) * 4 + 3;
+    char *out = malloc(len), *p = out;
+    if (!out) return NULL;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        bool plain = *a != '\0' && strspn(a, plain_chars) == strlen(a);
+        if (i) *p++ = ' ';
+        if (plain) {
+            p += sprintf(p, "%s", a);
+            continue;
+        }
+        /* Single quotes; a quote inside becomes '\'' (close, escaped quote, reopen). */
+        *p++ = '\'';
+        for (const char *c = a; *c; c++) {
+            if (*c == '\'') {
+                memcpy(p, "'\\''", 4);
+                p += 4;
+            } else {
+                *p++ = *c;
+            }
+        }
+        *p++ = '\'';
+    }
+    *p = '\0';
+    return out;
+}
+
 /* A figure as JSON: null for an identical image's PSNR (JSON has no infinity). */
 static void add_number(cJSON *o, const char *key, double v) {
     if (isfinite(v))

@@ -12,6 +12,9 @@
 /** The path of a scene's image inside the report folder, "img/<scene>.<kind>.png" (kind:
  *  expected, actual or heat), into out. */
 void rg_report_image_name(const char *scene, const char *kind, char *out, size_t len);
+/** The command line as a shell would take it back (arguments quoted where needed), for the
+ *  report to show; NULL when out of memory. */
+char *rg_command_line(int argc, char **argv);
 /** Writes the report of n scenes (in run order) into dir (which exists and is writable):
  *  copies the images, then index.html and results.json. `command` is the command line shown,
  *  `golden` the golden folder. On failure err says why. */

@@ -436,13 +436,6 @@ typedef struct run {
     size_t result_count;
 } run;
 
-static char *dup_string(const char *s) {
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
-}
-
 /* Compares a rendered scene (written to `png`, rendered in `ms` per frame) with its golden image:
  * appends the figures to the scene's line (without its newline), writes the heat map, and records
  * the outcome, naming a failing scene on stderr with what failed. A failing scene does not stop
@@ -457,66 +450,24 @@ static bool compare_scene(run *rn, const options *o, const sc_file *f, const sc_
     rec->height = s->height;
     rec->time_s = ms / 1e3;
     rec->limits = rg_thresholds_for(&rn->thresholds, f->path, s->name);
-    rec->actual = dup_string(png);
-    size_t len = strlen(o->compare_dir) + strlen(o->out_dir) + strlen(s->name) + 16;
-    char *path = malloc(len);
-    char err[1024], reason[1200];
-    sc_image ref = {0};
-    if (!path || !rec->actual) {
-        printf("\n");
-        fprintf(stderr, "sgapi-render: out of memory\n");
-        free(path);
-        return false;
-    }
-    snprintf(path, len, "%s/%s.png", o->compare_dir, s->name);
-    if (!sc_image_load(path, &ref, err, sizeof err)) {
-        snprintf(reason, sizeof reason, "golden image unreadable or missing: %s", err);
-        rg_fail_golden(rec, reason);
-    } else if (ref.width != s->width || ref.height != s->height) {
-        snprintf(reason, sizeof reason, "golden image %s is %dx%d, the scene %dx%d", path,
-                 ref.width, ref.height, s->width, s->height);
-        rg_fail_golden(rec, reason);
-        rec->expected = dup_string(path);
-    } else {
-        rec->expected = dup_string(path);
-        /* Background, for the coverage figure, is the scene's clear colour as stored. */
-        unsigned char bg[4];
-        for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
-        unsigned char *heat = malloc((size_t)s->width * (size_t)s->height * 4);
-        if (!heat || !rec->expected) {
-            printf("\n");
-            fprintf(stderr, "sgapi-render: out of memory\n");
-            free(heat);
-            sc_image_free(&ref);
-            free(path);
-            return false;
-        }
-        rec->diff = sc_image_diff(pixels, ref.pixels, s->width, s->height, bg, heat);
-        rec->compared = true;
-        rg_judge(rec);
+    /* Background, for the coverage figure, is the scene's clear colour as stored. */
+    unsigned char bg[4];
+    for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
+    char err[1024];
+    bool ok =
+        rg_compare(rec, pixels, bg, o->compare_dir, png, o->out_dir, rn->png, err, sizeof err);
+    if (ok && rec->compared) {
         const sc_diff *d = &rec->diff;
         printf("  psnr %6.2f dB  >2/255 %7.4f %%  >8/255 %7.4f %%  max %3d  coverage %7.4f %%",
                d->psnr_db, d->pct_over[0], d->pct_over[1], d->max_error, d->pct_coverage);
-        snprintf(path, len, "%s/%s-heat.png", o->out_dir, s->name);
-        bool written =
-            sc_png_writer_write(rn->png, path, s->width, s->height, heat, err, sizeof err);
-        free(heat);
-        if (!written) {
-            printf("\n");
-            fprintf(stderr, "sgapi-render: %s\n", err);
-            sc_image_free(&ref);
-            free(path);
-            return false;
-        }
-        rec->heat = dup_string(path);
     }
-    printf("%s\n", rec->passed ? "" : "  FAIL");
+    printf("%s\n", ok && !rec->passed ? "  FAIL" : "");
     fflush(stdout);
-    if (!rec->passed)
+    if (!ok)
+        fprintf(stderr, "sgapi-render: %s\n", err);
+    else if (!rec->passed)
         fprintf(stderr, "sgapi-render: FAIL %s/%s: %s\n", rec->suite, rec->name, rec->reason);
-    sc_image_free(&ref);
-    free(path);
-    return rec->heat || !rec->compared;
+    return ok;
 }
 
 /* Renders one scene frames times, writes its PNG and prints its median time per frame. */
@@ -812,39 +763,6 @@ static bool regression_setup(const options *o, run *rn) {
     return true;
 }
 
-/* The command line as a shell would take it back: arguments quoted where needed. */
-static char *command_line(int argc, char **argv) {
-    size_t len = 1;
-    for (int i = 0; i < argc; i++) len += strlen(argv[i]) * 4 + 3;
-    char *out = malloc(len), *p = out;
-    if (!out) return NULL;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        bool plain = *a != '\0';
-        for (const char *c = a; *c && plain; c++)
-            plain =
-                strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,:+@%",
-                       *c) != NULL;
-        if (i) *p++ = ' ';
-        if (plain) {
-            p += sprintf(p, "%s", a);
-            continue;
-        }
-        *p++ = '\'';
-        for (const char *c = a; *c; c++) {
-            if (*c == '\'') {
-                memcpy(p, "'\\''", 4);
-                p += 4;
-            } else {
-                *p++ = *c;
-            }
-        }
-        *p++ = '\'';
-    }
-    *p = '\0';
-    return out;
-}
-
 /* After the run: the report, the JUnit file, the golden updates and the summary line. Returns the
  * exit status: 0 when every scene passed (or every failing one was blessed), else 1. */
 static int regression_finish(const options *o, run *rn, int argc, char **argv) {
@@ -858,7 +776,7 @@ static int regression_finish(const options *o, run *rn, int argc, char **argv) {
         rn->results[i].golden_updated =
             o->update_golden && !rn->results[i].passed && rn->results[i].actual;
     if (o->report_dir) {
-        char *cmd = command_line(argc, argv);
+        char *cmd = rg_command_line(argc, argv);
         ok = cmd && rg_write_report(o->report_dir, rn->results, rn->result_count, cmd,
                                     o->compare_dir, err, sizeof err);
         if (!ok) fprintf(stderr, "sgapi-render: --report: %s\n", cmd ? err : "out of memory");
