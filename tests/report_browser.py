@@ -4,8 +4,8 @@ checks it:
 - the failing scenes are exactly the expected ones and come first;
 - every image loads (naturalWidth > 0) once scrolled into view (they load lazily), the passing
   scenes' too once their section is opened;
-- the switch view flips the shown image between expected and actual on a click, and the swipe
-  slider moves the cut;
+- the switch view (shown instead of the side-by-side images) flips the shown image between
+  expected and actual on a click, and the swipe slider moves the cut;
 - the browser logs no console error.
 Prints the page's load time (navigation start to the load event); --max-load-ms fails past it.
 --screenshot saves the top of the page as a PNG.
@@ -137,6 +137,8 @@ def main():
         name = scene.get_attribute("id")[len("scene-"):]
         scene.find_element(By.CSS_SELECTOR, "button[data-mode=switch]").click()
         flip = scene.find_element(By.CSS_SELECTOR, "img.flip")
+        if scene.find_element(By.CSS_SELECTOR, ".images").is_displayed():
+            sys.exit(f"FAIL: {name}: the side-by-side images still show in the switch view")
         wait_for(driver, LOADED, flip, "the switch view's image did not load")
         before = flip.get_attribute("src")
         flip.click()
