@@ -8,7 +8,7 @@
 #   file parses and names exactly those as failures, with attachments; results.json agrees;
 #   the report folder holds every image it shows (the browser test opens it: report_browser.py);
 # - --update-golden replaces exactly those (the others byte for byte alone), then the same run
-#   exits 0;
+#   exits 0; a golden that is not an image fails its scene;
 # - bad input: a malformed thresholds file, a GOLDEN that is a file, an unwritable report folder,
 #   a JUnit path that is a folder: exit 2 with a clear message, before anything renders.
 #   regression.sh RENDER_BINARY SOURCE_DIR WORK_DIR PYTHON3
@@ -137,6 +137,18 @@ done
 # shellcheck disable=SC2086
 "$render" $files -o "$work/out3" --compare "$work/golden" --thresholds "$work/thresholds.csv" \
     >"$work/again.out" 2>&1 || fail "the run after --update-golden: $(cat "$work/again.out")"
+
+# ---- an unreadable golden (not a PNG) fails its scene, with the reason ----
+mkdir -p "$work/corrupt"
+echo "not an image" >"$work/corrupt/lit_shadow.png"
+set +e
+"$render" "$work/tiny.json" --scene lit_shadow -o "$work/out4" --compare "$work/corrupt" \
+    >"$work/corrupt.out" 2>"$work/corrupt.err"
+rc=$?
+set -e
+[ $rc -eq 1 ] || fail "an unreadable golden: exit $rc, not 1"
+grep -q "FAIL tiny/lit_shadow: golden image unreadable or missing: .*lit_shadow.png" \
+    "$work/corrupt.err" || fail "the unreadable golden is not named: $(cat "$work/corrupt.err")"
 
 # ---- bad input: exit 2, nothing rendered ----
 bad() { # what expected-message args...
