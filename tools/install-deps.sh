@@ -5,7 +5,8 @@ set -eu
 
 PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev libdeflate-dev
     libvulkan-dev mesa-vulkan-drivers glslang-tools
-    clang libclang-rt-14-dev valgrind gnuplot-nox python3 ffmpeg"
+    clang libclang-rt-14-dev valgrind gnuplot-nox python3 ffmpeg
+    libsdl2-dev xvfb xauth xdotool assimp-testmodels"
 
 missing=""
 for p in $PACKAGES; do
