@@ -20,9 +20,11 @@ SCENES = scenes/default.json scenes/transparency.json scenes/lighting.json scene
 # Renders the project's scenes to $(OUT)/ and prints, per scene, the time per frame next to the
 # error against its golden (lavapipe) image; heat maps go to $(OUT)/<scene>-heat.png. Then a
 # turntable of three teapots, about their floor's up, as $(OUT)/turntable/shadow_teapots.gif (the
-# README's; its frames beside it).
+# README's; its frames beside it). Then the standard shapes and a face-coloured OFF model
+# (scenes/shapes.json) and the OFF file rendered as a model on its own, to $(OUT)/models/.
 demo: build
 	$(BUILD)/apps/sgapi-render $(SCENES) -o $(OUT) --frames 5 --compare golden
+	$(BUILD)/apps/sgapi-render scenes/shapes.json scenes/assets/dodecahedron.off -o $(OUT)/models
 	$(BUILD)/apps/sgapi-render scenes/shadows.json --scene shadow_teapots -o $(OUT)/turntable \
 		--turntable 60 --up 0 --video gif --video-width 360 --fps 20
 

@@ -6,7 +6,7 @@ set -eu
 PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev libdeflate-dev
     libvulkan-dev mesa-vulkan-drivers glslang-tools
     clang libclang-rt-14-dev valgrind gnuplot-nox python3 ffmpeg
-    libsdl2-dev xvfb xauth xdotool assimp-testmodels"
+    libsdl2-dev xvfb xauth xdotool assimp-testmodels geomview"
 
 missing=""
 for p in $PACKAGES; do
