@@ -114,25 +114,26 @@ bool sc_scene_add_draw(sc_scene *scene, const sc_draw *draw) {
 }
 
 /* The texture of a path, loaded once per file; -1 (with one warning) when it cannot be read. */
-static int get_texture(sc_file *f, const char *path, sc_warnings *w) {
+static int get_texture(sc_file *f, const char *path, const char *who, sc_warnings *w) {
     for (size_t i = 0; i < f->texture_count; i++)
         if (strcmp(f->texture_sources[i], path) == 0) return (int)i;
     char why[512];
     sc_image img;
     if (!is_regular(path)) {
-        sc_warn(w, SC_WARN_TEXTURE_MISSING, "texture '%s' not found: drawn without it", path);
+        sc_warn(w, SC_WARN_TEXTURE_MISSING, "%s: texture '%s' not found: drawn without it", who,
+                path);
         return -1;
     }
     if (!sc_image_load(path, &img, why, sizeof why)) {
-        sc_warn(w, SC_WARN_TEXTURE_MISSING, "texture '%s' cannot be read (%s): drawn without it",
-                path, why);
+        sc_warn(w, SC_WARN_TEXTURE_MISSING,
+                "%s: texture '%s' cannot be read (%s): drawn without it", who, path, why);
         return -1;
     }
     if (img.width > SC_MAX_IMAGE_SIZE || img.height > SC_MAX_IMAGE_SIZE) {
         sc_warn(w, SC_WARN_TEXTURE_MISSING,
-                "texture '%s' is larger than %d on a side: drawn "
+                "%s: texture '%s' is larger than %d on a side: drawn "
                 "without it",
-                path, SC_MAX_IMAGE_SIZE);
+                who, path, SC_MAX_IMAGE_SIZE);
         sc_image_free(&img);
         return -1;
     }
@@ -384,7 +385,10 @@ static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
                     d.shininess = m->shininess;
                     if (m->diffuse_map && part.texcoords) {
                         char *tp = join_dir(dirs[mi], m->diffuse_map);
-                        if (tp) d.texture = get_texture(f, tp, w);
+                        char who[600];
+                        snprintf(who, sizeof who, "%s, material '%s' (%s)", path, m->name,
+                                 dirs[mi]);
+                        if (tp) d.texture = get_texture(f, tp, who, w);
                         free(tp);
                         if (d.texture >= 0) d.mode = SC_MODE_TEXTURE;
                     }
