@@ -25,6 +25,14 @@ fail() {
     exit 1
 }
 
+# Under AddressSanitizer (tools/sanitize.sh) the viewer's leaks go unchecked: the D-Bus and X
+# libraries SDL loads keep allocations to the end, some in libraries SDL has unloaded by then,
+# which no suppression can name. Every other sanitizer check stays on; the loaders and the
+# renderer are leak-checked through the other tests.
+if [ -n "${ASAN_OPTIONS:-}" ]; then
+    ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"
+    export ASAN_OPTIONS
+fi
 "$view" "$scene" --scene "$name" --size 320x240 --threads 1 --save-dir "$work" \
     >"$work/view.log" 2>&1 &
 pid=$!

@@ -79,7 +79,8 @@ typedef struct viewer {
     int saved;            /* frames saved so far */
     const char *save_dir; /* where they go */
     sc_png_writer *png;
-    double start_ms; /* when the first frame began */
+    double start_ms;              /* when the first frame began */
+    double render_ms, present_ms; /* time spent so far in each, for --frames */
 } viewer;
 
 static void usage(FILE *f) {
@@ -688,7 +689,11 @@ int main(int argc, char **argv) {
         }
         if (!ok) goto done;
         double now = ss_now_ms();
-        if (!render(&v, (now - t_prev) / 1000.0) || !present(&v, win)) goto done;
+        if (!render(&v, (now - t_prev) / 1000.0)) goto done;
+        double rendered = ss_now_ms();
+        if (!present(&v, win)) goto done;
+        v.render_ms += rendered - now;
+        v.present_ms += ss_now_ms() - rendered;
         t_prev = now;
         if (save) {
             save_frame(&v);
@@ -709,8 +714,11 @@ int main(int argc, char **argv) {
         }
         if (o.frames && frames_total == o.frames) {
             double all = ss_now_ms() - v.start_ms;
-            printf("%d frames of %dx%d in %.1f ms: %.1f frames per second\n", o.frames,
-                   v.scene->width, v.scene->height, all, o.frames * 1000.0 / all);
+            printf("%d frames of %dx%d in %.1f ms: %.1f frames per second (per frame: %.2f ms "
+                   "rendering and reading back, %.2f ms showing, %.2f ms events and the rest)\n",
+                   o.frames, v.scene->width, v.scene->height, all, o.frames * 1000.0 / all,
+                   v.render_ms / o.frames, v.present_ms / o.frames,
+                   (all - v.render_ms - v.present_ms) / o.frames);
             running = false;
         }
     }
