@@ -68,7 +68,6 @@ typedef struct viewer {
     sgImage2D color, depth;
     sgPassDesc pass;
     ss_shadow shadow;
-    unsigned char *pixels;
     camera cam, cam0;
     int selected;   /* draw index, -1: none */
     bool wireframe; /* every draw as lines */
@@ -254,12 +253,6 @@ static bool create_targets(viewer *v, int width, int height) {
     ss_destroy_shadow(v->dev, &v->shadow);
     v->scene->width = width;
     v->scene->height = height;
-    unsigned char *p = realloc(v->pixels, (size_t)width * height * 4);
-    if (!p) {
-        fprintf(stderr, PROG ": out of memory\n");
-        return false;
-    }
-    v->pixels = p;
     return ss_create_targets(PROG, v->dev, v->scene, &v->color, &v->depth, &v->pass) &&
            ss_create_shadow(PROG, v->dev, &v->cache, &v->file, v->scene, &v->shadow);
 }
@@ -358,40 +351,58 @@ static void delete_selected(viewer *v) {
     v->selected = s->draw_count ? (int)s->draw_count - 1 : -1;
 }
 
-/* Writes the frame last read back to save_dir/frame-NNNN.png. */
-static void save_frame(viewer *v) {
+/* A frame read back: RGBA8, top row first. */
+typedef struct frame {
+    unsigned char *pixels;
+    size_t cap;
+    int width, height;
+} frame;
+
+/* Writes a frame to save_dir/frame-NNNN.png. */
+static void save_frame(viewer *v, const frame *f) {
     char path[4096], err[1024];
     snprintf(path, sizeof path, "%s/frame-%04d.png", v->save_dir, ++v->saved);
-    if (!sc_png_writer_write(v->png, path, v->scene->width, v->scene->height, v->pixels, err,
-                             sizeof err))
+    if (!sc_png_writer_write(v->png, path, f->width, f->height, f->pixels, err, sizeof err))
         fprintf(stderr, PROG ": %s\n", err);
     else
         printf("saved %s\n", path);
     fflush(stdout);
 }
 
-/* One frame into v->pixels. */
-static bool render(viewer *v, double seconds) {
+/* One frame, read back into f. */
+static bool render(viewer *v, double seconds, frame *f) {
+    size_t need = (size_t)v->scene->width * v->scene->height * 4;
+    if (need > f->cap) {
+        unsigned char *p = realloc(f->pixels, need);
+        if (!p) {
+            fprintf(stderr, PROG ": out of memory\n");
+            return false;
+        }
+        f->pixels = p;
+        f->cap = need;
+    }
     if (!update_draws(v, seconds) ||
         !ss_draw_frame(PROG, v->dev, &v->file, v->scene, &v->uploads, v->psos, &v->pass,
                        v->scene->has_shadow ? &v->shadow : NULL))
         return false;
-    sgResult r = sgReadImage2D(v->dev, v->color, v->pixels, 0);
+    sgResult r = sgReadImage2D(v->dev, v->color, f->pixels, 0);
     if (r != SG_OK) return ss_fail(PROG, v->dev, r, "sgReadImage2D");
+    f->width = v->scene->width;
+    f->height = v->scene->height;
     return true;
 }
 
-/* Copies the frame into the window: RGBA bytes converted to the surface's format. */
-static bool present(viewer *v, SDL_Window *win) {
+/* Copies a frame into the window: RGBA bytes converted to the surface's format. */
+static bool present(const frame *f, SDL_Window *win) {
     SDL_Surface *surf = SDL_GetWindowSurface(win);
     if (!surf) {
         fprintf(stderr, PROG ": SDL_GetWindowSurface: %s\n", SDL_GetError());
         return false;
     }
-    int w = v->scene->width < surf->w ? v->scene->width : surf->w;
-    int h = v->scene->height < surf->h ? v->scene->height : surf->h;
+    int w = f->width < surf->w ? f->width : surf->w;
+    int h = f->height < surf->h ? f->height : surf->h;
     if (SDL_MUSTLOCK(surf)) SDL_LockSurface(surf);
-    int rc = SDL_ConvertPixels(w, h, SDL_PIXELFORMAT_ABGR8888, v->pixels, v->scene->width * 4,
+    int rc = SDL_ConvertPixels(w, h, SDL_PIXELFORMAT_ABGR8888, f->pixels, f->width * 4,
                                surf->format->format, surf->pixels, surf->pitch);
     if (SDL_MUSTLOCK(surf)) SDL_UnlockSurface(surf);
     if (rc != 0 || SDL_UpdateWindowSurface(win) != 0) {
@@ -399,6 +410,63 @@ static bool present(viewer *v, SDL_Window *win) {
         return false;
     }
     return true;
+}
+
+/* Rendering runs on a thread of its own, so that the next frame renders while the window
+ * system shows the last one (showing waits on the X server, a process that needs the CPU too).
+ * `state` guards the viewer and its device: the renderer holds it for a whole frame, the event
+ * loop for its events, so a frame sees every event before it whole. Three frames: the one shown,
+ * one ready to be shown, one being rendered; the renderer waits for the ready one to be taken
+ * before it publishes the next, so no rendered frame goes unshown. */
+typedef struct pipeline {
+    viewer *v;
+    SDL_mutex *state;
+    SDL_mutex *lock; /* guards the fields below */
+    SDL_cond *cond;
+    frame frames[3];
+    int ready;   /* the frame to show next, or -1 */
+    int showing; /* the frame the event loop shows, or -1 */
+    bool quit, failed;
+    bool save;        /* F12: save the next frame rendered (guarded by state) */
+    double render_ms; /* time spent rendering, for --frames */
+    int rendered;     /* frames rendered */
+} pipeline;
+
+static int render_loop(void *arg) {
+    pipeline *p = arg;
+    double prev = ss_now_ms();
+    for (;;) {
+        /* A frame neither shown nor ready. */
+        SDL_LockMutex(p->lock);
+        while (p->ready >= 0 && !p->quit) SDL_CondWait(p->cond, p->lock);
+        int b = 0;
+        while (b == p->showing || b == p->ready) b++;
+        bool quit = p->quit;
+        SDL_UnlockMutex(p->lock);
+        if (quit) break;
+
+        SDL_LockMutex(p->state);
+        double now = ss_now_ms();
+        bool ok = render(p->v, (now - prev) / 1000.0, &p->frames[b]);
+        p->render_ms += ss_now_ms() - now;
+        prev = now;
+        bool save = p->save;
+        p->save = false;
+        if (ok && save) save_frame(p->v, &p->frames[b]);
+        SDL_UnlockMutex(p->state);
+
+        SDL_LockMutex(p->lock);
+        if (ok) {
+            p->ready = b;
+            p->rendered++;
+        } else {
+            p->failed = p->quit = true;
+        }
+        SDL_CondBroadcast(p->cond);
+        SDL_UnlockMutex(p->lock);
+        if (!ok) break;
+    }
+    return 0;
 }
 
 /* What a key does; false to quit. */
@@ -602,6 +670,8 @@ int main(int argc, char **argv) {
     viewer v = {0};
     v.save_dir = o.save_dir;
     SDL_Window *win = NULL;
+    SDL_Thread *renderer = NULL;
+    pipeline pl = {.v = &v, .ready = -1, .showing = -1};
     status = 1;
     if (!load(&v, &o)) goto done;
     struct stat st;
@@ -632,13 +702,39 @@ int main(int argc, char **argv) {
         fprintf(stderr, PROG ": SDL_CreateWindow: %s\n", SDL_GetError());
         goto done;
     }
-    double t_prev = ss_now_ms(), t_count = t_prev;
-    v.start_ms = t_prev;
+    pl.state = SDL_CreateMutex();
+    pl.lock = SDL_CreateMutex();
+    pl.cond = SDL_CreateCond();
+    if (!pl.state || !pl.lock || !pl.cond) {
+        fprintf(stderr, PROG ": SDL: %s\n", SDL_GetError());
+        goto done;
+    }
+    double t_count = ss_now_ms(), present_ms = 0;
+    v.start_ms = t_count;
+    renderer = SDL_CreateThread(render_loop, "sgapi-view render", &pl);
+    if (!renderer) {
+        fprintf(stderr, PROG ": SDL_CreateThread: %s\n", SDL_GetError());
+        goto done;
+    }
     int frames_since = 0, frames_total = 0;
-    bool running = true, dragging = false, save = false;
+    bool running = true, dragging = false;
     while (running) {
+        /* The next frame, when there is one within a few milliseconds. */
+        SDL_LockMutex(pl.lock);
+        if (pl.ready < 0 && !pl.failed) SDL_CondWaitTimeout(pl.cond, pl.lock, 5);
+        int take = pl.ready;
+        if (take >= 0) {
+            pl.showing = take;
+            pl.ready = -1;
+            SDL_CondBroadcast(pl.cond);
+        }
+        bool failed = pl.failed;
+        SDL_UnlockMutex(pl.lock);
+        if (failed) goto done;
+
         SDL_Event e;
         bool ok = true;
+        SDL_LockMutex(pl.state);
         while (SDL_PollEvent(&e)) {
             switch (e.type) {
             case SDL_QUIT:
@@ -646,7 +742,7 @@ int main(int argc, char **argv) {
                 break;
             case SDL_KEYDOWN:
                 if (e.key.keysym.sym == SDLK_F12)
-                    save = true;
+                    pl.save = true;
                 else
                     running = on_key(&v, e.key.keysym.sym, &ok) && running;
                 break;
@@ -677,8 +773,8 @@ int main(int argc, char **argv) {
                     int w = e.window.data1 < 16 ? 16 : e.window.data1;
                     int h = e.window.data2 < 16 ? 16 : e.window.data2;
                     for (size_t i = 0; i < v.scene->draw_count; i++) {
-                        float *p = v.scene->draws[i].proj;
-                        if (p[14] == -1 && p[15] == 0) p[0] = (float)(p[5] * (double)h / w);
+                        float *pr = v.scene->draws[i].proj;
+                        if (pr[14] == -1 && pr[15] == 0) pr[0] = (float)(pr[5] * (double)h / w);
                     }
                     ok = create_targets(&v, w, h);
                 }
@@ -687,18 +783,14 @@ int main(int argc, char **argv) {
                 break;
             }
         }
+        SDL_UnlockMutex(pl.state);
         if (!ok) goto done;
+        if (take < 0) continue;
+
+        double t0 = ss_now_ms();
+        if (!present(&pl.frames[take], win)) goto done;
         double now = ss_now_ms();
-        if (!render(&v, (now - t_prev) / 1000.0)) goto done;
-        double rendered = ss_now_ms();
-        if (!present(&v, win)) goto done;
-        v.render_ms += rendered - now;
-        v.present_ms += ss_now_ms() - rendered;
-        t_prev = now;
-        if (save) {
-            save_frame(&v);
-            save = false;
-        }
+        present_ms += now - t0;
         frames_since++, frames_total++;
         if (now - t_count >= 1000) {
             double fps = frames_since * 1000.0 / (now - t_count);
@@ -713,17 +805,27 @@ int main(int argc, char **argv) {
             frames_since = 0;
         }
         if (o.frames && frames_total == o.frames) {
-            double all = ss_now_ms() - v.start_ms;
+            double all = now - v.start_ms;
             printf("%d frames of %dx%d in %.1f ms: %.1f frames per second (per frame: %.2f ms "
-                   "rendering and reading back, %.2f ms showing, %.2f ms events and the rest)\n",
-                   o.frames, v.scene->width, v.scene->height, all, o.frames * 1000.0 / all,
-                   v.render_ms / o.frames, v.present_ms / o.frames,
-                   (all - v.render_ms - v.present_ms) / o.frames);
+                   "rendering and reading back, %.2f ms showing, overlapped)\n",
+                   o.frames, pl.frames[take].width, pl.frames[take].height, all,
+                   o.frames * 1000.0 / all, pl.render_ms / pl.rendered, present_ms / o.frames);
             running = false;
         }
     }
     status = 0;
 done:
+    if (renderer) {
+        SDL_LockMutex(pl.lock);
+        pl.quit = true;
+        SDL_CondBroadcast(pl.cond);
+        SDL_UnlockMutex(pl.lock);
+        SDL_WaitThread(renderer, NULL);
+    }
+    for (int i = 0; i < 3; i++) free(pl.frames[i].pixels);
+    if (pl.cond) SDL_DestroyCond(pl.cond);
+    if (pl.lock) SDL_DestroyMutex(pl.lock);
+    if (pl.state) SDL_DestroyMutex(pl.state);
     if (win) SDL_DestroyWindow(win);
     SDL_Quit();
     ss_destroy_shadow(v.dev, &v.shadow);
@@ -735,7 +837,6 @@ done:
     free(v.loaded);
     free(v.objects);
     free(v.psos);
-    free(v.pixels);
     free(o.files);
     return status;
 }
