@@ -449,6 +449,7 @@ static int render_loop(void *arg) {
         double now = ss_now_ms();
         bool ok = render(p->v, (now - prev) / 1000.0, &p->frames[b]);
         p->render_ms += ss_now_ms() - now;
+        p->rendered++;
         prev = now;
         bool save = p->save;
         p->save = false;
@@ -458,7 +459,6 @@ static int render_loop(void *arg) {
         SDL_LockMutex(p->lock);
         if (ok) {
             p->ready = b;
-            p->rendered++;
         } else {
             p->failed = p->quit = true;
         }
@@ -806,10 +806,13 @@ int main(int argc, char **argv) {
         }
         if (o.frames && frames_total == o.frames) {
             double all = now - v.start_ms;
+            SDL_LockMutex(pl.state); /* the renderer's figures */
+            double per_render = pl.render_ms / pl.rendered;
+            SDL_UnlockMutex(pl.state);
             printf("%d frames of %dx%d in %.1f ms: %.1f frames per second (per frame: %.2f ms "
                    "rendering and reading back, %.2f ms showing, overlapped)\n",
                    o.frames, pl.frames[take].width, pl.frames[take].height, all,
-                   o.frames * 1000.0 / all, pl.render_ms / pl.rendered, present_ms / o.frames);
+                   o.frames * 1000.0 / all, per_render, present_ms / o.frames);
             running = false;
         }
     }
