@@ -8,6 +8,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,6 +17,7 @@
 #include "mtl.h"
 #include "obj.h"
 #include "off.h"
+#include "scene.h"
 
 /* Every shape: indices in range, unit normals, texcoords in [0, 1], and each triangle wound
  * counter-clockwise seen from outside (its face normal agrees with its vertices' normals). */
@@ -200,6 +202,42 @@ static void obj_groups(void **state) {
     sc_mesh_free(&m);
 }
 
+/* Scene files: {"shape": ...} meshes (shared when equal), bad parameters refused with the draw
+ * named. */
+static void scene_shapes(void **state) {
+    (void)state;
+    const char *mats = "\"worldView\": [1,0,0,0, 0,1,0,0, 0,0,1,-3, 0,0,0,1], "
+                       "\"proj\": [1,0,0,0, 0,1,0,0, 0,0,-1,-0.2, 0,0,-1,0]";
+    char json[2048], err[512];
+    snprintf(json, sizeof json,
+             "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"s\", \"draws\": ["
+             "{\"mesh\": {\"shape\": \"torus\", \"rings\": 8}, %s},"
+             "{\"mesh\": {\"shape\": \"torus\", \"rings\": 8}, %s},"
+             "{\"mesh\": {\"shape\": \"cube\", \"size\": 2}, %s}]}]}",
+             mats, mats, mats);
+    sc_file f;
+    assert_true(sc_parse("/nonexistent/s.json", json, strlen(json), &f, err, sizeof err));
+    assert_int_equal(f.mesh_count, 2);
+    assert_int_equal(f.scenes[0].draws[0].mesh, f.scenes[0].draws[1].mesh);
+    assert_int_equal(f.meshes[1].vertex_count, 24);
+    assert_non_null(f.meshes[0].normals);
+    assert_non_null(f.meshes[0].texcoords);
+    sc_free(&f);
+    snprintf(json, sizeof json,
+             "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"s\", \"draws\": ["
+             "{\"mesh\": {\"shape\": \"sphere\", \"segments\": 2}, %s}]}]}",
+             mats);
+    assert_false(sc_parse("/nonexistent/s.json", json, strlen(json), &f, err, sizeof err));
+    assert_non_null(strstr(err, "draws[0]"));
+    assert_non_null(strstr(err, "segments"));
+    snprintf(json, sizeof json,
+             "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"s\", \"draws\": ["
+             "{\"mesh\": {\"shape\": \"blob\"}, %s}]}]}",
+             mats);
+    assert_false(sc_parse("/nonexistent/s.json", json, strlen(json), &f, err, sizeof err));
+    assert_non_null(strstr(err, "'shape' must be one of"));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shapes_are_closed_and_outward),
@@ -209,6 +247,7 @@ int main(void) {
         cmocka_unit_test(off_errors),
         cmocka_unit_test(mtl_materials),
         cmocka_unit_test(obj_groups),
+        cmocka_unit_test(scene_shapes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
