@@ -242,9 +242,32 @@ static bool add_normals(sc_mesh *m) {
                                              (int)m->index_count, 0, m->normals) == 0;
 }
 
+/* A mesh lit flat takes its faces' normals from their winding. Many files wind every face
+ * clockwise seen from outside, which would light the far side of the model: a mesh whose signed
+ * volume (the sum of a . (b x c) over its triangles) is negative is turned inside out. */
+static void orient_outward(sc_mesh *m) {
+    double vol = 0;
+    for (uint32_t i = 0; i + 2 < m->index_count; i += 3) {
+        const float *a = m->positions + (size_t)m->indices[i] * 4;
+        const float *b = m->positions + (size_t)m->indices[i + 1] * 4;
+        const float *c = m->positions + (size_t)m->indices[i + 2] * 4;
+        double t = (double)a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) +
+                   (double)a[1] * ((double)b[2] * c[0] - (double)b[0] * c[2]) +
+                   (double)a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0]);
+        if (isfinite(t)) vol += t;
+    }
+    if (!(vol < 0)) return;
+    for (uint32_t i = 0; i + 2 < m->index_count; i += 3) {
+        uint32_t t = m->indices[i + 1];
+        m->indices[i + 1] = m->indices[i + 2];
+        m->indices[i + 2] = t;
+    }
+}
+
 /* Adds a mesh and its draw; the mesh is taken over. */
 static bool add_part(sc_file *f, sc_scene *sc, sc_mesh *mesh, const char *source,
                      const sc_draw *proto, char *err, size_t errlen) {
+    if (proto->lighting == SC_LIGHTING_FLAT) orient_outward(mesh);
     if (!add_normals(mesh)) {
         sc_mesh_free(mesh);
         snprintf(err, errlen, "%s: out of memory", source);
