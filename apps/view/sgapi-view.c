@@ -103,7 +103,7 @@ static void usage(FILE *f) {
                "  N               add the next standard shape at the view centre (cube,\n"
                "                  tetrahedron, octahedron, icosphere, sphere, cylinder, cone,\n"
                "                  torus) and select it\n"
-               "  Tab             select the next object\n"
+               "  Tab             select the next object (the title names the selected one)\n"
                "  Delete, X       delete the selected object\n"
                "  Space           animation on/off (added shapes spin)\n"
                "  R               reset the camera\n"
@@ -794,8 +794,17 @@ int main(int argc, char **argv) {
         frames_since++, frames_total++;
         if (now - t_count >= 1000) {
             double fps = frames_since * 1000.0 / (now - t_count);
-            char title[256];
-            snprintf(title, sizeof title, "sgapi-view - %s - %.1f fps", o.files[0], fps);
+            /* The selection has no mark in the image: the title names it. */
+            char title[512], sel[160] = "none";
+            SDL_LockMutex(pl.state);
+            if (v.selected >= 0 && (size_t)v.selected < v.scene->draw_count) {
+                const char *src = v.file.mesh_sources[v.scene->draws[v.selected].mesh];
+                const char *base = strrchr(src, '/');
+                snprintf(sel, sizeof sel, "%d: %s", v.selected, base ? base + 1 : src);
+            }
+            SDL_UnlockMutex(pl.state);
+            snprintf(title, sizeof title, "sgapi-view - %s - %.1f fps - selected %s", o.files[0],
+                     fps, sel);
             SDL_SetWindowTitle(win, title);
             if (o.print_fps) {
                 printf("%.1f fps\n", fps);
