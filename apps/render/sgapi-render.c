@@ -87,8 +87,9 @@ static void usage(FILE *f) {
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     worker threads for the device (default 0: all cores)\n"
-               "  --simd SET      instruction set of the raster: scalar, sse2, avx2 or avx512\n"
-               "                  (default: the best this CPU runs; all give the same images)\n"
+               "  --simd SET      instruction set of the raster: scalar, sse2, avx2, avx512 or\n"
+               "                  neon (default: the best this CPU runs; all give the same\n"
+               "                  images)\n"
                "  --compare DIR   compare each image with DIR/<scene name>.png: print PSNR,\n"
                "                  %% of pixels over 2/255 and coverage mismatch next to the time,\n"
                "                  and write DIR_OUT/<scene name>-heat.png\n"
@@ -349,8 +350,11 @@ static int parse_args(int argc, char **argv, options *o) {
                 o->simd = SG_SIMD_AVX2;
             } else if (!strcmp(value, "avx512")) {
                 o->simd = SG_SIMD_AVX512;
+            } else if (!strcmp(value, "neon")) {
+                o->simd = SG_SIMD_NEON;
             } else {
-                fprintf(stderr, "sgapi-render: --simd is scalar, sse2, avx2 or avx512, not '%s'\n",
+                fprintf(stderr,
+                        "sgapi-render: --simd is scalar, sse2, avx2, avx512 or neon, not '%s'\n",
                         value);
                 return 2;
             }
