@@ -3,7 +3,7 @@
 # and requires every image to be identical byte for byte to the first value's.
 #   render_identical.sh RENDER_BINARY SOURCE_DIR WORK_DIR OPTION VALUE...
 # --threads 1 2 3 5: bins share no pixels and keep submission order, so the thread count must
-# never show in the output. --simd scalar sse2 avx2 avx512: the vector paths compute the same IEEE
+# never show in the output. --simd scalar sse2 avx2 avx512 neon: the vector paths compute the same IEEE
 # operations in the same order as the scalar reference; a set this CPU does not run is refused at
 # device creation and skipped.
 set -eu

@@ -132,7 +132,8 @@ static void check(const sg_svert s[2]) {
     uint8_t ref[H][W], got[H][W];
     reference(s, ref);
     for (int isa = 0; isa < SG_ISA_COUNT; isa++) {
-        if ((sg_isa)isa > sg_isa_detect()) break;
+        /* NEON's walk is the AArch64 baseline, the scalar one: not run twice */
+        if (!sg_isa_runs((sg_isa)isa) || isa == SG_ISA_NEON) continue;
         drawn(sg_walk_select((sg_isa)isa), s, got);
         if (memcmp(ref, got, sizeof ref) == 0) continue;
         if (failures++ < 5) {

@@ -1,14 +1,13 @@
-/* test_shade_simd.c - the SSE2, AVX2 and AVX-512 shading functions give the scalar reference's
- * bytes. For every variant and flat mode, many random cases: plausible and perspective plane
- * equations, 1/q near 0, colours outside [0, 1], texture coordinates far outside [0, 1] (1e4, 1e30,
- * infinite, NaN), random masks over a sentinel-filled tile, and textures from 1x1 to 16384 texels
- * wide; the same for the variants that add a secondary colour (flat and Gouraud lighting with a
- * specular material), for per-pixel lighting (random positions, normals, lights, materials), and
- * for shading that receives a shadow map (random maps, projections, PCF or not).
- * The texels sit in exactly-sized allocations (a stray load shows under AddressSanitizer)
- * and, where there is mmap, also right before or right after an inaccessible page, which catches
- * stray reads in any build, AVX2 and AVX-512 gathers (which AddressSanitizer does not see)
- * included.
+/* test_shade_simd.c - the SSE2, AVX2, AVX-512 and NEON shading functions give the scalar
+ * reference's bytes. For every variant and flat mode, many random cases: plausible and perspective
+ * plane equations, 1/q near 0, colours outside [0, 1], texture coordinates far outside [0, 1] (1e4,
+ * 1e30, infinite, NaN), random masks over a sentinel-filled tile, and textures from 1x1 to 16384
+ * texels wide; the same for the variants that add a secondary colour (flat and Gouraud lighting
+ * with a specular material), for per-pixel lighting (random positions, normals, lights, materials),
+ * and for shading that receives a shadow map (random maps, projections, PCF or not). The texels sit
+ * in exactly-sized allocations (a stray load shows under AddressSanitizer) and, where there is
+ * mmap, also right before or right after an inaccessible page, which catches stray reads in any
+ * build, AVX2 and AVX-512 gathers (which AddressSanitizer does not see) included.
  */
 #define _DEFAULT_SOURCE /* mmap, MAP_ANONYMOUS */
 #include "test_common.h"
@@ -409,26 +408,36 @@ static void compare_variant(int variant, int kind) {
     for (int i = 0; i < NMAPS; i++) texture_make(&maps[i], &g, map_sizes[i][0], map_sizes[i][1], 1);
     const int shadow = kind == PHONG_SHADOW || kind == UNLIT_SHADOW;
     const int textured = variant != 0;
-    const sg_isa isa = sg_isa_detect();
+    /* NEON is not "above" the x86 sets: each set is asked for by whether this CPU runs it. */
+    const bool has_avx2 = sg_isa_runs(SG_ISA_AVX2), has_avx512 = sg_isa_runs(SG_ISA_AVX512),
+               has_neon = sg_isa_runs(SG_ISA_NEON);
     const int index = variant + (kind == SECONDARY ? SG_SHADE_SECONDARY : 0);
-    sg_shade_fn scalar, sse2 = NULL, avx2 = NULL, avx512 = NULL;
+    sg_shade_fn scalar, sse2 = NULL, avx2 = NULL, avx512 = NULL, neon = NULL;
     if (kind >= PHONG) {
         const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
                            : kind == PHONG_SHADOW ? SG_PIXEL_PHONG_SHADOW
                                                   : SG_PIXEL_SHADOW) +
                           variant;
         scalar = sg_shade_phong_scalar(pixel);
-        if (isa >= SG_ISA_AVX2) avx2 = sg_shade_phong_avx2(pixel);
-        if (isa >= SG_ISA_AVX512) avx512 = sg_shade_phong_avx512(pixel);
+        if (has_avx2) avx2 = sg_shade_phong_avx2(pixel);
+        if (has_avx512) avx512 = sg_shade_phong_avx512(pixel);
+        if (has_neon) neon = sg_shade_phong_neon(pixel);
+#if defined(__aarch64__)
+        assert_non_null(neon);
+#endif
     } else {
         scalar = sg_shade_scalar(index);
         sse2 = sg_shade_sse2(index);
-        if (isa >= SG_ISA_AVX2) avx2 = sg_shade_avx2(index);
-        if (isa >= SG_ISA_AVX512) avx512 = sg_shade_avx512(index);
+        if (has_avx2) avx2 = sg_shade_avx2(index);
+        if (has_avx512) avx512 = sg_shade_avx512(index);
+        if (has_neon) neon = sg_shade_neon(index);
+#if defined(__aarch64__)
+        assert_non_null(neon); /* Advanced SIMD is the AArch64 baseline */
+#endif
 #if defined(__x86_64__)
         if (kind == UNLIT) assert_non_null(sse2); /* SSE2 is the x86-64 baseline */
-        if (isa >= SG_ISA_AVX2) assert_non_null(avx2);
-        if (isa >= SG_ISA_AVX512) assert_non_null(avx512);
+        if (has_avx2) assert_non_null(avx2);
+        if (has_avx512) assert_non_null(avx512);
 #endif
     }
     const long cases = kind >= PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
@@ -467,6 +476,9 @@ static void compare_variant(int variant, int kind) {
                 failures++;
             if (avx512 && !same_as_reference(avx512, "AVX-512", &ctx, &t, e, x0, y0, mask, sentinel,
                                              ref, variant, flat, n))
+                failures++;
+            if (neon && !same_as_reference(neon, "NEON", &ctx, &t, e, x0, y0, mask, sentinel, ref,
+                                           variant, flat, n))
                 failures++;
         }
     }

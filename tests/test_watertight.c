@@ -171,9 +171,10 @@ static void random_meshes_cover_each_pixel_once(void **state) {
     assert_non_null(c);
     assert_non_null(idx);
     /* The walk as compiled for each instruction set this CPU runs (its edge tests differ). */
-    const char *names[SG_ISA_COUNT] = {"scalar/SSE2", "SSE2", "AVX2", "AVX-512"};
-    for (sg_isa isa = SG_ISA_SCALAR; isa <= sg_isa_detect(); isa++) {
-        if (isa == SG_ISA_SSE2) continue; /* the baseline walk, already run as "scalar/SSE2" */
+    const char *names[SG_ISA_COUNT] = {"scalar/SSE2/NEON", "SSE2", "AVX2", "AVX-512", "NEON"};
+    for (sg_isa isa = SG_ISA_SCALAR; isa < SG_ISA_COUNT; isa++) {
+        /* SSE2 and NEON: the baseline walk, already run as the scalar one */
+        if (isa == SG_ISA_SSE2 || isa == SG_ISA_NEON || !sg_isa_runs(isa)) continue;
         c->walk = sg_walk_select(isa);
         c->overflows = 0;
         rng r = {20261121};

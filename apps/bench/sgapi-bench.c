@@ -99,8 +99,8 @@ static void usage(FILE *f) {
             "  --frames N      timed frames per measurement, >= %d (default %d), after %d warm-up\n"
             "                  frames\n"
             "  --threads T     the multi-threaded measurements' thread count (default: all cores)\n"
-            "  --simd SET      sgapi's instruction set: scalar, sse2, avx2 or avx512 (default:\n"
-            "                  the best this CPU runs)\n"
+            "  --simd SET      sgapi's instruction set: scalar, sse2, avx2, avx512 or neon\n"
+            "                  (default: the best this CPU runs)\n"
             "  --csv FILE      also write the table as CSV\n"
             "  --pareto        also measure every setting (default, nearest filter) at T threads:\n"
             "                  print a second table, write pareto.csv (beside --csv FILE, or in\n"
@@ -124,7 +124,8 @@ static const struct {
 } simd_names[] = {{"scalar", SG_SIMD_SCALAR},
                   {"sse2", SG_SIMD_SSE2},
                   {"avx2", SG_SIMD_AVX2},
-                  {"avx512", SG_SIMD_AVX512}};
+                  {"avx512", SG_SIMD_AVX512},
+                  {"neon", SG_SIMD_NEON}};
 
 static bool parse_simd(const char *s, sgSimd *out) {
     for (size_t i = 0; i < sizeof simd_names / sizeof simd_names[0]; i++)
@@ -181,7 +182,8 @@ static int parse_args(int argc, char **argv, options *o) {
             }
         } else if (!strcmp(a, "--simd")) {
             if (!parse_simd(value, &o->simd)) {
-                fprintf(stderr, "sgapi-bench: --simd is scalar, sse2, avx2 or avx512, not '%s'\n",
+                fprintf(stderr,
+                        "sgapi-bench: --simd is scalar, sse2, avx2, avx512 or neon, not '%s'\n",
                         value);
                 return 2;
             }

@@ -32,9 +32,14 @@
 #include "frame_writer.h"
 #include "image_diff.h"
 #include "image_io.h"
+#include "junit.h"
+#include "model.h"
 #include "progress.h"
+#include "regression.h"
+#include "report.h"
 #include "scene_sgapi.h"
 #include "scene.h"
+#include "thresholds.h"
 #include "turntable.h"
 #include "video.h"
 
@@ -49,6 +54,10 @@ typedef struct options {
     int scene_count;
     const char *compare_dir; /* --compare: reference images, one DIR/<scene>.png per scene */
     double min_psnr, max_over2, max_coverage; /* thresholds of --compare; < 0: none */
+    const char *thresholds_path;              /* --thresholds: per-scene targets (CSV) */
+    const char *junit_path;                   /* --junit: JUnit XML of the comparison */
+    const char *report_dir;                   /* --report: HTML report folder */
+    bool update_golden;                       /* --update-golden: bless failing scenes */
     bool depth_only; /* --depth-only: the scene's pass without its colour target */
     bool frames_given;
     int turntable;                /* --turntable N: frames of a turn; 0: still images */
@@ -64,23 +73,39 @@ typedef struct options {
     int writers;   /* --writers: threads writing turntable frames; 0: the rendering thread; -1:
                       default */
     int png_level; /* --png-level; -1: the run's default */
+    int model_width, model_height; /* --size: of the images of model files */
 } options;
 
 static void usage(FILE *f) {
-    fprintf(f, "usage: sgapi-render [options] SCENE.json... -o DIR\n"
+    fprintf(f, "usage: sgapi-render [options] SCENE.json|MODEL.obj|MODEL.off... -o DIR\n"
                "Renders every scene of the files to DIR/<scene name>.png and prints each scene's\n"
-               "time per frame (render passes only).\n"
+               "time per frame (render passes only). A model file (.obj with its materials, .off)\n"
+               "is a scene of its own named after the file (DIR/<stem>.png): the camera framed\n"
+               "on the model's bounding sphere, a default light, its colours and textures.\n"
+               "  --size WxH      image size of model files (default 1024x768)\n"
                "  -o DIR          output folder, created if missing (required)\n"
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     worker threads for the device (default 0: all cores)\n"
-               "  --simd SET      instruction set of the raster: scalar, sse2, avx2 or avx512\n"
-               "                  (default: the best this CPU runs; all give the same images)\n"
+               "  --simd SET      instruction set of the raster: scalar, sse2, avx2, avx512 or\n"
+               "                  neon (default: the best this CPU runs; all give the same\n"
+               "                  images)\n"
                "  --compare DIR   compare each image with DIR/<scene name>.png: print PSNR,\n"
                "                  %% of pixels over 2/255 and coverage mismatch next to the time,\n"
                "                  and write DIR_OUT/<scene name>-heat.png\n"
+               "                  exit 1 when a scene is past its thresholds (default PSNR\n"
+               "                  >= 40 dB, <= 0.5 %% of pixels over 2/255, coverage <= 0.05 %%)\n"
+               "                  or its golden image is missing, unreadable or of another size\n"
                "  --min-psnr DB, --max-over2 PCT, --max-coverage PCT\n"
-               "                  with --compare: fail (exit 1) when a scene is past a threshold\n"
+               "                  with --compare: these thresholds for every scene\n"
+               "  --thresholds F  per-scene thresholds, rows of the CSV file F:\n"
+               "                  suite,scene,min_psnr_db,max_pct_over_2,max_coverage_pct\n"
+               "                  (suite: the scene file's stem, its folder's name, or *)\n"
+               "  --junit F.xml   write the comparison as JUnit XML (one testcase per scene)\n"
+               "  --report DIR    write DIR/index.html, a self-contained report (expected,\n"
+               "                  actual and heat map of every scene), and DIR/results.json\n"
+               "  --update-golden write the images of failing and missing scenes into the\n"
+               "                  --compare folder (listing them); passing ones are untouched\n"
                "  --depth-only    render each scene's pass with its depth target alone (a\n"
                "                  depth-only pass, no shadow pass) and write the depth as a grey\n"
                "                  image, white near, black at the far plane: the time of\n"
@@ -161,6 +186,9 @@ static int check_combination(const options *o) {
     else if (o->no_write && (o->video || o->compare_dir))
         problem = o->video ? "--video needs the frames written: drop --no-write"
                            : "--compare writes heat maps: drop --no-write";
+    else if (!o->compare_dir &&
+             (o->thresholds_path || o->junit_path || o->report_dir || o->update_golden))
+        problem = "--thresholds, --junit, --report and --update-golden need --compare GOLDEN";
     if (problem) {
         fprintf(stderr, "sgapi-render: %s\n", problem);
         return 2;
@@ -194,12 +222,14 @@ static int parse_args(int argc, char **argv, options *o) {
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool threshold =
             !strcmp(a, "--min-psnr") || !strcmp(a, "--max-over2") || !strcmp(a, "--max-coverage");
-        bool takes_value =
-            !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
-            !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--compare") ||
-            threshold || !strcmp(a, "--turntable") || !strcmp(a, "--spin") || !strcmp(a, "--up") ||
-            !strcmp(a, "--shard") || !strcmp(a, "--video") || !strcmp(a, "--fps") ||
-            !strcmp(a, "--video-width") || !strcmp(a, "--png-level") || !strcmp(a, "--writers");
+        bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
+                           !strcmp(a, "--threads") || !strcmp(a, "--simd") ||
+                           !strcmp(a, "--compare") || threshold || !strcmp(a, "--turntable") ||
+                           !strcmp(a, "--spin") || !strcmp(a, "--up") || !strcmp(a, "--shard") ||
+                           !strcmp(a, "--video") || !strcmp(a, "--fps") ||
+                           !strcmp(a, "--video-width") || !strcmp(a, "--png-level") ||
+                           !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
+                           !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -210,6 +240,17 @@ static int parse_args(int argc, char **argv, options *o) {
         }
         if (!strcmp(a, "-o")) {
             o->out_dir = value;
+        } else if (!strcmp(a, "--size")) {
+            char w[16], h[16];
+            const char *x = strchr(value, 'x');
+            if (!x || x - value >= (long)sizeof w || strlen(x + 1) >= sizeof h ||
+                (memcpy(w, value, (size_t)(x - value)), w[x - value] = '\0', strcpy(h, x + 1),
+                 !sc_parse_int(w, 1, SC_MAX_IMAGE_SIZE, &o->model_width)) ||
+                !sc_parse_int(h, 1, SC_MAX_IMAGE_SIZE, &o->model_height)) {
+                fprintf(stderr, "sgapi-render: --size needs WxH, each 1..%d, not '%s'\n",
+                        SC_MAX_IMAGE_SIZE, value);
+                return 2;
+            }
         } else if (!strcmp(a, "--frames")) {
             if (!sc_parse_int(value, 1, 1000000, &o->frames)) {
                 fprintf(stderr, "sgapi-render: --frames needs a whole number >= 1, not '%s'\n",
@@ -280,6 +321,14 @@ static int parse_args(int argc, char **argv, options *o) {
                         value);
                 return 2;
             }
+        } else if (!strcmp(a, "--thresholds")) {
+            o->thresholds_path = value;
+        } else if (!strcmp(a, "--junit")) {
+            o->junit_path = value;
+        } else if (!strcmp(a, "--report")) {
+            o->report_dir = value;
+        } else if (!strcmp(a, "--update-golden")) {
+            o->update_golden = true;
         } else if (!strcmp(a, "--assemble")) {
             o->assemble = true;
         } else if (!strcmp(a, "--quiet")) {
@@ -301,8 +350,11 @@ static int parse_args(int argc, char **argv, options *o) {
                 o->simd = SG_SIMD_AVX2;
             } else if (!strcmp(value, "avx512")) {
                 o->simd = SG_SIMD_AVX512;
+            } else if (!strcmp(value, "neon")) {
+                o->simd = SG_SIMD_NEON;
             } else {
-                fprintf(stderr, "sgapi-render: --simd is scalar, sse2, avx2 or avx512, not '%s'\n",
+                fprintf(stderr,
+                        "sgapi-render: --simd is scalar, sse2, avx2, avx512 or neon, not '%s'\n",
                         value);
                 return 2;
             }
@@ -375,50 +427,6 @@ static bool selected(const options *o, const char *name) {
 
 /* ---- rendering ------------------------------------------------------------------------------- */
 
-/* Compares a rendered scene with its reference image: appends the figures to the scene's line
- * (without its newline), writes the heat map, and checks the thresholds. */
-static bool compare_scene(const options *o, const sc_scene *s, const unsigned char *pixels) {
-    size_t len = strlen(o->compare_dir) + strlen(o->out_dir) + strlen(s->name) + 16;
-    char *path = malloc(len);
-    char err[1024];
-    sc_image ref = {0};
-    bool ok = path != NULL;
-    if (ok) snprintf(path, len, "%s/%s.png", o->compare_dir, s->name);
-    ok = ok && sc_image_load(path, &ref, err, sizeof err);
-    if (!ok) {
-        printf("\n");
-        fprintf(stderr, "sgapi-render: --compare: %s\n", path ? err : "out of memory");
-        free(path);
-        return false;
-    }
-    if (ref.width != s->width || ref.height != s->height) {
-        printf("\n");
-        fprintf(stderr, "sgapi-render: --compare: %s is %dx%d, the scene %dx%d\n", path, ref.width,
-                ref.height, s->width, s->height);
-        sc_image_free(&ref);
-        free(path);
-        return false;
-    }
-    /* Background, for the coverage figure, is the scene's clear colour as stored. */
-    unsigned char bg[4];
-    for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
-    unsigned char *heat = malloc((size_t)s->width * (size_t)s->height * 4);
-    sc_diff d = sc_image_diff(pixels, ref.pixels, s->width, s->height, bg, heat);
-    printf("  psnr %6.2f dB  >2/255 %7.4f %%  >8/255 %7.4f %%  max %3d  coverage %7.4f %%",
-           d.psnr_db, d.pct_over[0], d.pct_over[1], d.max_error, d.pct_coverage);
-    if (o->min_psnr >= 0 && d.psnr_db < o->min_psnr) ok = false;
-    if (o->max_over2 >= 0 && d.pct_over[0] > o->max_over2) ok = false;
-    if (o->max_coverage >= 0 && d.pct_coverage > o->max_coverage) ok = false;
-    printf("%s\n", ok ? "" : "  FAIL");
-    snprintf(path, len, "%s/%s-heat.png", o->out_dir, s->name);
-    if (heat && !sc_image_write_png(path, s->width, s->height, heat, err, sizeof err))
-        fprintf(stderr, "sgapi-render: %s\n", err);
-    free(heat);
-    sc_image_free(&ref);
-    free(path);
-    return ok;
-}
-
 /* The depth target as grey RGBA8: (1 - depth) x 255, opaque. */
 static sgResult read_depth(sgDevice *dev, sgImage2D depth, const sc_scene *s,
                            unsigned char *pixels) {
@@ -443,8 +451,45 @@ typedef struct run {
     sc_png_writer *png;   /* still images */
     frame_writer *frames; /* turntable frames */
     progress bar;
-    int digits; /* of a turntable's frame names */
+    int digits;               /* of a turntable's frame names */
+    rg_thresholds thresholds; /* --compare: the targets of every scene */
+    rg_scene *results;        /* --compare: one record per compared scene */
+    size_t result_count;
 } run;
+
+/* Compares a rendered scene (written to `png`, rendered in `ms` per frame) with its golden image:
+ * appends the figures to the scene's line (without its newline), writes the heat map, and records
+ * the outcome, naming a failing scene on stderr with what failed. A failing scene does not stop
+ * the run; false only when the comparison itself could not be done (out of memory, a heat map
+ * that cannot be written). */
+static bool compare_scene(run *rn, const options *o, const sc_file *f, const sc_scene *s,
+                          const unsigned char *pixels, const char *png, double ms) {
+    rg_scene *rec = &rn->results[rn->result_count++];
+    rg_file_stem(f->path, rec->suite, sizeof rec->suite);
+    snprintf(rec->name, sizeof rec->name, "%s", s->name);
+    rec->width = s->width;
+    rec->height = s->height;
+    rec->time_s = ms / 1e3;
+    rec->limits = rg_thresholds_for(&rn->thresholds, f->path, s->name);
+    /* Background, for the coverage figure, is the scene's clear colour as stored. */
+    unsigned char bg[4];
+    for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
+    char err[1024];
+    bool ok =
+        rg_compare(rec, pixels, bg, o->compare_dir, png, o->out_dir, rn->png, err, sizeof err);
+    if (ok && rec->compared) {
+        const sc_diff *d = &rec->diff;
+        printf("  psnr %6.2f dB  >2/255 %7.4f %%  >8/255 %7.4f %%  max %3d  coverage %7.4f %%",
+               d->psnr_db, d->pct_over[0], d->pct_over[1], d->max_error, d->pct_coverage);
+    }
+    printf("%s\n", ok && !rec->passed ? "  FAIL" : "");
+    fflush(stdout);
+    if (!ok)
+        fprintf(stderr, "sgapi-render: %s\n", err);
+    else if (!rec->passed)
+        fprintf(stderr, "sgapi-render: FAIL %s/%s: %s\n", rec->suite, rec->name, rec->reason);
+    return ok;
+}
 
 /* Renders one scene frames times, writes its PNG and prints its median time per frame. */
 static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_scene *s,
@@ -506,7 +551,7 @@ static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_s
         printf("%-32s %10.3f ms/frame (median of %d)", s->name, median, o->frames);
     else
         printf("%-32s %10.3f ms/frame", s->name, median);
-    ok = o->compare_dir ? compare_scene(o, s, pixels) : (printf("\n"), true);
+    ok = o->compare_dir ? compare_scene(rn, o, f, s, pixels, png, median) : (printf("\n"), true);
     fflush(stdout);
 done:
     ss_destroy_shadow(dev, &shadow);
@@ -688,6 +733,92 @@ static bool writable_dir(const char *dir) {
     return fd >= 0;
 }
 
+/* ---- regression: checks before the run, outputs after it ------------------------------------- */
+
+/* The thresholds file, the golden folder, the report folder and the JUnit file's folder, checked
+ * before anything renders; false when one cannot work (reported). */
+static bool regression_setup(const options *o, run *rn) {
+    rg_thresholds_init(&rn->thresholds);
+    rg_limits *ov = &rn->thresholds.overrides;
+    if (o->min_psnr >= 0) ov->min_psnr = o->min_psnr;
+    if (o->max_over2 >= 0) ov->max_over2 = o->max_over2;
+    if (o->max_coverage >= 0) ov->max_coverage = o->max_coverage;
+    char err[1024];
+    if (o->thresholds_path &&
+        !rg_thresholds_load(&rn->thresholds, o->thresholds_path, err, sizeof err)) {
+        fprintf(stderr, "sgapi-render: --thresholds: %s\n", err);
+        return false;
+    }
+    struct stat st;
+    if (stat(o->compare_dir, &st) != 0) {
+        /* A golden folder that is not there yet is made by --update-golden; otherwise it is a
+         * wrong path, not a run of missing images. */
+        if (!o->update_golden) {
+            fprintf(stderr, "sgapi-render: --compare: no folder '%s'\n", o->compare_dir);
+            return false;
+        }
+        if (!make_dirs(o->compare_dir)) return false;
+    } else if (!S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "sgapi-render: --compare: '%s' is not a folder\n", o->compare_dir);
+        return false;
+    }
+    if (o->update_golden && !writable_dir(o->compare_dir)) return false;
+    if (o->report_dir && (!make_dirs(o->report_dir) || !writable_dir(o->report_dir))) return false;
+    if (o->junit_path) {
+        size_t n = strlen(o->junit_path);
+        char *dir = malloc(n + 2);
+        if (!dir) return false;
+        memcpy(dir, o->junit_path, n + 1);
+        char *slash = strrchr(dir, '/');
+        if (slash)
+            slash[slash == dir ? 1 : 0] = '\0';
+        else
+            strcpy(dir, ".");
+        bool ok = (stat(o->junit_path, &st) != 0 || S_ISREG(st.st_mode)) && make_dirs(dir) &&
+                  writable_dir(dir);
+        if (stat(o->junit_path, &st) == 0 && !S_ISREG(st.st_mode))
+            fprintf(stderr, "sgapi-render: --junit: '%s' is not a file\n", o->junit_path);
+        free(dir);
+        if (!ok) return false;
+    }
+    return true;
+}
+
+/* After the run: the report, the JUnit file, the golden updates and the summary line. Returns the
+ * exit status: 0 when every scene passed (or every failing one was blessed), else 1. */
+static int regression_finish(const options *o, run *rn, int argc, char **argv) {
+    char err[1024];
+    size_t failed = 0;
+    for (size_t i = 0; i < rn->result_count; i++) failed += !rn->results[i].passed;
+    bool ok = true;
+    /* Goldens are updated after the report is written, so that it shows the golden images that
+     * were compared; it says which ones this run replaces. */
+    for (size_t i = 0; i < rn->result_count; i++)
+        rn->results[i].golden_updated =
+            o->update_golden && !rn->results[i].passed && rn->results[i].actual;
+    if (o->report_dir) {
+        char *cmd = rg_command_line(argc, argv);
+        ok = cmd && rg_write_report(o->report_dir, rn->results, rn->result_count, cmd,
+                                    o->compare_dir, err, sizeof err);
+        if (!ok) fprintf(stderr, "sgapi-render: --report: %s\n", cmd ? err : "out of memory");
+        free(cmd);
+    }
+    if (ok && o->update_golden && failed)
+        ok = rg_update_golden(rn->results, rn->result_count, o->compare_dir);
+    if (ok && o->junit_path) {
+        ok = rg_write_junit(o->junit_path, rn->results, rn->result_count, o->report_dir, err,
+                            sizeof err);
+        if (!ok) fprintf(stderr, "sgapi-render: --junit: %s\n", err);
+    }
+    printf("%zu of %zu scenes passed, %zu failed%s\n", rn->result_count - failed, rn->result_count,
+           failed, failed && o->update_golden ? " (golden images updated)" : "");
+    if (o->report_dir) printf("report: %s/index.html\n", o->report_dir);
+    if (o->junit_path) printf("junit: %s\n", o->junit_path);
+    fflush(stdout);
+    if (!ok) return 1;
+    return failed && !o->update_golden ? 1 : 0;
+}
+
 /* ---- main ------------------------------------------------------------------------------------ */
 
 static size_t max_size(size_t a, size_t b) {
@@ -699,6 +830,24 @@ static int frame_digits(int frames) {
     int d = 1;
     for (int n = frames - 1; n >= 10; n /= 10) d++;
     return d < 4 ? 4 : d;
+}
+
+/* A model file's scene name: its file name without folder and extension, any character a scene
+ * name cannot hold made '_'. */
+static void model_name(const char *path, char *out, size_t len) {
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    const char *dot = strrchr(b, '.');
+    size_t n = dot && dot > b ? (size_t)(dot - b) : strlen(b);
+    if (n >= len) n = len - 1;
+    for (size_t i = 0; i < n; i++) {
+        char c = b[i];
+        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                  c == '_' || c == '-' || c == '.';
+        out[i] = ok ? c : '_';
+    }
+    if (n == 0) out[n++] = '_';
+    out[n] = '\0';
 }
 
 int main(int argc, char **argv) {
@@ -721,6 +870,22 @@ int main(int argc, char **argv) {
     }
     for (; loaded < o.file_count; loaded++) {
         char err[1024];
+        if (sc_is_model_path(o.files[loaded])) {
+            /* A model is a scene named after its file. */
+            char name[SC_MAX_NAME_LENGTH + 1];
+            model_name(o.files[loaded], name, sizeof name);
+            sc_warnings w = {0};
+            bool ok = sc_model_scene(
+                &o.files[loaded], 1, name, o.model_width ? o.model_width : 1024,
+                o.model_height ? o.model_height : 768, &files[loaded], &w, err, sizeof err);
+            for (int k = 0; k < w.count; k++)
+                fprintf(stderr, "sgapi-render: warning: %s\n", w.text[k]);
+            if (!ok) {
+                fprintf(stderr, "sgapi-render: %s\n", err);
+                goto done;
+            }
+            continue;
+        }
         if (!sc_load(o.files[loaded], &files[loaded], err, sizeof err)) {
             fprintf(stderr, "sgapi-render: %s\n", err);
             goto done;
@@ -784,6 +949,7 @@ int main(int argc, char **argv) {
         }
     }
     if (!make_dirs(o.out_dir) || (!o.no_write && !writable_dir(o.out_dir))) goto done;
+    if (o.compare_dir && !regression_setup(&o, &rn)) goto done;
     for (int i = 0; i < o.file_count; i++) {
         for (size_t j = 0; j < files[i].scene_count; j++) {
             const sc_scene *s = &files[i].scenes[j];
@@ -800,6 +966,13 @@ int main(int argc, char **argv) {
         }
     }
     status = 1;
+    if (o.compare_dir) {
+        rn.results = calloc(items ? (size_t)items : 1, sizeof *rn.results);
+        if (!rn.results) {
+            fprintf(stderr, "sgapi-render: out of memory\n");
+            goto done;
+        }
+    }
 
     if (o.assemble) {
         bool ok = true;
@@ -871,13 +1044,16 @@ int main(int argc, char **argv) {
         ss_destroy_uploads(rn.dev, &u);
         if (!ok) goto done;
     }
-    status = 0;
+    status = o.compare_dir ? regression_finish(&o, &rn, argc, argv) : 0;
 done:
     pg_hide(&rn.bar);
     fw_stop(rn.frames);
     sc_png_writer_destroy(rn.png);
     sgDestroyDevice(rn.dev); /* also destroys the cached pipelines */
     ss_pso_cache_free(&rn.cache);
+    rg_scenes_free(rn.results, rn.result_count);
+    free(rn.results);
+    rg_thresholds_free(&rn.thresholds);
     for (int i = 0; i < loaded; i++) sc_free(&files[i]);
     free(files);
     free(o.files);

@@ -109,6 +109,7 @@ typedef enum sgSimd {
     SG_SIMD_SSE2,        /* x86-64 baseline */
     SG_SIMD_AVX2,        /* x86-64 with AVX2 */
     SG_SIMD_AVX512,      /* x86-64 with AVX-512 F/BW/VL/DQ */
+    SG_SIMD_NEON,        /* 64-bit ARM (AArch64) Advanced SIMD, in every ARMv8-A CPU */
 } sgSimd;
 
 typedef struct sgDeviceDesc {

@@ -10,9 +10,10 @@
 #include <unistd.h>
 
 /* Names of the instruction sets, for messages. */
-static const char *const isa_names[SG_ISA_COUNT] = {"scalar", "SSE2", "AVX2", "AVX-512"};
+static const char *const isa_names[SG_ISA_COUNT] = {"scalar", "SSE2", "AVX2", "AVX-512", "NEON"};
 /* An sgSimd past DEFAULT is an sg_isa offset by SG_SIMD_SCALAR. */
 _Static_assert(SG_SIMD_AVX512 - SG_SIMD_SCALAR == SG_ISA_AVX512, "sgSimd and sg_isa out of step");
+_Static_assert(SG_SIMD_NEON - SG_SIMD_SCALAR == SG_ISA_NEON, "sgSimd and sg_isa out of step");
 
 static void *default_alloc(size_t size, void *user) {
     (void)user;
@@ -122,12 +123,12 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
         return sg_error(&tmp, SG_ERROR_INVALID_COUNT,
                         "sgCreateDevice: thread_count must be >= 0 (0: all cores), got %d",
                         d.thread_count);
-    if ((int)d.simd < SG_SIMD_DEFAULT || d.simd > SG_SIMD_AVX512)
+    if ((int)d.simd < SG_SIMD_DEFAULT || d.simd > SG_SIMD_NEON)
         return sg_error(&tmp, SG_ERROR_INVALID_ENUM, "sgCreateDevice: simd %d is not an sgSimd",
                         (int)d.simd);
     sg_isa best = sg_isa_detect();
     sg_isa isa = d.simd == SG_SIMD_DEFAULT ? best : (sg_isa)(d.simd - SG_SIMD_SCALAR);
-    if (isa > best)
+    if (!sg_isa_runs(isa))
         return sg_error(&tmp, SG_ERROR_UNSUPPORTED,
                         "sgCreateDevice: simd %s is not supported by this CPU (the best it runs "
                         "is %s)",

@@ -131,6 +131,8 @@ SG_BLEND_FN(blend_any_1_sse2, blend_sse2, Z_ANY, 1)
 sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa) {
     int zmode = compare == SG_COMPARE_ALWAYS ? Z_NONE : Z_ANY;
     sg_raster_fn fn = NULL;
+    if (isa == SG_ISA_NEON) fn = sg_blend_neon(zmode == Z_ANY, depth_write);
+    if (fn) return fn;
     /* A negative variant (lit shading) calls the draw's shading function: AVX2 at best. */
     if (isa >= SG_ISA_AVX512 && shade_variant >= 0)
         fn = sg_blend_avx512(shade_variant, zmode == Z_ANY, depth_write);

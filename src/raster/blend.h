@@ -43,5 +43,7 @@ sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_wr
  *  the compare is not ALWAYS. The AVX-512 ones inline the shading (no call per tile). */
 sg_raster_fn sg_blend_avx2(bool depth_test, bool depth_write);
 sg_raster_fn sg_blend_avx512(int shade_variant, bool depth_test, bool depth_write);
+/** The NEON ones (blend_neon.c; NULL off AArch64). */
+sg_raster_fn sg_blend_neon(bool depth_test, bool depth_write);
 
 #endif

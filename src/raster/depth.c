@@ -106,6 +106,10 @@ sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
         {vis_none_0, vis_none_1}, {vis_less_0, vis_less_1}, {vis_any_0, vis_any_1}};
     int zmode =
         compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
+    if (isa == SG_ISA_NEON)
+        return zmode == Z_LESS && sg_depth_less_neon(depth_write)
+                   ? sg_depth_less_neon(depth_write)
+                   : scalar[zmode][depth_write ? 1 : 0];
     /* The best set the ISA allows that is built: AVX-512, AVX2, SSE2, scalar. */
     if (isa >= SG_ISA_AVX512 && zmode == Z_LESS && sg_depth_less_avx512(depth_write))
         return sg_depth_less_avx512(depth_write);
@@ -122,6 +126,7 @@ sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
 
 sg_walk_fn sg_walk_select(sg_isa isa) {
     sg_walk_fn fn = NULL;
+    if (isa == SG_ISA_NEON) return sg_rast_triangle_in; /* NEON's walk is the AArch64 baseline */
     if (isa == SG_ISA_AVX512) fn = sg_walk_avx512();
     if (!fn && isa >= SG_ISA_AVX2) fn = sg_walk_avx2();
     return fn ? fn : sg_rast_triangle_in;

@@ -88,6 +88,8 @@ static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
 sg_raster_fn sg_depth_less_avx2(bool depth_write);
 /** The AVX-512 LESS functions (depth_avx512.c); NULL where AVX-512 code is not built. */
 sg_raster_fn sg_depth_less_avx512(bool depth_write);
+/** The NEON LESS functions (depth_neon.c); NULL off AArch64. */
+sg_raster_fn sg_depth_less_neon(bool depth_write);
 
 /** Offset of the tile holding pixel (x, y) in a bin's buffers, relative to the bin's origin. */
 static inline int sg_bin_tile_offset(int x, int y) {

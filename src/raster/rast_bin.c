@@ -10,6 +10,8 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
 #endif
 
 enum { BIN_TILES = SG_BIN_SIZE / SG_TILE, BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE };
@@ -24,6 +26,13 @@ static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
         mask |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(row, v))) << (4 * j);
     }
     return mask;
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+    const uint32x4_t v = vdupq_n_u32(id), place = {1, 2, 4, 8};
+    uint32x4_t bits = vdupq_n_u32(0);
+    for (int j = 0; j < 4; j++) /* each row's bits shifted to its place; they are disjoint */
+        bits = vorrq_u32(bits, vshlq_u32(vandq_u32(vceqq_u32(vld1q_u32(ids + 4 * j), v), place),
+                                         vdupq_n_s32(4 * j)));
+    return vaddvq_u32(bits);
 #else
     uint32_t mask = 0;
     for (int i = 0; i < SG_TILE_PIXELS; i++) mask |= (uint32_t)(ids[i] == id) << i;

@@ -16,9 +16,24 @@
 #include <immintrin.h>
 #elif defined(__SSE2__)
 #include <emmintrin.h>
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
 #endif
 
 #define SG_WALK_INLINE static inline __attribute__((always_inline))
+
+#if defined(__aarch64__) && defined(__ARM_NEON) && !defined(__SSE2__)
+/* The sign bits of four rows of four int32 lanes as a 16-bit mask, bit 4 j + i for lane i of row j
+ * (NEON has no movemask: each sign bit is moved to its place, and the disjoint bits summed). */
+SG_WALK_INLINE uint32_t sg_walk_signs16(const int32x4_t r[4]) {
+    const int32x4_t place = {0, 1, 2, 3};
+    uint32x4_t bits = vdupq_n_u32(0);
+    for (int j = 0; j < 4; j++)
+        bits = vorrq_u32(bits, vshlq_u32(vshrq_n_u32(vreinterpretq_u32_s32(r[j]), 31),
+                                         vaddq_s32(place, vdupq_n_s32(4 * j))));
+    return vaddvq_u32(bits);
+}
+#endif
 
 /* With AVX-512 and AVX2, triangles whose tiles fit a square of this many tiles a side (a whole
  * bin) are tested a tile at a time without the 64-bit walk, when their edge values there fit in
@@ -90,6 +105,8 @@ typedef struct walk {
     __m256i offs[3][2]; /* the same, rows 0-1 and rows 2-3 */
 #elif defined(__SSE2__)
     __m128i lane[3], step[3]; /* per edge: 0, dx, 2 dx, 3 dx; and dy, in 32 bits */
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+    int32x4_t lane[3], step[3]; /* as with SSE2 */
 #else
     int32_t offs[3][SG_TILE_PIXELS];
 #endif
@@ -139,6 +156,19 @@ SG_WALK_INLINE uint32_t crossed_mask(const walk *w, const int64_t e0[3]) {
             mask &= ~out; /* sign bit set: outside */
         }
         return mask;
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+        /* Per row, the OR of the crossing edges' values: its sign bit is "outside some edge". */
+        int32x4_t out[SG_TILE] = {vdupq_n_s32(0), vdupq_n_s32(0), vdupq_n_s32(0), vdupq_n_s32(0)};
+        for (int e = 0; e < 3; e++) {
+            if (e0[e] + w->lo[e] >= 0) continue; /* this edge holds the whole tile */
+            /* Exact: every value fits in int32, so wrapping 32-bit sums give it. */
+            int32x4_t v = vaddq_s32(vdupq_n_s32((int32_t)(uint32_t)(uint64_t)e0[e]), w->lane[e]);
+            for (int j = 0; j < SG_TILE; j++) {
+                out[j] = vorrq_s32(out[j], v);
+                v = vaddq_s32(v, w->step[e]);
+            }
+        }
+        return mask & ~sg_walk_signs16(out);
 #else
         for (int e = 0; e < 3; e++) {
             if (e0[e] + w->lo[e] >= 0) continue;
@@ -207,7 +237,7 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
     }
 }
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 /* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512 and AVX2; most of a mesh's):
  * the pixels of those tiles are tested at once in 32-bit edge values, four pixels a vector (a
  * tile with AVX-512, half a tile with AVX2), when every edge's values over the square fit in int32
@@ -329,7 +359,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         }
     }
     return true;
-#else
+#elif defined(__SSE2__)
     corners(t, 2 * SG_TILE - 1, hi, lo);
     __m128i v[3], step[3], four[3];
     for (int e = 0; e < 3; e++) {
@@ -362,6 +392,40 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         int tx_px = tx << SG_TILE_SHIFT, ty_px = ty << SG_TILE_SHIFT;
         uint32_t mask = t->rect_cut ? masks[k] & bounds_mask(t, tx_px, ty_px) : masks[k];
         if (mask) fn(ctx, t, tx_px, ty_px, mask);
+    }
+    return true;
+#else
+    /* As the SSE2 code: per edge, four pixels of a row a vector, the right tile four columns on. */
+    corners(t, 2 * SG_TILE - 1, hi, lo);
+    int32x4_t v[3], step[3], four[3];
+    for (int e = 0; e < 3; e++) {
+        int64_t e0 = edge_at(t, e, x0, y0);
+        if (e0 + hi[e] < 0) return true; /* the whole square is outside this edge */
+        if (e0 + lo[e] < INT32_MIN || e0 + hi[e] > INT32_MAX) return false;
+        /* Wrapping 32-bit products and sums: the true values fit, so they are exact. */
+        uint32_t dx = (uint32_t)(uint64_t)t->edge_dx[e], dy = (uint32_t)(uint64_t)t->edge_dy[e];
+        const uint32x4_t i = {0, 1, 2, 3};
+        v[e] = vaddq_s32(vdupq_n_s32((int32_t)e0),
+                         vreinterpretq_s32_u32(vmulq_u32(vdupq_n_u32(dx), i)));
+        step[e] = vreinterpretq_s32_u32(vdupq_n_u32(dy));
+        four[e] = vreinterpretq_s32_u32(vdupq_n_u32(4 * dx));
+    }
+    const bool right = tx1 > tx0;
+    for (int ty = ty0; ty <= ty1; ty++) {
+        int32x4_t out_l[SG_TILE], out_r[SG_TILE]; /* sign bit: outside some edge */
+        for (int j = 0; j < SG_TILE; j++) {
+            out_l[j] = vorrq_s32(vorrq_s32(v[0], v[1]), v[2]);
+            out_r[j] = vorrq_s32(vorrq_s32(vaddq_s32(v[0], four[0]), vaddq_s32(v[1], four[1])),
+                                 vaddq_s32(v[2], four[2]));
+            for (int e = 0; e < 3; e++) v[e] = vaddq_s32(v[e], step[e]);
+        }
+        int ty_px = ty << SG_TILE_SHIFT;
+        for (int k = 0; k <= (right ? 1 : 0); k++) {
+            uint32_t mask = ~sg_walk_signs16(k ? out_r : out_l) & 0xffffu;
+            int tx_px = (tx0 + k) << SG_TILE_SHIFT;
+            if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
+            if (mask) fn(ctx, t, tx_px, ty_px, mask);
+        }
     }
     return true;
 #endif
@@ -420,7 +484,7 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
     if (tx1 - tx0 < SG_SMALL_TILES && ty1 - ty0 < SG_SMALL_TILES &&
         small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx))
         return;
-#elif defined(__SSE2__)
+#elif defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
     if (tx1 - tx0 < 2 && ty1 - ty0 < 2 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
 #endif
     walk w;
@@ -439,6 +503,10 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
 #elif defined(__SSE2__)
             w.lane[e] = _mm_setr_epi32(0, dx, 2 * dx, 3 * dx);
             w.step[e] = _mm_set1_epi32(dy);
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+            const int32x4_t i = {0, 1, 2, 3};
+            w.lane[e] = vmulq_s32(vdupq_n_s32(dx), i);
+            w.step[e] = vdupq_n_s32(dy);
 #else
             for (int i = 0; i < SG_TILE_PIXELS; i++) w.offs[e][i] = (i & 3) * dx + (i >> 2) * dy;
 #endif

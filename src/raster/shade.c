@@ -58,6 +58,8 @@ sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa 
 
 sg_shade_fn sg_shade_select_variant(int variant, sg_isa isa) {
     sg_shade_fn fn = NULL;
+    if (isa == SG_ISA_NEON) fn = sg_shade_neon(variant);
+    if (fn || isa == SG_ISA_NEON) return fn ? fn : sg_shade_scalar(variant);
     /* The best set the ISA allows that is built: AVX-512, AVX2, SSE2, scalar. */
     if (isa >= SG_ISA_AVX512) fn = sg_shade_avx512(variant);
     if (!fn && isa >= SG_ISA_AVX2) fn = sg_shade_avx2(variant);
@@ -78,6 +80,16 @@ sg_isa sg_isa_detect(void) {
         return SG_ISA_AVX512;
     if (__builtin_cpu_supports("avx2")) return SG_ISA_AVX2;
     if (__builtin_cpu_supports("sse2")) return SG_ISA_SSE2;
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+    return SG_ISA_NEON; /* Advanced SIMD is part of every AArch64 CPU */
 #endif
     return SG_ISA_SCALAR;
+}
+
+bool sg_isa_runs(sg_isa isa) {
+    sg_isa best = sg_isa_detect();
+    if (isa == SG_ISA_SCALAR) return true;
+    /* NEON and the x86 sets exclude each other: neither is "more" than the other. */
+    if (isa == SG_ISA_NEON || best == SG_ISA_NEON) return isa == best;
+    return isa <= best;
 }

@@ -4,7 +4,8 @@
  * Shading runs after visibility (depth.c) has decided, for every pixel of a screen bin, which
  * triangle is seen there, so each pixel is shaded once whatever the overdraw. One function is
  * compiled for each combination of state that changes the inner loop (vertex colour, or texture
- * with its filter and wrap), and for each instruction set (portable scalar, SSE2, AVX2, AVX-512); a
+ * with its filter and wrap), and for each instruction set (portable scalar, SSE2, AVX2, AVX-512,
+ * NEON); a
  * pipeline picks its function once, at creation, so a vertex-colour draw never runs texture code.
  * Every instruction set computes the same IEEE operations in the same order, so all give the same
  * bytes as the scalar reference.
@@ -42,6 +43,7 @@ typedef enum sg_isa {
     SG_ISA_SSE2,
     SG_ISA_AVX2,
     SG_ISA_AVX512, /* AVX-512 F, BW, VL and DQ */
+    SG_ISA_NEON,   /* AArch64 Advanced SIMD: not above the x86 sets, beside them */
     SG_ISA_COUNT
 } sg_isa;
 
@@ -74,19 +76,24 @@ sg_shade_fn sg_shade_phong_select(int index, sg_isa isa);
 sg_shade_fn sg_shade_phong_scalar(int index);
 sg_shade_fn sg_shade_phong_avx2(int index);
 sg_shade_fn sg_shade_phong_avx512(int index);
+sg_shade_fn sg_shade_phong_neon(int index);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
 /** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,
- *  shade_avx2.c, shade_avx512.c; NULL where not built, and the SSE2 table has no secondary
- *  variants), by table index. */
+ *  shade_avx2.c, shade_avx512.c, shade_neon.c; NULL where not built, and the SSE2 table has no
+ *  secondary variants), by table index. */
 sg_shade_fn sg_shade_scalar(int variant);
 sg_shade_fn sg_shade_sse2(int variant);
 sg_shade_fn sg_shade_avx2(int variant);
 sg_shade_fn sg_shade_avx512(int variant);
+sg_shade_fn sg_shade_neon(int variant);
 /** Attributes an unlit shading mode interpolates: r g b a, plus s t when textured. */
 int sg_shade_attr_count(sgShade shade);
 /** The best instruction set this CPU runs. */
 sg_isa sg_isa_detect(void);
+/** Whether this CPU (and build) runs `isa`: the scalar code everywhere, the x86 sets up to the
+ *  best detected, NEON on AArch64 only. */
+bool sg_isa_runs(sg_isa isa);
 
 /** Float colour channel to unorm8, round to nearest, clamped to [0, 1] (NaN gives 0). */
 static inline uint32_t sg_to_unorm8(float v) {

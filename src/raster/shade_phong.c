@@ -61,6 +61,8 @@ phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0
 
 sg_shade_fn sg_shade_phong_select(int index, sg_isa isa) {
     sg_shade_fn fn = NULL;
+    if (isa == SG_ISA_NEON) fn = sg_shade_phong_neon(index);
+    if (fn || isa == SG_ISA_NEON) return fn ? fn : sg_shade_phong_scalar(index);
     if (isa >= SG_ISA_AVX512) fn = sg_shade_phong_avx512(index);
     if (!fn && isa >= SG_ISA_AVX2) fn = sg_shade_phong_avx2(index);
     return fn ? fn : sg_shade_phong_scalar(index);

@@ -1,7 +1,8 @@
 /* replay.c - runs every committed fuzz reproducer through its target's entry point, built with the
  * normal compiler, so a loader crash once fixed stays fixed (ctest: fuzz_regressions).
  *
- * Usage: fuzz_replay DIR, where DIR/obj, DIR/scene and DIR/image hold one input per file.
+ * Usage: fuzz_replay DIR, where DIR/obj, DIR/scene, DIR/image, DIR/off and DIR/mtl hold one input
+ * per file.
  */
 #define _POSIX_C_SOURCE 200809L /* opendir, readdir */
 
@@ -14,7 +15,11 @@
 static const struct {
     const char *dir;
     int (*run)(const uint8_t *, size_t);
-} targets[] = {{"obj", fuzz_obj}, {"scene", fuzz_scene}, {"image", fuzz_image}};
+} targets[] = {{"obj", fuzz_obj},
+               {"scene", fuzz_scene},
+               {"image", fuzz_image},
+               {"off", fuzz_off},
+               {"mtl", fuzz_mtl}};
 
 /* Reads a whole file; NULL when it cannot (the caller reports it). */
 static uint8_t *read_all(const char *path, size_t *len) {

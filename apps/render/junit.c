@@ -1,0 +1,150 @@
+/* junit.c - JUnit XML of a regression run (see junit.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "junit.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "report.h"
+
+/* Text for an attribute or element: markup characters escaped; control characters, which XML 1.0
+ * cannot hold, become '?'. */
+static void put_escaped(FILE *f, const char *s) {
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        switch (c) {
+        case '&':
+            fputs("&amp;", f);
+            break;
+        case '<':
+            fputs("&lt;", f);
+            break;
+        case '>':
+            fputs("&gt;", f);
+            break;
+        case '"':
+            fputs("&quot;", f);
+            break;
+        case '\'':
+            fputs("&apos;", f);
+            break;
+        default:
+            if (c < 0x20 && c != '\t' && c != '\n' && c != '\r')
+                fputc('?', f);
+            else
+                fputc(c, f);
+        }
+    }
+}
+
+/* The path an attachment line names: the report's copy, or the file as written. */
+static void put_attachment(FILE *f, const rg_scene *s, const char *report_dir, const char *kind,
+                           const char *path) {
+    if (!path) return;
+    fputs("[[ATTACHMENT|", f);
+    if (report_dir) {
+        char rel[600];
+        rg_report_image_name(s->name, kind, rel, sizeof rel);
+        put_escaped(f, report_dir);
+        fputc('/', f);
+        put_escaped(f, rel);
+    } else {
+        put_escaped(f, path);
+    }
+    fputs("]]\n", f);
+}
+
+bool rg_write_junit(const char *path, const rg_scene *scenes, size_t n, const char *report_dir,
+                    char *err, size_t errlen) {
+    size_t len = strlen(path) + 6;
+    char *part = malloc(len);
+    if (!part) {
+        snprintf(err, errlen, "out of memory");
+        return false;
+    }
+    snprintf(part, len, "%s.part", path);
+    FILE *f = fopen(part, "w");
+    if (!f) {
+        snprintf(err, errlen, "%s: %s", part, strerror(errno));
+        free(part);
+        return false;
+    }
+    size_t failures = 0;
+    double total = 0;
+    for (size_t i = 0; i < n; i++) {
+        failures += !scenes[i].passed;
+        total += scenes[i].time_s;
+    }
+    char stamp[32];
+    time_t now = time(NULL);
+    struct tm tm;
+    gmtime_r(&now, &tm);
+    strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &tm);
+    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    fprintf(f,
+            "<testsuites name=\"sgapi-render\" tests=\"%zu\" failures=\"%zu\" errors=\"0\" "
+            "time=\"%.6f\">\n",
+            n, failures, total);
+    /* One testsuite per suite, in the order suites first appear; a run's scenes of one file are
+     * consecutive, but nothing here depends on it. */
+    for (size_t i = 0; i < n; i++) {
+        bool first = true;
+        for (size_t k = 0; k < i && first; k++) first = strcmp(scenes[k].suite, scenes[i].suite);
+        if (!first) continue;
+        size_t tests = 0, failed = 0;
+        double time_s = 0;
+        for (size_t k = i; k < n; k++) {
+            if (strcmp(scenes[k].suite, scenes[i].suite)) continue;
+            tests++;
+            failed += !scenes[k].passed;
+            time_s += scenes[k].time_s;
+        }
+        fputs("  <testsuite name=\"", f);
+        put_escaped(f, scenes[i].suite);
+        fprintf(f,
+                "\" tests=\"%zu\" failures=\"%zu\" errors=\"0\" skipped=\"0\" time=\"%.6f\" "
+                "timestamp=\"%s\">\n",
+                tests, failed, time_s, stamp);
+        for (size_t k = i; k < n; k++) {
+            const rg_scene *s = &scenes[k];
+            if (strcmp(s->suite, scenes[i].suite)) continue;
+            fputs("    <testcase classname=\"", f);
+            put_escaped(f, s->suite);
+            fputs("\" name=\"", f);
+            put_escaped(f, s->name);
+            fprintf(f, "\" time=\"%.6f\">\n", s->time_s);
+            if (!s->passed) {
+                fputs("      <failure type=\"image regression\" message=\"", f);
+                put_escaped(f, s->reason);
+                fputs("\">", f);
+                put_escaped(f, s->name);
+                fputs(": ", f);
+                put_escaped(f, s->reason);
+                if (s->golden_updated) fputs(" (golden image updated from this run)", f);
+                fputs("</failure>\n", f);
+            }
+            if (s->actual || s->heat) {
+                fputs("      <system-out>", f);
+                put_attachment(f, s, report_dir, "actual", s->actual);
+                put_attachment(f, s, report_dir, "heat", s->heat);
+                fputs("</system-out>\n", f);
+            }
+            fputs("    </testcase>\n", f);
+        }
+        fputs("  </testsuite>\n", f);
+    }
+    fputs("</testsuites>\n", f);
+    bool ok = !ferror(f);
+    if (fclose(f) != 0) ok = false;
+    if (!ok) snprintf(err, errlen, "%s: write error", part);
+    if (ok && rename(part, path) != 0) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        ok = false;
+    }
+    if (!ok) remove(part);
+    free(part);
+    return ok;
+}

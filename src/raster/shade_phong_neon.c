@@ -1,0 +1,119 @@
+/* shade_phong_neon.c - per-pixel lighting and shadow-map shading in NEON (AArch64; see
+ * shade_phong.c): one row of a tile a vector, the equation of light_simd.h, the texture helpers of
+ * shade_neon.h; the same bytes as the scalar reference. */
+#include "raster/shade_neon.h"
+
+#if defined(SG_SHADE_NEON)
+
+/* p[i] in the lanes of m (no other lane is read), 0 elsewhere: NEON has no gather. */
+INLINE float32x4_t gather4(const float *p, int32x4_t i, uint32x4_t m) {
+    int32_t k[4];
+    uint32_t live[4];
+    float v[4];
+    vst1q_s32(k, i);
+    vst1q_u32(live, m);
+    for (int l = 0; l < 4; l++) v[l] = live[l] ? p[k[l]] : 0.0f;
+    return vld1q_f32(v);
+}
+
+typedef float32x4_t LV;
+typedef uint32x4_t LM; /* all ones in a lane that passes */
+typedef int32x4_t LI;
+#define lv_set1(f)         vdupq_n_f32(f)
+#define li_set1(i)         vdupq_n_s32(i)
+#define lv_add             vaddq_f32
+#define lv_sub             vsubq_f32
+#define lv_mul             vmulq_f32
+#define lv_div             vdivq_f32
+#define lv_sqrt            vsqrtq_f32
+#define lv_floor(v)        vrndmq_f32(v)
+#define lv_neg(v)          vnegq_f32(v)
+#define lm_gt(a, b)        vcgtq_f32(a, b)
+#define lm_ge(a, b)        vcgeq_f32(a, b)
+#define lm_le(a, b)        vcleq_f32(a, b)
+#define lm_lt(a, b)        vcltq_f32(a, b)
+#define lm_and             vandq_u32
+#define lv_sel(m, a, b)    vbslq_f32(m, a, b)
+#define lv_bits(v)         vreinterpretq_s32_f32(v)
+#define lv_of_bits(i)      vreinterpretq_f32_s32(i)
+#define lv_of_int(i)       vcvtq_f32_s32(i)
+#define li_of_float(v)     vcvtq_s32_f32(v)
+#define li_and             vandq_s32
+#define li_or              vorrq_s32
+#define li_add             vaddq_s32
+#define li_sub             vsubq_s32
+#define li_mul             vmulq_s32
+#define lv_gather(p, i, m) gather4(p, i, m)
+#define li_srl(i, n)       vreinterpretq_s32_u32(vshrq_n_u32(vreinterpretq_u32_s32(i), n))
+#define li_sll(i, n)       vshlq_n_s32(i, n)
+#include "raster/light_simd.h"
+
+INLINE void phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                       int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
+                       const int repeat, const int flat, const int lit, const int shadow) {
+    const int ep = SG_LIT_POS - SG_TRI_ATTRS, en = SG_LIT_NRM - SG_TRI_ATTRS;
+    const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    const float32x4_t dx = row_dx(ox);
+    tex4n tx;
+    if (textured) tx = tex4n_of(&c->tex, bilinear);
+    for (int r = 0; r < 4; r++) {
+        unsigned m = (mask >> (4 * r)) & 15u;
+        if (!m) continue;
+        const float32x4_t dy = vdupq_n_f32(oy + (float)r);
+#define SG_PLANE(a, adx, ady)                                                                      \
+    vaddq_f32(vaddq_f32(vdupq_n_f32(a), vmulq_f32(vdupq_n_f32(adx), dx)),                          \
+              vmulq_f32(vdupq_n_f32(ady), dy))
+        const float32x4_t w = vdivq_f32(vdupq_n_f32(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy));
+        float32x4_t base[4], P[3], n[3], prim[4], sec[3];
+        for (int k = 0; k < 4; k++)
+            base[k] = flat ? vdupq_n_f32(t->color[k])
+                           : vmulq_f32(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
+        for (int k = 0; k < 3; k++) {
+            P[k] = vmulq_f32(SG_PLANE(ext->a[ep + k], ext->a_dx[ep + k], ext->a_dy[ep + k]), w);
+            if (lit)
+                n[k] = vmulq_f32(SG_PLANE(ext->a[en + k], ext->a_dx[en + k], ext->a_dy[en + k]), w);
+        }
+        float32x4_t vis = vdupq_n_f32(1.0f);
+        if (shadow) {
+            const uint32x4_t bits = {1, 2, 4, 8};
+            vis = lv_shadow_visibility(&c->shadow, P, vtstq_u32(vdupq_n_u32(m), bits));
+        }
+        if (lit)
+            lv_light_eval(&c->lights, P, n, base, shadow ? c->shadow.light : -1, vis, prim, sec);
+        else
+            for (int k = 0; k < 4; k++) prim[k] = base[k];
+        if (textured) {
+            float32x4_t s = vmulq_f32(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
+            float32x4_t u = vmulq_f32(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
+            uint32x4_t tc[4];
+            if (bilinear)
+                bilinear4(&tx, s, u, repeat, tc);
+            else
+                unpack_texels(nearest4(&tx, s, u, repeat), tc);
+            for (int k = 0; k < 4; k++)
+                prim[k] =
+                    vmulq_f32(prim[k], vmulq_f32(vcvtq_f32_u32(tc[k]), vdupq_n_f32(1.0f / 255.0f)));
+        }
+#undef SG_PLANE
+        if (lit) {
+            for (int k = 0; k < 3; k++) prim[k] = vaddq_f32(prim[k], sec[k]);
+        } else {
+            const float32x4_t dim = vaddq_f32(vdupq_n_f32(0.5f), vmulq_f32(vdupq_n_f32(0.5f), vis));
+            for (int k = 0; k < 3; k++) prim[k] = vmulq_f32(prim[k], dim);
+        }
+        store_row(dst + 4 * r, pack_unorm8(prim), m);
+    }
+}
+
+#define SG_PHONG_BODY  phong_rows
+#define SG_PHONG_TABLE sg_shade_phong_neon
+#include "raster/shade_phong_variants.h"
+
+#else
+
+sg_shade_fn sg_shade_phong_neon(int index) {
+    (void)index;
+    return NULL;
+}
+
+#endif
