@@ -15,16 +15,20 @@ build: deps
 	cmake --build $(BUILD) -j $(JOBS)
 
 # The project's scene files: the eight default scenes, then one file per feature.
-SCENES = scenes/default.json scenes/transparency.json scenes/lighting.json scenes/shadows.json scenes/lines.json
+SCENES = scenes/default.json scenes/transparency.json scenes/lighting.json scenes/shadows.json \
+	scenes/lines.json scenes/shapes.json
 
 # Renders the project's scenes to $(OUT)/ and prints, per scene, the time per frame next to the
 # error against its golden (lavapipe) image, held to the targets of golden/thresholds.csv; heat
 # maps go to $(OUT)/<scene>-heat.png, a report to $(OUT)/report/index.html. Then a
 # turntable of three teapots, about their floor's up, as $(OUT)/turntable/shadow_teapots.gif (the
-# README's; its frames beside it).
+# README's; its frames beside it). The standard shapes and a face-coloured OFF model are among
+# the scenes (scenes/shapes.json); last, that OFF file rendered as a model on its own, framed and
+# lit by default, as $(OUT)/models/dodecahedron.png.
 demo: build
 	$(BUILD)/apps/sgapi-render $(SCENES) -o $(OUT) --frames 5 --compare golden \
 		--thresholds golden/thresholds.csv --report $(OUT)/report
+	$(BUILD)/apps/sgapi-render scenes/assets/dodecahedron.off -o $(OUT)/models
 	$(BUILD)/apps/sgapi-render scenes/shadows.json --scene shadow_teapots -o $(OUT)/turntable \
 		--turntable 60 --up 0 --video gif --video-width 360 --fps 20
 

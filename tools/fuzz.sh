@@ -11,10 +11,11 @@ cd "$(dirname "$0")/.."
 BUILD=${FUZZ_BUILD:-build-fuzz}
 SECONDS_EACH=${FUZZ_SECONDS:-60}
 JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
-TARGETS="obj scene image api"
+TARGETS="obj scene image off mtl api"
 
 CC=clang cmake -S . -B "$BUILD" -DSGAPI_BUILD_FUZZERS=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
-cmake --build "$BUILD" -j "$JOBS" --target fuzz_obj fuzz_scene fuzz_image fuzz_api
+cmake --build "$BUILD" -j "$JOBS" --target fuzz_obj fuzz_scene fuzz_image fuzz_off fuzz_mtl \
+    fuzz_api
 
 BUILD=$(cd "$BUILD" && pwd)
 # The scene target's scratch folders go here rather than to the system's temporary folder.
@@ -36,6 +37,10 @@ seed() { # target, files...
 seed obj scenes/assets/*.obj tests/fuzz/corpus/obj/*
 seed scene scenes/default.json scenes/hard/*.json tests/fuzz/corpus/scene/*
 seed image scenes/assets/*.png
+# OFF and MTL: the project's OFF file and the small seeds of tests/fuzz/seeds/ (every header
+# variant, face colours as integers and floats; every MTL statement read, texture options).
+seed off scenes/assets/*.off tests/fuzz/seeds/off/*
+seed mtl tests/fuzz/seeds/mtl/*
 # The API sequences: the committed corpus (replayed by make test) is the seed.
 seed api tests/fuzz/corpus/api/*
 # The scene seeds once more with their mesh and texture paths pointed at the files of the target's

@@ -6,7 +6,8 @@ set -eu
 PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev libdeflate-dev
     libvulkan-dev mesa-vulkan-drivers glslang-tools
     clang libclang-rt-14-dev valgrind gnuplot-nox python3 ffmpeg
-    chromium chromium-driver python3-selenium python3-yaml"
+    chromium chromium-driver python3-selenium python3-yaml
+    libsdl2-dev xvfb xauth xdotool assimp-testmodels geomview"
 # The AArch64 (NEON) build, tested under emulation by `make test-arm64`: Debian's cross compiler,
 # qemu-user, and the arm64 builds of the libraries the core's tests and the renderer link.
 # (On an arm64 machine the ordinary build and tests already are the NEON ones.)

@@ -1,9 +1,9 @@
 #!/bin/sh
 # Runs under valgrind memcheck, with BUILD_DIR's programs: sgapi-render on every scene file of
-# scenes/, a short turntable (its frames written on the writer threads), and the example that
-# creates and destroys objects between the frames of an animation (apps/examples/), and a
-# regression run with a report, a JUnit file and a golden update. Any memory error or
-# definite/indirect leak fails the run (exit 1); the images go to a scratch folder.
+# scenes/ and on two model files, a short turntable (its frames written on the writer threads),
+# the example that creates and destroys objects between the frames of an animation
+# (apps/examples/), and a regression run with a report, a JUnit file and a golden update. Any
+# memory error or definite/indirect leak fails the run (exit 1); the images go to a scratch folder.
 #
 #   tools/memcheck.sh BUILD_DIR
 set -eu
@@ -27,3 +27,7 @@ memcheck "$build/apps/sgapi-render" "$src/scenes/default.json" --scene 01_colore
     --thresholds "$src/golden/thresholds.csv" --junit "$out/junit.xml" --report "$out/report" \
     --update-golden
 memcheck "$build/apps/examples/animate_objects" 200 32
+# Model files: an OFF file with face colours, and an OBJ file with materials and textures (from
+# Debian's assimp-testmodels, which the set-up installs).
+memcheck "$build/apps/sgapi-render" "$src/scenes/assets/dodecahedron.off" \
+    /usr/share/assimp/models/OBJ/spider.obj -o "$out/models" --size 320x240

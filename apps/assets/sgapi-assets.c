@@ -2261,6 +2261,131 @@ static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
 
 /* Writes a scene file of 1024 x 1024 scenes cleared to `clear` (r, g, b, a) unless they say
  * otherwise. */
+/* A regular dodecahedron of circumradius 1 as a Geomview OFF file with a colour per face (integers
+ * 0..255, Geomview's rule), for model renders of face colours. Each face is the five vertices
+ * nearest one of the icosahedron's vertex directions, ordered counter-clockwise about it. */
+static bool make_dodecahedron_off(const char *path) {
+    const double g = (1 + sqrt(5.0)) / 2, h = 1 / g;
+    vec3 v[20];
+    int n = 0;
+    for (int i = 0; i < 8; i++) v[n++] = v3(i & 1 ? -1 : 1, i & 2 ? -1 : 1, i & 4 ? -1 : 1);
+    for (int i = 0; i < 4; i++) {
+        double a = i & 1 ? -1 : 1, b = i & 2 ? -1 : 1;
+        v[n++] = v3(0, a * h, b * g);
+        v[n++] = v3(a * h, b * g, 0);
+        v[n++] = v3(a * g, 0, b * h);
+    }
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        fprintf(stderr, "sgapi-assets: cannot write %s: %s\n", path, strerror(errno));
+        return false;
+    }
+    fprintf(f, "OFF\n# A regular dodecahedron, circumradius 1, a colour per face (0..255).\n"
+               "20 12 30\n");
+    for (int i = 0; i < 20; i++) {
+        vec3 p = v3_scale(v[i], 1 / sqrt(3.0));
+        fprintf(f, "%.6f %.6f %.6f\n", p.x, p.y, p.z);
+    }
+    for (int k = 0; k < 12; k++) {
+        double a = k & 1 ? -1 : 1, b = k & 2 ? -1 : 1;
+        vec3 c = k < 4 ? v3(0, a * g, b) : k < 8 ? v3(a * g, b, 0) : v3(a, 0, b * g);
+        c = v3_norm(c);
+        int face[5] = {0}, m = 0;
+        for (int i = 0; i < 20 && m < 5; i++)
+            if (v3_dot(v3_norm(v[i]), c) > 0.7) face[m++] = i;
+        if (m != 5) {
+            fprintf(stderr, "sgapi-assets: dodecahedron face %d has %d vertices\n", k, m);
+            fclose(f);
+            return false;
+        }
+        /* Counter-clockwise seen from outside: by angle in a frame (u, w) with u x w = c. */
+        vec3 u = v3_norm(v3_sub(v[face[0]], v3_scale(c, v3_dot(v[face[0]], c))));
+        vec3 w = v3_cross(c, u);
+        double ang[5];
+        for (int i = 0; i < 5; i++) ang[i] = atan2(v3_dot(v[face[i]], w), v3_dot(v[face[i]], u));
+        for (int i = 1; i < 5; i++)
+            for (int j = i; j > 0 && ang[j] < ang[j - 1]; j--) {
+                double t = ang[j];
+                ang[j] = ang[j - 1], ang[j - 1] = t;
+                int q = face[j];
+                face[j] = face[j - 1], face[j - 1] = q;
+            }
+        vec3 col = hsv(k / 12.0, 0.65, 0.95);
+        fprintf(f, "5 %d %d %d %d %d %d %d %d\n", face[0], face[1], face[2], face[3], face[4],
+                to_u8(col.x), to_u8(col.y), to_u8(col.z));
+    }
+    bool ok = !ferror(f);
+    if (fclose(f) != 0) ok = false;
+    if (!ok) fprintf(stderr, "sgapi-assets: error writing %s\n", path);
+    return ok;
+}
+
+/* scenes/shapes.json: the standard shapes of the scene format's {"shape": ...} meshes on a
+ * 3 x 3 grid, lit, and the face-coloured dodecahedron OFF file. */
+static bool write_shapes_file(const char *path) {
+    static const char *const shapes[9] = {
+        "{\"shape\": \"cube\"}",
+        "{\"shape\": \"tetrahedron\"}",
+        "{\"shape\": \"octahedron\"}",
+        "{\"shape\": \"icosphere\", \"subdivisions\": 1}",
+        "{\"shape\": \"sphere\", \"segments\": 48, \"rings\": 24}",
+        "{\"shape\": \"cylinder\"}",
+        "{\"shape\": \"cone\"}",
+        "{\"shape\": \"torus\"}",
+        "{\"shape\": \"plane\"}"};
+    static const char *const textures[9] = {
+        "checker.png", NULL, NULL, NULL, "mosaic.png", NULL, NULL, "brick.png", "checker.png"};
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        fprintf(stderr, "sgapi-assets: cannot write %s: %s\n", path, strerror(errno));
+        return false;
+    }
+    const mat4 proj = mat_perspective(40.0, 4.0 / 3.0, 0.5, 50.0);
+    const mat4 view = mat_look_at(v3(0, 3.2, 5.8), v3(0, -0.2, 0.2), v3(0, 1, 0));
+    char buf[64];
+    fprintf(f,
+            "{\n  \"width\": 1024,\n  \"height\": 768,\n  \"clear_color\": [0.1, 0.12, 0.16, 1],\n"
+            "  \"ambient\": [0.25, 0.25, 0.25],\n"
+            "  \"lights\": [{\"type\": \"directional\", \"direction\": [-0.4, -0.6, -1], "
+            "\"color\": [0.85, 0.85, 0.85]}],\n  \"scenes\": [\n");
+    fprintf(f, "    {\n      \"name\": \"shapes\",\n      \"draws\": [\n");
+    for (int i = 0; i < 9; i++) {
+        vec3 col = hsv(i / 9.0, textures[i] ? 0.0 : 0.55, 0.95);
+        mat4 m = mat_mul(view, mat_mul(mat_translate((i % 3 - 1) * 1.6, 0, (i / 3 - 1) * 1.4),
+                                       mat_rotate_y(30.0)));
+        fprintf(f, "        {\"mesh\": %s, ", shapes[i]);
+        if (textures[i]) fprintf(f, "\"texture\": \"assets/%s\", ", textures[i]);
+        fprintf(f, "\"color\": [%s, ", fmt_num(buf, sizeof buf, col.x, 4));
+        fprintf(f, "%s, ", fmt_num(buf, sizeof buf, col.y, 4));
+        fprintf(f,
+                "%s, 1], \"lighting\": \"phong\", \"specular\": [0.4, 0.4, 0.4], "
+                "\"shininess\": 32, \"cull\": \"back\",\n         \"worldView\": [",
+                fmt_num(buf, sizeof buf, col.z, 4));
+        for (int k = 0; k < 16; k++)
+            fprintf(f, "%s%s", fmt_num(buf, sizeof buf, m.m[k], 6), k < 15 ? ", " : "");
+        fprintf(f, "],\n         \"proj\": [");
+        for (int k = 0; k < 16; k++)
+            fprintf(f, "%s%s", fmt_num(buf, sizeof buf, proj.m[k], 6), k < 15 ? ", " : "");
+        fprintf(f, "]}%s\n", i < 8 ? "," : "");
+    }
+    fprintf(f, "      ]\n    },\n");
+    /* The OFF model, its faces lit flat in their own colours. */
+    const mat4 dview = mat_look_at(v3(1.5, 1.2, 3.2), v3(0, 0, 0), v3(0, 1, 0));
+    fprintf(f, "    {\n      \"name\": \"dodecahedron_off\",\n      \"draws\": [\n"
+               "        {\"mesh\": \"assets/dodecahedron.off\", \"lighting\": \"flat\", "
+               "\"cull\": \"back\",\n         \"worldView\": [");
+    for (int k = 0; k < 16; k++)
+        fprintf(f, "%s%s", fmt_num(buf, sizeof buf, dview.m[k], 6), k < 15 ? ", " : "");
+    fprintf(f, "],\n         \"proj\": [");
+    for (int k = 0; k < 16; k++)
+        fprintf(f, "%s%s", fmt_num(buf, sizeof buf, proj.m[k], 6), k < 15 ? ", " : "");
+    fprintf(f, "]}\n      ]\n    }\n  ]\n}\n");
+    bool ok = !ferror(f);
+    if (fclose(f) != 0) ok = false;
+    if (!ok) fprintf(stderr, "sgapi-assets: error writing %s\n", path);
+    return ok;
+}
+
 static bool write_scene_file(const char *path, const char *clear, const int *which, mat4 proj,
                              const mesh *teapot) {
     FILE *f = fopen(path, "wb");
@@ -2403,6 +2528,8 @@ int main(int argc, char **argv) {
                                 SHADOW_SCENES, proj, &teapot);
     ok = ok && write_scene_file(join(path, out, "lines.json"), "0.05, 0.06, 0.08, 1", LINE_SCENES,
                                 proj, &teapot);
+    ok = ok && make_dodecahedron_off(join(path, out, "assets/dodecahedron.off")) &&
+         write_shapes_file(join(path, out, "shapes.json"));
     mesh_free(&teapot);
     return ok ? 0 : 1;
 }

@@ -1,7 +1,7 @@
 /* sgapi-bench - speed against error: sgapi next to the lavapipe reference, scene by scene.
  *
- *   sgapi-bench SCENE.json... [--frames N] [--threads T] [--csv FILE] [--pareto [--plot OUT.png]]
- *               [--quick] [--ref PATH]
+ *   sgapi-bench SCENE.json... [--frames N] [--threads T] [--simd SET] [--csv FILE]
+ *               [--pareto [--plot OUT.png]] [--quick] [--ref PATH]
  *
  * For every scene of the files it measures:
  *   - sgapi's steady-state time per frame at 1 and at T threads (one device per thread count):
@@ -14,6 +14,8 @@
  *   - the error of sgapi's T-thread image against lavapipe's: PSNR and % of pixels over 2/255.
  * A scene's lavapipe and sgapi times are taken back to back, scene after scene, so that a drift
  * of the machine's speed during the run does not favour either side.
+ * --simd picks sgapi's instruction set (default: the best the CPU runs), so that one run gives
+ * the whole table for that set; lavapipe is measured as always.
  * It prints a markdown table, the geometric mean of the sgapi/lavapipe ratios, and the floor of
  * the machine: one 1024x1024 colour + depth frame cleared and written by sgapi with no draws.
  *
@@ -81,6 +83,7 @@ typedef struct options {
     const char **files;
     int file_count;
     int frames, warmup, threads;
+    sgSimd simd; /* SG_SIMD_DEFAULT: the best the CPU runs */
     bool quick, pareto;
     bool strict;      /* --strict: an unknown key in a scene file is an error */
     const char *csv;  /* NULL: no CSV */
@@ -98,6 +101,8 @@ static void usage(FILE *f) {
             "  --frames N      timed frames per measurement, >= %d (default %d), after %d warm-up\n"
             "                  frames\n"
             "  --threads T     the multi-threaded measurements' thread count (default: all cores)\n"
+            "  --simd SET      sgapi's instruction set: scalar, sse2, avx2, avx512 or neon\n"
+            "                  (default: the best this CPU runs)\n"
             "  --csv FILE      also write the table as CSV\n"
             "  --pareto        also measure every setting (default, nearest filter) at T threads:\n"
             "                  print a second table, write pareto.csv (beside --csv FILE, or in\n"
@@ -117,6 +122,30 @@ static int default_threads(void) {
     return n < 1 ? 1 : n > MAX_THREADS ? MAX_THREADS : (int)n;
 }
 
+static const struct {
+    const char *name;
+    sgSimd simd;
+} simd_names[] = {{"scalar", SG_SIMD_SCALAR},
+                  {"sse2", SG_SIMD_SSE2},
+                  {"avx2", SG_SIMD_AVX2},
+                  {"avx512", SG_SIMD_AVX512},
+                  {"neon", SG_SIMD_NEON}};
+
+static bool parse_simd(const char *s, sgSimd *out) {
+    for (size_t i = 0; i < sizeof simd_names / sizeof simd_names[0]; i++)
+        if (!strcmp(s, simd_names[i].name)) {
+            *out = simd_names[i].simd;
+            return true;
+        }
+    return false;
+}
+
+static const char *simd_name(sgSimd simd) {
+    for (size_t i = 0; i < sizeof simd_names / sizeof simd_names[0]; i++)
+        if (simd_names[i].simd == simd) return simd_names[i].name;
+    return "the best this CPU runs";
+}
+
 /* 0: parsed; 1: help was printed; 2: bad arguments (already reported). */
 static int parse_args(int argc, char **argv, options *o) {
     bool frames_given = false;
@@ -132,7 +161,8 @@ static int parse_args(int argc, char **argv, options *o) {
         const char *a = argv[i];
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool takes_value = !strcmp(a, "--frames") || !strcmp(a, "--threads") ||
-                           !strcmp(a, "--csv") || !strcmp(a, "--plot") || !strcmp(a, "--ref");
+                           !strcmp(a, "--simd") || !strcmp(a, "--csv") || !strcmp(a, "--plot") ||
+                           !strcmp(a, "--ref");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -152,6 +182,13 @@ static int parse_args(int argc, char **argv, options *o) {
             if (!sc_parse_int(value, 1, MAX_THREADS, &o->threads)) {
                 fprintf(stderr, "sgapi-bench: --threads needs a whole number in 1..%d, not '%s'\n",
                         MAX_THREADS, value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--simd")) {
+            if (!parse_simd(value, &o->simd)) {
+                fprintf(stderr,
+                        "sgapi-bench: --simd is scalar, sse2, avx2, avx512 or neon, not '%s'\n",
+                        value);
                 return 2;
             }
         } else if (!strcmp(a, "--csv")) {
@@ -490,7 +527,8 @@ static bool measure_lavapipe(const options *o, const char *ref, const char *tmpd
     return true;
 }
 
-static bool create_device(int threads, const sc_file *files, int file_count, sgDevice **dev) {
+static bool create_device(int threads, sgSimd simd, const sc_file *files, int file_count,
+                          sgDevice **dev) {
     size_t images = 0, geoms = 0;
     for (int i = 0; i < file_count; i++) {
         if (files[i].texture_count > images) images = files[i].texture_count;
@@ -505,11 +543,14 @@ static bool create_device(int threads, const sc_file *files, int file_count, sgD
     sgDeviceDesc dd;
     memset(&dd, 0, sizeof dd);
     dd.thread_count = threads;
+    dd.simd = simd;
     if (images + 3 > 256) dd.image_pool_size = (int)images + 3;
     if (geoms > 1024) dd.geom_pool_size = (int)geoms;
     dd.pipeline_pool_size = ss_pipeline_pool_size(files, file_count, SETTING_COUNT);
     sgResult r = sgCreateDevice(&dd, dev);
-    if (r != SG_OK) return sg_fail(NULL, r, "sgCreateDevice with %d thread(s)", threads);
+    if (r != SG_OK)
+        return sg_fail(NULL, r, "sgCreateDevice with %d thread(s), --simd %s", threads,
+                       simd_name(simd));
     return true;
 }
 
@@ -572,7 +613,7 @@ static bool measure_all(const options *o, const char *ref, const char *tmpdir, c
     int nsides = o->threads == 1 ? 1 : 2;
     bool ok = true;
     for (int k = 0; ok && k < nsides; k++)
-        ok = create_device(sides[k].threads, files, o->file_count, &sides[k].dev);
+        ok = create_device(sides[k].threads, o->simd, files, o->file_count, &sides[k].dev);
     size_t first = 0; /* the first result of the current file */
     for (int fi = 0; ok && fi < o->file_count; fi++) {
         const sc_file *f = &files[fi];
@@ -640,7 +681,7 @@ static void print_table(const options *o, const result *res, size_t count,
            "%.3f ms",
            FLOOR_SIZE, FLOOR_SIZE, floor_ms[0]);
     if (t > 1) printf(", %dt %.3f ms", t, floor_ms[1]);
-    printf("\n");
+    printf("\nsgapi's instruction set: %s\n", simd_name(o->simd));
 }
 
 static void write_csv(FILE *f, const result *res, size_t count) {

@@ -43,6 +43,10 @@ typedef struct parser {
     size_t nidx, capidx;
     uint32_t *lidx; /* line segments, 2 each */
     size_t nlidx, caplidx;
+
+    sc_obj_extra *extra; /* materials: NULL when the caller does not want them */
+    size_t capgroups, capmtllibs;
+    sc_warnings *warnings; /* may be NULL */
 } parser;
 
 /* Lets the compiler check the format arguments of the error helpers. */
@@ -343,6 +347,51 @@ static bool add_line(parser *p, const char *s, const char *e) {
     return true;
 }
 
+/* The rest of a line, blanks trimmed at both ends, as a new string (names may hold spaces). */
+static char *rest_of_line(const char *s, const char *e) {
+    while (s < e && is_space(*s)) s++;
+    while (e > s && is_space(e[-1])) e--;
+    char *r = malloc((size_t)(e - s) + 1);
+    if (r) {
+        memcpy(r, s, (size_t)(e - s));
+        r[e - s] = '\0';
+    }
+    return r;
+}
+
+/* usemtl: the triangles from here on take the named material. */
+static bool use_material(parser *p, const char *s, const char *e) {
+    sc_obj_extra *x = p->extra;
+    if (!x) return true;
+    if (!grow((void **)&x->groups, &p->capgroups, x->group_count + 1, sizeof *x->groups))
+        return fail(p, "out of memory");
+    char *name = rest_of_line(s, e);
+    if (!name) return fail(p, "out of memory");
+    x->groups[x->group_count++] =
+        (sc_obj_group){.material = name, .first_index = (uint32_t)p->nidx};
+    return true;
+}
+
+/* mtllib: a material library, its name as written (the caller resolves it). */
+static bool add_mtllib(parser *p, const char *s, const char *e) {
+    sc_obj_extra *x = p->extra;
+    if (!x) return true;
+    if (!grow((void **)&x->mtllibs, &p->capmtllibs, x->mtllib_count + 1, sizeof *x->mtllibs))
+        return fail(p, "out of memory");
+    char *name = rest_of_line(s, e);
+    if (!name) return fail(p, "out of memory");
+    if (name[0] == '\0') {
+        free(name);
+        return fail(p, "'mtllib' needs a file name");
+    }
+    x->mtllibs[x->mtllib_count++] = name;
+    return true;
+}
+
+static bool token_is(const char *tb, size_t n, const char *word) {
+    return strlen(word) == n && memcmp(tb, word, n) == 0;
+}
+
 static bool parse_line(parser *p, const char *s, const char *e) {
     const char *tb, *te;
     if (memchr(s, '\0', (size_t)(e - s))) return fail(p, "NUL byte in the line");
@@ -353,7 +402,21 @@ static bool parse_line(parser *p, const char *s, const char *e) {
     if (n == 2 && tb[0] == 'v' && tb[1] == 'n') return add_normal(p, s, e);
     if (n == 1 && tb[0] == 'f') return add_face(p, s, e);
     if (n == 1 && tb[0] == 'l') return add_line(p, s, e);
-    return true; /* o, g, s, usemtl, mtllib, p, ...: not needed for drawing */
+    if (token_is(tb, n, "usemtl")) return use_material(p, s, e);
+    if (token_is(tb, n, "mtllib")) return add_mtllib(p, s, e);
+    if (n == 1 && tb[0] == 'p') {
+        sc_warn(p->warnings, SC_WARN_OBJ_POINTS, "%s:%zu: points (p) are not drawn", p->name,
+                p->line);
+        return true;
+    }
+    /* Names, groups and smoothing groups change nothing drawn; free-form geometry (curves,
+     * surfaces) is not supported and said so once. */
+    if (token_is(tb, n, "o") || token_is(tb, n, "g") || token_is(tb, n, "s") ||
+        token_is(tb, n, "mg"))
+        return true;
+    sc_warn(p->warnings, SC_WARN_OBJ_UNKNOWN, "%s:%zu: '%.*s' statements are ignored", p->name,
+            p->line, (int)(n < 20 ? n : 20), tb);
+    return true;
 }
 
 /* n elements of elem bytes, or NULL on overflow or no memory. */
@@ -405,16 +468,42 @@ static bool finish(parser *p, sc_mesh *out) {
     m.line_indices = p->lidx; /* likewise */
     p->lidx = NULL;
     *out = m;
+    if (p->extra) {
+        /* Each group runs to the next one's start; empty groups go. */
+        sc_obj_extra *x = p->extra;
+        size_t k = 0;
+        for (size_t i = 0; i < x->group_count; i++) {
+            uint32_t end = i + 1 < x->group_count ? x->groups[i + 1].first_index : m.index_count;
+            x->groups[i].index_count = end - x->groups[i].first_index;
+            if (x->groups[i].index_count == 0)
+                free(x->groups[i].material);
+            else
+                x->groups[k++] = x->groups[i];
+        }
+        x->group_count = k;
+    }
     return true;
 }
 
 bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, char *err,
                   size_t errlen) {
-    parser p = {.name = name ? name : "(obj)", .err = err, .errlen = errlen};
+    return sc_obj_parse_ex(name, text, len, out, NULL, NULL, err, errlen);
+}
+
+bool sc_obj_parse_ex(const char *name, const char *text, size_t len, sc_mesh *out,
+                     sc_obj_extra *extra, sc_warnings *warnings, char *err, size_t errlen) {
+    parser p = {.name = name ? name : "(obj)",
+                .err = err,
+                .errlen = errlen,
+                .extra = extra,
+                .warnings = warnings};
     memset(out, 0, sizeof *out);
+    if (extra) memset(extra, 0, sizeof *extra);
     if (err && errlen) err[0] = '\0';
     bool ok = true;
     const char *s = text, *end = text ? text + len : text;
+    /* Editors on some systems start a UTF-8 file with a byte-order mark. */
+    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) s += 3;
     while (ok && s < end) {
         const char *eol = memchr(s, '\n', (size_t)(end - s));
         if (!eol) eol = end;
@@ -430,7 +519,17 @@ bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, 
     free(p.table);
     free(p.idx);
     free(p.lidx);
+    if (!ok) sc_obj_extra_free(extra);
     return ok;
+}
+
+void sc_obj_extra_free(sc_obj_extra *extra) {
+    if (!extra) return;
+    for (size_t i = 0; i < extra->group_count; i++) free(extra->groups[i].material);
+    for (size_t i = 0; i < extra->mtllib_count; i++) free(extra->mtllibs[i]);
+    free(extra->groups);
+    free(extra->mtllibs);
+    memset(extra, 0, sizeof *extra);
 }
 
 bool sc_read_file(const char *path, char **out_data, size_t *out_len, char *err, size_t errlen) {

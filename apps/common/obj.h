@@ -10,6 +10,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "warn.h"
+
 /* Upper bound of vertex_count, index_count and line_index_count: small enough for a signed 32-bit
  * count. */
 #define SC_MESH_MAX_COUNT 0x7fffffffu
@@ -32,6 +34,27 @@ typedef struct sc_mesh {
 /** Parses OBJ text of len bytes (NUL bytes are an error); name is used in error messages only. */
 bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, char *err,
                   size_t errlen);
+/* The triangles [first_index, first_index + index_count) of a mesh take one material. */
+typedef struct sc_obj_group {
+    char *material; /* the usemtl name as written */
+    uint32_t first_index, index_count;
+} sc_obj_group;
+
+/* What an OBJ file says of materials: its libraries and its usemtl ranges (triangles before the
+ * first usemtl belong to no group). */
+typedef struct sc_obj_extra {
+    char **mtllibs; /* mtllib names as written, relative to the OBJ file's folder */
+    size_t mtllib_count;
+    sc_obj_group *groups; /* in index order, none empty */
+    size_t group_count;
+} sc_obj_extra;
+
+/** sc_obj_parse that also returns the materials (extra, may be NULL) and warns once per kind of
+ *  statement it ignores (warnings, may be NULL). */
+bool sc_obj_parse_ex(const char *name, const char *text, size_t len, sc_mesh *out,
+                     sc_obj_extra *extra, sc_warnings *warnings, char *err, size_t errlen);
+/** Frees what sc_obj_parse_ex put in extra and zeroes it. */
+void sc_obj_extra_free(sc_obj_extra *extra);
 /** Reads and parses an OBJ file. On failure *out is zeroed and err says why (with the line). */
 bool sc_obj_load(const char *path, sc_mesh *out, char *err, size_t errlen);
 /** Frees a mesh's arrays and zeroes it; a zeroed mesh is fine. */

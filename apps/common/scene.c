@@ -20,6 +20,10 @@
 
 #include <cJSON.h>
 #include <sgapi/sgapi_util.h>
+#include <strings.h>
+
+#include "model.h"
+#include "off.h"
 
 /* Where in the file an error is: -1 (NULL) for "not inside one". */
 typedef struct loc {
@@ -30,7 +34,7 @@ typedef struct loc {
 
 #define NOWHERE ((loc){.scene = -1, .draw = -1, .light = -1, .scene_name = NULL, .object = NULL})
 
-enum { MESH_OBJ, MESH_HEIGHTMAP };
+enum { MESH_OBJ, MESH_HEIGHTMAP, MESH_SHAPE };
 
 typedef struct ctx {
     const char *path;
@@ -374,13 +378,65 @@ static bool add_mesh(ctx *c, const loc *l, char *source, int kind, sc_mesh *mesh
     return true;
 }
 
-/* The draw's "mesh": an OBJ path or {"heightmap": path, "height_scale": number}. */
+/* {"shape": name, parameters...}: a standard shape of sgapi_util, made once per distinct
+ * description. */
+static bool get_shape(ctx *c, const loc *l, const cJSON *v, int *out) {
+    const cJSON *name = cJSON_GetObjectItemCaseSensitive(v, "shape");
+    sguShapeDesc d = {0};
+    if (!cJSON_IsString(name) || sgu_shape_from_name(name->valuestring, &d.shape) != 0)
+        return fail(c, l,
+                    "'shape' must be one of \"cube\", \"tetrahedron\", \"octahedron\", "
+                    "\"icosphere\", \"sphere\", \"cylinder\", \"cone\", \"torus\", "
+                    "\"plane\"");
+    bool present;
+    if (!get_int(c, l, v, "segments", d.shape == SGU_SHAPE_PLANE ? 1 : 3, 1024, &d.segments,
+                 &present) ||
+        !get_int(c, l, v, "rings", 2, 1024, &d.rings, &present) ||
+        !get_int(c, l, v, "subdivisions", 0, 7, &d.subdivisions, &present))
+        return false;
+    static const char *const sizes[] = {"size", "radius", "height", "tube_radius"};
+    float *fields[] = {&d.size, &d.radius, &d.height, &d.tube_radius};
+    for (int i = 0; i < 4; i++) {
+        const cJSON *n = cJSON_GetObjectItemCaseSensitive(v, sizes[i]);
+        if (!n) continue;
+        float x = cJSON_IsNumber(n) ? (float)n->valuedouble : 0;
+        if (!cJSON_IsNumber(n) || !isfinite(x) || !(x > 0) || x > 1e6f)
+            return fail(c, l, "'%s' must be a number in (0, 1e6]", sizes[i]);
+        *fields[i] = x;
+    }
+    char source[256];
+    snprintf(source, sizeof source,
+             "shape %s (segments %d, rings %d, subdivisions %d, size %.9g, radius %.9g, height "
+             "%.9g, tube_radius %.9g)",
+             name->valuestring, d.segments, d.rings, d.subdivisions, d.size, d.radius, d.height,
+             d.tube_radius);
+    for (size_t i = 0; i < c->f->mesh_count; i++) {
+        if (c->mesh_kinds[i] == MESH_SHAPE && strcmp(c->f->mesh_sources[i], source) == 0) {
+            *out = (int)i;
+            return true;
+        }
+    }
+    sc_mesh mesh;
+    char why[256];
+    if (!sc_shape_mesh(&d, &mesh, why, sizeof why)) return fail(c, l, "mesh: %s", why);
+    char *src = dup_str(source);
+    if (!src) {
+        sc_mesh_free(&mesh);
+        return fail(c, l, "out of memory");
+    }
+    return add_mesh(c, l, src, MESH_SHAPE, &mesh, out);
+}
+
+/* The draw's "mesh": an OBJ or OFF path, {"heightmap": path, "height_scale": number} or
+ * {"shape": name, ...}. */
 static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(draw, "mesh");
     const char *rel;
     double scale = 1.0;
     int kind;
     if (!v) return fail(c, l, "missing 'mesh'");
+    if (cJSON_IsObject(v) && cJSON_GetObjectItemCaseSensitive(v, "shape"))
+        return get_shape(c, l, v, out);
     if (cJSON_IsString(v)) {
         kind = MESH_OBJ;
         rel = v->valuestring;
@@ -394,7 +450,9 @@ static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
         rel = hm->valuestring;
         if (hs) scale = hs->valuedouble;
     } else {
-        return fail(c, l, "'mesh' must be a path or a {\"heightmap\": ...} object");
+        return fail(c, l,
+                    "'mesh' must be a path, a {\"heightmap\": ...} or a {\"shape\": ...} "
+                    "object");
     }
     if (rel[0] == '\0') return fail(c, l, "'mesh' names an empty path");
 
@@ -431,7 +489,12 @@ static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
     sc_mesh mesh;
     bool ok;
     if (kind == MESH_OBJ) {
-        ok = sc_obj_load(path, &mesh, why, sizeof why);
+        /* OFF files by their extension, anything else as OBJ (as before OFF was read). */
+        size_t pl = strlen(path);
+        if (pl >= 4 && strcasecmp(path + pl - 4, ".off") == 0)
+            ok = sc_off_load(path, &mesh, NULL, why, sizeof why);
+        else
+            ok = sc_obj_load(path, &mesh, why, sizeof why);
     } else {
         sc_image img;
         ok = sc_image_load(path, &img, why, sizeof why);

@@ -35,7 +35,10 @@ static const char *const draw_keys[] = {"mesh",
                                         "worldView",
                                         "proj",
                                         NULL};
-static const char *const mesh_keys[] = {"heightmap", "height_scale", NULL};
+/* A mesh object is a heightmap or a shape (with the parameters of every shape). */
+static const char *const mesh_keys[] = {"heightmap", "height_scale", "shape",       "size",
+                                        "radius",    "height",       "tube_radius", "segments",
+                                        "rings",     "subdivisions", NULL};
 static const char *const light_keys[] = {"type",  "direction",   "position",
                                          "color", "attenuation", NULL};
 static const char *const shadow_keys[] = {"light", "size", "bias", "slope_bias", "pcf", NULL};

@@ -33,6 +33,7 @@
 #include "image_diff.h"
 #include "image_io.h"
 #include "junit.h"
+#include "model.h"
 #include "progress.h"
 #include "regression.h"
 #include "report.h"
@@ -74,12 +75,16 @@ typedef struct options {
     int writers;   /* --writers: threads writing turntable frames; 0: the rendering thread; -1:
                       default */
     int png_level; /* --png-level; -1: the run's default */
+    int model_width, model_height; /* --size: of the images of model files */
 } options;
 
 static void usage(FILE *f) {
-    fprintf(f, "usage: sgapi-render [options] SCENE.json... -o DIR\n"
+    fprintf(f, "usage: sgapi-render [options] SCENE.json|MODEL.obj|MODEL.off... -o DIR\n"
                "Renders every scene of the files to DIR/<scene name>.png and prints each scene's\n"
-               "time per frame (render passes only).\n"
+               "time per frame (render passes only). A model file (.obj with its materials, .off)\n"
+               "is a scene of its own named after the file (DIR/<stem>.png): the camera framed\n"
+               "on the model's bounding sphere, a default light, its colours and textures.\n"
+               "  --size WxH      image size of model files (default 1024x768)\n"
                "  -o DIR          output folder, created if missing (required)\n"
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
@@ -221,13 +226,14 @@ static int parse_args(int argc, char **argv, options *o) {
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool threshold =
             !strcmp(a, "--min-psnr") || !strcmp(a, "--max-over2") || !strcmp(a, "--max-coverage");
-        bool takes_value =
-            !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
-            !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--compare") ||
-            threshold || !strcmp(a, "--turntable") || !strcmp(a, "--spin") || !strcmp(a, "--up") ||
-            !strcmp(a, "--shard") || !strcmp(a, "--video") || !strcmp(a, "--fps") ||
-            !strcmp(a, "--video-width") || !strcmp(a, "--png-level") || !strcmp(a, "--writers") ||
-            !strcmp(a, "--thresholds") || !strcmp(a, "--junit") || !strcmp(a, "--report");
+        bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
+                           !strcmp(a, "--threads") || !strcmp(a, "--simd") ||
+                           !strcmp(a, "--compare") || threshold || !strcmp(a, "--turntable") ||
+                           !strcmp(a, "--spin") || !strcmp(a, "--up") || !strcmp(a, "--shard") ||
+                           !strcmp(a, "--video") || !strcmp(a, "--fps") ||
+                           !strcmp(a, "--video-width") || !strcmp(a, "--png-level") ||
+                           !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
+                           !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -238,6 +244,17 @@ static int parse_args(int argc, char **argv, options *o) {
         }
         if (!strcmp(a, "-o")) {
             o->out_dir = value;
+        } else if (!strcmp(a, "--size")) {
+            char w[16], h[16];
+            const char *x = strchr(value, 'x');
+            if (!x || x - value >= (long)sizeof w || strlen(x + 1) >= sizeof h ||
+                (memcpy(w, value, (size_t)(x - value)), w[x - value] = '\0', strcpy(h, x + 1),
+                 !sc_parse_int(w, 1, SC_MAX_IMAGE_SIZE, &o->model_width)) ||
+                !sc_parse_int(h, 1, SC_MAX_IMAGE_SIZE, &o->model_height)) {
+                fprintf(stderr, "sgapi-render: --size needs WxH, each 1..%d, not '%s'\n",
+                        SC_MAX_IMAGE_SIZE, value);
+                return 2;
+            }
         } else if (!strcmp(a, "--frames")) {
             if (!sc_parse_int(value, 1, 1000000, &o->frames)) {
                 fprintf(stderr, "sgapi-render: --frames needs a whole number >= 1, not '%s'\n",
@@ -821,6 +838,24 @@ static int frame_digits(int frames) {
     return d < 4 ? 4 : d;
 }
 
+/* A model file's scene name: its file name without folder and extension, any character a scene
+ * name cannot hold made '_'. */
+static void model_name(const char *path, char *out, size_t len) {
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    const char *dot = strrchr(b, '.');
+    size_t n = dot && dot > b ? (size_t)(dot - b) : strlen(b);
+    if (n >= len) n = len - 1;
+    for (size_t i = 0; i < n; i++) {
+        char c = b[i];
+        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                  c == '_' || c == '-' || c == '.';
+        out[i] = ok ? c : '_';
+    }
+    if (n == 0) out[n++] = '_';
+    out[n] = '\0';
+}
+
 int main(int argc, char **argv) {
     options o = {0};
     int status = parse_args(argc, argv, &o);
@@ -841,6 +876,22 @@ int main(int argc, char **argv) {
     }
     for (; loaded < o.file_count; loaded++) {
         char err[1024];
+        if (sc_is_model_path(o.files[loaded])) {
+            /* A model is a scene named after its file. */
+            char name[SC_MAX_NAME_LENGTH + 1];
+            model_name(o.files[loaded], name, sizeof name);
+            sc_warnings w = {0};
+            bool ok = sc_model_scene(
+                &o.files[loaded], 1, name, o.model_width ? o.model_width : 1024,
+                o.model_height ? o.model_height : 768, &files[loaded], &w, err, sizeof err);
+            for (int k = 0; k < w.count; k++)
+                fprintf(stderr, "sgapi-render: warning: %s\n", w.text[k]);
+            if (!ok) {
+                fprintf(stderr, "sgapi-render: %s\n", err);
+                goto done;
+            }
+            continue;
+        }
         if (!sc_load(o.files[loaded], &files[loaded], err, sizeof err)) {
             fprintf(stderr, "sgapi-render: %s\n", err);
             goto done;

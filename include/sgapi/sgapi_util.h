@@ -29,6 +29,34 @@
  * a multiple of 3, or of 4 for quads, quads not 0 or 1, an index >= vertex_count) or when memory
  * runs out. On failure out_normals is unchanged. indices may be NULL when index_count is 0 (every
  * normal is then (0, 0, 0)).
+ *
+ * Standard shapes
+ *
+ *   sguShapeDesc d = {.shape = SGU_SHAPE_UV_SPHERE};     (zeros: the defaults below)
+ *   int nv, ni;
+ *   sgu_shape_counts(&d, &nv, &ni);
+ *   float pos[4 * nv], nrm[3 * nv], uv[2 * nv]; uint32_t idx[ni];   (or malloc)
+ *   sgu_shape_build(&d, pos, nrm, uv, idx);
+ *   then pass them as sgGeomDesc.positions, .normals, .texcoords, .indices (triangles).
+ *
+ *   Every shape is centred on the origin with +y up, its triangles counter-clockwise seen from
+ *   outside, with unit normals and texture coordinates in [0, 1]:
+ *
+ *   - cube: edge `size` (1); each face its own 4 vertices, the texture whole on each face.
+ *   - tetrahedron, octahedron: corners at distance `radius` (0.5); flat faces, each face's
+ *     texture coordinates (0, 0), (1, 0), (0.5, 1).
+ *   - icosphere: `radius` (0.5); each of the icosahedron's 20 faces split into 4^subdivisions
+ *     (0..7, default 0) triangles on the sphere; s, t = longitude, latitude.
+ *   - sphere (SGU_SHAPE_UV_SPHERE): `radius` (0.5), `segments` around (32), `rings` from pole to
+ *     pole (16); s around from -z, t from the south pole.
+ *   - cylinder: `radius` (0.5), `height` (1) along y, `segments` (32), with both caps.
+ *   - cone: `radius` (0.5) of the base at y = -height/2, apex at +height/2, `segments` (32).
+ *   - torus: ring `radius` (0.35) about y, tube `tube_radius` (0.15), `segments` around the ring
+ *     (32), `rings` around the tube (16).
+ *   - plane: a square of side `size` (1) in the x-z plane facing +y, `segments` (1) cells a side.
+ *
+ *   segments 3..1024 (plane: 1..1024), rings 2..1024; sizes finite and > 0. Both calls return 0,
+ *   or -1 on a bad description (nothing written).
  */
 #ifndef SGAPI_UTIL_H
 #define SGAPI_UTIL_H
@@ -42,6 +70,35 @@ extern "C" {
 /** Smooth vertex normals (see above): positions are xyzw per vertex, out_normals xyz per vertex. */
 int sgu_compute_normals(const float *positions, int vertex_count, const uint32_t *indices,
                         int index_count, int quads, float *out_normals);
+
+typedef enum sguShape {
+    SGU_SHAPE_CUBE,
+    SGU_SHAPE_TETRAHEDRON,
+    SGU_SHAPE_OCTAHEDRON,
+    SGU_SHAPE_ICOSPHERE,
+    SGU_SHAPE_UV_SPHERE,
+    SGU_SHAPE_CYLINDER,
+    SGU_SHAPE_CONE,
+    SGU_SHAPE_TORUS,
+    SGU_SHAPE_PLANE,
+} sguShape;
+
+/* A standard shape; a field left 0 takes its default (see above). */
+typedef struct sguShapeDesc {
+    sguShape shape;
+    int segments, rings, subdivisions;
+    float size, radius, height, tube_radius;
+} sguShapeDesc;
+
+/** Vertex and index counts of a shape; 0, or -1 on a bad description. */
+int sgu_shape_counts(const sguShapeDesc *desc, int *vertex_count, int *index_count);
+/** Fills a shape's arrays (xyzw, xyz, st per vertex; 3 indices per triangle), sized by
+ *  sgu_shape_counts; 0, or -1 on a bad description. */
+int sgu_shape_build(const sguShapeDesc *desc, float *positions, float *normals, float *texcoords,
+                    uint32_t *indices);
+/** The shape of a name: cube, tetrahedron, octahedron, icosphere, sphere, cylinder, cone, torus or
+ *  plane; 0, or -1 for another name. */
+int sgu_shape_from_name(const char *name, sguShape *out);
 
 #ifdef __cplusplus
 }

@@ -12,7 +12,7 @@
 #include "raster/framebuffer.h"
 #include "raster/rast_tile.h"
 
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(__AVX2__)
 #include <immintrin.h>
 #elif defined(__SSE2__)
 #include <emmintrin.h>
@@ -35,9 +35,9 @@ SG_WALK_INLINE uint32_t sg_walk_signs16(const int32x4_t r[4]) {
 }
 #endif
 
-/* With AVX-512, triangles whose tiles fit a square of this many tiles a side (a whole bin) are
- * tested a tile at a time without the 64-bit walk, when their edge values there fit in int32
- * (see small_triangle): a masked compare per edge and tile is cheaper than the walk's tests. */
+/* With AVX-512 and AVX2, triangles whose tiles fit a square of this many tiles a side (a whole
+ * bin) are tested a tile at a time without the 64-bit walk, when their edge values there fit in
+ * int32 (see small_triangle): a compare per edge and tile is cheaper than the walk's tests. */
 #define SG_SMALL_TILES 16
 
 #if defined(__AVX512F__)
@@ -48,6 +48,27 @@ SG_WALK_INLINE __m512i sg_walk_offsets(uint32_t dx, uint32_t dy) {
     const __m512i j = _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3);
     return _mm512_add_epi32(_mm512_mullo_epi32(_mm512_set1_epi32((int32_t)dx), i),
                             _mm512_mullo_epi32(_mm512_set1_epi32((int32_t)dy), j));
+}
+#elif defined(__AVX2__)
+/* i dx + j dy for the 8 pixels (i, j) of a tile's rows 0 and 1 (half 0) or 2 and 3 (half 1), in
+ * wrapping 32-bit arithmetic (callers make sure the true values fit). */
+SG_WALK_INLINE __m256i sg_walk_offsets8(uint32_t dx, uint32_t dy, int half) {
+    const __m256i i = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
+    const __m256i j = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+    return _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32((int32_t)dx), i),
+                                             _mm256_mullo_epi32(_mm256_set1_epi32((int32_t)dy), j)),
+                            _mm256_set1_epi32((int32_t)(2u * (uint32_t)half * dy)));
+}
+
+/* The covered pixels of a tile from its 8 + 8 edge values per edge: a pixel is out when any
+ * edge's value there is negative, so the sign bits of the values or-ed together say it. */
+SG_WALK_INLINE uint32_t sg_walk_in8(__m256i lo0, __m256i lo1, __m256i lo2, __m256i hi0, __m256i hi1,
+                                    __m256i hi2) {
+    __m256i lo = _mm256_or_si256(_mm256_or_si256(lo0, lo1), lo2);
+    __m256i hi = _mm256_or_si256(_mm256_or_si256(hi0, hi1), hi2);
+    uint32_t out = (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(lo)) |
+                   (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(hi)) << 8;
+    return ~out & 0xffffu;
 }
 #endif
 
@@ -80,6 +101,8 @@ typedef struct walk {
     bool narrow;
 #if defined(__AVX512F__)
     __m512i offs[3]; /* per edge: i dx + j dy of pixel (i, j) of a tile, in 32 bits */
+#elif defined(__AVX2__)
+    __m256i offs[3][2]; /* the same, rows 0-1 and rows 2-3 */
 #elif defined(__SSE2__)
     __m128i lane[3], step[3]; /* per edge: 0, dx, 2 dx, 3 dx; and dy, in 32 bits */
 #elif defined(__aarch64__) && defined(__ARM_NEON)
@@ -106,6 +129,19 @@ SG_WALK_INLINE uint32_t crossed_mask(const walk *w, const int64_t e0[3]) {
                 _mm512_setzero_si512());
         }
         return in;
+#elif defined(__AVX2__)
+        /* Half a tile a vector; an edge that holds the whole tile adds nothing (zero: no sign). */
+        __m256i v[3][2];
+        for (int e = 0; e < 3; e++) {
+            if (e0[e] + w->lo[e] >= 0) {
+                v[e][0] = v[e][1] = _mm256_setzero_si256();
+                continue;
+            }
+            __m256i b = _mm256_set1_epi32((int32_t)(uint32_t)(uint64_t)e0[e]);
+            v[e][0] = _mm256_add_epi32(b, w->offs[e][0]);
+            v[e][1] = _mm256_add_epi32(b, w->offs[e][1]);
+        }
+        return sg_walk_in8(v[0][0], v[1][0], v[2][0], v[0][1], v[1][1], v[2][1]);
 #elif defined(__SSE2__)
         for (int e = 0; e < 3; e++) {
             if (e0[e] + w->lo[e] >= 0) continue; /* this edge holds the whole tile */
@@ -202,10 +238,10 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
 }
 
 #if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
-/* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512; most of a mesh's): the pixels
- * of those tiles are tested at once in 32-bit edge values, four pixels a vector (a tile with
- * AVX-512), when every edge's values over the square fit in int32 (they are linear, so the
- * square's corners bound them). False: not taken. */
+/* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512 and AVX2; most of a mesh's):
+ * the pixels of those tiles are tested at once in 32-bit edge values, four pixels a vector (a
+ * tile with AVX-512, half a tile with AVX2), when every edge's values over the square fit in int32
+ * (they are linear, so the square's corners bound them). False: not taken. */
 SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
                                    sg_tile_fn fn, const void *ctx) {
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
@@ -260,6 +296,66 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         for (int e = 0; e < 3; e++) {
             first[e] = _mm512_add_epi32(first[e], down[e]);
             best[e] = _mm512_add_epi32(best[e], down[e]);
+        }
+    }
+    return true;
+#elif defined(__AVX2__)
+    /* As with AVX-512, with half a tile a vector and a row of up to 16 tiles in two vectors of
+     * eight lanes, a tile a lane. */
+    corners(t, SG_SMALL_TILES * SG_TILE - 1, hi, lo);
+    int64_t thi[3], tlo[3];
+    corners(t, SG_TILE - 1, thi, tlo);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    /* Per edge, in wrapping 32-bit lanes (the true values fit in int32): the pixels of tile
+     * (tx0, ty0) (two halves), the largest value of tiles 0-7 and 8-15 of the row, and the steps
+     * across and down. */
+    __m256i first[3][2], best[3][2], down[3];
+    uint32_t across[3]; /* unsigned: k * across wraps, as the lanes do */
+    for (int e = 0; e < 3; e++) {
+        int64_t e0 = edge_at(t, e, x0, y0);
+        if (e0 + hi[e] < 0) return true;
+        if (e0 + lo[e] < INT32_MIN || e0 + hi[e] > INT32_MAX) return false;
+        uint32_t dx = (uint32_t)(uint64_t)t->edge_dx[e], dy = (uint32_t)(uint64_t)t->edge_dy[e];
+        __m256i b = _mm256_set1_epi32((int32_t)(uint32_t)(uint64_t)e0);
+        first[e][0] = _mm256_add_epi32(b, sg_walk_offsets8(dx, dy, 0));
+        first[e][1] = _mm256_add_epi32(b, sg_walk_offsets8(dx, dy, 1));
+        best[e][0] =
+            _mm256_add_epi32(_mm256_set1_epi32((int32_t)(uint32_t)(uint64_t)(e0 + thi[e])),
+                             _mm256_mullo_epi32(_mm256_set1_epi32((int32_t)(4 * dx)), lane));
+        best[e][1] = _mm256_add_epi32(best[e][0], _mm256_set1_epi32((int32_t)(32 * dx)));
+        across[e] = 4 * dx;
+        down[e] = _mm256_set1_epi32((int32_t)(4 * dy));
+    }
+    const uint32_t cols = (2u << (tx1 - tx0)) - 1;
+    const bool wide = tx1 - tx0 >= 8; /* tiles 8-15 of the row are looked at */
+    for (int ty = ty0; ty <= ty1; ty++) {
+        uint32_t out = (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(
+            _mm256_or_si256(_mm256_or_si256(best[0][0], best[1][0]), best[2][0])));
+        if (wide)
+            out |= (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(
+                       _mm256_or_si256(_mm256_or_si256(best[0][1], best[1][1]), best[2][1])))
+                   << 8;
+        unsigned cand = ~out & cols;
+        int ty_px = ty << SG_TILE_SHIFT;
+        while (cand) {
+            int k = __builtin_ctz(cand);
+            cand &= cand - 1;
+            __m256i v[3][2];
+            for (int e = 0; e < 3; e++) {
+                __m256i step = _mm256_set1_epi32((int32_t)((uint32_t)k * across[e]));
+                v[e][0] = _mm256_add_epi32(first[e][0], step);
+                v[e][1] = _mm256_add_epi32(first[e][1], step);
+            }
+            uint32_t mask = sg_walk_in8(v[0][0], v[1][0], v[2][0], v[0][1], v[1][1], v[2][1]);
+            int tx_px = (tx0 + k) << SG_TILE_SHIFT;
+            if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
+            if (mask) fn(ctx, t, tx_px, ty_px, mask);
+        }
+        for (int e = 0; e < 3; e++) {
+            first[e][0] = _mm256_add_epi32(first[e][0], down[e]);
+            first[e][1] = _mm256_add_epi32(first[e][1], down[e]);
+            best[e][0] = _mm256_add_epi32(best[e][0], down[e]);
+            best[e][1] = _mm256_add_epi32(best[e][1], down[e]);
         }
     }
     return true;
@@ -384,7 +480,7 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
     int tx1 = (t->maxx < rx1 - 1 ? t->maxx : rx1 - 1) >> SG_TILE_SHIFT;
     int ty1 = (t->maxy < ry1 - 1 ? t->maxy : ry1 - 1) >> SG_TILE_SHIFT;
     if (tx0 > tx1 || ty0 > ty1) return;
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(__AVX2__)
     if (tx1 - tx0 < SG_SMALL_TILES && ty1 - ty0 < SG_SMALL_TILES &&
         small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx))
         return;
@@ -401,6 +497,9 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
             int32_t dx = (int32_t)t->edge_dx[e], dy = (int32_t)t->edge_dy[e];
 #if defined(__AVX512F__)
             w.offs[e] = sg_walk_offsets((uint32_t)dx, (uint32_t)dy);
+#elif defined(__AVX2__)
+            w.offs[e][0] = sg_walk_offsets8((uint32_t)dx, (uint32_t)dy, 0);
+            w.offs[e][1] = sg_walk_offsets8((uint32_t)dx, (uint32_t)dy, 1);
 #elif defined(__SSE2__)
             w.lane[e] = _mm_setr_epi32(0, dx, 2 * dx, 3 * dx);
             w.step[e] = _mm_set1_epi32(dy);

@@ -1,9 +1,9 @@
 /* replay.c - runs every committed fuzz reproducer through its target's entry point, built with the
  * normal compiler, so a loader crash once fixed stays fixed (ctest: fuzz_regressions).
  *
- * Usage: fuzz_replay DIR [TARGET...], where DIR/obj, DIR/scene and DIR/image (or only the TARGETs
- * named) hold one input per file; built
- * with FUZZ_REPLAY_API (test_api_seq), DIR/api: sequences of API calls (fuzz_api.c).
+ * Usage: fuzz_replay DIR [TARGET...], where DIR/obj, DIR/scene, DIR/image, DIR/off and DIR/mtl
+ * (or only the TARGETs named) hold one input per file; built with FUZZ_REPLAY_API (test_api_seq),
+ * DIR/api: sequences of API calls (fuzz_api.c).
  */
 #define _POSIX_C_SOURCE 200809L /* opendir, readdir */
 
@@ -23,6 +23,8 @@ static const struct {
     {"obj", fuzz_obj},
     {"scene", fuzz_scene},
     {"image", fuzz_image},
+    {"off", fuzz_off},
+    {"mtl", fuzz_mtl},
 #endif
 };
 
