@@ -32,13 +32,16 @@ demo: build
 	$(BUILD)/apps/sgapi-render scenes/shadows.json --scene shadow_teapots -o $(OUT)/turntable \
 		--turntable 60 --up 0 --video gif --video-width 360 --fps 20
 
-# Every test; then the suite again, built with clang under ASan + UBSan in build-asan/ (without the
-# live lavapipe checks, see tools/sanitize.sh); then the default scenes under valgrind memcheck;
-# then the AArch64 build under emulation (test-arm64, below) when its packages are installed.
-# Any sanitizer or memcheck report fails.
+# Every test (the allocation-failure injection and the API-sequence corpus among them); then the
+# suite again, built with clang under ASan + UBSan in build-asan/ (without the live lavapipe
+# checks, see tools/sanitize.sh); then the threaded programs under ThreadSanitizer in build-tsan/
+# (tools/tsan.sh); then the default scenes under valgrind memcheck; then the AArch64 build under
+# emulation (test-arm64, below) when its packages are installed. Any sanitizer or memcheck report
+# fails.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	sh tools/sanitize.sh build-asan $(JOBS)
+	sh tools/tsan.sh build-tsan $(JOBS)
 	sh tools/memcheck.sh $(BUILD)
 	@if sh tools/test-arm64.sh --available; then sh tools/test-arm64.sh $(BUILD) build-arm64 $(JOBS); \
 	else echo "test-arm64: skipped (no gcc-aarch64-linux-gnu or qemu-user-static)"; fi
@@ -53,9 +56,9 @@ test-arm64: build
 clean:
 	rm -rf $(BUILD) $(OUT) build-arm64
 
-# Fuzzes the file loaders (OBJ, scene JSON, images) with libFuzzer in build-fuzz/ (clang, ASan +
-# UBSan), FUZZ_SECONDS seconds per target; fails on any crash, found inputs go to
-# build-fuzz/crashes/<target>/ (docs/fuzzing.md).
+# Fuzzes the file loaders (OBJ, scene JSON, images) and sequences of API calls with libFuzzer in
+# build-fuzz/ (clang, ASan + UBSan), FUZZ_SECONDS seconds per target; fails on any crash, found
+# inputs go to build-fuzz/crashes/<target>/ (docs/fuzzing.md).
 FUZZ_SECONDS ?= 60
 .PHONY: fuzz
 fuzz: deps

@@ -45,23 +45,29 @@ endforeach()
 if(TARGET sgapi-ref)
   foreach(suite ${SUITES})
     add_test(NAME ref_${suite}_scenes
-      COMMAND sgapi-ref ${PROJECT_SOURCE_DIR}/scenes/${suite}.json -o ${CHECK_OUT}/ref_${suite})
+      COMMAND sgapi-ref ${PROJECT_SOURCE_DIR}/scenes/${suite}.json -o ${CHECK_OUT}/ref_${suite}
+              --strict)
     set_tests_properties(ref_${suite}_scenes PROPERTIES FIXTURES_SETUP ref_${suite})
   endforeach()
   if(EXISTS ${GAPI_TASK})
     add_test(NAME ref_gapi_task COMMAND sgapi-ref ${GAPI_TASK} -o ${CHECK_OUT}/ref_gapi_task)
     set_tests_properties(ref_gapi_task PROPERTIES FIXTURES_SETUP ref_gapi_task)
   endif()
-  add_test(NAME ref_hard_cases COMMAND sgapi-ref ${HARD_REF_FILES} -o ${CHECK_OUT}/ref_hard)
+  add_test(NAME ref_hard_cases COMMAND sgapi-ref ${HARD_REF_FILES} -o ${CHECK_OUT}/ref_hard --strict)
   set_tests_properties(ref_hard_cases PROPERTIES FIXTURES_SETUP ref_hard)
 endif()
 
 # One check: render `scene` of `file` with sgapi and compare it with `ref_dir`/<scene>.png, against
-# the scene's row of golden/thresholds.csv.
+# the scene's row of golden/thresholds.csv. The project's own files are read with --strict: an
+# unknown key in them fails the check.
 function(sg_image_check name file scene ref_dir out_dir fixture)
+  set(strict)
+  if(NOT file STREQUAL GAPI_TASK)
+    set(strict --strict)
+  endif()
   add_test(NAME ${name}
     COMMAND sgapi-render ${file} --scene ${scene} -o ${out_dir} --compare ${ref_dir}
-            --thresholds ${THRESHOLDS})
+            --thresholds ${THRESHOLDS} ${strict})
   if(fixture)
     set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED ${fixture})
   endif()
@@ -94,7 +100,8 @@ foreach(row ${ROWS})
       sg_image_check(hard_${scene} ${HARD_DIR}/${scene}.json ${scene} ${CHECK_OUT}/ref_hard
                      ${CHECK_OUT}/hard ref_hard)
     else() # rendered unchecked, so that the sanitizer build runs every hard case too
-      add_test(NAME hard_${scene} COMMAND sgapi-render ${HARD_DIR}/${scene}.json -o ${CHECK_OUT}/hard)
+      add_test(NAME hard_${scene}
+        COMMAND sgapi-render ${HARD_DIR}/${scene}.json -o ${CHECK_OUT}/hard --strict)
     endif()
   elseif(suite STREQUAL "gapi-task" AND EXISTS ${GAPI_TASK} AND TARGET sgapi-ref)
     sg_image_check(gapi_${scene} ${GAPI_TASK} ${scene} ${CHECK_OUT}/ref_gapi_task

@@ -17,6 +17,7 @@
 #include "image_io.h"
 #include "obj.h"
 #include "scene.h"
+#include "scene_keys.h"
 #include "shadow.h"
 
 /* ---- helpers --------------------------------------------------------------------------------- */
@@ -498,6 +499,51 @@ static bool load_scene(tmp_dir *t, const char *name, const char *json, sc_file *
                        size_t errlen) {
     write_assets(t);
     return sc_load(write_file(t, name, json), f, err, errlen);
+}
+
+/* Unknown keys load with a warning each, naming the file and the key's path, with "did you mean"
+ * when a known key of that object is one edit away (insertion, deletion, substitution, swap). */
+static void scene_unknown_keys(void **state) {
+    tmp_dir *t = *state;
+    char err[512];
+    sc_file f;
+    if (!load_scene(t, "keys.json",
+                    "{\"width\": 8, \"height\": 8, \"matrices\": \"a note\", \"hieght\": 3,"
+                    " \"lights\": [{\"type\": \"point\", \"position\": [0, 0, 0],"
+                    " \"color\": [1, 1, 1], \"colour\": [1, 1, 1]}],"
+                    " \"scenes\": [{\"name\": \"a\", \"draws\": []},"
+                    " {\"name\": \"b\", \"shadow\": {\"light\": 0, \"pfc\": true}, \"draws\": ["
+                    "{\"mesh\": \"tri.obj\", " MATRICES "},"
+                    "{\"mesh\": \"tri.obj\", \"lightning\": \"phong\", \"cul\": \"back\", " MATRICES
+                    "}]}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    const char *want[] = {
+        "unknown key 'matrices'",
+        "unknown key 'hieght' (did you mean 'height'?)",
+        "unknown key 'lights[0].colour'",
+        "unknown key 'scenes[1].shadow.pfc' (did you mean 'pcf'?)",
+        "unknown key 'scenes[1].draws[1].lightning' (did you mean 'lighting'?)",
+        "unknown key 'scenes[1].draws[1].cul' (did you mean 'cull'?)",
+    };
+    assert_int_equal(f.warning_count, sizeof want / sizeof *want);
+    for (size_t i = 0; i < f.warning_count; i++) {
+        assert_non_null(strstr(f.warnings[i], "keys.json: "));
+        if (!strstr(f.warnings[i], want[i])) fail_msg("'%s' lacks '%s'", f.warnings[i], want[i]);
+    }
+    /* The key is ignored: the draw is unlit, as without it. */
+    assert_int_equal(f.scenes[1].draws[1].lighting, SC_LIGHTING_NONE);
+    assert_true(sc_report_warnings(&f, "test", false));
+    assert_false(sc_report_warnings(&f, "test", true));
+    sc_free(&f);
+    /* A file without unknown keys has no warnings, and strict passes it. */
+    if (!load_scene(t, "clean.json",
+                    "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"a\", \"draws\": []}]}",
+                    &f, err, sizeof err))
+        fail_msg("%s", err);
+    assert_int_equal(f.warning_count, 0);
+    assert_true(sc_report_warnings(&f, "test", true));
+    sc_free(&f);
 }
 
 static void scene_defaults(void **state) {
@@ -1372,6 +1418,7 @@ int main(void) {
         cmocka_unit_test(shadow_light_directional),
         cmocka_unit_test(shadow_light_point),
         cmocka_unit_test(scene_errors),
+        cmocka_unit_test(scene_unknown_keys),
         cmocka_unit_test(sort_order_and_ties),
         cmocka_unit_test(sort_stable_at_scale),
     };

@@ -11,10 +11,11 @@ cd "$(dirname "$0")/.."
 BUILD=${FUZZ_BUILD:-build-fuzz}
 SECONDS_EACH=${FUZZ_SECONDS:-60}
 JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
-TARGETS="obj scene image off mtl"
+TARGETS="obj scene image off mtl api"
 
 CC=clang cmake -S . -B "$BUILD" -DSGAPI_BUILD_FUZZERS=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
-cmake --build "$BUILD" -j "$JOBS" --target fuzz_obj fuzz_scene fuzz_image fuzz_off fuzz_mtl
+cmake --build "$BUILD" -j "$JOBS" --target fuzz_obj fuzz_scene fuzz_image fuzz_off fuzz_mtl \
+    fuzz_api
 
 BUILD=$(cd "$BUILD" && pwd)
 # The scene target's scratch folders go here rather than to the system's temporary folder.
@@ -32,13 +33,16 @@ seed() { # target, files...
     done
     return 0
 }
-seed obj scenes/assets/*.obj
-seed scene scenes/default.json scenes/hard/*.json
+# The committed, minimised corpora (tests/fuzz/corpus/, replayed by make test) seed them too.
+seed obj scenes/assets/*.obj tests/fuzz/corpus/obj/*
+seed scene scenes/default.json scenes/hard/*.json tests/fuzz/corpus/scene/*
 seed image scenes/assets/*.png
 # OFF and MTL: the project's OFF file and the small seeds of tests/fuzz/seeds/ (every header
 # variant, face colours as integers and floats; every MTL statement read, texture options).
 seed off scenes/assets/*.off tests/fuzz/seeds/off/*
 seed mtl tests/fuzz/seeds/mtl/*
+# The API sequences: the committed corpus (replayed by make test) is the seed.
+seed api tests/fuzz/corpus/api/*
 # The scene seeds once more with their mesh and texture paths pointed at the files of the target's
 # scratch folder, so mutations start from drawable scenes rather than from missing files.
 for f in scenes/default.json scenes/hard/*.json; do
@@ -53,6 +57,7 @@ mkdir -p "$BUILD/logs"
 # The committed reproducers first, under the sanitizers and with the image decoder instrumented:
 # the plain replay test (ctest fuzz_regressions) cannot see an over-read inside the decoder.
 for t in $TARGETS; do
+    [ -d tests/fuzz/regressions/"$t" ] || continue
     log="$BUILD/logs/$t-regressions.log"
     if ! "$BUILD/tests/fuzz/fuzz_$t" tests/fuzz/regressions/"$t"/* >"$log" 2>&1; then
         echo "fuzz_$t FAILED on a committed reproducer; the end of $log:"
@@ -68,6 +73,8 @@ for t in $TARGETS; do
     # The image seeds are whole textures of up to some 500 KB; mutating inputs that large decodes
     # tens per second, while 64 KB holds every header and chunk layout.
     [ "$t" = image ] && opts="$opts -max_len=65536"
+    # A sequence of up to 192 calls fits in 4 KB.
+    [ "$t" = api ] && opts="$opts -max_len=4096"
     log="$BUILD/logs/$t.log"
     echo "fuzz_$t: ${SECONDS_EACH}s, corpus $BUILD/corpus/$t, log $log"
     # -timeout: an input taking longer than this is a hang and a failure, like a crash.

@@ -48,6 +48,7 @@
 #include "image_io.h"
 #include "scene_sgapi.h"
 #include "scene.h"
+#include "scene_keys.h"
 
 #define WARMUP_FRAMES 3
 #define MIN_FRAMES    20     /* fewer gives no steady-state median */
@@ -84,6 +85,7 @@ typedef struct options {
     int frames, warmup, threads;
     sgSimd simd; /* SG_SIMD_DEFAULT: the best the CPU runs */
     bool quick, pareto;
+    bool strict;      /* --strict: an unknown key in a scene file is an error */
     const char *csv;  /* NULL: no CSV */
     const char *plot; /* --plot; NULL: pareto.png */
     const char *ref;  /* --ref; NULL: sgapi-ref beside this program */
@@ -109,6 +111,8 @@ static void usage(FILE *f) {
             "  --quick         %d frames, no warm-up: checks that everything runs; the times mean\n"
             "                  nothing\n"
             "  --ref PATH      the sgapi-ref program (default: the one beside sgapi-bench)\n"
+            "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
+            "                  measured), not a warning\n"
             "  -h, --help      show this help\n",
             FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, FRAMES, WARMUP_FRAMES, QUICK_FRAMES);
 }
@@ -197,6 +201,8 @@ static int parse_args(int argc, char **argv, options *o) {
             o->pareto = true;
         } else if (!strcmp(a, "--quick")) {
             o->quick = true;
+        } else if (!strcmp(a, "--strict")) {
+            o->strict = true;
         } else if (a[0] == '-' && a[1] != '\0') {
             fprintf(stderr, "sgapi-bench: unknown option '%s' (see --help)\n", a);
             return 2;
@@ -904,6 +910,10 @@ int main(int argc, char **argv) {
         }
         count += files[loaded].scene_count;
     }
+    bool clean = true;
+    for (int i = 0; i < loaded; i++)
+        clean &= sc_report_warnings(&files[i], "sgapi-bench", o.strict);
+    if (!clean) goto done;
     res = calloc(count ? count : 1, sizeof *res);
     if (!res) {
         fprintf(stderr, "sgapi-bench: out of memory\n");

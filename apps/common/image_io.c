@@ -65,6 +65,20 @@ static bool jpeg_huffman_tables_ok(const unsigned char *d, size_t len) {
     return true;
 }
 
+/* The decoder's reason for a failure; false. For an unknown PNG chunk the reason starts with the
+ * chunk type, raw bytes of the file: empty when the first is 0 (as in a truncated file, read on as
+ * zeros), control characters otherwise. Such a reason is replaced rather than printed. */
+static bool decoder_error(char *err, size_t errlen) {
+    const char *why = stbi_failure_reason();
+    bool printable = why && why[0];
+    for (const char *q = why; printable && *q; q++) printable = *q >= 0x20 && *q < 0x7f;
+    snprintf(err, errlen, "%s",
+             !printable                 ? "corrupt or unsupported image"
+             : !strcmp(why, "outofmem") ? "out of memory"
+                                        : why);
+    return false;
+}
+
 bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, char *err,
                           size_t errlen) {
     memset(out, 0, sizeof *out);
@@ -77,6 +91,12 @@ bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, 
         snprintf(err, errlen, "corrupt JPEG: bad Huffman table");
         return false;
     }
+    /* The header is read first: the checks below depend on it. Reading it allocates, so its
+     * failure may be the allocator's: then the decoding must not go ahead unchecked (an
+     * allocation-failure test found it going ahead without the size check). */
+    int w, h, channels;
+    if (!stbi_info_from_memory(data, (int)len, &w, &h, &channels))
+        return decoder_error(err, errlen);
     /* For a PNM of 16 bits per sample (maximum value over 255), the stb_image of Debian 12 converts
      * the samples to RGBA as if they were 8-bit, then reads twice the bytes of that buffer as
      * 16-bit ones: a heap over-read of the image's size (found by fuzzing). Such files are refused.
@@ -86,26 +106,15 @@ bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, 
         snprintf(err, errlen, "16-bit PNM images are not supported");
         return false;
     }
-    int w, h, channels;
     /* A file of a few bytes can declare a size whose decoding takes gigabytes (a 44-byte GIF of
      * 16163x17746 took 2.6 GB) only to be refused by the caller: the size is checked first. */
-    if (stbi_info_from_memory(data, (int)len, &w, &h, &channels) &&
-        (w > SC_IMAGE_MAX_SIDE || h > SC_IMAGE_MAX_SIDE)) {
+    if (w > SC_IMAGE_MAX_SIDE || h > SC_IMAGE_MAX_SIDE) {
         snprintf(err, errlen, "image is %dx%d, larger than %d on a side", w, h, SC_IMAGE_MAX_SIDE);
         return false;
     }
     /* No vertical flip: the decoder's natural order is already top row first. */
     unsigned char *px = stbi_load_from_memory(data, (int)len, &w, &h, &channels, 4);
-    if (!px) {
-        /* For an unknown PNG chunk the decoder's reason starts with the chunk type, raw bytes of
-         * the file: empty when the first is 0 (as in a truncated file, read on as zeros), control
-         * characters otherwise. Such a reason is replaced rather than printed. */
-        const char *why = stbi_failure_reason();
-        bool printable = why && why[0];
-        for (const char *q = why; printable && *q; q++) printable = *q >= 0x20 && *q < 0x7f;
-        snprintf(err, errlen, "%s", printable ? why : "corrupt or unsupported image");
-        return false;
-    }
+    if (!px) return decoder_error(err, errlen);
     /* The PNM decoder takes a header without a size, as short as "P5", or with a size of 0 for
      * an image of no pixels: an image has at least one. */
     if (w <= 0 || h <= 0) {

@@ -6,6 +6,7 @@
 #define _POSIX_C_SOURCE 200809L /* stat */
 
 #include "scene.h"
+#include "scene_keys.h"
 #include "shadow.h"
 
 #include <limits.h>
@@ -902,6 +903,7 @@ bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, char
         goto done;
     }
     ok = parse_root(&c, root);
+    if (ok && !sc_check_keys(root, out)) ok = fail(&c, &none, "out of memory");
 done:
     cJSON_Delete(root);
     free(c.dir);
@@ -939,6 +941,8 @@ void sc_free(sc_file *file) {
     }
     free(file->textures);
     free(file->texture_sources);
+    for (size_t i = 0; i < file->warning_count; i++) free(file->warnings[i]);
+    free(file->warnings);
     free(file->path);
     memset(file, 0, sizeof *file);
 }

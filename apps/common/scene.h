@@ -148,6 +148,11 @@ typedef struct sc_file {
     sc_image *textures;     /* RGBA8, top row first */
     char **texture_sources; /* per texture, its path */
     size_t texture_count;
+    /* One message per unknown key ("FILE: unknown key 'scenes[2].draws[0].lightning' (did you
+     * mean 'lighting'?)"): the file loads, the key is ignored; apps print them, and --strict makes
+     * them errors (sc_report_warnings in scene_keys.h). */
+    char **warnings;
+    size_t warning_count;
 } sc_file;
 
 /** Loads a scene file and every mesh and texture it names; on failure *out is zeroed. Every

@@ -34,6 +34,7 @@
 #include "depth_sort.h"
 #include "image_io.h"
 #include "scene.h"
+#include "scene_keys.h"
 #include "shadow.h"
 #include "spv_color_frag.h"
 #include "spv_color_shadow_frag.h"
@@ -1270,6 +1271,8 @@ static void usage(FILE *f) {
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     lavapipe's raster threads (sets LP_NUM_THREADS)\n"
+               "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
+               "                  rendered), not a warning\n"
                "  -h, --help      show this help\n");
 }
 
@@ -1294,6 +1297,7 @@ int main(int argc, char **argv) {
     const char **files = calloc((size_t)argc, sizeof *files);
     const char **only = calloc((size_t)argc, sizeof *only);
     int nfiles = 0, nonly = 0, frames = 1;
+    bool strict = false;
     if (!files || !only) return 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -1308,6 +1312,8 @@ int main(int argc, char **argv) {
                 fprintf(stderr, "sgapi-ref: --frames wants 1..100000, got '%s'\n", argv[i]);
                 return 2;
             }
+        } else if (!strcmp(a, "--strict")) {
+            strict = true;
         } else if (!strcmp(a, "--scene") && more) {
             only[nonly++] = argv[++i];
         } else if (!strcmp(a, "--threads") && more) {
@@ -1329,6 +1335,19 @@ int main(int argc, char **argv) {
     if (!out_dir || nfiles == 0) {
         usage(stderr);
         return 2;
+    }
+    /* Files are rendered one after the other; with --strict every file's keys are checked
+     * first, so that a warning in the last stops the run before the first is rendered. */
+    for (int fi = 0; fi < nfiles && strict; fi++) {
+        sc_file f;
+        char err[1024];
+        if (!sc_load(files[fi], &f, err, sizeof err)) {
+            fprintf(stderr, "sgapi-ref: %s\n", err);
+            return 1;
+        }
+        bool clean = sc_report_warnings(&f, "sgapi-ref", true);
+        sc_free(&f);
+        if (!clean) return 1;
     }
     if (!make_dir(out_dir)) {
         fprintf(stderr, "sgapi-ref: cannot create output folder %s: %s\n", out_dir,
@@ -1352,6 +1371,7 @@ int main(int argc, char **argv) {
             status = 1;
             break;
         }
+        if (!strict) sc_report_warnings(&f, "sgapi-ref", false);
         uploads u = {0};
         if (!upload_file(r, &f, &u)) {
             fprintf(stderr, "sgapi-ref: %s: %s\n", files[fi], r->err);

@@ -39,6 +39,7 @@
 #include "report.h"
 #include "scene_sgapi.h"
 #include "scene.h"
+#include "scene_keys.h"
 #include "thresholds.h"
 #include "turntable.h"
 #include "video.h"
@@ -69,6 +70,7 @@ typedef struct options {
     int video_width;              /* --video-width: of the videos; 0: the frames' */
     bool assemble;                /* --assemble: only make the videos of frames on disk */
     bool quiet;                   /* --quiet: no progress bar */
+    bool strict;                  /* --strict: an unknown key in a scene file is an error */
     bool no_write;                /* --no-write: render and read back, write nothing */
     int writers;   /* --writers: threads writing turntable frames; 0: the rendering thread; -1:
                       default */
@@ -114,6 +116,8 @@ static void usage(FILE *f) {
                "                  default 6 for still images, 0 for turntable frames\n"
                "  --no-write      render and read each image back, but write no file (to time\n"
                "                  the rendering alone against a run that writes)\n"
+               "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
+               "                  rendered), not a warning\n"
                "  --quiet         no progress bar (it is drawn on stderr only when stderr is a\n"
                "                  terminal: frames done of all, frames per second, time left)\n"
                "  --shard I/N     render only the items k (scenes in order; with --turntable\n"
@@ -333,6 +337,8 @@ static int parse_args(int argc, char **argv, options *o) {
             o->assemble = true;
         } else if (!strcmp(a, "--quiet")) {
             o->quiet = true;
+        } else if (!strcmp(a, "--strict")) {
+            o->strict = true;
         } else if (!strcmp(a, "--no-write")) {
             o->no_write = true;
         } else if (!strcmp(a, "--threads")) {
@@ -891,6 +897,11 @@ int main(int argc, char **argv) {
             goto done;
         }
     }
+    /* Every file's warnings, then (with --strict) the verdict, before anything is rendered. */
+    bool clean = true;
+    for (int i = 0; i < loaded; i++)
+        clean &= sc_report_warnings(&files[i], "sgapi-render", o.strict);
+    if (!clean) goto done;
 
     /* Each name is one output file: two selected scenes of one name would overwrite each other. */
     size_t max_images = 0, max_geoms = 0;

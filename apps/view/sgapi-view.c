@@ -20,6 +20,7 @@
 #include "image_io.h"
 #include "model.h"
 #include "scene.h"
+#include "scene_keys.h"
 #include "scene_sgapi.h"
 
 #define PROG "sgapi-view"
@@ -33,6 +34,7 @@ typedef struct options {
     int threads;
     int frames;           /* --frames N: render N frames, print the rate and quit; 0: run */
     bool print_fps;       /* --print-fps: the rate once a second on stdout */
+    bool strict;          /* --strict: an unknown key in the scene file is an error */
     const char *save_dir; /* --save-dir: where F12 writes frame-NNNN.png */
 } options;
 
@@ -92,6 +94,8 @@ static void usage(FILE *f) {
                "  --save-dir DIR  where F12 saves frames (default .): DIR/frame-0001.png ...\n"
                "  --frames N      render N frames, print frames per second, quit (a benchmark)\n"
                "  --print-fps     print frames per second once a second\n"
+               "  --strict        an unknown key in the scene file is an error (exit 1, nothing\n"
+               "                  shown), not a warning\n"
                "Mouse:\n"
                "  left drag       orbit about the centre of the scene\n"
                "  wheel           zoom (dolly towards the centre)\n"
@@ -574,6 +578,9 @@ static int parse_args(int argc, char **argv, options *o) {
         } else if (!strcmp(a, "--print-fps")) {
             o->print_fps = true;
             continue;
+        } else if (!strcmp(a, "--strict")) {
+            o->strict = true;
+            continue;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, PROG ": unknown option '%s' (see --help)\n", a);
             return 2;
@@ -611,6 +618,9 @@ static bool load(viewer *v, const options *o) {
         }
     } else if (!sc_load(o->files[0], &v->file, err, sizeof err)) {
         fprintf(stderr, PROG ": %s\n", err);
+        return false;
+    } else if (!sc_report_warnings(&v->file, PROG, o->strict)) {
+        sc_free(&v->file);
         return false;
     }
     size_t k = 0;

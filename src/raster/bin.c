@@ -65,7 +65,10 @@ sg_tri *sg_binner_reserve(sg_binner *b, size_t n) {
         b->out_of_memory = true;
         return NULL;
     }
-    if (b->tri_count + n <= b->tri_capacity) return b->tris + b->tri_count;
+    /* The extensions are checked too: when the triangles grew and the extensions then could not,
+     * the call failed, and a retry must grow the extensions rather than write past them. */
+    if (b->tri_count + n <= b->tri_capacity && (!b->use_ext || b->ext_capacity >= b->tri_capacity))
+        return b->tris + b->tri_count;
     /* Growing: the extensions grow with the triangles while the pass uses them. */
     if (!grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + n, sizeof *b->tris) ||
         (b->use_ext &&

@@ -14,6 +14,7 @@ int fuzz_scene(const uint8_t *data, size_t size);
 int fuzz_image(const uint8_t *data, size_t size);
 int fuzz_off(const uint8_t *data, size_t size);
 int fuzz_mtl(const uint8_t *data, size_t size);
+int fuzz_api(const uint8_t *data, size_t size); /* sequences of public calls (fuzz_api.c) */
 
 /* libFuzzer's entry point, defined by each target unless built for the replay test. */
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

@@ -1,8 +1,9 @@
 /* replay.c - runs every committed fuzz reproducer through its target's entry point, built with the
  * normal compiler, so a loader crash once fixed stays fixed (ctest: fuzz_regressions).
  *
- * Usage: fuzz_replay DIR, where DIR/obj, DIR/scene, DIR/image, DIR/off and DIR/mtl hold one input
- * per file.
+ * Usage: fuzz_replay DIR [TARGET...], where DIR/obj, DIR/scene, DIR/image, DIR/off and DIR/mtl
+ * (or only the TARGETs named) hold one input per file; built with FUZZ_REPLAY_API (test_api_seq),
+ * DIR/api: sequences of API calls (fuzz_api.c).
  */
 #define _POSIX_C_SOURCE 200809L /* opendir, readdir */
 
@@ -15,11 +16,17 @@
 static const struct {
     const char *dir;
     int (*run)(const uint8_t *, size_t);
-} targets[] = {{"obj", fuzz_obj},
-               {"scene", fuzz_scene},
-               {"image", fuzz_image},
-               {"off", fuzz_off},
-               {"mtl", fuzz_mtl}};
+} targets[] = {
+#if defined(FUZZ_REPLAY_API)
+    {"api", fuzz_api},
+#else
+    {"obj", fuzz_obj},
+    {"scene", fuzz_scene},
+    {"image", fuzz_image},
+    {"off", fuzz_off},
+    {"mtl", fuzz_mtl},
+#endif
+};
 
 /* Reads a whole file; NULL when it cannot (the caller reports it). */
 static uint8_t *read_all(const char *path, size_t *len) {
@@ -52,12 +59,15 @@ static uint8_t *read_all(const char *path, size_t *len) {
 }
 
 int main(int argc, char **argv) {
-    if (argc != 2) {
-        fprintf(stderr, "usage: %s REGRESSIONS_DIR\n", argv[0]);
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s DIR [TARGET...]\n", argv[0]);
         return 2;
     }
     int inputs = 0, errors = 0;
     for (size_t t = 0; t < sizeof targets / sizeof targets[0]; t++) {
+        bool named = argc == 2;
+        for (int i = 2; i < argc; i++) named |= !strcmp(argv[i], targets[t].dir);
+        if (!named) continue;
         char dir[4096];
         snprintf(dir, sizeof dir, "%s/%s", argv[1], targets[t].dir);
         DIR *d = opendir(dir);

@@ -1,0 +1,51 @@
+#!/bin/sh
+# Builds sgapi-render and the threaded tests with clang under ThreadSanitizer in BUILD_DIR, then
+# renders the project's scene files at 2, 3 and 5 raster threads (requiring the same images as
+# at 1), a short turntable written by two writer threads, and the threaded tests (the allocation
+# failure script, API sequences, the animation example). Any data race or other ThreadSanitizer
+# report fails the run (exit 1). The one suppression file, tools/tsan.supp, names Mesa's
+# lavapipe alone (the reference renderer, not built here).
+#
+#   tools/tsan.sh BUILD_DIR [JOBS]
+set -eu
+build=${1:?usage: tools/tsan.sh BUILD_DIR [JOBS]}
+jobs=${2:-2}
+src=$(cd "$(dirname "$0")/.." && pwd)
+
+san="-fsanitize=thread"
+CC=clang cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_FLAGS="$san -fno-omit-frame-pointer" \
+    -DCMAKE_EXE_LINKER_FLAGS="$san" -DCMAKE_SHARED_LINKER_FLAGS="$san" \
+    -DSGAPI_BUILD_REFERENCE=OFF >/dev/null
+# Only what runs below, to keep the stage short.
+cmake --build "$build" -j "$jobs" --target sgapi-render test_alloc_fail test_api_seq \
+    animate_objects
+
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+# halt_on_error: the first report ends the program with exitcode, which fails this script.
+TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 suppressions=$src/tools/tsan.supp"
+export TSAN_OPTIONS
+
+for t in 1 2 3 5; do
+    echo "tsan: sgapi-render, every scene file, $t threads"
+    "$build/apps/sgapi-render" "$src"/scenes/*.json -o "$out/$t" --threads "$t" --quiet \
+        --png-level 0 >/dev/null
+done
+for t in 2 3 5; do
+    for png in "$out/1"/*.png; do
+        cmp -s "$png" "$out/$t/$(basename "$png")" ||
+            { echo "tsan: $(basename "$png") differs at $t threads" >&2; exit 1; }
+    done
+done
+echo "tsan: a turntable of 4 frames, 3 threads, 2 writers"
+"$build/apps/sgapi-render" "$src/scenes/shadows.json" --scene shadow_teapots -o "$out/turn" \
+    --turntable 4 --threads 3 --writers 2 --quiet >/dev/null
+echo "tsan: allocation failures at 3 and 5 threads"
+"$build/tests/test_alloc_fail" 3
+"$build/tests/test_alloc_fail" 5
+echo "tsan: the committed API sequences at 1 and 3 threads"
+"$build/tests/test_api_seq" "$src/tests/fuzz/corpus" >/dev/null
+echo "tsan: the animation example, 3 threads"
+"$build/apps/examples/animate_objects" 40 32 >/dev/null
+echo "tsan: no report"
