@@ -20,11 +20,8 @@ static const struct {
 #if defined(FUZZ_REPLAY_API)
     {"api", fuzz_api},
 #else
-    {"obj", fuzz_obj},
-    {"scene", fuzz_scene},
-    {"image", fuzz_image},
-    {"off", fuzz_off},
-    {"mtl", fuzz_mtl},
+    {"obj", fuzz_obj}, {"scene", fuzz_scene}, {"image", fuzz_image},
+    {"off", fuzz_off}, {"mtl", fuzz_mtl},
 #endif
 };
 
