@@ -4,89 +4,34 @@
 #include "mtl.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "obj.h"
+#include "text_scan.h"
 
 typedef struct parser {
-    const char *name;
-    size_t line;
-    char *err;
-    size_t errlen;
+    ts_source src; /* its line is never 0 when an error is reported: messages always name one */
     sc_warnings *warnings;
     sc_mtl *out;
     size_t cap;
 } parser;
 
-#if defined(__GNUC__)
-#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
-#else
-#define PRINTF_LIKE(fmt, args)
-#endif
-
-static bool fail(parser *p, const char *fmt, ...) PRINTF_LIKE(2, 3);
-
-/* "name:line: message"; always false. */
-static bool fail(parser *p, const char *fmt, ...) {
-    if (!p->err || p->errlen == 0) return false;
-    int n = snprintf(p->err, p->errlen, "%s:%zu: ", p->name, p->line);
-    if (n >= 0 && (size_t)n < p->errlen) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(p->err + n, p->errlen - (size_t)n, fmt, ap);
-        va_end(ap);
-    }
-    return false;
-}
-
-static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-static bool next_token(const char **s, const char *e, const char **tb, const char **te) {
-    const char *q = *s;
-    while (q < e && is_space(*q)) q++;
-    if (q == e) return false;
-    *tb = q;
-    while (q < e && !is_space(*q)) q++;
-    *te = *s = q;
-    return true;
-}
-
-static bool token_is(const char *tb, const char *te, const char *word) {
-    size_t n = strlen(word);
-    return (size_t)(te - tb) == n && memcmp(tb, word, n) == 0;
-}
-
 /* One finite number token. */
 static bool parse_float(parser *p, const char *tb, const char *te, const char *what, float *out) {
     char buf[64];
     size_t n = (size_t)(te - tb);
-    if (n >= sizeof buf) return fail(p, "'%s': number too long", what);
+    if (n >= sizeof buf) return ts_fail(&p->src, "'%s': number too long", what);
     memcpy(buf, tb, n);
     buf[n] = '\0';
     char *end;
     float f = strtof(buf, &end);
     if (end != buf + n || !isfinite(f))
-        return fail(p, "'%s': not a finite number: '%s'", what, buf);
+        return ts_fail(&p->src, "'%s': not a finite number: '%s'", what, buf);
     *out = f;
     return true;
-}
-
-/* The rest of the line, trimmed, as a new string. */
-static char *rest(const char *s, const char *e) {
-    while (s < e && is_space(*s)) s++;
-    while (e > s && is_space(e[-1])) e--;
-    char *r = malloc((size_t)(e - s) + 1);
-    if (r) {
-        memcpy(r, s, (size_t)(e - s));
-        r[e - s] = '\0';
-    }
-    return r;
 }
 
 /* r g b, each finite and >= 0; "Kd r" alone means r r r (the format allows it). */
@@ -94,18 +39,18 @@ static bool parse_rgb(parser *p, const char *s, const char *e, const char *what,
     const char *tb, *te;
     int n = 0;
     float f[3];
-    while (next_token(&s, e, &tb, &te)) {
-        if (token_is(tb, te, "spectral") || token_is(tb, te, "xyz")) {
+    while (ts_next_token(&s, e, &tb, &te)) {
+        if (ts_token_is(tb, te, "spectral") || ts_token_is(tb, te, "xyz")) {
             sc_warn(p->warnings, SC_WARN_MTL_UNKNOWN, "%s:%zu: '%s %.*s' colours are ignored",
-                    p->name, p->line, what, (int)(te - tb), tb);
+                    p->src.name, p->src.line, what, (int)(te - tb), tb);
             return true;
         }
-        if (n == 3) return fail(p, "'%s' needs 3 numbers (got more)", what);
+        if (n == 3) return ts_fail(&p->src, "'%s' needs 3 numbers (got more)", what);
         if (!parse_float(p, tb, te, what, &f[n])) return false;
-        if (f[n] < 0) return fail(p, "'%s': negative value", what);
+        if (f[n] < 0) return ts_fail(&p->src, "'%s': negative value", what);
         n++;
     }
-    if (n != 1 && n != 3) return fail(p, "'%s' needs 3 numbers (got %d)", what, n);
+    if (n != 1 && n != 3) return ts_fail(&p->src, "'%s' needs 3 numbers (got %d)", what, n);
     for (int i = 0; i < 3; i++) out[i] = f[n == 1 ? 0 : i];
     return true;
 }
@@ -115,15 +60,16 @@ static bool parse_one(parser *p, const char *s, const char *e, const char *what,
                       float *out) {
     const char *tb, *te;
     bool got = false;
-    while (next_token(&s, e, &tb, &te)) {
+    while (ts_next_token(&s, e, &tb, &te)) {
         if (tb[0] == '-' && te - tb > 1 && (tb[1] < '0' || tb[1] > '9') && tb[1] != '.')
             continue; /* an option word */
-        if (got) return fail(p, "'%s' needs one number (got more)", what);
+        if (got) return ts_fail(&p->src, "'%s' needs one number (got more)", what);
         if (!parse_float(p, tb, te, what, out)) return false;
         got = true;
     }
-    if (!got) return fail(p, "'%s' needs a number", what);
-    if (*out < lo || *out > hi) return fail(p, "'%s' %g outside %g..%g", what, *out, lo, hi);
+    if (!got) return ts_fail(&p->src, "'%s' needs a number", what);
+    if (*out < lo || *out > hi)
+        return ts_fail(&p->src, "'%s' %g outside %g..%g", what, *out, lo, hi);
     return true;
 }
 
@@ -136,7 +82,7 @@ static int option_args(const char *tb, const char *te) {
                 {"-clamp", 1},  {"-imfchan", 1}, {"-mm", 2},  {"-o", 3},     {"-s", 3},
                 {"-t", 3},      {"-texres", 1},  {"-type", 1}};
     for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++)
-        if (token_is(tb, te, opts[i].name)) return opts[i].args;
+        if (ts_token_is(tb, te, opts[i].name)) return opts[i].args;
     return -1;
 }
 
@@ -145,7 +91,7 @@ static bool parse_map(parser *p, const char *s, const char *e, char **out) {
     const char *tb, *te;
     for (;;) {
         const char *save = s;
-        if (!next_token(&s, e, &tb, &te)) return fail(p, "'map_Kd' needs a file name");
+        if (!ts_next_token(&s, e, &tb, &te)) return ts_fail(&p->src, "'map_Kd' needs a file name");
         int k = option_args(tb, te);
         if (k < 0) {
             s = save;
@@ -154,7 +100,8 @@ static bool parse_map(parser *p, const char *s, const char *e, char **out) {
         /* -o, -s and -t take 1 to 3 numbers: skip as many as there are. */
         for (int i = 0; i < k; i++) {
             const char *s2 = s;
-            if (!next_token(&s2, e, &tb, &te)) return fail(p, "'map_Kd': option without value");
+            if (!ts_next_token(&s2, e, &tb, &te))
+                return ts_fail(&p->src, "'map_Kd': option without value");
             if (k == 3 && i > 0 &&
                 !(tb[0] == '-' || tb[0] == '.' || (tb[0] >= '0' && tb[0] <= '9')))
                 break;
@@ -162,8 +109,8 @@ static bool parse_map(parser *p, const char *s, const char *e, char **out) {
             s = s2;
         }
     }
-    char *name = rest(s, e);
-    if (!name) return fail(p, "out of memory");
+    char *name = ts_copy_trimmed(s, e);
+    if (!name) return ts_fail(&p->src, "out of memory");
     /* Files written on Windows say .\\dir\\tex.jpg. */
     for (char *q = name; *q; q++)
         if (*q == '\\') *q = '/';
@@ -176,14 +123,14 @@ static bool new_material(parser *p, const char *s, const char *e) {
     sc_mtl *m = p->out;
     if (m->count == p->cap) {
         size_t n = p->cap ? p->cap * 2 : 8;
-        if (n > SIZE_MAX / sizeof *m->materials) return fail(p, "out of memory");
+        if (n > SIZE_MAX / sizeof *m->materials) return ts_fail(&p->src, "out of memory");
         sc_material *q = realloc(m->materials, n * sizeof *q);
-        if (!q) return fail(p, "out of memory");
+        if (!q) return ts_fail(&p->src, "out of memory");
         m->materials = q;
         p->cap = n;
     }
-    char *name = rest(s, e);
-    if (!name) return fail(p, "out of memory");
+    char *name = ts_copy_trimmed(s, e);
+    if (!name) return ts_fail(&p->src, "out of memory");
     m->materials[m->count++] = (sc_material){.name = name,
                                              .diffuse = {1, 1, 1},
                                              .alpha = 1,
@@ -195,33 +142,34 @@ static bool new_material(parser *p, const char *s, const char *e) {
 
 static bool parse_line(parser *p, const char *s, const char *e) {
     const char *tb, *te;
-    if (memchr(s, '\0', (size_t)(e - s))) return fail(p, "NUL byte in the line");
+    if (memchr(s, '\0', (size_t)(e - s))) return ts_fail(&p->src, "NUL byte in the line");
     const char *hash = memchr(s, '#', (size_t)(e - s));
     if (hash) e = hash;
-    if (!next_token(&s, e, &tb, &te)) return true;
-    if (token_is(tb, te, "newmtl")) return new_material(p, s, e);
+    if (!ts_next_token(&s, e, &tb, &te)) return true;
+    if (ts_token_is(tb, te, "newmtl")) return new_material(p, s, e);
     sc_material *cur = p->out->count ? &p->out->materials[p->out->count - 1] : NULL;
-    bool known = token_is(tb, te, "Kd") || token_is(tb, te, "Ks") || token_is(tb, te, "Ns") ||
-                 token_is(tb, te, "d") || token_is(tb, te, "Tr") || token_is(tb, te, "map_Kd");
+    bool known = ts_token_is(tb, te, "Kd") || ts_token_is(tb, te, "Ks") ||
+                 ts_token_is(tb, te, "Ns") || ts_token_is(tb, te, "d") ||
+                 ts_token_is(tb, te, "Tr") || ts_token_is(tb, te, "map_Kd");
     if (!known) {
         sc_warn(p->warnings, SC_WARN_MTL_UNKNOWN,
                 "%s:%zu: '%.*s' (and other statements but "
                 "Kd, Ks, Ns, d, Tr, map_Kd) ignored",
-                p->name, p->line, (int)(te - tb < 20 ? te - tb : 20), tb);
+                p->src.name, p->src.line, (int)(te - tb < 20 ? te - tb : 20), tb);
         return true;
     }
-    if (!cur) return fail(p, "'%.*s' before any newmtl", (int)(te - tb), tb);
-    if (token_is(tb, te, "Kd")) return parse_rgb(p, s, e, "Kd", cur->diffuse);
-    if (token_is(tb, te, "Ks")) return parse_rgb(p, s, e, "Ks", cur->specular);
-    if (token_is(tb, te, "Ns")) {
+    if (!cur) return ts_fail(&p->src, "'%.*s' before any newmtl", (int)(te - tb), tb);
+    if (ts_token_is(tb, te, "Kd")) return parse_rgb(p, s, e, "Kd", cur->diffuse);
+    if (ts_token_is(tb, te, "Ks")) return parse_rgb(p, s, e, "Ks", cur->specular);
+    if (ts_token_is(tb, te, "Ns")) {
         /* Exporters write up to 1000; the fixed-function exponent stops at 128. */
         float ns;
         if (!parse_one(p, s, e, "Ns", 0, 1e6f, &ns)) return false;
         cur->shininess = ns > 128 ? 128 : ns;
         return true;
     }
-    if (token_is(tb, te, "d")) return parse_one(p, s, e, "d", 0, 1, &cur->alpha);
-    if (token_is(tb, te, "Tr")) {
+    if (ts_token_is(tb, te, "d")) return parse_one(p, s, e, "d", 0, 1, &cur->alpha);
+    if (ts_token_is(tb, te, "Tr")) {
         float tr;
         if (!parse_one(p, s, e, "Tr", 0, 1, &tr)) return false;
         cur->alpha = 1 - tr;
@@ -232,20 +180,18 @@ static bool parse_line(parser *p, const char *s, const char *e) {
 
 bool sc_mtl_parse(const char *name, const char *text, size_t len, sc_mtl *out,
                   sc_warnings *warnings, char *err, size_t errlen) {
-    parser p = {.name = name ? name : "(mtl)",
-                .err = err,
-                .errlen = errlen,
+    parser p = {.src = {.name = name ? name : "(mtl)", .err = err, .errlen = errlen},
                 .warnings = warnings,
                 .out = out};
     memset(out, 0, sizeof *out);
     if (err && errlen) err[0] = '\0';
     const char *s = text, *end = text ? text + len : text;
-    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) s += 3;
+    s += ts_bom_length(text, len);
     bool ok = true;
     while (ok && s < end) {
         const char *eol = memchr(s, '\n', (size_t)(end - s));
         if (!eol) eol = end;
-        p.line++;
+        p.src.line++;
         ok = parse_line(&p, s, eol);
         s = eol < end ? eol + 1 : end;
     }

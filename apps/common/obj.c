@@ -8,11 +8,11 @@
 #include "obj.h"
 
 #include <errno.h>
-#include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "text_scan.h"
 
 #define NONE UINT32_MAX /* a face or line vertex without texture coordinate or normal */
 
@@ -22,10 +22,7 @@ typedef struct key3 {
 } key3;
 
 typedef struct parser {
-    const char *name;
-    size_t line;
-    char *err;
-    size_t errlen;
+    ts_source src;
 
     float *v; /* 7 floats per position: x, y, z, r, g, b, a */
     size_t nv, capv;
@@ -49,29 +46,6 @@ typedef struct parser {
     sc_warnings *warnings; /* may be NULL */
 } parser;
 
-/* Lets the compiler check the format arguments of the error helpers. */
-#if defined(__GNUC__)
-#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
-#else
-#define PRINTF_LIKE(fmt, args)
-#endif
-
-static bool fail(parser *p, const char *fmt, ...) PRINTF_LIKE(2, 3);
-
-/* Formats "name:line: message" into the caller's buffer; always returns false. */
-static bool fail(parser *p, const char *fmt, ...) {
-    if (!p->err || p->errlen == 0) return false;
-    int n = p->line ? snprintf(p->err, p->errlen, "%s:%zu: ", p->name, p->line)
-                    : snprintf(p->err, p->errlen, "%s: ", p->name);
-    if (n >= 0 && (size_t)n < p->errlen) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(p->err + n, p->errlen - (size_t)n, fmt, ap);
-        va_end(ap);
-    }
-    return false;
-}
-
 /* Makes room for need elements of elem bytes, doubling; false on overflow or no memory. */
 static bool grow(void **ptr, size_t *cap, size_t need, size_t elem) {
     if (need <= *cap) return true;
@@ -88,40 +62,9 @@ static bool grow(void **ptr, size_t *cap, size_t need, size_t elem) {
     return true;
 }
 
-static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-/* Next whitespace-separated token of [*s, e) into [*tb, *te); false at the end or a comment. */
+/* Next token before a comment: in OBJ a '#' starts one only where a token would start. */
 static bool next_token(const char **s, const char *e, const char **tb, const char **te) {
-    const char *q = *s;
-    while (q < e && is_space(*q)) q++;
-    if (q == e || *q == '#') {
-        *s = q;
-        return false;
-    }
-    *tb = q;
-    while (q < e && !is_space(*q)) q++;
-    *te = q;
-    *s = q;
-    return true;
-}
-
-/* strtof needs a NUL-terminated string, so the token is copied; no valid number is this long. */
-static bool parse_float(parser *p, const char *tb, const char *te, float *out) {
-    char buf[64];
-    size_t n = (size_t)(te - tb);
-    if (n >= sizeof buf) return fail(p, "number too long: '%.20s...'", tb);
-    memcpy(buf, tb, n);
-    buf[n] = '\0';
-    char *end;
-    float f = strtof(buf, &end);
-    if (end != buf + n) return fail(p, "not a number: '%s'", buf);
-    /* "nan" and "inf" spelled out pass through: the renderer drops such triangles, and test
-     * scenes need a way to say so. A finite-looking number that overflows is an error. */
-    if (!isfinite(f) && !strpbrk(buf, "nNiI")) return fail(p, "number out of range: '%s'", buf);
-    *out = f;
-    return true;
+    return ts_next_token(s, e, tb, te) && **tb != '#';
 }
 
 /* Reads up to max numbers of the rest of the line; more than max is an error. */
@@ -130,8 +73,8 @@ static bool parse_floats(parser *p, const char *s, const char *e, float *out, in
     const char *tb, *te;
     int n = 0;
     while (next_token(&s, e, &tb, &te)) {
-        if (n == max) return fail(p, "too many numbers after '%s'", what);
-        if (!parse_float(p, tb, te, &out[n])) return false;
+        if (n == max) return ts_fail(&p->src, "too many numbers after '%s'", what);
+        if (!ts_parse_number(&p->src, tb, te, &out[n], NULL)) return false;
         n++;
     }
     *count = n;
@@ -143,13 +86,13 @@ static bool add_position(parser *p, const char *s, const char *e) {
     int n = 0;
     if (!parse_floats(p, s, e, f, 7, &n, "v")) return false;
     if (n != 3 && n != 4 && n != 6 && n != 7)
-        return fail(p,
-                    "'v' needs x y z, optionally followed by w, by r g b or by r g b a (got %d "
-                    "numbers)",
-                    n);
-    if (p->nv >= SC_MESH_MAX_COUNT) return fail(p, "too many positions");
+        return ts_fail(&p->src,
+                       "'v' needs x y z, optionally followed by w, by r g b or by r g b a (got %d "
+                       "numbers)",
+                       n);
+    if (p->nv >= SC_MESH_MAX_COUNT) return ts_fail(&p->src, "too many positions");
     if (!grow((void **)&p->v, &p->capv, p->nv + 1, 7 * sizeof(float)))
-        return fail(p, "out of memory");
+        return ts_fail(&p->src, "out of memory");
     float *d = p->v + p->nv * 7;
     d[0] = f[0], d[1] = f[1], d[2] = f[2];
     /* The fourth number of the OBJ spec is a weight for rational curves: not a colour, unused. */
@@ -166,10 +109,10 @@ static bool add_texcoord(parser *p, const char *s, const char *e) {
     float f[3] = {0};
     int n = 0;
     if (!parse_floats(p, s, e, f, 3, &n, "vt")) return false;
-    if (n < 1) return fail(p, "'vt' needs at least one number");
-    if (p->nvt >= SC_MESH_MAX_COUNT) return fail(p, "too many texture coordinates");
+    if (n < 1) return ts_fail(&p->src, "'vt' needs at least one number");
+    if (p->nvt >= SC_MESH_MAX_COUNT) return ts_fail(&p->src, "too many texture coordinates");
     if (!grow((void **)&p->vt, &p->capvt, p->nvt + 1, 2 * sizeof(float)))
-        return fail(p, "out of memory");
+        return ts_fail(&p->src, "out of memory");
     p->vt[p->nvt * 2] = f[0];
     p->vt[p->nvt * 2 + 1] = n >= 2 ? f[1] : 0.0f;
     p->nvt++;
@@ -180,10 +123,10 @@ static bool add_normal(parser *p, const char *s, const char *e) {
     float f[3] = {0};
     int n = 0;
     if (!parse_floats(p, s, e, f, 3, &n, "vn")) return false;
-    if (n != 3) return fail(p, "'vn' needs 3 numbers (got %d)", n);
-    if (p->nvn >= SC_MESH_MAX_COUNT) return fail(p, "too many normals");
+    if (n != 3) return ts_fail(&p->src, "'vn' needs 3 numbers (got %d)", n);
+    if (p->nvn >= SC_MESH_MAX_COUNT) return ts_fail(&p->src, "too many normals");
     if (!grow((void **)&p->vn, &p->capvn, p->nvn + 1, 3 * sizeof(float)))
-        return fail(p, "out of memory");
+        return ts_fail(&p->src, "out of memory");
     memcpy(p->vn + p->nvn * 3, f, sizeof f);
     p->nvn++;
     return true;
@@ -215,8 +158,8 @@ static bool resolve(parser *p, long long i, size_t count, const char *what, uint
         *out = (uint32_t)((long long)count + i);
         return true;
     }
-    if (i == 0) return fail(p, "%s index 0 is invalid (indices start at 1)", what);
-    return fail(p, "%s index %lld out of range (%zu defined so far)", what, i, count);
+    if (i == 0) return ts_fail(&p->src, "%s index 0 is invalid (indices start at 1)", what);
+    return ts_fail(&p->src, "%s index %lld out of range (%zu defined so far)", what, i, count);
 }
 
 static uint64_t hash_key(key3 k) {
@@ -246,7 +189,7 @@ static bool rehash(parser *p, size_t cap) {
 static bool vertex_of(parser *p, key3 k, uint32_t *out) {
     if ((p->nkeys + 1) * 2 > p->tablecap) {
         if (p->tablecap > SIZE_MAX / 2 || !rehash(p, p->tablecap ? p->tablecap * 2 : 1024))
-            return fail(p, "out of memory");
+            return ts_fail(&p->src, "out of memory");
     }
     size_t mask = p->tablecap - 1, j = (size_t)hash_key(k) & mask;
     for (; p->table[j]; j = (j + 1) & mask) {
@@ -256,9 +199,9 @@ static bool vertex_of(parser *p, key3 k, uint32_t *out) {
             return true;
         }
     }
-    if (p->nkeys >= SC_MESH_MAX_COUNT) return fail(p, "too many vertices");
+    if (p->nkeys >= SC_MESH_MAX_COUNT) return ts_fail(&p->src, "too many vertices");
     if (!grow((void **)&p->keys, &p->capkeys, p->nkeys + 1, sizeof(key3)))
-        return fail(p, "out of memory");
+        return ts_fail(&p->src, "out of memory");
     p->keys[p->nkeys] = k;
     p->table[j] = (uint32_t)(p->nkeys + 1);
     *out = (uint32_t)p->nkeys++;
@@ -293,15 +236,15 @@ static bool obj_vertex(parser *p, bool line, const char *tb, const char *te, uin
     if (has_c && !resolve(p, c, p->nvn, "normal", &k.vn)) return false;
     return vertex_of(p, k, out);
 bad:
-    return fail(p, "bad %s vertex '%.*s' (expected %s)", line ? "line" : "face",
-                (int)(te - tb < 40 ? te - tb : 40), tb,
-                line ? "a or a/b" : "a, a/b, a//c or a/b/c");
+    return ts_fail(&p->src, "bad %s vertex '%.*s' (expected %s)", line ? "line" : "face",
+                   (int)(te - tb < 40 ? te - tb : 40), tb,
+                   line ? "a or a/b" : "a, a/b, a//c or a/b/c");
 }
 
 static bool emit(parser *p, uint32_t a, uint32_t b, uint32_t c) {
-    if (p->nidx > SC_MESH_MAX_COUNT - 3) return fail(p, "too many triangles");
+    if (p->nidx > SC_MESH_MAX_COUNT - 3) return ts_fail(&p->src, "too many triangles");
     if (!grow((void **)&p->idx, &p->capidx, p->nidx + 3, sizeof(uint32_t)))
-        return fail(p, "out of memory");
+        return ts_fail(&p->src, "out of memory");
     p->idx[p->nidx++] = a;
     p->idx[p->nidx++] = b;
     p->idx[p->nidx++] = c;
@@ -321,7 +264,7 @@ static bool add_face(parser *p, const char *s, const char *e) {
         prev = cur;
         n++;
     }
-    if (n < 3) return fail(p, "a face needs at least 3 vertices (got %zu)", n);
+    if (n < 3) return ts_fail(&p->src, "a face needs at least 3 vertices (got %zu)", n);
     return true;
 }
 
@@ -334,29 +277,17 @@ static bool add_line(parser *p, const char *s, const char *e) {
         uint32_t cur = 0;
         if (!obj_vertex(p, true, tb, te, &cur)) return false;
         if (n >= 1) {
-            if (p->nlidx > SC_MESH_MAX_COUNT - 2) return fail(p, "too many line segments");
+            if (p->nlidx > SC_MESH_MAX_COUNT - 2) return ts_fail(&p->src, "too many line segments");
             if (!grow((void **)&p->lidx, &p->caplidx, p->nlidx + 2, sizeof(uint32_t)))
-                return fail(p, "out of memory");
+                return ts_fail(&p->src, "out of memory");
             p->lidx[p->nlidx++] = prev;
             p->lidx[p->nlidx++] = cur;
         }
         prev = cur;
         n++;
     }
-    if (n < 2) return fail(p, "a line needs at least 2 vertices (got %zu)", n);
+    if (n < 2) return ts_fail(&p->src, "a line needs at least 2 vertices (got %zu)", n);
     return true;
-}
-
-/* The rest of a line, blanks trimmed at both ends, as a new string (names may hold spaces). */
-static char *rest_of_line(const char *s, const char *e) {
-    while (s < e && is_space(*s)) s++;
-    while (e > s && is_space(e[-1])) e--;
-    char *r = malloc((size_t)(e - s) + 1);
-    if (r) {
-        memcpy(r, s, (size_t)(e - s));
-        r[e - s] = '\0';
-    }
-    return r;
 }
 
 /* usemtl: the triangles from here on take the named material. */
@@ -364,9 +295,9 @@ static bool use_material(parser *p, const char *s, const char *e) {
     sc_obj_extra *x = p->extra;
     if (!x) return true;
     if (!grow((void **)&x->groups, &p->capgroups, x->group_count + 1, sizeof *x->groups))
-        return fail(p, "out of memory");
-    char *name = rest_of_line(s, e);
-    if (!name) return fail(p, "out of memory");
+        return ts_fail(&p->src, "out of memory");
+    char *name = ts_copy_trimmed(s, e);
+    if (!name) return ts_fail(&p->src, "out of memory");
     x->groups[x->group_count++] =
         (sc_obj_group){.material = name, .first_index = (uint32_t)p->nidx};
     return true;
@@ -377,24 +308,20 @@ static bool add_mtllib(parser *p, const char *s, const char *e) {
     sc_obj_extra *x = p->extra;
     if (!x) return true;
     if (!grow((void **)&x->mtllibs, &p->capmtllibs, x->mtllib_count + 1, sizeof *x->mtllibs))
-        return fail(p, "out of memory");
-    char *name = rest_of_line(s, e);
-    if (!name) return fail(p, "out of memory");
+        return ts_fail(&p->src, "out of memory");
+    char *name = ts_copy_trimmed(s, e);
+    if (!name) return ts_fail(&p->src, "out of memory");
     if (name[0] == '\0') {
         free(name);
-        return fail(p, "'mtllib' needs a file name");
+        return ts_fail(&p->src, "'mtllib' needs a file name");
     }
     x->mtllibs[x->mtllib_count++] = name;
     return true;
 }
 
-static bool token_is(const char *tb, size_t n, const char *word) {
-    return strlen(word) == n && memcmp(tb, word, n) == 0;
-}
-
 static bool parse_line(parser *p, const char *s, const char *e) {
     const char *tb, *te;
-    if (memchr(s, '\0', (size_t)(e - s))) return fail(p, "NUL byte in the line");
+    if (memchr(s, '\0', (size_t)(e - s))) return ts_fail(&p->src, "NUL byte in the line");
     if (!next_token(&s, e, &tb, &te)) return true; /* blank or comment */
     size_t n = (size_t)(te - tb);
     if (n == 1 && tb[0] == 'v') return add_position(p, s, e);
@@ -402,20 +329,20 @@ static bool parse_line(parser *p, const char *s, const char *e) {
     if (n == 2 && tb[0] == 'v' && tb[1] == 'n') return add_normal(p, s, e);
     if (n == 1 && tb[0] == 'f') return add_face(p, s, e);
     if (n == 1 && tb[0] == 'l') return add_line(p, s, e);
-    if (token_is(tb, n, "usemtl")) return use_material(p, s, e);
-    if (token_is(tb, n, "mtllib")) return add_mtllib(p, s, e);
+    if (ts_token_is(tb, te, "usemtl")) return use_material(p, s, e);
+    if (ts_token_is(tb, te, "mtllib")) return add_mtllib(p, s, e);
     if (n == 1 && tb[0] == 'p') {
-        sc_warn(p->warnings, SC_WARN_OBJ_POINTS, "%s:%zu: points (p) are not drawn", p->name,
-                p->line);
+        sc_warn(p->warnings, SC_WARN_OBJ_POINTS, "%s:%zu: points (p) are not drawn", p->src.name,
+                p->src.line);
         return true;
     }
     /* Names, groups and smoothing groups change nothing drawn; free-form geometry (curves,
      * surfaces) is not supported and said so once. */
-    if (token_is(tb, n, "o") || token_is(tb, n, "g") || token_is(tb, n, "s") ||
-        token_is(tb, n, "mg"))
+    if (ts_token_is(tb, te, "o") || ts_token_is(tb, te, "g") || ts_token_is(tb, te, "s") ||
+        ts_token_is(tb, te, "mg"))
         return true;
-    sc_warn(p->warnings, SC_WARN_OBJ_UNKNOWN, "%s:%zu: '%.*s' statements are ignored", p->name,
-            p->line, (int)(n < 20 ? n : 20), tb);
+    sc_warn(p->warnings, SC_WARN_OBJ_UNKNOWN, "%s:%zu: '%.*s' statements are ignored", p->src.name,
+            p->src.line, (int)(n < 20 ? n : 20), tb);
     return true;
 }
 
@@ -427,8 +354,8 @@ static void *alloc_array(size_t n, size_t elem) {
 
 /* Builds the output arrays from the keys. */
 static bool finish(parser *p, sc_mesh *out) {
-    p->line = 0;
-    if (p->nidx == 0 && p->nlidx == 0) return fail(p, "no faces or lines");
+    p->src.line = 0;
+    if (p->nidx == 0 && p->nlidx == 0) return ts_fail(&p->src, "no faces or lines");
     bool any_vt = false, any_vn = false;
     for (size_t i = 0; i < p->nkeys; i++) {
         any_vt |= p->keys[i].vt != NONE;
@@ -442,7 +369,7 @@ static bool finish(parser *p, sc_mesh *out) {
     m.normals = any_vn ? alloc_array(n, 3 * sizeof(float)) : NULL;
     if (!m.positions || !m.colors || (any_vt && !m.texcoords) || (any_vn && !m.normals)) {
         sc_mesh_free(&m);
-        return fail(p, "out of memory");
+        return ts_fail(&p->src, "out of memory");
     }
     for (size_t i = 0; i < n; i++) {
         const key3 k = p->keys[i];
@@ -492,9 +419,7 @@ bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, 
 
 bool sc_obj_parse_ex(const char *name, const char *text, size_t len, sc_mesh *out,
                      sc_obj_extra *extra, sc_warnings *warnings, char *err, size_t errlen) {
-    parser p = {.name = name ? name : "(obj)",
-                .err = err,
-                .errlen = errlen,
+    parser p = {.src = {.name = name ? name : "(obj)", .err = err, .errlen = errlen},
                 .extra = extra,
                 .warnings = warnings};
     memset(out, 0, sizeof *out);
@@ -502,12 +427,11 @@ bool sc_obj_parse_ex(const char *name, const char *text, size_t len, sc_mesh *ou
     if (err && errlen) err[0] = '\0';
     bool ok = true;
     const char *s = text, *end = text ? text + len : text;
-    /* Editors on some systems start a UTF-8 file with a byte-order mark. */
-    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) s += 3;
+    s += ts_bom_length(text, len);
     while (ok && s < end) {
         const char *eol = memchr(s, '\n', (size_t)(end - s));
         if (!eol) eol = end;
-        p.line++;
+        p.src.line++;
         ok = parse_line(&p, s, eol);
         s = eol < end ? eol + 1 : end;
     }

@@ -8,49 +8,20 @@
  */
 #include "off.h"
 
-#include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "text_scan.h"
+
 /* Most numbers on one line: a vertex has at most 3 + 3 + 4 + 2, a face's count is separate. */
 #define MAX_VERTEX_NUMBERS 12
 
 typedef struct reader {
-    const char *name;
+    ts_source src;       /* its line: of the line last returned */
     const char *s, *end; /* what is left of the text */
-    size_t line;         /* of the line last returned */
-    char *err;
-    size_t errlen;
 } reader;
-
-#if defined(__GNUC__)
-#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
-#else
-#define PRINTF_LIKE(fmt, args)
-#endif
-
-static bool fail(reader *r, const char *fmt, ...) PRINTF_LIKE(2, 3);
-
-/* "name:line: message" into the caller's buffer; always false. */
-static bool fail(reader *r, const char *fmt, ...) {
-    if (!r->err || r->errlen == 0) return false;
-    int n = r->line ? snprintf(r->err, r->errlen, "%s:%zu: ", r->name, r->line)
-                    : snprintf(r->err, r->errlen, "%s: ", r->name);
-    if (n >= 0 && (size_t)n < r->errlen) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(r->err + n, r->errlen - (size_t)n, fmt, ap);
-        va_end(ap);
-    }
-    return false;
-}
-
-static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
 
 /* The next line holding anything but blanks and a comment, as [*b, *e) without the comment;
  * false at the end of the text. */
@@ -60,9 +31,9 @@ static bool next_line(reader *r, const char **b, const char **e) {
         if (!eol) eol = r->end;
         const char *hash = memchr(r->s, '#', (size_t)(eol - r->s));
         const char *q = r->s, *qe = hash ? hash : eol;
-        r->line++;
+        r->src.line++;
         r->s = eol < r->end ? eol + 1 : r->end;
-        while (q < qe && is_space(*q)) q++;
+        while (q < qe && ts_is_space(*q)) q++;
         if (q < qe) {
             *b = q;
             *e = qe;
@@ -72,45 +43,17 @@ static bool next_line(reader *r, const char **b, const char **e) {
     return false;
 }
 
-/* Next token of [*s, e) into [*tb, *te); false when none is left. */
-static bool next_token(const char **s, const char *e, const char **tb, const char **te) {
-    const char *q = *s;
-    while (q < e && is_space(*q)) q++;
-    if (q == e) return false;
-    *tb = q;
-    while (q < e && !is_space(*q)) q++;
-    *te = *s = q;
-    return true;
-}
-
-/* A number token; *integer tells whether it was written as one (no point, no exponent). */
-static bool parse_number(reader *r, const char *tb, const char *te, float *out, bool *integer) {
-    char buf[64];
-    size_t n = (size_t)(te - tb);
-    if (n >= sizeof buf) return fail(r, "number too long: '%.20s...'", tb);
-    memcpy(buf, tb, n);
-    buf[n] = '\0';
-    char *end;
-    float f = strtof(buf, &end);
-    if (end != buf + n) return fail(r, "not a number: '%s'", buf);
-    /* nan and inf spelled out pass, as in OBJ files: such triangles are not drawn. */
-    if (!isfinite(f) && !strpbrk(buf, "nNiI")) return fail(r, "number out of range: '%s'", buf);
-    *out = f;
-    if (integer) *integer = !strpbrk(buf, ".eEnNiI");
-    return true;
-}
-
 /* Up to max numbers of a line; *n gets how many there were, or max + 1 when there are more. */
 static bool parse_numbers(reader *r, const char *s, const char *e, float *out, bool *integer,
                           int max, int *n) {
     const char *tb, *te;
     int k = 0;
-    while (next_token(&s, e, &tb, &te)) {
+    while (ts_next_token(&s, e, &tb, &te)) {
         if (k == max) {
             *n = max + 1;
             return true;
         }
-        if (!parse_number(r, tb, te, &out[k], integer ? &integer[k] : NULL)) return false;
+        if (!ts_parse_number(&r->src, tb, te, &out[k], integer ? &integer[k] : NULL)) return false;
         k++;
     }
     *n = k;
@@ -120,15 +63,15 @@ static bool parse_numbers(reader *r, const char *s, const char *e, float *out, b
 /* A non-negative integer count token. */
 static bool parse_count(reader *r, const char *tb, const char *te, const char *what, size_t *out) {
     size_t v = 0;
-    if (tb == te) return fail(r, "missing %s", what);
+    if (tb == te) return ts_fail(&r->src, "missing %s", what);
     for (const char *q = tb; q < te; q++) {
         if (*q < '0' || *q > '9')
-            return fail(r, "%s is not a count: '%.*s'", what, (int)(te - tb < 20 ? te - tb : 20),
-                        tb);
-        if (v > SC_MESH_MAX_COUNT) return fail(r, "%s too large", what);
+            return ts_fail(&r->src, "%s is not a count: '%.*s'", what,
+                           (int)(te - tb < 20 ? te - tb : 20), tb);
+        if (v > SC_MESH_MAX_COUNT) return ts_fail(&r->src, "%s too large", what);
         v = v * 10 + (size_t)(*q - '0');
     }
-    if (v > SC_MESH_MAX_COUNT) return fail(r, "%s too large", what);
+    if (v > SC_MESH_MAX_COUNT) return ts_fail(&r->src, "%s too large", what);
     *out = v;
     return true;
 }
@@ -154,9 +97,9 @@ static bool parse_keyword(reader *r, const char *tb, const char *te, header *h, 
     if (qe - q >= 2 && q[0] == 'S' && q[1] == 'T') h->st = true, q += 2;
     if (q < qe && *q == 'C') h->c = true, q++;
     if (q < qe && *q == 'N') h->n = true, q++;
-    if (q < qe && *q == '4') return fail(r, "4-dimensional OFF (4OFF) is not supported");
-    if (q < qe && *q == 'n') return fail(r, "n-dimensional OFF (nOFF) is not supported");
-    if (q != qe) return fail(r, "unknown OFF keyword '%.*s'", (int)(n < 20 ? n : 20), tb);
+    if (q < qe && *q == '4') return ts_fail(&r->src, "4-dimensional OFF (4OFF) is not supported");
+    if (q < qe && *q == 'n') return ts_fail(&r->src, "n-dimensional OFF (nOFF) is not supported");
+    if (q != qe) return ts_fail(&r->src, "unknown OFF keyword '%.*s'", (int)(n < 20 ? n : 20), tb);
     return true;
 }
 
@@ -186,50 +129,50 @@ static bool grow(void **p, size_t *cap, size_t need, size_t elem) {
 
 bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
                   sc_warnings *warnings, char *err, size_t errlen) {
-    reader r = {
-        .name = name ? name : "(off)", .s = text, .end = text + len, .err = err, .errlen = errlen};
+    reader r = {.src = {.name = name ? name : "(off)", .err = err, .errlen = errlen},
+                .s = text,
+                .end = text + len};
     memset(out, 0, sizeof *out);
     if (err && errlen) err[0] = '\0';
-    if (!text) return fail(&r, "empty file");
+    if (!text) return ts_fail(&r.src, "empty file");
     if (memchr(text, '\0', len))
-        return fail(&r, "NUL byte in the file (binary OFF is not supported)");
-    /* Editors on some systems start a UTF-8 file with a byte-order mark. */
-    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) r.s += 3;
+        return ts_fail(&r.src, "NUL byte in the file (binary OFF is not supported)");
+    r.s += ts_bom_length(text, len);
 
     header h = {0};
     const char *b = NULL, *e = NULL, *tb = NULL, *te = NULL;
-    if (!next_line(&r, &b, &e)) return fail(&r, "empty file: no OFF header");
+    if (!next_line(&r, &b, &e)) return ts_fail(&r.src, "empty file: no OFF header");
     const char *s = b;
-    next_token(&s, e, &tb, &te);
+    ts_next_token(&s, e, &tb, &te);
     bool is_kw;
     if (!parse_keyword(&r, tb, te, &h, &is_kw)) return false;
     /* The keyword may be left out, and the counts may follow it on the same line. */
     if (!is_kw) s = b;
-    if (is_kw && next_token(&s, e, &tb, &te)) {
+    if (is_kw && ts_next_token(&s, e, &tb, &te)) {
         if (te - tb == 6 && memcmp(tb, "BINARY", 6) == 0)
-            return fail(&r, "binary OFF is not supported");
+            return ts_fail(&r.src, "binary OFF is not supported");
         s = tb;
     } else if (is_kw) {
-        if (!next_line(&r, &b, &e)) return fail(&r, "missing the vertex and face counts");
+        if (!next_line(&r, &b, &e)) return ts_fail(&r.src, "missing the vertex and face counts");
         s = b;
     }
     size_t nv, nf, ne;
-    if (!next_token(&s, e, &tb, &te)) return fail(&r, "missing the vertex count");
+    if (!ts_next_token(&s, e, &tb, &te)) return ts_fail(&r.src, "missing the vertex count");
     if (!parse_count(&r, tb, te, "vertex count", &nv)) return false;
-    if (!next_token(&s, e, &tb, &te)) return fail(&r, "missing the face count");
+    if (!ts_next_token(&s, e, &tb, &te)) return ts_fail(&r.src, "missing the face count");
     if (!parse_count(&r, tb, te, "face count", &nf)) return false;
-    if (next_token(&s, e, &tb, &te) && !parse_count(&r, tb, te, "edge count", &ne)) return false;
-    if (next_token(&s, e, &tb, &te)) return fail(&r, "more than 3 counts");
+    if (ts_next_token(&s, e, &tb, &te) && !parse_count(&r, tb, te, "edge count", &ne)) return false;
+    if (ts_next_token(&s, e, &tb, &te)) return ts_fail(&r.src, "more than 3 counts");
     /* Each vertex takes at least "0 0 0\n" and each face at least "3 0 1 2\n": a header that
      * claims more than the rest of the file could hold is refused before allocating for it. */
     size_t left = (size_t)(r.end - r.s);
     if (nv > left / 6 || nf > left / 8)
-        return fail(&r,
-                    "the header claims %zu vertices and %zu faces, more than the %zu bytes "
-                    "after it can hold",
-                    nv, nf, left);
-    if (nv == 0) return fail(&r, "no vertices");
-    if (nf == 0) return fail(&r, "no faces");
+        return ts_fail(&r.src,
+                       "the header claims %zu vertices and %zu faces, more than the %zu bytes "
+                       "after it can hold",
+                       nv, nf, left);
+    if (nv == 0) return ts_fail(&r.src, "no vertices");
+    if (nf == 0) return ts_fail(&r.src, "no faces");
 
     bool ok = false;
     float *pos = malloc(nv * 3 * sizeof(float));
@@ -242,7 +185,7 @@ bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
     fl.has_color = malloc(nf);
     sc_mesh m = {0};
     if (!pos || !col || (h.n && !nrm) || (h.st && !st) || !fl.start || !fl.color || !fl.has_color) {
-        fail(&r, "out of memory");
+        ts_fail(&r.src, "out of memory");
         goto done;
     }
 
@@ -250,7 +193,7 @@ bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
      * is read as coloured too: several tools write colours without saying COFF. */
     for (size_t i = 0; i < nv; i++) {
         if (!next_line(&r, &b, &e)) {
-            fail(&r, "the file ends after %zu of its %zu vertices", i, nv);
+            ts_fail(&r.src, "the file ends after %zu of its %zu vertices", i, nv);
             goto done;
         }
         float f[MAX_VERTEX_NUMBERS];
@@ -261,10 +204,10 @@ bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
         int ncol = n - fixed;
         bool good = h.c ? (ncol == 3 || ncol == 4) : (ncol == 0 || ncol == 3 || ncol == 4);
         if (!good) {
-            fail(&r, "vertex %zu has %d numbers; %s expects x y z%s%s%s", i, n,
-                 h.st ? (h.c ? (h.n ? "STCNOFF" : "STCOFF") : (h.n ? "STNOFF" : "STOFF"))
-                      : (h.c ? (h.n ? "CNOFF" : "COFF") : (h.n ? "NOFF" : "OFF")),
-                 h.n ? " nx ny nz" : "", h.c ? " r g b [a]" : "", h.st ? " s t" : "");
+            ts_fail(&r.src, "vertex %zu has %d numbers; %s expects x y z%s%s%s", i, n,
+                    h.st ? (h.c ? (h.n ? "STCNOFF" : "STCOFF") : (h.n ? "STNOFF" : "STOFF"))
+                         : (h.c ? (h.n ? "CNOFF" : "COFF") : (h.n ? "NOFF" : "OFF")),
+                    h.n ? " nx ny nz" : "", h.c ? " r g b [a]" : "", h.st ? " s t" : "");
             goto done;
         }
         memcpy(pos + i * 3, f, 3 * sizeof(float));
@@ -283,28 +226,28 @@ bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
     bool any_face_color = false;
     for (size_t i = 0; i < nf; i++) {
         if (!next_line(&r, &b, &e)) {
-            fail(&r, "the file ends after %zu of its %zu faces", i, nf);
+            ts_fail(&r.src, "the file ends after %zu of its %zu faces", i, nf);
             goto done;
         }
         s = b;
         size_t k;
-        next_token(&s, e, &tb, &te);
+        ts_next_token(&s, e, &tb, &te);
         if (!parse_count(&r, tb, te, "face vertex count", &k)) goto done;
         size_t first = fl.nidx;
         for (size_t j = 0; j < k; j++) {
             size_t vi;
-            if (!next_token(&s, e, &tb, &te)) {
-                fail(&r, "face %zu names %zu vertices but lists %zu", i, k, j);
+            if (!ts_next_token(&s, e, &tb, &te)) {
+                ts_fail(&r.src, "face %zu names %zu vertices but lists %zu", i, k, j);
                 goto done;
             }
             if (!parse_count(&r, tb, te, "vertex index", &vi)) goto done;
             if (vi >= nv) {
-                fail(&r, "vertex index %zu out of range (%zu vertices; indices start at 0)", vi,
-                     nv);
+                ts_fail(&r.src, "vertex index %zu out of range (%zu vertices; indices start at 0)",
+                        vi, nv);
                 goto done;
             }
             if (!grow((void **)&fl.idx, &fl.capidx, fl.nidx + 1, sizeof(uint32_t))) {
-                fail(&r, "out of memory");
+                ts_fail(&r.src, "out of memory");
                 goto done;
             }
             fl.idx[fl.nidx++] = (uint32_t)vi;
@@ -314,20 +257,22 @@ bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
         int n;
         if (!parse_numbers(&r, s, e, f, in, 4, &n)) goto done;
         if (n == 2 || n > 4) {
-            fail(&r, "face %zu: a face colour is 3 or 4 numbers (or a colour-map index), got %d", i,
-                 n);
+            ts_fail(&r.src,
+                    "face %zu: a face colour is 3 or 4 numbers (or a colour-map index), got %d", i,
+                    n);
             goto done;
         }
         if (k < 3) {
             sc_warn(warnings, SC_WARN_OFF_SMALL_FACE,
-                    "%s:%zu: faces of fewer than 3 vertices (points, edges) are not drawn", r.name,
-                    r.line);
+                    "%s:%zu: faces of fewer than 3 vertices (points, edges) are not drawn",
+                    r.src.name, r.src.line);
             fl.nidx = first;
             continue;
         }
         if (n == 1)
             sc_warn(warnings, SC_WARN_OFF_COLORMAP,
-                    "%s:%zu: colour-map indices as face colours are ignored", r.name, r.line);
+                    "%s:%zu: colour-map indices as face colours are ignored", r.src.name,
+                    r.src.line);
         size_t fi = fl.nfaces++;
         fl.start[fi] = first;
         fl.has_color[fi] = n >= 3;
@@ -337,9 +282,9 @@ bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
         }
     }
     fl.start[fl.nfaces] = fl.nidx;
-    r.line = 0;
+    r.src.line = 0;
     if (fl.nfaces == 0) {
-        fail(&r, "no face of 3 or more vertices");
+        ts_fail(&r.src, "no face of 3 or more vertices");
         goto done;
     }
 
@@ -349,7 +294,7 @@ bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
     for (size_t i = 0; i < fl.nfaces; i++) ntri += fl.start[i + 1] - fl.start[i] - 2;
     size_t nout = any_face_color ? fl.nidx : nv;
     if (ntri > SC_MESH_MAX_COUNT / 3 || nout > SC_MESH_MAX_COUNT) {
-        fail(&r, "too many triangles");
+        ts_fail(&r.src, "too many triangles");
         goto done;
     }
     m.vertex_count = (uint32_t)nout;
@@ -360,7 +305,7 @@ bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
     m.index_count = (uint32_t)(ntri * 3);
     m.indices = malloc(ntri * 3 * sizeof(uint32_t));
     if (!m.positions || !m.colors || (h.n && !m.normals) || (h.st && !m.texcoords) || !m.indices) {
-        fail(&r, "out of memory");
+        ts_fail(&r.src, "out of memory");
         goto done;
     }
     for (size_t o = 0; o < nout; o++) {

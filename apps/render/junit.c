@@ -8,37 +8,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "markup.h"
 #include "report.h"
-
-/* Text for an attribute or element: markup characters escaped; control characters, which XML 1.0
- * cannot hold, become '?'. */
-static void put_escaped(FILE *f, const char *s) {
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        switch (c) {
-        case '&':
-            fputs("&amp;", f);
-            break;
-        case '<':
-            fputs("&lt;", f);
-            break;
-        case '>':
-            fputs("&gt;", f);
-            break;
-        case '"':
-            fputs("&quot;", f);
-            break;
-        case '\'':
-            fputs("&apos;", f);
-            break;
-        default:
-            if (c < 0x20 && c != '\t' && c != '\n' && c != '\r')
-                fputc('?', f);
-            else
-                fputc(c, f);
-        }
-    }
-}
 
 /* The path an attachment line names: the report's copy, or the file as written. */
 static void put_attachment(FILE *f, const rg_scene *s, const char *report_dir, const char *kind,
@@ -48,11 +19,11 @@ static void put_attachment(FILE *f, const rg_scene *s, const char *report_dir, c
     if (report_dir) {
         char rel[600];
         rg_report_image_name(s->name, kind, rel, sizeof rel);
-        put_escaped(f, report_dir);
+        rg_put_markup(f, report_dir, RG_MARKUP_XML);
         fputc('/', f);
-        put_escaped(f, rel);
+        rg_put_markup(f, rel, RG_MARKUP_XML);
     } else {
-        put_escaped(f, path);
+        rg_put_markup(f, path, RG_MARKUP_XML);
     }
     fputs("]]\n", f);
 }
@@ -103,7 +74,7 @@ bool rg_write_junit(const char *path, const rg_scene *scenes, size_t n, const ch
             time_s += scenes[k].time_s;
         }
         fputs("  <testsuite name=\"", f);
-        put_escaped(f, scenes[i].suite);
+        rg_put_markup(f, scenes[i].suite, RG_MARKUP_XML);
         fprintf(f,
                 "\" tests=\"%zu\" failures=\"%zu\" errors=\"0\" skipped=\"0\" time=\"%.6f\" "
                 "timestamp=\"%s\">\n",
@@ -112,17 +83,17 @@ bool rg_write_junit(const char *path, const rg_scene *scenes, size_t n, const ch
             const rg_scene *s = &scenes[k];
             if (strcmp(s->suite, scenes[i].suite)) continue;
             fputs("    <testcase classname=\"", f);
-            put_escaped(f, s->suite);
+            rg_put_markup(f, s->suite, RG_MARKUP_XML);
             fputs("\" name=\"", f);
-            put_escaped(f, s->name);
+            rg_put_markup(f, s->name, RG_MARKUP_XML);
             fprintf(f, "\" time=\"%.6f\">\n", s->time_s);
             if (!s->passed) {
                 fputs("      <failure type=\"image regression\" message=\"", f);
-                put_escaped(f, s->reason);
+                rg_put_markup(f, s->reason, RG_MARKUP_XML);
                 fputs("\">", f);
-                put_escaped(f, s->name);
+                rg_put_markup(f, s->name, RG_MARKUP_XML);
                 fputs(": ", f);
-                put_escaped(f, s->reason);
+                rg_put_markup(f, s->reason, RG_MARKUP_XML);
                 if (s->golden_updated) fputs(" (golden image updated from this run)", f);
                 fputs("</failure>\n", f);
             }

@@ -19,6 +19,8 @@
 
 #include <cJSON.h>
 
+#include "markup.h"
+
 /* Creates one folder; an existing one is fine. */
 static int mkdir_p_one(const char *path) {
     struct stat st;
@@ -30,31 +32,6 @@ static int mkdir_p_one(const char *path) {
 
 void rg_report_image_name(const char *scene, const char *kind, char *out, size_t len) {
     snprintf(out, len, "img/%s.%s.png", scene, kind);
-}
-
-/* Text in HTML, in an element or a quoted attribute. */
-static void put_html(FILE *f, const char *s) {
-    for (; *s; s++) {
-        switch (*s) {
-        case '&':
-            fputs("&amp;", f);
-            break;
-        case '<':
-            fputs("&lt;", f);
-            break;
-        case '>':
-            fputs("&gt;", f);
-            break;
-        case '"':
-            fputs("&quot;", f);
-            break;
-        case '\'':
-            fputs("&#39;", f);
-            break;
-        default:
-            fputc(*s, f);
-        }
-    }
 }
 
 /* A relative URL: every byte but the unreserved ones and '/' percent-encoded. */
@@ -256,11 +233,11 @@ static void put_image(FILE *f, const rg_scene *s, const char *kind, const char *
 static void put_scene(FILE *f, const rg_scene *s, const int expected_size[2]) {
     char rel[600];
     fprintf(f, "<article class=\"scene %s\" id=\"scene-", s->passed ? "pass" : "fail");
-    put_html(f, s->name);
+    rg_put_markup(f, s->name, RG_MARKUP_HTML);
     fprintf(f, "\" data-width=\"%d\" data-height=\"%d\" data-key=\"", s->width, s->height);
-    put_html(f, s->suite);
+    rg_put_markup(f, s->suite, RG_MARKUP_HTML);
     fputc('/', f);
-    put_html(f, s->name);
+    rg_put_markup(f, s->name, RG_MARKUP_HTML);
     fputc('"', f);
     /* The switch and swipe views lay the two images over each other: same size only. */
     bool overlay =
@@ -275,13 +252,13 @@ static void put_scene(FILE *f, const rg_scene *s, const int expected_size[2]) {
         fputc('"', f);
     }
     fputs(">\n<h3>", f);
-    put_html(f, s->name);
+    rg_put_markup(f, s->name, RG_MARKUP_HTML);
     fputs(" <small>", f);
-    put_html(f, s->suite);
+    rg_put_markup(f, s->suite, RG_MARKUP_HTML);
     fprintf(f, " &middot; %d &times; %d</small></h3>\n", s->width, s->height);
     if (!s->passed) {
         fputs("<p class=\"reason\">", f);
-        put_html(f, s->reason);
+        rg_put_markup(f, s->reason, RG_MARKUP_HTML);
         fputs("</p>\n", f);
     }
     if (s->golden_updated)
@@ -338,9 +315,9 @@ static bool write_html(const char *path, const rg_scene *scenes, size_t n, const
             "scenes</h1>\n",
             failed, n - failed, n);
     fputs("<p class=\"meta\">Command: <code id=\"command\">", f);
-    put_html(f, command);
+    rg_put_markup(f, command, RG_MARKUP_HTML);
     fputs("</code></p>\n<p class=\"meta legend\">Golden images: <code>", f);
-    put_html(f, golden);
+    rg_put_markup(f, golden, RG_MARKUP_HTML);
     fprintf(f,
             "</code> &middot; written %s &middot; heat map: "
             "<span style=\"background:#000\"></span> equal, "
