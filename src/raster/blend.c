@@ -5,13 +5,11 @@
 #include "raster/blend.h"
 
 #include "raster/depth_simd.h"
-#include "raster/rast_walk.h"
+#include "raster/blend_walk.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-
-enum { Z_NONE, Z_ANY };
 
 /* Depth test of the covered pixels of a tile: the mask of those that pass (their depth written
  * when the pipeline writes depth). */
@@ -48,13 +46,6 @@ static inline __attribute__((always_inline)) void blend_scalar(const void *vctx,
     }
 }
 
-#define SG_BLEND_FN(name, body, zm, zw)                                                            \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        body(c, t, x0, y0, m, zm, zw);                                                             \
-    }                                                                                              \
-    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
-    }
 SG_BLEND_FN(blend_none_0, blend_scalar, Z_NONE, 0)
 SG_BLEND_FN(blend_none_1, blend_scalar, Z_NONE, 1)
 SG_BLEND_FN(blend_any_0, blend_scalar, Z_ANY, 0)

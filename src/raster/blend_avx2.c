@@ -4,7 +4,7 @@
 #include "raster/blend.h"
 
 #include "raster/depth_simd.h"
-#include "raster/rast_walk.h"
+#include "raster/blend_walk.h"
 
 #if defined(__AVX2__)
 #include <immintrin.h>
@@ -22,8 +22,6 @@ static inline __m256i blend_lanes(__m256i s, __m256i d) {
     __m256i ia = _mm256_sub_epi16(_mm256_set1_epi16(255), a);
     return _mm256_add_epi16(mul_unorm8(s, a), mul_unorm8(d, ia));
 }
-
-enum { Z_NONE, Z_ANY };
 
 static inline __attribute__((always_inline)) void blend_avx2(const void *vctx, const sg_tri *t,
                                                              int x0, int y0, uint32_t mask,
@@ -68,17 +66,10 @@ static inline __attribute__((always_inline)) void blend_avx2(const void *vctx, c
     }
 }
 
-#define SG_BLEND_FN(name, zm, zw)                                                                  \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        blend_avx2(c, t, x0, y0, m, zm, zw);                                                       \
-    }                                                                                              \
-    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
-    }
-SG_BLEND_FN(blend_none_0, Z_NONE, 0)
-SG_BLEND_FN(blend_none_1, Z_NONE, 1)
-SG_BLEND_FN(blend_any_0, Z_ANY, 0)
-SG_BLEND_FN(blend_any_1, Z_ANY, 1)
+SG_BLEND_FN(blend_none_0, blend_avx2, Z_NONE, 0)
+SG_BLEND_FN(blend_none_1, blend_avx2, Z_NONE, 1)
+SG_BLEND_FN(blend_any_0, blend_avx2, Z_ANY, 0)
+SG_BLEND_FN(blend_any_1, blend_avx2, Z_ANY, 1)
 
 sg_raster_fn sg_blend_avx2(bool depth_test, bool depth_write) {
     static const sg_raster_fn fns[2][2] = {{blend_none_0, blend_none_1},

@@ -4,7 +4,7 @@
 #include "raster/blend.h"
 
 #include "raster/depth_neon.h"
-#include "raster/rast_walk.h"
+#include "raster/blend_walk.h"
 
 #if defined(__aarch64__) && defined(__ARM_NEON)
 
@@ -26,8 +26,6 @@ static inline uint8x16_t blend4(uint8x16_t s, uint8x16_t d) {
                               mul_unorm8(vmovl_high_u8(d), vmovl_high_u8(ia)));
     return vcombine_u8(vqmovn_u16(lo), vqmovn_u16(hi));
 }
-
-enum { Z_NONE, Z_ANY };
 
 static inline __attribute__((always_inline)) void blend_neon(const void *vctx, const sg_tri *t,
                                                              int x0, int y0, uint32_t mask,
@@ -64,17 +62,10 @@ static inline __attribute__((always_inline)) void blend_neon(const void *vctx, c
     }
 }
 
-#define SG_BLEND_FN(name, zm, zw)                                                                  \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        blend_neon(c, t, x0, y0, m, zm, zw);                                                       \
-    }                                                                                              \
-    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
-    }
-SG_BLEND_FN(blend_none_0, Z_NONE, 0)
-SG_BLEND_FN(blend_none_1, Z_NONE, 1)
-SG_BLEND_FN(blend_any_0, Z_ANY, 0)
-SG_BLEND_FN(blend_any_1, Z_ANY, 1)
+SG_BLEND_FN(blend_none_0, blend_neon, Z_NONE, 0)
+SG_BLEND_FN(blend_none_1, blend_neon, Z_NONE, 1)
+SG_BLEND_FN(blend_any_0, blend_neon, Z_ANY, 0)
+SG_BLEND_FN(blend_any_1, blend_neon, Z_ANY, 1)
 
 sg_raster_fn sg_blend_neon(bool depth_test, bool depth_write) {
     static const sg_raster_fn fns[2][2] = {{blend_none_0, blend_none_1},
