@@ -17,6 +17,7 @@
 
 #include <math.h>
 #include <stdbool.h>
+#include <stddef.h>
 #include <string.h>
 
 #include <sgapi/sgapi.h>
@@ -334,6 +335,7 @@ static void one_run(run *R, const uint8_t *data, size_t size) {
         }
         case 4: { /* create a geom */
             geom_data *g = &D->geoms[D->geom_next++];
+            memset(g, 0, sizeof *g); /* the run's memset leaves the geoms out */
             unsigned m = u8(r), m2 = u8(r);
             int nv = 1 + (int)(u8(r) % MAX_VERTS);
             static const int counts[8] = {3, 6, 12, 24, 4, 8, 2, 0};
@@ -496,9 +498,20 @@ static void one_run(run *R, const uint8_t *data, size_t size) {
     for (int i = 0; i < 2; i++) sgDestroyDevice(R->d[i].dev);
 }
 
+/* Zeros R but for each device's geom arrays (a megabyte), which a create zeros as it takes one. */
+static void run_clear(run *R) {
+    for (int i = 0; i < 2; i++) {
+        dev_state *D = &R->d[i];
+        memset(D, 0, offsetof(dev_state, geoms));
+        memset((char *)D + offsetof(dev_state, geom_next), 0,
+               sizeof *D - offsetof(dev_state, geom_next));
+    }
+    memset((char *)R + sizeof R->d, 0, sizeof *R - sizeof R->d);
+}
+
 int fuzz_api(const uint8_t *data, size_t size) {
     static run R; /* large: kept out of the stack; each input starts from zeros */
-    memset(&R, 0, sizeof R);
+    run_clear(&R);
     R.trace = getenv("FUZZ_API_TRACE") != NULL;
     R.pattern = upload_pattern();
     one_run(&R, data, size);
@@ -507,7 +520,7 @@ int fuzz_api(const uint8_t *data, size_t size) {
     memcpy(failed, R.failed, sizeof failed);
     uint64_t digests[MAX_DIGESTS];
     memcpy(digests, R.digests, sizeof digests);
-    memset(&R, 0, sizeof R);
+    run_clear(&R);
     R.replay = 1;
     R.pattern = upload_pattern();
     memcpy(R.failed, failed, sizeof failed);
