@@ -65,6 +65,24 @@ static bool jpeg_huffman_tables_ok(const unsigned char *d, size_t len) {
     return true;
 }
 
+/* Whether every chunk of a PNG, up to IEND, lies inside the data. The decoder trusts an IDAT
+ * chunk's length and grows its buffer to hold it before reading a byte of it: a 3.8 KB file whose
+ * chunk declared a gigabyte made it allocate 2 GB (found by fuzzing). A chunk that runs past the
+ * end of the file can only be a corrupt or truncated file, which the decoder would refuse once
+ * its read came up short; it is refused before. Not a PNG: true. */
+static bool png_chunks_ok(const unsigned char *d, size_t len) {
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (len < 8 || memcmp(d, sig, 8) != 0) return true;
+    size_t p = 8;
+    while (p + 8 <= len) {
+        size_t n = (size_t)d[p] << 24 | (size_t)d[p + 1] << 16 | (size_t)d[p + 2] << 8 | d[p + 3];
+        if (!memcmp(d + p + 4, "IEND", 4)) return true;           /* the decoder reads no further */
+        if (n > len - p - 8 || len - p - 8 - n < 4) return false; /* data and CRC */
+        p += 12 + n;
+    }
+    return p == len; /* no IEND: the decoder refuses the file itself */
+}
+
 /* The decoder's reason for a failure; false. For an unknown PNG chunk the reason starts with the
  * chunk type, raw bytes of the file: empty when the first is 0 (as in a truncated file, read on as
  * zeros), control characters otherwise. Such a reason is replaced rather than printed. */
@@ -89,6 +107,10 @@ bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, 
     }
     if (is_jpeg(data, len) && !jpeg_huffman_tables_ok(data, len)) {
         snprintf(err, errlen, "corrupt JPEG: bad Huffman table");
+        return false;
+    }
+    if (!png_chunks_ok(data, len)) {
+        snprintf(err, errlen, "corrupt PNG: a chunk runs past the end of the file");
         return false;
     }
     /* The header is read first: the checks below depend on it. Reading it allocates, so its
