@@ -1,7 +1,8 @@
 /* shade_avx2.h - the AVX2 shading helpers (internal to the raster; included only by files
  * compiled with -mavx2, no FMA): texel fetches with gathers, bilinear filtering in exact integer
  * arithmetic on 16-bit lanes, and float colours to RGBA8, eight pixels a vector (two rows of a
- * tile). shade_avx2.c makes the shading table of them, shade_phong_avx2.c the per-pixel lighting.
+ * tile). shade_avx2.c makes the shading table of them, shade_phong_avx2.c the per-pixel lighting,
+ * blend_avx2.c inlines sg_shade8_at into the raster functions of blended draws.
  * Each computes the scalar reference's operations (shade.c, sample.h) in the same order.
  */
 #ifndef SG_SHADE_AVX2_H
@@ -234,7 +235,9 @@ INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
  * body of every variant (the constant arguments fold away), in the reference's operation order
  * ((a + a_dx dx) + a_dy dy, then times 1/q). Lanes need not be neighbours: each computes what
  * the reference computes for its pixel, wherever that is, so the blend can shade pixels of
- * several tiles together. Every lane's fetch stays in the texture whatever its coordinates. */
+ * several tiles together. Every lane's fetch stays in the texture whatever its coordinates.
+ * shade_rows (shade_avx2.c) is the same body for the two row pairs of one tile, with the terms
+ * both pairs share computed once (keep the two in step). */
 INLINE __m256i sg_shade8_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
                             __m256 dx, __m256 dy, const int textured, const int bilinear,
                             const int repeat, const int flat, const int sec) {
