@@ -121,10 +121,8 @@ INLINE __m256i shade(const sg_vis_ctx *v, const sg_tri *t, __m256 dx, __m256 dy,
     return sg_shade8_at(c, t, NULL, dx, dy, textured, bilinear, repeat, SG_FLAT_NONE, 0);
 }
 
-/* Shades the first n pixels of q and blends them into their pixels of the bin's colour. */
-INLINE void flush(const sg_vis_ctx *v, const sg_tri *t, const queue *q, int n, const int textured,
-                  const int bilinear, const int repeat) {
-    __m256i s = shade(v, t, q->dx, q->dy, textured, bilinear, repeat);
+/* The fragments s of the first n pixels of q blended into their pixels of the bin's colour. */
+INLINE void blend_scattered(const sg_vis_ctx *v, const queue *q, __m256i s, int n) {
     /* Every lane's offset is a pixel of the bin, so the gather reads only the bin. */
     __m256i d = _mm256_i32gather_epi32((const int *)(const void *)v->color, q->off, 4);
     _Alignas(32) uint32_t out[8];
@@ -180,15 +178,16 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
         if (!bits) continue;
         __m256 dx, dy;
         sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
-        /* A flat colour costs nothing to shade, and full rows need no packing. */
-        if (bits == 255 || (!textured && t->flat != SG_FLAT_NONE)) {
-            blend_rows(v->color + base + 8 * h, shade(v, t, dx, dy, textured, bilinear, repeat),
-                       bits);
-            continue;
-        }
-        queue full;
-        if (enqueue(p->q, dx, dy, base + 8 * h, bits, &full))
-            flush(v, t, &full, 8, textured, bilinear, repeat);
+        /* A flat colour costs nothing to shade, and full rows need no packing; a partial pair
+         * is shaded when it fills the queue. One shading call site (each is a large body). */
+        const bool in_place = bits == 255 || (!textured && t->flat != SG_FLAT_NONE);
+        queue job = {dx, dy, _mm256_setzero_si256(), 8};
+        if (!in_place && !enqueue(p->q, dx, dy, base + 8 * h, bits, &job)) continue;
+        __m256i s = shade(v, t, job.dx, job.dy, textured, bilinear, repeat);
+        if (in_place)
+            blend_rows(v->color + base + 8 * h, s, bits);
+        else
+            blend_scattered(v, &job, s, 8);
     }
 }
 
@@ -196,8 +195,8 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
  * clamp: tex, bil, rep) and depth state (test, write: 0 or 1); the pixels left in the queue are
  * shaded at the end. */
 #define SG_BLEND_INLINE(tex, bil, rep, zt, zw)                                                     \
-    static inline void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t,        \
-                                                            int x0, int y0, uint32_t m) {          \
+    INLINE void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t, int x0,       \
+                                                     int y0, uint32_t m) {                         \
         blend_inline(c, t, x0, y0, m, zt ? Z_ANY : Z_NONE, zw, tex, bil, rep);                     \
     }                                                                                              \
     static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
@@ -205,7 +204,7 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
         queue q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};           \
         queued_ctx p = {c, &q};                                                                    \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        if (q.n) flush(c, t, &q, q.n, tex, bil, rep);                                              \
+        if (q.n) blend_scattered(c, &q, shade(c, t, q.dx, q.dy, tex, bil, rep), q.n);              \
     }
 #define SG_BLEND_DEPTHS(tex, bil, rep)                                                             \
     SG_BLEND_INLINE(tex, bil, rep, 0, 0)                                                           \
