@@ -320,8 +320,9 @@ static void render_variants(sgSimd simd, uint8_t *out) {
                                                       .data = texels},
                                      &tex),
                      SG_OK);
-    static float pos[TTRI * 3 * 4], col[TTRI * 3 * 4], uv[TTRI * 3 * 2];
-    static uint32_t idx[TTRI * 3];
+    float *pos = malloc(TTRI * 3 * 4 * sizeof *pos), *col = malloc(TTRI * 3 * 4 * sizeof *col);
+    float *uv = malloc(TTRI * 3 * 2 * sizeof *uv);
+    uint32_t *idx = malloc(TTRI * 3 * sizeof *idx);
     for (int t = 0; t < TTRI; t++) {
         float cx = rnd(&x) * 2.0f - 1.0f, cy = rnd(&x) * 2.0f - 1.0f, z = rnd(&x) * 1.6f - 0.8f;
         float size = t % 5 == 0 ? 0.5f : 0.12f; /* mostly a few tiles, partly covered */
@@ -374,6 +375,10 @@ static void render_variants(sgSimd simd, uint8_t *out) {
     assert_int_equal(sgEndRenderPass(dev, &pass), SG_OK);
     assert_int_equal(sgReadImage2D(dev, color, out, 0), SG_OK);
     sgDestroyDevice(dev);
+    free(pos);
+    free(col);
+    free(uv);
+    free(idx);
 }
 
 /* Every instruction set this CPU runs blends every variant to the scalar reference's bytes (the

@@ -179,7 +179,7 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
         __m256 dx, dy;
         sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
         /* Full rows need no packing, and vertex colours cost less to shade than to queue (the
-         * alpha_stack scene: 10 % faster in place); a partial textured pair is shaded when it
+         * alpha_stack scene is clearly faster in place); a partial textured pair is shaded when it
          * fills the queue. One shading call site (each is a large body). */
         const bool in_place = bits == 255 || !textured;
         queue job = {dx, dy, _mm256_setzero_si256(), 8};
