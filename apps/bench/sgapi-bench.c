@@ -1,7 +1,7 @@
 /* sgapi-bench - speed against error: sgapi next to the lavapipe reference, scene by scene.
  *
- *   sgapi-bench SCENE.json... [--frames N] [--threads T] [--simd SET] [--csv FILE]
- *               [--pareto [--plot OUT.png]] [--quick] [--ref PATH]
+ *   sgapi-bench SCENE.json... [--frames N] [--rounds R] [--threads T] [--simd SET]
+ *               [--csv FILE] [--pareto [--plot OUT.png]] [--quick] [--ref PATH]
  *
  * For every scene of the files it measures:
  *   - sgapi's steady-state time per frame at 1 and at T threads (one device per thread count):
@@ -13,7 +13,8 @@
  *     scene and reading the time it prints;
  *   - the error of sgapi's T-thread image against lavapipe's: PSNR and % of pixels over 2/255.
  * A scene's lavapipe and sgapi times are taken back to back, scene after scene, so that a drift
- * of the machine's speed during the run does not favour either side.
+ * of the machine's speed during the run does not favour either side; --rounds R takes them R
+ * times in turn and keeps the median of each (a busy moment then moves one round, not the row).
  * --simd picks sgapi's instruction set (default: the best the CPU runs), so that one run gives
  * the whole table for that set; lavapipe is measured as always.
  * It prints a markdown table, the geometric mean of the sgapi/lavapipe ratios, and the floor of
@@ -55,6 +56,7 @@
 #define FRAMES        100    /* the default: a median that a busy moment moves little */
 #define MAX_FRAMES    100000 /* sgapi-ref's limit */
 #define QUICK_FRAMES  2
+#define MAX_ROUNDS    25
 #define MAX_THREADS   1024 /* sgapi-ref's limit */
 #define FLOOR_SIZE    1024
 
@@ -83,6 +85,7 @@ typedef struct options {
     const char **files;
     int file_count;
     int frames, warmup, threads;
+    int rounds;  /* --rounds: measurements of each scene, in turn; the median is kept */
     sgSimd simd; /* SG_SIMD_DEFAULT: the best the CPU runs */
     bool quick, pareto;
     bool strict;      /* --strict: an unknown key in a scene file is an error */
@@ -100,6 +103,8 @@ static void usage(FILE *f) {
             "empty %dx%d frame (the floor).\n"
             "  --frames N      timed frames per measurement, >= %d (default %d), after %d warm-up\n"
             "                  frames\n"
+            "  --rounds R      measure each scene R times, lavapipe and sgapi in turn, and keep\n"
+            "                  each side's median (default 1, at most %d)\n"
             "  --threads T     the multi-threaded measurements' thread count (default: all cores)\n"
             "  --simd SET      sgapi's instruction set: scalar, sse2, avx2, avx512 or neon\n"
             "                  (default: the best this CPU runs)\n"
@@ -114,7 +119,7 @@ static void usage(FILE *f) {
             "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
             "                  measured), not a warning\n"
             "  -h, --help      show this help\n",
-            FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, FRAMES, WARMUP_FRAMES, QUICK_FRAMES);
+            FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, FRAMES, WARMUP_FRAMES, MAX_ROUNDS, QUICK_FRAMES);
 }
 
 static int default_threads(void) {
@@ -150,6 +155,7 @@ static const char *simd_name(sgSimd simd) {
 static int parse_args(int argc, char **argv, options *o) {
     bool frames_given = false;
     o->frames = FRAMES;
+    o->rounds = 1;
     o->warmup = WARMUP_FRAMES;
     o->threads = default_threads();
     o->files = calloc((size_t)argc, sizeof *o->files);
@@ -160,9 +166,9 @@ static int parse_args(int argc, char **argv, options *o) {
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
-        bool takes_value = !strcmp(a, "--frames") || !strcmp(a, "--threads") ||
-                           !strcmp(a, "--simd") || !strcmp(a, "--csv") || !strcmp(a, "--plot") ||
-                           !strcmp(a, "--ref");
+        bool takes_value = !strcmp(a, "--frames") || !strcmp(a, "--rounds") ||
+                           !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--csv") ||
+                           !strcmp(a, "--plot") || !strcmp(a, "--ref");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -178,6 +184,12 @@ static int parse_args(int argc, char **argv, options *o) {
                 return 2;
             }
             frames_given = true;
+        } else if (!strcmp(a, "--rounds")) {
+            if (!sc_parse_int(value, 1, MAX_ROUNDS, &o->rounds)) {
+                fprintf(stderr, "sgapi-bench: --rounds needs a whole number in 1..%d, not '%s'\n",
+                        MAX_ROUNDS, value);
+                return 2;
+            }
         } else if (!strcmp(a, "--threads")) {
             if (!sc_parse_int(value, 1, MAX_THREADS, &o->threads)) {
                 fprintf(stderr, "sgapi-bench: --threads needs a whole number in 1..%d, not '%s'\n",
@@ -496,7 +508,8 @@ typedef struct result {
 } result;
 
 /* Runs lavapipe on one scene at 1 and T threads and keeps its image. */
-static bool measure_lavapipe(const options *o, const char *ref, const char *tmpdir, result *x) {
+static bool measure_lavapipe(const options *o, const char *ref, const char *tmpdir, result *x,
+                             bool load_image) {
     const sc_scene *s = x->scene;
     char *png = concat3(tmpdir, "/", s->name);
     char *path = png ? concat3(png, ".png", "") : NULL;
@@ -512,14 +525,14 @@ static bool measure_lavapipe(const options *o, const char *ref, const char *tmpd
     else if (ok)
         ok = run_lavapipe(o, ref, x->file, s->name, o->threads, tmpdir, &x->lp_ms[1]);
     char err[1024];
-    if (ok && !sc_image_load(path, &x->lp_image, err, sizeof err)) {
+    if (ok && load_image && !sc_image_load(path, &x->lp_image, err, sizeof err)) {
         fprintf(stderr, "sgapi-bench: lavapipe's image of '%s': %s\n", s->name, err);
         ok = false;
     }
     remove(path); /* so the temporary folder is empty at the end, whatever happened */
     free(path);
     if (!ok) return false;
-    if (x->lp_image.width != s->width || x->lp_image.height != s->height) {
+    if (load_image && (x->lp_image.width != s->width || x->lp_image.height != s->height)) {
         fprintf(stderr, "sgapi-bench: lavapipe's image of '%s' is %dx%d, the scene %dx%d\n",
                 s->name, x->lp_image.width, x->lp_image.height, s->width, s->height);
         return false;
@@ -622,11 +635,23 @@ static bool measure_all(const options *o, const char *ref, const char *tmpdir, c
             ok = ss_upload(PROG, sides[k].dev, f, &sides[k].uploads);
         for (size_t si = 0; ok && si < f->scene_count; si++) {
             result *x = &res[first + si];
-            ok = measure_lavapipe(o, ref, tmpdir, x);
-            /* The main table's error is that of the T-thread image (the same at 1 thread). */
-            for (int k = 0; ok && k < nsides; k++)
-                ok = measure_sgapi(o, &sides[k], f, x, k, k == nsides - 1);
-            if (ok && nsides == 1) x->sg_ms[1] = x->sg_ms[0];
+            double lp[2][MAX_ROUNDS], sg[2][MAX_ROUNDS];
+            for (int r = 0; ok && r < o->rounds; r++) {
+                /* the images are compared in the first round */
+                ok = measure_lavapipe(o, ref, tmpdir, x, r == 0);
+                /* The main table's error is that of the T-thread image (the same at 1 thread). */
+                for (int k = 0; ok && k < nsides; k++)
+                    ok = measure_sgapi(o, &sides[k], f, x, k, r == 0 && k == nsides - 1);
+                if (ok && nsides == 1) x->sg_ms[1] = x->sg_ms[0];
+                for (int k = 0; k < 2; k++) {
+                    lp[k][r] = x->lp_ms[k];
+                    sg[k][r] = x->sg_ms[k];
+                }
+            }
+            for (int k = 0; ok && k < 2; k++) {
+                x->lp_ms[k] = ss_median(lp[k], o->rounds);
+                x->sg_ms[k] = ss_median(sg[k], o->rounds);
+            }
         }
         for (int k = 0; k < nsides; k++)
             if (sides[k].dev) ss_destroy_uploads(sides[k].dev, &sides[k].uploads);
@@ -682,6 +707,10 @@ static void print_table(const options *o, const result *res, size_t count,
            FLOOR_SIZE, FLOOR_SIZE, floor_ms[0]);
     if (t > 1) printf(", %dt %.3f ms", t, floor_ms[1]);
     printf("\nsgapi's instruction set: %s\n", simd_name(o->simd));
+    if (o->rounds > 1)
+        printf("each time: the median of %d rounds, lavapipe and sgapi in turn, each the median of "
+               "%d frames\n",
+               o->rounds, o->frames);
 }
 
 static void write_csv(FILE *f, const result *res, size_t count) {

@@ -903,7 +903,7 @@ bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, char
         goto done;
     }
     ok = parse_root(&c, root);
-    if (ok && !sc_check_keys(root, out)) ok = fail(&c, &none, "out of memory");
+    if (ok && !sc_check_keys(json, len, root, out)) ok = fail(&c, &none, "out of memory");
 done:
     cJSON_Delete(root);
     free(c.dir);

@@ -1,7 +1,9 @@
-/* scene_keys.c - unknown keys of a scene file: a warning each, naming the file and the key's path
- * (scenes[2].draws[0].lightning), with "did you mean" when a known key is one edit away. A
- * misspelt optional key would otherwise take its default in silence. */
+/* scene_keys.c - unknown keys of a scene file: a warning each, naming the file, the key's line and
+ * its path (scenes[2].draws[0].lightning), with "did you mean" when a known key is one edit away.
+ * A misspelt optional key would otherwise take its default in silence. */
 #include "scene_keys.h"
+
+#include "json_lines.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -59,6 +61,7 @@ static bool one_edit(const char *a, const char *b) {
 
 typedef struct walk {
     sc_file *f;
+    const sc_json_lines *lines;
     char *path; /* the path of the object being walked, e.g. "scenes[2].draws[0]" */
     size_t cap;
     bool failed; /* out of memory */
@@ -124,10 +127,15 @@ static void check_object(walk *w, const cJSON *obj, const char *const *keys) {
         if (known) continue;
         size_t len = push(w, key, 0);
         if (w->failed) return;
+        /* file:line: as compilers write it, which editors and CI logs turn into links */
+        char where[32] = "";
+        int line = sc_json_line(w->lines, e);
+        if (line > 0) snprintf(where, sizeof where, ":%d", line);
         if (near)
-            add_warning(w, "%s: unknown key '%s' (did you mean '%s'?)", w->f->path, w->path, near);
+            add_warning(w, "%s%s: unknown key '%s' (did you mean '%s'?)", w->f->path, where,
+                        w->path, near);
         else
-            add_warning(w, "%s: unknown key '%s'", w->f->path, w->path);
+            add_warning(w, "%s%s: unknown key '%s'", w->f->path, where, w->path);
         pop(w, len);
     }
 }
@@ -168,14 +176,20 @@ static void check_scene(walk *w, const cJSON *scene) {
     check_array(w, scene, "draws", draw_keys, check_draw);
 }
 
-bool sc_check_keys(const cJSON *root, sc_file *f) {
-    walk w = {.f = f, .path = calloc(1, 64), .cap = 64};
-    if (!w.path) return false;
+bool sc_check_keys(const char *text, size_t len, const cJSON *root, sc_file *f) {
+    sc_json_lines lines;
+    if (!sc_json_lines_build(text, len, root, &lines)) return false;
+    walk w = {.f = f, .lines = &lines, .path = calloc(1, 64), .cap = 64};
+    if (!w.path) {
+        sc_json_lines_free(&lines);
+        return false;
+    }
     check_object(&w, root, root_keys);
     check_array(&w, root, "lights", light_keys, NULL);
     check_member(&w, root, "shadow", shadow_keys);
     check_array(&w, root, "scenes", scene_keys, check_scene);
     free(w.path);
+    sc_json_lines_free(&lines);
     return !w.failed;
 }
 
