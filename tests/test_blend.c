@@ -6,6 +6,9 @@
  * - Order: a pass of many overlapping blended and opaque triangles, in draws of several
  *   triangles, is byte-identical to drawing each triangle in a pass of its own that loads the
  *   previous result, for 1, 2 and 3 threads and every instruction set this CPU runs.
+ * - Every unlit shading variant (vertex colour; texture nearest / bilinear, repeat / clamp),
+ *   flat and varying colours, with and without a depth test, blended by every instruction set
+ *   this CPU runs: the scalar reference's bytes.
  * - The constant draw colour multiplies the vertex colour; alpha from the vertex colour and from
  *   the texel.
  * - The back-to-front order against a plain stable sort of the same keys, ties, NaN keys and
@@ -286,6 +289,121 @@ static void alpha_sources(void **state) {
     assert_int_equal(blend_one(none, NULL, NULL, clear), expect(clear, clear));
 }
 
+/* ---- every shading variant blended ---- */
+
+enum { TS = 96, TTRI = 240, TPER = 24 };
+
+/* Renders TTRI small triangles (vertex colours with alpha, some all white, some one colour;
+ * texture coordinates past [0, 1]) in draws of TPER, each draw cycling through the unlit
+ * shading variants and depth states, blended over an opaque background. */
+static void render_variants(sgSimd simd, uint8_t *out) {
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.simd = simd}, &dev), SG_OK);
+    uint8_t texels[13 * 7 * 4];
+    uint32_t x = 4242;
+    for (int i = 0; i < 13 * 7 * 4; i++) texels[i] = (uint8_t)(rnd(&x) * 256.0f);
+    sgImage2D color, depth, tex;
+    assert_int_equal(
+        sgCreateImage2D(
+            dev, &(sgImage2DDesc){.width = TS, .height = TS, .format = SG_FORMAT_RGBA8_UNORM},
+            &color),
+        SG_OK);
+    assert_int_equal(
+        sgCreateImage2D(dev,
+                        &(sgImage2DDesc){.width = TS, .height = TS, .format = SG_FORMAT_D32_FLOAT},
+                        &depth),
+        SG_OK);
+    assert_int_equal(sgCreateImage2D(dev,
+                                     &(sgImage2DDesc){.width = 13,
+                                                      .height = 7,
+                                                      .format = SG_FORMAT_RGBA8_UNORM,
+                                                      .data = texels},
+                                     &tex),
+                     SG_OK);
+    float *pos = malloc(TTRI * 3 * 4 * sizeof *pos), *col = malloc(TTRI * 3 * 4 * sizeof *col);
+    float *uv = malloc(TTRI * 3 * 2 * sizeof *uv);
+    uint32_t *idx = malloc(TTRI * 3 * sizeof *idx);
+    for (int t = 0; t < TTRI; t++) {
+        float cx = rnd(&x) * 2.0f - 1.0f, cy = rnd(&x) * 2.0f - 1.0f, z = rnd(&x) * 1.6f - 0.8f;
+        float size = t % 5 == 0 ? 0.5f : 0.12f; /* mostly a few tiles, partly covered */
+        float one[4] = {rnd(&x), rnd(&x), rnd(&x), rnd(&x)};
+        for (int v = 0; v < 3; v++) {
+            int i = t * 3 + v;
+            pos[i * 4 + 0] = cx + (rnd(&x) - 0.5f) * size;
+            pos[i * 4 + 1] = cy + (rnd(&x) - 0.5f) * size;
+            pos[i * 4 + 2] = z + rnd(&x) * 0.2f - 0.1f;
+            pos[i * 4 + 3] = 0.5f + rnd(&x); /* perspective: 1/q varies */
+            for (int k = 0; k < 4; k++)
+                col[i * 4 + k] = t % 3 == 0 ? 1.0f : (t % 3 == 1 ? one[k] : rnd(&x));
+            uv[i * 2 + 0] = rnd(&x) * 4.0f - 1.5f;
+            uv[i * 2 + 1] = rnd(&x) * 4.0f - 1.5f;
+            idx[i] = (uint32_t)i;
+        }
+    }
+    static const sgFilter filters[2] = {SG_FILTER_NEAREST, SG_FILTER_BILINEAR};
+    static const sgWrap wraps[2] = {SG_WRAP_REPEAT, SG_WRAP_CLAMP_TO_EDGE};
+    static const sgCompare compares[2] = {SG_COMPARE_ALWAYS, SG_COMPARE_LESS};
+    sgPassDesc pass = {.color = color, .depth = depth, .clear_color = {0.2f, 0.6f, 0.4f, 1.0f}};
+    assert_int_equal(sgBeginRenderPass(dev, &pass), SG_OK);
+    for (int d = 0; d < TTRI / TPER; d++) {
+        int variant = d % 5; /* vertex colour, then filter x wrap */
+        sgPipelineDesc pd = {.blend = SG_BLEND_ALPHA,
+                             .depth = {.compare = compares[(d / 5) % 2], .write = d % 3 != 0}};
+        if (variant > 0) {
+            pd.shade = SG_SHADE_TEXTURE_MODULATE;
+            pd.filter = filters[(variant - 1) / 2];
+            pd.wrap = wraps[(variant - 1) % 2];
+        }
+        sgPipelineStateObject pso;
+        assert_int_equal(sgCreatePipelineStateObject(dev, &pd, &pso), SG_OK);
+        sgGeom g;
+        assert_int_equal(sgCreateGeom(dev,
+                                      &(sgGeomDesc){.vertex_count = TTRI * 3,
+                                                    .positions = pos,
+                                                    .colors = col,
+                                                    .texcoords = uv,
+                                                    .index_count = TPER * 3,
+                                                    .indices = idx + d * TPER * 3,
+                                                    .storage = SG_STORAGE_REFERENCE},
+                                      &g),
+                         SG_OK);
+        sgDrawParams params = {.texture = tex};
+        memcpy(params.world_view, IDENTITY, sizeof IDENTITY);
+        memcpy(params.proj, IDENTITY, sizeof IDENTITY);
+        assert_int_equal(sgDraw(dev, pso, g, &params), SG_OK);
+    }
+    assert_int_equal(sgEndRenderPass(dev, &pass), SG_OK);
+    assert_int_equal(sgReadImage2D(dev, color, out, 0), SG_OK);
+    sgDestroyDevice(dev);
+    free(pos);
+    free(col);
+    free(uv);
+    free(idx);
+}
+
+/* Every instruction set this CPU runs blends every variant to the scalar reference's bytes (the
+ * SIMD ones inline the shading and shade pixels of several tiles together). */
+static void blended_variants_identical(void **state) {
+    (void)state;
+    uint8_t *want = malloc(TS * TS * 4), *got = malloc(TS * TS * 4);
+    render_variants(SG_SIMD_SCALAR, want);
+    int changed = 0; /* most of the image is drawn over */
+    for (int i = 0; i < TS * TS; i++) changed += want[i * 4 + 1] != 153;
+    assert_true(changed > TS * TS / 2);
+    for (int simd = SG_SIMD_SCALAR + 1; simd <= SG_SIMD_NEON; simd++) {
+        sgDevice *probe;
+        if (sgCreateDevice(&(sgDeviceDesc){.simd = (sgSimd)simd}, &probe) != SG_OK) continue;
+        sgDestroyDevice(probe);
+        render_variants((sgSimd)simd, got);
+        for (int i = 0; i < TS * TS * 4; i++)
+            if (want[i] != got[i])
+                fail_msg("simd %d: byte %d (pixel %d, %d) is %d, the reference's %d", simd, i,
+                         i / 4 % TS, i / 4 / TS, got[i], want[i]);
+    }
+    free(want);
+    free(got);
+}
+
 /* ---- back-to-front order ---- */
 
 typedef struct keyed {
@@ -429,6 +547,7 @@ int main(void) {
         cmocka_unit_test(blend_rgba8_channel_by_channel),
         cmocka_unit_test(blending_follows_submission_order),
         cmocka_unit_test(alpha_sources),
+        cmocka_unit_test(blended_variants_identical),
         cmocka_unit_test(sort_is_stable_back_to_front),
         cmocka_unit_test(sorted_draw_blends_far_first),
     };

@@ -127,7 +127,7 @@ sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_wr
     /* A negative variant (lit shading) calls the draw's shading function: AVX2 at best. */
     if (isa >= SG_ISA_AVX512 && shade_variant >= 0)
         fn = sg_blend_avx512(shade_variant, zmode == Z_ANY, depth_write);
-    if (!fn && isa >= SG_ISA_AVX2) fn = sg_blend_avx2(zmode == Z_ANY, depth_write);
+    if (!fn && isa >= SG_ISA_AVX2) fn = sg_blend_avx2(shade_variant, zmode == Z_ANY, depth_write);
     if (fn) return fn;
 #if defined(__SSE2__)
     static const sg_raster_fn sse2[2][2] = {{blend_none_0_sse2, blend_none_1_sse2},

@@ -40,8 +40,9 @@ static inline uint32_t sg_blend_rgba8(uint32_t src, uint32_t dst) {
  *  color, shade and shade_ctx set). */
 sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa);
 /** The AVX2 and AVX-512 ones (blend_avx2.c, blend_avx512.c; NULL where not built); depth_test:
- *  the compare is not ALWAYS. The AVX-512 ones inline the shading (no call per tile). */
-sg_raster_fn sg_blend_avx2(bool depth_test, bool depth_write);
+ *  the compare is not ALWAYS. Both inline the unlit shading (no call per tile); AVX2 calls the
+ *  draw's shading function for a negative variant. */
+sg_raster_fn sg_blend_avx2(int shade_variant, bool depth_test, bool depth_write);
 sg_raster_fn sg_blend_avx512(int shade_variant, bool depth_test, bool depth_write);
 /** The NEON ones (blend_neon.c; NULL off AArch64). */
 sg_raster_fn sg_blend_neon(bool depth_test, bool depth_write);

@@ -1,13 +1,22 @@
 /* blend_avx2.c - the raster functions of blended draws in AVX2 (see blend.h): two rows of a tile
- * a vector; the same depth (z, clamp, compare) as the scalar and SSE2 code and the same integer
- * blend, so the same bytes. */
+ * a vector; the same depth (z, clamp, compare) as the scalar and SSE2 code, the same shading and
+ * the same integer blend, so the same bytes.
+ *
+ * Unlit draws inline the shading body of shade_avx2.h (one function per shading variant and depth
+ * state, as in blend_avx512.c): no call per tile, no tile buffer. A pair of rows whose eight
+ * pixels all pass is shaded and blended in place; the pixels of partly covered pairs of textured
+ * draws are packed into a queue of eight lanes, shaded when it is full (small triangles and edges
+ * cover tiles sparsely, and a shading pass costs the same for one pixel as for eight). The pixels
+ * of one triangle are all different, so blending some later changes nothing, as long as it is done
+ * before the next triangle. Lit draws call the draw's shading function per tile.
+ */
 #include "raster/blend.h"
 
-#include "raster/depth_simd.h"
 #include "raster/blend_walk.h"
+#include "raster/depth_simd.h"
+#include "raster/shade_avx2.h"
 
-#if defined(__AVX2__)
-#include <immintrin.h>
+#if defined(SG_SHADE_AVX2)
 
 /* x y / 255 as sg_mul_unorm8 rounds it, in 16-bit lanes. */
 static inline __m256i mul_unorm8(__m256i x, __m256i y) {
@@ -23,63 +32,214 @@ static inline __m256i blend_lanes(__m256i s, __m256i d) {
     return _mm256_add_epi16(mul_unorm8(s, a), mul_unorm8(d, ia));
 }
 
-static inline __attribute__((always_inline)) void blend_avx2(const void *vctx, const sg_tri *t,
-                                                             int x0, int y0, uint32_t mask,
-                                                             const int zmode, const int zwrite) {
-    const sg_vis_ctx *v = vctx;
-    int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
-    const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    if (zmode != Z_NONE || zwrite) {
-        float *dp = v->depth + base;
-        const sg_zrows8 zr = sg_zrows8_at(t, x0, y0);
-        uint32_t pass = 0;
-        for (int h = 0; h < 2; h++) {
-            uint32_t bits = (mask >> (8 * h)) & 255u;
-            if (!bits) continue;
-            __m256 z = sg_zrows8_half(&zr, h);
-            __m256 d = _mm256_load_ps(dp + 8 * h);
-            __m256 p =
-                _mm256_and_ps(sg_compare8(v->compare, z, d),
-                              _mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                                  _mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes)));
-            if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, p));
-            pass |= (uint32_t)_mm256_movemask_ps(p) << (8 * h);
-        }
-        mask = pass;
-    }
-    if (!mask) return;
-    _Alignas(32) uint32_t src[SG_TILE_PIXELS];
-    v->shade(v->shade_ctx, t, x0, y0, mask, src);
-    uint32_t *dst = v->color + base;
+/* Eight packed RGBA8 fragments over eight packed RGBA8 pixels (sg_blend_rgba8). */
+INLINE __m256i blend8(__m256i s, __m256i d) {
     const __m256i zero = _mm256_setzero_si256();
+    __m256i lo = blend_lanes(_mm256_unpacklo_epi8(s, zero), _mm256_unpacklo_epi8(d, zero));
+    __m256i hi = blend_lanes(_mm256_unpackhi_epi8(s, zero), _mm256_unpackhi_epi8(d, zero));
+    return _mm256_packus_epi16(lo, hi);
+}
+
+/* All ones in the lanes of the 8-bit mask bits. */
+INLINE __m256i lanes_of(unsigned bits) {
+    const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes);
+}
+
+/* The fragments s of the pixels of bits (two rows of a tile) blended into dst. */
+INLINE void blend_rows(uint32_t *dst, __m256i s, unsigned bits) {
+    __m256i *pd = (__m256i *)(void *)dst;
+    __m256i d = _mm256_load_si256(pd);
+    __m256i out = blend8(s, d);
+    _mm256_store_si256(pd, bits == 255 ? out : _mm256_blendv_epi8(d, out, lanes_of(bits)));
+}
+
+/* The depth test of the covered pixels of a tile: the mask of those that pass (their depth
+ * written when the pipeline writes depth). */
+INLINE uint32_t depth_tile(const sg_vis_ctx *v, const sg_tri *t, int x0, int y0, uint32_t mask,
+                           int base, const int zwrite) {
+    float *dp = v->depth + base;
+    const sg_zrows8 zr = sg_zrows8_at(t, x0, y0);
+    uint32_t pass = 0;
     for (int h = 0; h < 2; h++) {
         uint32_t bits = (mask >> (8 * h)) & 255u;
         if (!bits) continue;
-        __m256i *pd = (__m256i *)(void *)(dst + 8 * h);
-        __m256i s = _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h));
-        __m256i d = _mm256_load_si256(pd);
-        __m256i lo = blend_lanes(_mm256_unpacklo_epi8(s, zero), _mm256_unpacklo_epi8(d, zero));
-        __m256i hi = blend_lanes(_mm256_unpackhi_epi8(s, zero), _mm256_unpackhi_epi8(d, zero));
-        __m256i sel =
-            _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes);
-        _mm256_store_si256(pd, _mm256_blendv_epi8(d, _mm256_packus_epi16(lo, hi), sel));
+        __m256 z = sg_zrows8_half(&zr, h);
+        __m256 d = _mm256_load_ps(dp + 8 * h);
+        __m256 p =
+            _mm256_and_ps(sg_compare8(v->compare, z, d), _mm256_castsi256_ps(lanes_of(bits)));
+        if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, p));
+        pass |= (uint32_t)_mm256_movemask_ps(p) << (8 * h);
+    }
+    return pass;
+}
+
+/* Lit draws: the draw's shading function into a tile buffer, then the blend. */
+INLINE void blend_call(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
+                       const int zmode, const int zwrite) {
+    const sg_vis_ctx *v = vctx;
+    int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    if (zmode != Z_NONE || zwrite) mask = depth_tile(v, t, x0, y0, mask, base, zwrite);
+    if (!mask) return;
+    _Alignas(32) uint32_t src[SG_TILE_PIXELS];
+    v->shade(v->shade_ctx, t, x0, y0, mask, src);
+    for (int h = 0; h < 2; h++) {
+        unsigned bits = (mask >> (8 * h)) & 255u;
+        if (bits)
+            blend_rows(v->color + base + 8 * h,
+                       _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h)), bits);
     }
 }
 
-SG_BLEND_FN(blend_none_0, blend_avx2, Z_NONE, 0)
-SG_BLEND_FN(blend_none_1, blend_avx2, Z_NONE, 1)
-SG_BLEND_FN(blend_any_0, blend_avx2, Z_ANY, 0)
-SG_BLEND_FN(blend_any_1, blend_avx2, Z_ANY, 1)
+SG_BLEND_FN(blend_none_0, blend_call, Z_NONE, 0)
+SG_BLEND_FN(blend_none_1, blend_call, Z_NONE, 1)
+SG_BLEND_FN(blend_any_0, blend_call, Z_ANY, 0)
+SG_BLEND_FN(blend_any_1, blend_call, Z_ANY, 1)
 
-sg_raster_fn sg_blend_avx2(bool depth_test, bool depth_write) {
-    static const sg_raster_fn fns[2][2] = {{blend_none_0, blend_none_1},
-                                           {blend_any_0, blend_any_1}};
-    return fns[depth_test][depth_write];
+/* Up to eight pixels of a triangle waiting to be shaded together: their offsets from the
+ * triangle's bounds and in the bin's colour, lanes 0 to n - 1 (the others hold earlier pixels of
+ * the bin, or zeros: shaded and blended but not stored). */
+typedef struct queue {
+    __m256 dx, dy;
+    __m256i off;
+    int n;
+} queue;
+
+typedef struct queued_ctx {
+    const sg_vis_ctx *v;
+    queue *q;
+} queued_ctx;
+
+/* The pipeline's colours of the pixels at (dx, dy), flat colours split off per triangle. */
+INLINE __m256i shade(const sg_vis_ctx *v, const sg_tri *t, __m256 dx, __m256 dy, const int textured,
+                     const int bilinear, const int repeat) {
+    const sg_shade_ctx *c = v->shade_ctx;
+    if (t->flat == SG_FLAT_WHITE)
+        return sg_shade8_at(c, t, NULL, dx, dy, textured, bilinear, repeat, SG_FLAT_WHITE, 0);
+    if (t->flat == SG_FLAT_COLOR)
+        return sg_shade8_at(c, t, NULL, dx, dy, textured, bilinear, repeat, SG_FLAT_COLOR, 0);
+    return sg_shade8_at(c, t, NULL, dx, dy, textured, bilinear, repeat, SG_FLAT_NONE, 0);
+}
+
+/* The fragments s of the first n pixels of q blended into their pixels of the bin's colour. */
+INLINE void blend_scattered(const sg_vis_ctx *v, const queue *q, __m256i s, int n) {
+    /* Every lane's offset is a pixel of the bin, so the gather reads only the bin. */
+    __m256i d = _mm256_i32gather_epi32((const int *)(const void *)v->color, q->off, 4);
+    _Alignas(32) uint32_t out[8];
+    _Alignas(32) int32_t off[8];
+    _mm256_store_si256((__m256i *)(void *)out, blend8(s, d));
+    _mm256_store_si256((__m256i *)(void *)off, q->off);
+    for (int k = 0; k < n; k++) v->color[off[k]] = out[k];
+}
+
+/* Appends the pixels of bits (8 bits) of the rows at (dx, dy), bin offset off, to q: the lanes of
+ * bits are packed (a permutation from their positions) and rotated to start at lane n. When that
+ * fills the queue, full gets the eight lanes to shade and q keeps the rest; true then. */
+INLINE bool enqueue(queue *q, __m256 dx, __m256 dy, int off, unsigned bits, queue *full) {
+    /* The positions of the set bits of each 4-bit value, packed in bytes (the rest: any lane). */
+    static const uint32_t set_bits4[16] = {0x00000000, 0x00000000, 0x00000001, 0x00000100,
+                                           0x00000002, 0x00000200, 0x00000201, 0x00020100,
+                                           0x00000003, 0x00000300, 0x00000301, 0x00030100,
+                                           0x00000302, 0x00030200, 0x00030201, 0x03020100};
+    const int n = q->n, k = __builtin_popcount(bits), lo = __builtin_popcount(bits & 15u);
+    uint64_t pos = (uint64_t)set_bits4[bits & 15u] |
+                   ((uint64_t)(set_bits4[bits >> 4] + 0x04040404u) << (8 * lo));
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    /* Lane j takes packed pixel (j - n) mod 8: the first 8 - n go after the queue's n, the ones
+     * that do not fit into lanes 0 to n + k - 9. */
+    __m256i from = _mm256_permutevar8x32_epi32(
+        _mm256_cvtepu8_epi32(_mm_cvtsi64_si128((long long)pos)),
+        _mm256_and_si256(_mm256_sub_epi32(lane, _mm256_set1_epi32(n)), _mm256_set1_epi32(7)));
+    __m256 rdx = _mm256_permutevar8x32_ps(dx, from), rdy = _mm256_permutevar8x32_ps(dy, from);
+    __m256i roff = _mm256_add_epi32(_mm256_set1_epi32(off), from);
+    __m256i keep = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), lane);
+    __m256 keepf = _mm256_castsi256_ps(keep);
+    queue merged = {_mm256_blendv_ps(rdx, q->dx, keepf), _mm256_blendv_ps(rdy, q->dy, keepf),
+                    _mm256_blendv_epi8(roff, q->off, keep), n + k};
+    if (n + k < 8) {
+        *q = merged;
+        return false;
+    }
+    *full = merged;
+    *q = (queue){rdx, rdy, roff, n + k - 8};
+    return true;
+}
+
+INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
+                         const int zmode, const int zwrite, const int textured, const int bilinear,
+                         const int repeat) {
+    const queued_ctx *p = vctx;
+    const sg_vis_ctx *v = p->v;
+    int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    if (zmode != Z_NONE || zwrite) mask = depth_tile(v, t, x0, y0, mask, base, zwrite);
+    if (!mask) return;
+    for (int h = 0; h < 2; h++) {
+        unsigned bits = (mask >> (8 * h)) & 255u;
+        if (!bits) continue;
+        __m256 dx, dy;
+        sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
+        /* Full rows need no packing, and vertex colours cost less to shade than to queue (the
+         * alpha_stack scene is clearly faster in place); a partial textured pair is shaded when it
+         * fills the queue. One shading call site (each is a large body). */
+        const bool in_place = bits == 255 || !textured;
+        queue job = {dx, dy, _mm256_setzero_si256(), 8};
+        if (!in_place && !enqueue(p->q, dx, dy, base + 8 * h, bits, &job)) continue;
+        __m256i s = shade(v, t, job.dx, job.dy, textured, bilinear, repeat);
+        if (in_place)
+            blend_rows(v->color + base + 8 * h, s, bits);
+        else
+            blend_scattered(v, &job, s, 8);
+    }
+}
+
+/* One raster function per shading variant (vertex colour; texture nearest / bilinear, repeat /
+ * clamp: tex, bil, rep) and depth state (test, write: 0 or 1); the pixels left in the queue are
+ * shaded at the end. */
+#define SG_BLEND_INLINE(tex, bil, rep, zt, zw)                                                     \
+    INLINE void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t, int x0,       \
+                                                     int y0, uint32_t m) {                         \
+        blend_inline(c, t, x0, y0, m, zt ? Z_ANY : Z_NONE, zw, tex, bil, rep);                     \
+    }                                                                                              \
+    static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
+                                              const void *c) {                                     \
+        queue q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};           \
+        queued_ctx p = {c, &q};                                                                    \
+        sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
+        if (q.n) blend_scattered(c, &q, shade(c, t, q.dx, q.dy, tex, bil, rep), q.n);              \
+    }
+#define SG_BLEND_DEPTHS(tex, bil, rep)                                                             \
+    SG_BLEND_INLINE(tex, bil, rep, 0, 0)                                                           \
+    SG_BLEND_INLINE(tex, bil, rep, 0, 1)                                                           \
+    SG_BLEND_INLINE(tex, bil, rep, 1, 0)                                                           \
+    SG_BLEND_INLINE(tex, bil, rep, 1, 1)
+SG_BLEND_DEPTHS(0, 0, 0)
+SG_BLEND_DEPTHS(1, 0, 1)
+SG_BLEND_DEPTHS(1, 0, 0)
+SG_BLEND_DEPTHS(1, 1, 1)
+SG_BLEND_DEPTHS(1, 1, 0)
+
+sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
+    const int z = (depth_test ? 2 : 0) + (depth_write ? 1 : 0);
+    if (variant < 0) {
+        static const sg_raster_fn call[4] = {blend_none_0, blend_none_1, blend_any_0, blend_any_1};
+        return call[z];
+    }
+#define SG_ROW(tex, bil, rep)                                                                      \
+    {                                                                                              \
+        blend_##tex##bil##rep##00, blend_##tex##bil##rep##01, blend_##tex##bil##rep##10,           \
+            blend_##tex##bil##rep##11                                                              \
+    }
+    /* in sg_shade_variant order */
+    static const sg_raster_fn fns[5][4] = {SG_ROW(0, 0, 0), SG_ROW(1, 0, 1), SG_ROW(1, 0, 0),
+                                           SG_ROW(1, 1, 1), SG_ROW(1, 1, 0)};
+#undef SG_ROW
+    return fns[variant][z];
 }
 
 #else
 
-sg_raster_fn sg_blend_avx2(bool depth_test, bool depth_write) {
+sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
+    (void)variant;
     (void)depth_test;
     (void)depth_write;
     return NULL;

@@ -1,7 +1,8 @@
 /* shade_avx2.h - the AVX2 shading helpers (internal to the raster; included only by files
  * compiled with -mavx2, no FMA): texel fetches with gathers, bilinear filtering in exact integer
  * arithmetic on 16-bit lanes, and float colours to RGBA8, eight pixels a vector (two rows of a
- * tile). shade_avx2.c makes the shading table of them, shade_phong_avx2.c the per-pixel lighting.
+ * tile). shade_avx2.c makes the shading table of them, shade_phong_avx2.c the per-pixel lighting,
+ * blend_avx2.c inlines sg_shade8_at into the raster functions of blended draws.
  * Each computes the scalar reference's operations (shade.c, sample.h) in the same order.
  */
 #ifndef SG_SHADE_AVX2_H
@@ -228,6 +229,71 @@ INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
     tx.last_x = _mm256_set1_epi32(w - 1);
     tx.last_y = _mm256_set1_epi32(h - 1);
     return tx;
+}
+
+/* The colours of eight pixels at offsets (dx, dy) from the triangle's bounds, as RGBA8 lanes: the
+ * body of every variant (the constant arguments fold away), in the reference's operation order
+ * ((a + a_dx dx) + a_dy dy, then times 1/q). Lanes need not be neighbours: each computes what
+ * the reference computes for its pixel, wherever that is, so the blend can shade pixels of
+ * several tiles together. Every lane's fetch stays in the texture whatever its coordinates.
+ * shade_rows (shade_avx2.c) is the same body for the two row pairs of one tile, with the terms
+ * both pairs share computed once (keep the two in step). */
+INLINE __m256i sg_shade8_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
+                            __m256 dx, __m256 dy, const int textured, const int bilinear,
+                            const int repeat, const int flat, const int sec) {
+    const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
+    if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
+        float f[4] = {t->color[0], t->color[1], t->color[2], t->color[3]};
+        if (sec)
+            for (int k = 0; k < 3; k++) f[k] += ext->a[e + k];
+        uint32_t px = sg_pack_rgba8(sg_to_unorm8(f[0]), sg_to_unorm8(f[1]), sg_to_unorm8(f[2]),
+                                    sg_to_unorm8(f[3]));
+        return _mm256_set1_epi32((int)px);
+    }
+#define SG_PLANE(a, adx, ady)                                                                      \
+    _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(a), _mm256_mul_ps(_mm256_set1_ps(adx), dx)),        \
+                  _mm256_mul_ps(_mm256_set1_ps(ady), dy))
+    const __m256 w = _mm256_div_ps(_mm256_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy));
+    __m256 col[4];
+    for (int k = 0; k < 4; k++)
+        col[k] = flat != SG_FLAT_NONE ? _mm256_set1_ps(t->color[k])
+                                      : _mm256_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
+    if (textured) {
+        const tex8 tx = tex8_of(&c->tex, bilinear);
+        __m256 s = _mm256_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
+        __m256 u = _mm256_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
+        __m256i tc[4];
+        if (bilinear) {
+            __m256i x[4];
+            bilinear8(&tx, s, u, repeat, x);
+            if (flat == SG_FLAT_WHITE && !sec) return pack_hi8(x);
+            for (int k = 0; k < 4; k++) tc[k] = _mm256_srli_epi32(x[k], 16);
+        } else {
+            __m256i texel = nearest8(&tx, s, u, repeat);
+            if (flat == SG_FLAT_WHITE && !sec) return texel; /* the colour, as in the reference */
+            unpack_texels(texel, tc);
+        }
+        for (int k = 0; k < 4; k++)
+            col[k] = _mm256_mul_ps(
+                col[k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[k]), _mm256_set1_ps(1.0f / 255.0f)));
+    }
+    for (int k = 0; sec && k < 3; k++)
+        col[k] = _mm256_add_ps(
+            col[k],
+            flat != SG_FLAT_NONE
+                ? _mm256_set1_ps(ext->a[e + k])
+                : _mm256_mul_ps(SG_PLANE(ext->a[e + k], ext->a_dx[e + k], ext->a_dy[e + k]), w));
+#undef SG_PLANE
+    return pack_unorm8(col);
+}
+
+/* dx and dy of rows 2h and 2h + 1 of the tile at (x0, y0), from the triangle's bounds: row 2h in
+ * the low half, 2h + 1 in the high half (exact small integers). */
+INLINE void sg_rows_dxdy8(const sg_tri *t, int x0, int y0, int h, __m256 *dx, __m256 *dy) {
+    const float r0 = (float)(y0 - t->miny + 2 * h);
+    *dx = _mm256_add_ps(_mm256_set1_ps((float)(x0 - t->minx)),
+                        _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
+    *dy = _mm256_set_m128(_mm_set1_ps(r0 + 1.0f), _mm_set1_ps(r0));
 }
 
 /* Writes the lanes of `m` (8 bits) of two rows; other pixels are not touched. */
