@@ -207,16 +207,7 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
         if (q.n) blend_scattered(c, &q, shade(c, t, q.dx, q.dy, tex, bil, rep), q.n);              \
     }
-#define SG_BLEND_DEPTHS(tex, bil, rep)                                                             \
-    SG_BLEND_INLINE(tex, bil, rep, 0, 0)                                                           \
-    SG_BLEND_INLINE(tex, bil, rep, 0, 1)                                                           \
-    SG_BLEND_INLINE(tex, bil, rep, 1, 0)                                                           \
-    SG_BLEND_INLINE(tex, bil, rep, 1, 1)
-SG_BLEND_DEPTHS(0, 0, 0)
-SG_BLEND_DEPTHS(1, 0, 1)
-SG_BLEND_DEPTHS(1, 0, 0)
-SG_BLEND_DEPTHS(1, 1, 1)
-SG_BLEND_DEPTHS(1, 1, 0)
+SG_BLEND_VARIANTS(SG_BLEND_INLINE)
 
 sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
     const int z = (depth_test ? 2 : 0) + (depth_write ? 1 : 0);
@@ -224,15 +215,7 @@ sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
         static const sg_raster_fn call[4] = {blend_none_0, blend_none_1, blend_any_0, blend_any_1};
         return call[z];
     }
-#define SG_ROW(tex, bil, rep)                                                                      \
-    {                                                                                              \
-        blend_##tex##bil##rep##00, blend_##tex##bil##rep##01, blend_##tex##bil##rep##10,           \
-            blend_##tex##bil##rep##11                                                              \
-    }
-    /* in sg_shade_variant order */
-    static const sg_raster_fn fns[5][4] = {SG_ROW(0, 0, 0), SG_ROW(1, 0, 1), SG_ROW(1, 0, 0),
-                                           SG_ROW(1, 1, 1), SG_ROW(1, 1, 0)};
-#undef SG_ROW
+    static const sg_raster_fn fns[5][4] = SG_BLEND_TABLE; /* in sg_shade_variant order */
     return fns[variant][z];
 }
 

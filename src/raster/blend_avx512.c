@@ -5,7 +5,7 @@
 #include "raster/blend.h"
 
 #include "raster/depth_simd.h"
-#include "raster/rast_walk.h"
+#include "raster/blend_walk.h"
 #include "raster/shade_avx512.h"
 
 #if defined(SG_SHADE_AVX512)
@@ -121,7 +121,7 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
 /* One raster function per shading variant (vertex colour; texture nearest / bilinear, repeat /
  * clamp: tex, bil, rep) and depth state (test, write); a tile left waiting for a partner is
  * shaded alone at the end. */
-#define SG_BLEND_FN(tex, bil, rep, zt, zw)                                                         \
+#define SG_BLEND_PAIRED(tex, bil, rep, zt, zw)                                                     \
     static inline void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t,        \
                                                             int x0, int y0, uint32_t m) {          \
         blend_avx512(c, t, x0, y0, m, zt, zw, tex, bil, rep);                                      \
@@ -133,27 +133,10 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
         if (wait.mask) shade_tile_alone(c, t, wait.x0, wait.y0, wait.mask, tex, bil, rep);         \
     }
-#define SG_BLEND_DEPTHS(tex, bil, rep)                                                             \
-    SG_BLEND_FN(tex, bil, rep, 0, 0)                                                               \
-    SG_BLEND_FN(tex, bil, rep, 0, 1)                                                               \
-    SG_BLEND_FN(tex, bil, rep, 1, 0)                                                               \
-    SG_BLEND_FN(tex, bil, rep, 1, 1)
-SG_BLEND_DEPTHS(0, 0, 0)
-SG_BLEND_DEPTHS(1, 0, 1)
-SG_BLEND_DEPTHS(1, 0, 0)
-SG_BLEND_DEPTHS(1, 1, 1)
-SG_BLEND_DEPTHS(1, 1, 0)
+SG_BLEND_VARIANTS(SG_BLEND_PAIRED)
 
 sg_raster_fn sg_blend_avx512(int variant, bool depth_test, bool depth_write) {
-#define SG_ROW(tex, bil, rep)                                                                      \
-    {                                                                                              \
-        blend_##tex##bil##rep##00, blend_##tex##bil##rep##01, blend_##tex##bil##rep##10,           \
-            blend_##tex##bil##rep##11                                                              \
-    }
-    /* in sg_shade_variant order */
-    static const sg_raster_fn fns[5][4] = {SG_ROW(0, 0, 0), SG_ROW(1, 0, 1), SG_ROW(1, 0, 0),
-                                           SG_ROW(1, 1, 1), SG_ROW(1, 1, 0)};
-#undef SG_ROW
+    static const sg_raster_fn fns[5][4] = SG_BLEND_TABLE; /* in sg_shade_variant order */
     return fns[variant][(depth_test ? 2 : 0) + (depth_write ? 1 : 0)];
 }
 
