@@ -102,4 +102,14 @@ static inline uint32_t sg_to_unorm8(float v) {
     return (uint32_t)(v * 255.0f + 0.5f);
 }
 
+/** The one pixel of an untextured flat-coloured triangle: its colour (plus, with sec, the
+ *  secondary colour in ext), converted once for all its pixels. */
+static inline uint32_t sg_flat_pixel(const sg_tri *t, const sg_tri_ext *ext, int sec) {
+    float f[4] = {t->color[0], t->color[1], t->color[2], t->color[3]};
+    if (sec)
+        for (int k = 0; k < 3; k++) f[k] += ext->a[SG_LIT_SEC - SG_TRI_ATTRS + k];
+    return (sg_to_unorm8(f[0]) | sg_to_unorm8(f[1]) << 8 | sg_to_unorm8(f[2]) << 16 |
+            sg_to_unorm8(f[3]) << 24);
+}
+
 #endif

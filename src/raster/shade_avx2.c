@@ -16,11 +16,7 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                        const int repeat, const int flat, const int sec) {
     const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
-        float f[4] = {t->color[0], t->color[1], t->color[2], t->color[3]};
-        if (sec)
-            for (int k = 0; k < 3; k++) f[k] += ext->a[e + k];
-        uint32_t px = sg_pack_rgba8(sg_to_unorm8(f[0]), sg_to_unorm8(f[1]), sg_to_unorm8(f[2]),
-                                    sg_to_unorm8(f[3]));
+        uint32_t px = sg_flat_pixel(t, ext, sec);
         for (int r = 0; r < 4; r += 2) {
             unsigned m = (mask >> (4 * r)) & 255u;
             if (m) store_rows(dst + 4 * r, _mm256_set1_epi32((int)px), m);

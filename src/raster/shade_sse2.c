@@ -201,11 +201,9 @@ INLINE void store_row(uint32_t *dst, __m128i v, unsigned m) {
 INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
                        int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
                        const int repeat, const int flat, const int sec) {
-    (void)ext;
     (void)sec;
     if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
-        uint32_t px = sg_pack_rgba8(sg_to_unorm8(t->color[0]), sg_to_unorm8(t->color[1]),
-                                    sg_to_unorm8(t->color[2]), sg_to_unorm8(t->color[3]));
+        uint32_t px = sg_flat_pixel(t, ext, 0);
         for (int r = 0; r < 4; r++) {
             unsigned m = (mask >> (4 * r)) & 15u;
             if (m) store_row(dst + 4 * r, _mm_set1_epi32((int)px), m);
