@@ -100,9 +100,11 @@ typedef struct walk {
     int64_t bhi[3], blo[3]; /* 16x16 block */
     bool narrow;
 #if defined(__AVX512F__)
-    __m512i offs[3]; /* per edge: i dx + j dy of pixel (i, j) of a tile, in 32 bits */
+    __m512i offs[3];    /* per edge: i dx + j dy of pixel (i, j) of a tile, in 32 bits */
+    __m512i wide[3][2]; /* not narrow: the same in 64 bits, rows 0-1 and rows 2-3 */
 #elif defined(__AVX2__)
     __m256i offs[3][2]; /* the same, rows 0-1 and rows 2-3 */
+    __m256i wide[3][4]; /* not narrow: the same in 64 bits, a row a vector */
 #elif defined(__SSE2__)
     __m128i lane[3], step[3]; /* per edge: 0, dx, 2 dx, 3 dx; and dy, in 32 bits */
 #elif defined(__aarch64__) && defined(__ARM_NEON)
@@ -179,6 +181,28 @@ SG_WALK_INLINE uint32_t crossed_mask(const walk *w, const int64_t e0[3]) {
         return mask;
 #endif
     }
+#if defined(__AVX512F__)
+    /* Wide (long lines, large triangles): the same test in 64-bit lanes, half a tile a vector. */
+    for (int e = 0; e < 3; e++) {
+        if (e0[e] + w->lo[e] >= 0) continue;
+        const __m512i base = _mm512_set1_epi64(e0[e]), zero = _mm512_setzero_si512();
+        uint32_t lo = _mm512_cmpge_epi64_mask(_mm512_add_epi64(base, w->wide[e][0]), zero);
+        uint32_t hi = _mm512_cmpge_epi64_mask(_mm512_add_epi64(base, w->wide[e][1]), zero);
+        mask &= lo | hi << 8;
+    }
+    return mask;
+#elif defined(__AVX2__)
+    /* Wide: a row of a tile a vector of 64-bit lanes; the sign bits are "outside". */
+    for (int e = 0; e < 3; e++) {
+        if (e0[e] + w->lo[e] >= 0) continue;
+        const __m256i base = _mm256_set1_epi64x(e0[e]);
+        for (int j = 0; j < SG_TILE; j++) {
+            __m256d v = _mm256_castsi256_pd(_mm256_add_epi64(base, w->wide[e][j]));
+            mask &= ~((uint32_t)_mm256_movemask_pd(v) << (4 * j));
+        }
+    }
+    return mask;
+#endif
     for (int i = 0; i < SG_TILE_PIXELS; i++) {
         int64_t ox = i & 3, oy = i >> 2;
         for (int e = 0; e < 3; e++)
@@ -511,6 +535,20 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
             for (int i = 0; i < SG_TILE_PIXELS; i++) w.offs[e][i] = (i & 3) * dx + (i >> 2) * dy;
 #endif
         }
+#if defined(__AVX512F__) || defined(__AVX2__)
+    else
+        for (int e = 0; e < 3; e++) {
+            int64_t o[SG_TILE_PIXELS];
+            for (int i = 0; i < SG_TILE_PIXELS; i++)
+                o[i] = (i & 3) * t->edge_dx[e] + (i >> 2) * t->edge_dy[e];
+#if defined(__AVX512F__)
+            for (int h = 0; h < 2; h++) w.wide[e][h] = _mm512_loadu_si512(o + 8 * h);
+#else
+            for (int j = 0; j < SG_TILE; j++)
+                w.wide[e][j] = _mm256_loadu_si256((const __m256i *)(const void *)(o + 4 * j));
+#endif
+        }
+#endif
     if (t->line) {
         line_walk(&w, tx0, ty0, tx1, ty1, fn, ctx);
         return;
