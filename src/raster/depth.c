@@ -111,10 +111,10 @@ sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
                    ? sg_depth_less_neon(depth_write)
                    : scalar[zmode][depth_write ? 1 : 0];
     /* The best set the ISA allows that is built: AVX-512, AVX2, SSE2, scalar. */
-    if (isa >= SG_ISA_AVX512 && zmode == Z_LESS && sg_depth_less_avx512(depth_write))
-        return sg_depth_less_avx512(depth_write);
-    if (isa >= SG_ISA_AVX2 && zmode == Z_LESS && sg_depth_less_avx2(depth_write))
-        return sg_depth_less_avx2(depth_write);
+    if (isa >= SG_ISA_AVX512 && sg_depth_avx512(compare, depth_write))
+        return sg_depth_avx512(compare, depth_write);
+    if (isa >= SG_ISA_AVX2 && sg_depth_avx2(compare, depth_write))
+        return sg_depth_avx2(compare, depth_write);
 #if defined(__SSE2__)
     if (isa >= SG_ISA_SSE2 && zmode == Z_LESS)
         return depth_write ? vis_less_1_sse2 : vis_less_0_sse2;

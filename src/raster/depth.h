@@ -84,10 +84,10 @@ static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
     return v->ids + base;
 }
 
-/** The AVX2 LESS functions (depth_avx2.c); NULL where AVX2 code is not built. */
-sg_raster_fn sg_depth_less_avx2(bool depth_write);
-/** The AVX-512 LESS functions (depth_avx512.c); NULL where AVX-512 code is not built. */
-sg_raster_fn sg_depth_less_avx512(bool depth_write);
+/** The AVX2 visibility function of a compare (depth_avx2.c); NULL where AVX2 code is not built. */
+sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write);
+/** The AVX-512 one (depth_avx512.c); NULL where AVX-512 code is not built. */
+sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write);
 /** The NEON LESS functions (depth_neon.c); NULL off AArch64. */
 sg_raster_fn sg_depth_less_neon(bool depth_write);
 

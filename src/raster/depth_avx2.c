@@ -1,5 +1,6 @@
-/* depth_avx2.c - the LESS visibility tile functions in AVX2 (see depth.h): two rows of a tile a
- * vector, the same z = (z0 + z_dx * dx) + z_dy * dy and clamp as the scalar and SSE2 ones. */
+/* depth_avx2.c - the visibility tile functions in AVX2 (see depth.h), for every compare, with and
+ * without depth write: two rows of a tile a vector, the same z = (z0 + z_dx * dx) + z_dy * dy and
+ * clamp as the scalar and SSE2 ones. */
 #include "raster/depth.h"
 
 #include "raster/depth_simd.h"
@@ -8,49 +9,62 @@
 #if defined(__AVX2__)
 #include <immintrin.h>
 
-static inline __attribute__((always_inline)) void
-vis_avx2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const int zwrite) {
+/* zmode: Z_NONE (ALWAYS: every covered pixel), Z_LESS, or Z_ANY (the pass's compare). */
+enum { Z_NONE, Z_LESS, Z_ANY };
+
+static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, const sg_tri *t,
+                                                           int x0, int y0, uint32_t mask,
+                                                           const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     uint32_t *ids = sg_vis_tile_ids(v, base);
-    float *dp = v->depth + base;
     const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    const sg_zrows8 zr = sg_zrows8_at(t, x0, y0);
+    const bool depth = zmode != Z_NONE || zwrite;
+    float *dp = depth ? v->depth + base : NULL; /* NULL: the pass may have no depth target */
+    const sg_zrows8 zr = depth ? sg_zrows8_at(t, x0, y0) : (sg_zrows8){0};
     __m256i id = _mm256_set1_epi32((int)v->id);
     for (int h = 0; h < 2; h++) {
         uint32_t bits = (mask >> (8 * h)) & 255u;
         if (!bits) continue;
-        __m256 z = sg_zrows8_half(&zr, h);
-        __m256 d = _mm256_load_ps(dp + 8 * h);
-        __m256 pass = sg_compare8(SG_COMPARE_LESS, z, d);
-        if (bits != 255u)
-            pass = _mm256_and_ps(
-                pass, _mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                          _mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes)));
-        if (!_mm256_movemask_ps(pass)) continue;
-        if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, pass));
+        __m256 pass = _mm256_castsi256_ps(
+            _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes));
+        if (depth) {
+            __m256 z = sg_zrows8_half(&zr, h);
+            __m256 d = _mm256_load_ps(dp + 8 * h);
+            if (zmode != Z_NONE)
+                pass = _mm256_and_ps(
+                    pass, sg_compare8(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, z, d));
+            if (!_mm256_movemask_ps(pass)) continue;
+            if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, pass));
+        }
         __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
         _mm256_store_si256(
             ip, _mm256_blendv_epi8(_mm256_load_si256(ip), id, _mm256_castps_si256(pass)));
     }
 }
 
-static inline void vis_less_0_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
-    vis_avx2(c, t, x0, y0, m, 0);
-}
-static inline void vis_less_1_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
-    vis_avx2(c, t, x0, y0, m, 1);
-}
-/* The walk with the tile function inlined (rast_walk.h). */
-static void vis_less_0_avx2(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
-    sg_rast_walk(t, x0, y0, x1, y1, vis_less_0_tile, c);
-}
-static void vis_less_1_avx2(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
-    sg_rast_walk(t, x0, y0, x1, y1, vis_less_1_tile, c);
-}
+/* A tile function and the walk with it inlined (rast_walk.h). */
+#define SG_VIS(name, zm, zw)                                                                       \
+    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
+        vis_avx2(c, t, x0, y0, m, zm, zw);                                                         \
+    }                                                                                              \
+    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
+        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
+    }
+SG_VIS(vis_none_0_avx2, Z_NONE, 0)
+SG_VIS(vis_none_1_avx2, Z_NONE, 1)
+SG_VIS(vis_less_0_avx2, Z_LESS, 0)
+SG_VIS(vis_less_1_avx2, Z_LESS, 1)
+SG_VIS(vis_any_0_avx2, Z_ANY, 0)
+SG_VIS(vis_any_1_avx2, Z_ANY, 1)
 
-sg_raster_fn sg_depth_less_avx2(bool depth_write) {
-    return depth_write ? vis_less_1_avx2 : vis_less_0_avx2;
+sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write) {
+    static const sg_raster_fn fns[3][2] = {{vis_none_0_avx2, vis_none_1_avx2},
+                                           {vis_less_0_avx2, vis_less_1_avx2},
+                                           {vis_any_0_avx2, vis_any_1_avx2}};
+    int zmode =
+        compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
+    return fns[zmode][depth_write ? 1 : 0];
 }
 
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
@@ -64,7 +78,8 @@ sg_walk_fn sg_walk_avx2(void) {
 
 #else
 
-sg_raster_fn sg_depth_less_avx2(bool depth_write) {
+sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write) {
+    (void)compare;
     (void)depth_write;
     return NULL;
 }

@@ -1,5 +1,6 @@
-/* depth_avx512.c - the LESS visibility tile functions in AVX-512 (see depth.h): a whole tile a
- * vector, z as depth_simd.h computes it; the coverage mask is the compare and store mask. */
+/* depth_avx512.c - the visibility tile functions in AVX-512 (see depth.h), for every compare, with
+ * and without depth write: a whole tile a vector, z as depth_simd.h computes it; the coverage mask
+ * is the compare and store mask. */
 #include "raster/depth.h"
 
 #include "raster/depth_simd.h"
@@ -8,37 +9,52 @@
 #if defined(__AVX512F__)
 #include <immintrin.h>
 
-static inline __attribute__((always_inline)) void
-vis_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const int zwrite) {
+/* zmode: Z_NONE (ALWAYS: every covered pixel), Z_LESS, or Z_ANY (the pass's compare). */
+enum { Z_NONE, Z_LESS, Z_ANY };
+
+static inline __attribute__((always_inline)) void vis_avx512(const void *vctx, const sg_tri *t,
+                                                             int x0, int y0, uint32_t mask,
+                                                             const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     uint32_t *ids = sg_vis_tile_ids(v, base);
-    float *dp = v->depth + base;
-    __m512 dx, dy;
-    sg_tile_dxdy16(t, x0, y0, &dx, &dy);
-    __m512 z = sg_z16(t, dx, dy);
-    __mmask16 pass = sg_compare16(SG_COMPARE_LESS, (__mmask16)mask, z, _mm512_loadu_ps(dp));
-    if (!pass) return;
-    if (zwrite) _mm512_mask_storeu_ps(dp, pass, z);
+    __mmask16 pass = (__mmask16)mask;
+    if (zmode != Z_NONE || zwrite) {
+        float *dp = v->depth + base;
+        __m512 dx, dy;
+        sg_tile_dxdy16(t, x0, y0, &dx, &dy);
+        __m512 z = sg_z16(t, dx, dy);
+        if (zmode != Z_NONE)
+            pass = sg_compare16(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, pass, z,
+                                _mm512_loadu_ps(dp));
+        if (!pass) return;
+        if (zwrite) _mm512_mask_storeu_ps(dp, pass, z);
+    }
     _mm512_mask_storeu_epi32(ids, pass, _mm512_set1_epi32((int)v->id));
 }
 
-static inline void vis_less_0_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
-    vis_avx512(c, t, x0, y0, m, 0);
-}
-static inline void vis_less_1_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {
-    vis_avx512(c, t, x0, y0, m, 1);
-}
-/* The walk with the tile function inlined (rast_walk.h). */
-static void vis_less_0_avx512(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
-    sg_rast_walk(t, x0, y0, x1, y1, vis_less_0_tile, c);
-}
-static void vis_less_1_avx512(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
-    sg_rast_walk(t, x0, y0, x1, y1, vis_less_1_tile, c);
-}
+/* A tile function and the walk with it inlined (rast_walk.h). */
+#define SG_VIS(name, zm, zw)                                                                       \
+    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
+        vis_avx512(c, t, x0, y0, m, zm, zw);                                                       \
+    }                                                                                              \
+    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
+        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
+    }
+SG_VIS(vis_none_0_avx512, Z_NONE, 0)
+SG_VIS(vis_none_1_avx512, Z_NONE, 1)
+SG_VIS(vis_less_0_avx512, Z_LESS, 0)
+SG_VIS(vis_less_1_avx512, Z_LESS, 1)
+SG_VIS(vis_any_0_avx512, Z_ANY, 0)
+SG_VIS(vis_any_1_avx512, Z_ANY, 1)
 
-sg_raster_fn sg_depth_less_avx512(bool depth_write) {
-    return depth_write ? vis_less_1_avx512 : vis_less_0_avx512;
+sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write) {
+    static const sg_raster_fn fns[3][2] = {{vis_none_0_avx512, vis_none_1_avx512},
+                                           {vis_less_0_avx512, vis_less_1_avx512},
+                                           {vis_any_0_avx512, vis_any_1_avx512}};
+    int zmode =
+        compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
+    return fns[zmode][depth_write ? 1 : 0];
 }
 
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
@@ -52,7 +68,8 @@ sg_walk_fn sg_walk_avx512(void) {
 
 #else
 
-sg_raster_fn sg_depth_less_avx512(bool depth_write) {
+sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write) {
+    (void)compare;
     (void)depth_write;
     return NULL;
 }
