@@ -46,10 +46,10 @@ static inline __attribute__((always_inline)) void blend_scalar(const void *vctx,
     }
 }
 
-SG_BLEND_FN(blend_none_0, blend_scalar, Z_NONE, 0)
-SG_BLEND_FN(blend_none_1, blend_scalar, Z_NONE, 1)
-SG_BLEND_FN(blend_any_0, blend_scalar, Z_ANY, 0)
-SG_BLEND_FN(blend_any_1, blend_scalar, Z_ANY, 1)
+SG_WALK_FN(blend_none_0, blend_scalar, Z_NONE, 0)
+SG_WALK_FN(blend_none_1, blend_scalar, Z_NONE, 1)
+SG_WALK_FN(blend_any_0, blend_scalar, Z_ANY, 0)
+SG_WALK_FN(blend_any_1, blend_scalar, Z_ANY, 1)
 
 #if defined(__SSE2__)
 /* x y / 255 as sg_mul_unorm8 rounds it, in 16-bit lanes (x, y <= 255, so no lane overflows). */
@@ -113,30 +113,30 @@ static inline __attribute__((always_inline)) void blend_sse2(const void *vctx, c
     }
 }
 
-SG_BLEND_FN(blend_none_0_sse2, blend_sse2, Z_NONE, 0)
-SG_BLEND_FN(blend_none_1_sse2, blend_sse2, Z_NONE, 1)
-SG_BLEND_FN(blend_any_0_sse2, blend_sse2, Z_ANY, 0)
-SG_BLEND_FN(blend_any_1_sse2, blend_sse2, Z_ANY, 1)
+SG_WALK_FN(blend_none_0_sse2, blend_sse2, Z_NONE, 0)
+SG_WALK_FN(blend_none_1_sse2, blend_sse2, Z_NONE, 1)
+SG_WALK_FN(blend_any_0_sse2, blend_sse2, Z_ANY, 0)
+SG_WALK_FN(blend_any_1_sse2, blend_sse2, Z_ANY, 1)
 #endif
 
 sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa) {
-    int zmode = compare == SG_COMPARE_ALWAYS ? Z_NONE : Z_ANY;
+    const bool test = compare != SG_COMPARE_ALWAYS; /* Z_ANY, else Z_NONE */
     sg_raster_fn fn = NULL;
-    if (isa == SG_ISA_NEON) fn = sg_blend_neon(zmode == Z_ANY, depth_write);
+    if (isa == SG_ISA_NEON) fn = sg_blend_neon(test, depth_write);
     if (fn) return fn;
     /* A negative variant (lit shading) calls the draw's shading function: AVX2 at best. */
     if (isa >= SG_ISA_AVX512 && shade_variant >= 0)
-        fn = sg_blend_avx512(shade_variant, zmode == Z_ANY, depth_write);
-    if (!fn && isa >= SG_ISA_AVX2) fn = sg_blend_avx2(shade_variant, zmode == Z_ANY, depth_write);
+        fn = sg_blend_avx512(shade_variant, test, depth_write);
+    if (!fn && isa >= SG_ISA_AVX2) fn = sg_blend_avx2(shade_variant, test, depth_write);
     if (fn) return fn;
 #if defined(__SSE2__)
     static const sg_raster_fn sse2[2][2] = {{blend_none_0_sse2, blend_none_1_sse2},
                                             {blend_any_0_sse2, blend_any_1_sse2}};
-    if (isa >= SG_ISA_SSE2) return sse2[zmode][depth_write ? 1 : 0];
+    if (isa >= SG_ISA_SSE2) return sse2[test][depth_write ? 1 : 0];
 #else
     (void)isa;
 #endif
     static const sg_raster_fn scalar[2][2] = {{blend_none_0, blend_none_1},
                                               {blend_any_0, blend_any_1}};
-    return scalar[zmode][depth_write ? 1 : 0];
+    return scalar[test][depth_write ? 1 : 0];
 }

@@ -91,10 +91,10 @@ INLINE void blend_call(const void *vctx, const sg_tri *t, int x0, int y0, uint32
     }
 }
 
-SG_BLEND_FN(blend_none_0, blend_call, Z_NONE, 0)
-SG_BLEND_FN(blend_none_1, blend_call, Z_NONE, 1)
-SG_BLEND_FN(blend_any_0, blend_call, Z_ANY, 0)
-SG_BLEND_FN(blend_any_1, blend_call, Z_ANY, 1)
+SG_WALK_FN(blend_none_0, blend_call, Z_NONE, 0)
+SG_WALK_FN(blend_none_1, blend_call, Z_NONE, 1)
+SG_WALK_FN(blend_any_0, blend_call, Z_ANY, 0)
+SG_WALK_FN(blend_any_1, blend_call, Z_ANY, 1)
 
 /* Up to eight pixels of a triangle waiting to be shaded together: their offsets from the
  * triangle's bounds and in the bin's colour, lanes 0 to n - 1 (the others hold earlier pixels of

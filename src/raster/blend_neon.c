@@ -62,10 +62,10 @@ static inline __attribute__((always_inline)) void blend_neon(const void *vctx, c
     }
 }
 
-SG_BLEND_FN(blend_none_0, blend_neon, Z_NONE, 0)
-SG_BLEND_FN(blend_none_1, blend_neon, Z_NONE, 1)
-SG_BLEND_FN(blend_any_0, blend_neon, Z_ANY, 0)
-SG_BLEND_FN(blend_any_1, blend_neon, Z_ANY, 1)
+SG_WALK_FN(blend_none_0, blend_neon, Z_NONE, 0)
+SG_WALK_FN(blend_none_1, blend_neon, Z_NONE, 1)
+SG_WALK_FN(blend_any_0, blend_neon, Z_ANY, 0)
+SG_WALK_FN(blend_any_1, blend_neon, Z_ANY, 1)
 
 sg_raster_fn sg_blend_neon(bool depth_test, bool depth_write) {
     static const sg_raster_fn fns[2][2] = {{blend_none_0, blend_none_1},

@@ -1,23 +1,10 @@
-/* blend_walk.h - what every instruction set's blend file shares: the two depth modes a blended
- * tile is specialised for, and the macro that binds a tile body to a mode and walks it over a
- * triangle's tiles (rast_walk.h). Included only by blend*.c. */
+/* blend_walk.h - what every instruction set's blend file shares: the table of its raster
+ * functions, one per shading variant and depth state (the depth modes and the walk macro are
+ * depth_walk.h's; a blended tile is Z_NONE or Z_ANY). Included only by blend*.c. */
 #ifndef SG_RASTER_BLEND_WALK_H
 #define SG_RASTER_BLEND_WALK_H
 
-#include "raster/rast_walk.h"
-
-/* Z_NONE: no depth test (ALWAYS); Z_ANY: the draw's compare. */
-enum { Z_NONE, Z_ANY };
-
-/* name(): the raster function of body(ctx, t, x0, y0, mask, zmode, zwrite) with zmode and
- * zwrite constant, so each variant compiles without the branches it does not take. */
-#define SG_BLEND_FN(name, body, zm, zw)                                                            \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        body(c, t, x0, y0, m, zm, zw);                                                             \
-    }                                                                                              \
-    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
-    }
+#include "raster/depth_walk.h"
 
 /* The blend functions specialised per shading variant of the unlit table (vertex colour; texture
  * nearest / bilinear, repeat / clamp: tex, bil, rep) and depth state (test, write): fn(tex, bil,

@@ -6,13 +6,11 @@
 #include "raster/depth.h"
 
 #include "raster/depth_simd.h"
-#include "raster/rast_walk.h"
+#include "raster/depth_walk.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-
-enum { Z_NONE, Z_LESS, Z_ANY };
 
 static inline __attribute__((always_inline)) void vis_scalar(const void *vctx, const sg_tri *t,
                                                              int x0, int y0, uint32_t mask,
@@ -41,26 +39,15 @@ static inline __attribute__((always_inline)) void vis_scalar(const void *vctx, c
     }
 }
 
-/* A tile function and the walk with it inlined. */
-#define SG_VIS(name, zm, zw)                                                                       \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        vis_scalar(c, t, x0, y0, m, zm, zw);                                                       \
-    }                                                                                              \
-    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
-    }
-SG_VIS(vis_none_0, Z_NONE, 0)
-SG_VIS(vis_none_1, Z_NONE, 1)
-SG_VIS(vis_less_0, Z_LESS, 0)
-SG_VIS(vis_less_1, Z_LESS, 1)
-SG_VIS(vis_any_0, Z_ANY, 0)
-SG_VIS(vis_any_1, Z_ANY, 1)
+SG_VIS_SET(vis, vis_scalar)
 
 #if defined(__SSE2__)
 /* One row of 4 pixels at a time (z as depth_simd.h computes it). `lanes` has the bit of each
  * lane, to turn the 4 coverage bits of a row into a lane mask. */
-static inline __attribute__((always_inline)) void
-vis_sse2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const int zwrite) {
+static inline __attribute__((always_inline)) void vis_sse2(const void *vctx, const sg_tri *t,
+                                                           int x0, int y0, uint32_t mask,
+                                                           const int zmode, const int zwrite) {
+    (void)zmode; /* LESS only */
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     uint32_t *ids = sg_vis_tile_ids(v, base);
@@ -85,27 +72,13 @@ vis_sse2(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask, const
     }
 }
 
-static inline void vis_less_0_sse2_tile(const void *c, const sg_tri *t, int x0, int y0,
-                                        uint32_t m) {
-    vis_sse2(c, t, x0, y0, m, 0);
-}
-static inline void vis_less_1_sse2_tile(const void *c, const sg_tri *t, int x0, int y0,
-                                        uint32_t m) {
-    vis_sse2(c, t, x0, y0, m, 1);
-}
-static void vis_less_0_sse2(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
-    sg_rast_walk(t, x0, y0, x1, y1, vis_less_0_sse2_tile, c);
-}
-static void vis_less_1_sse2(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {
-    sg_rast_walk(t, x0, y0, x1, y1, vis_less_1_sse2_tile, c);
-}
+SG_WALK_FN(vis_less_0_sse2, vis_sse2, Z_LESS, 0)
+SG_WALK_FN(vis_less_1_sse2, vis_sse2, Z_LESS, 1)
 #endif
 
 sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
-    static const sg_raster_fn scalar[3][2] = {
-        {vis_none_0, vis_none_1}, {vis_less_0, vis_less_1}, {vis_any_0, vis_any_1}};
-    int zmode =
-        compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
+    static const sg_raster_fn scalar[3][2] = SG_VIS_TABLE(vis);
+    int zmode = sg_zmode(compare);
     if (isa == SG_ISA_NEON)
         return zmode == Z_LESS && sg_depth_less_neon(depth_write)
                    ? sg_depth_less_neon(depth_write)

@@ -4,13 +4,10 @@
 #include "raster/depth.h"
 
 #include "raster/depth_simd.h"
-#include "raster/rast_walk.h"
+#include "raster/depth_walk.h"
 
 #if defined(__AVX2__)
 #include <immintrin.h>
-
-/* zmode: Z_NONE (ALWAYS: every covered pixel), Z_LESS, or Z_ANY (the pass's compare). */
-enum { Z_NONE, Z_LESS, Z_ANY };
 
 static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, const sg_tri *t,
                                                            int x0, int y0, uint32_t mask,
@@ -43,28 +40,11 @@ static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, con
     }
 }
 
-/* A tile function and the walk with it inlined (rast_walk.h). */
-#define SG_VIS(name, zm, zw)                                                                       \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        vis_avx2(c, t, x0, y0, m, zm, zw);                                                         \
-    }                                                                                              \
-    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
-    }
-SG_VIS(vis_none_0_avx2, Z_NONE, 0)
-SG_VIS(vis_none_1_avx2, Z_NONE, 1)
-SG_VIS(vis_less_0_avx2, Z_LESS, 0)
-SG_VIS(vis_less_1_avx2, Z_LESS, 1)
-SG_VIS(vis_any_0_avx2, Z_ANY, 0)
-SG_VIS(vis_any_1_avx2, Z_ANY, 1)
+SG_VIS_SET(vis_avx2, vis_avx2)
 
 sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write) {
-    static const sg_raster_fn fns[3][2] = {{vis_none_0_avx2, vis_none_1_avx2},
-                                           {vis_less_0_avx2, vis_less_1_avx2},
-                                           {vis_any_0_avx2, vis_any_1_avx2}};
-    int zmode =
-        compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
-    return fns[zmode][depth_write ? 1 : 0];
+    static const sg_raster_fn fns[3][2] = SG_VIS_TABLE(vis_avx2);
+    return fns[sg_zmode(compare)][depth_write ? 1 : 0];
 }
 
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,

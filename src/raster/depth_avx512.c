@@ -4,13 +4,10 @@
 #include "raster/depth.h"
 
 #include "raster/depth_simd.h"
-#include "raster/rast_walk.h"
+#include "raster/depth_walk.h"
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
-
-/* zmode: Z_NONE (ALWAYS: every covered pixel), Z_LESS, or Z_ANY (the pass's compare). */
-enum { Z_NONE, Z_LESS, Z_ANY };
 
 static inline __attribute__((always_inline)) void vis_avx512(const void *vctx, const sg_tri *t,
                                                              int x0, int y0, uint32_t mask,
@@ -33,28 +30,11 @@ static inline __attribute__((always_inline)) void vis_avx512(const void *vctx, c
     _mm512_mask_storeu_epi32(ids, pass, _mm512_set1_epi32((int)v->id));
 }
 
-/* A tile function and the walk with it inlined (rast_walk.h). */
-#define SG_VIS(name, zm, zw)                                                                       \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        vis_avx512(c, t, x0, y0, m, zm, zw);                                                       \
-    }                                                                                              \
-    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
-    }
-SG_VIS(vis_none_0_avx512, Z_NONE, 0)
-SG_VIS(vis_none_1_avx512, Z_NONE, 1)
-SG_VIS(vis_less_0_avx512, Z_LESS, 0)
-SG_VIS(vis_less_1_avx512, Z_LESS, 1)
-SG_VIS(vis_any_0_avx512, Z_ANY, 0)
-SG_VIS(vis_any_1_avx512, Z_ANY, 1)
+SG_VIS_SET(vis_avx512, vis_avx512)
 
 sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write) {
-    static const sg_raster_fn fns[3][2] = {{vis_none_0_avx512, vis_none_1_avx512},
-                                           {vis_less_0_avx512, vis_less_1_avx512},
-                                           {vis_any_0_avx512, vis_any_1_avx512}};
-    int zmode =
-        compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
-    return fns[zmode][depth_write ? 1 : 0];
+    static const sg_raster_fn fns[3][2] = SG_VIS_TABLE(vis_avx512);
+    return fns[sg_zmode(compare)][depth_write ? 1 : 0];
 }
 
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
