@@ -3,6 +3,7 @@
 #include "image_io.h"
 
 #include "obj.h" /* sc_read_file */
+#include "png_store.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -294,88 +295,22 @@ static bool write_all(int fd, const unsigned char *p, size_t len) {
     return true;
 }
 
-/* Level 0, without copying the pixels: the file is a list of pieces, most of them the image's
- * rows as they are, between small headers, and goes to the kernel in writev calls. A stored
- * deflate stream is blocks of at most 65535 bytes, each after a 5-byte header; the data is each
- * row after its filter byte (0, None). The checksums (Adler-32 of the data, CRC-32 of the chunk)
- * run over the same pieces. The pieces are (re)built in kept arrays, so an animation's frames
- * allocate nothing. False: out of memory (errno ENOMEM) or a write failed (errno set). */
+/* Level 0, without copying the pixels: the file as pieces, most of them the image's rows as they
+ * are (png_store.c), written by writev. The pieces are (re)built in kept arrays, so an
+ * animation's frames allocate nothing. False: out of memory (errno ENOMEM) or a write failed
+ * (errno set). */
 static bool write_stored(sc_png_writer *w, int fd, int width, int height,
                          const unsigned char *rgba) {
-    enum { BLOCK = 65535 };
-    const size_t row = (size_t)width * 4, data_len = (size_t)height * (row + 1);
-    const size_t blocks = (data_len + BLOCK - 1) / BLOCK;
-    /* Pieces: one before the data; per block its header and where a row straddles the block's
-     * end, one more part of it; per row its filter byte and its pixels; one after. Bytes that are
-     * not pixels: 8 + 25 + 10 before, 5 a block, 20 after (Adler-32, CRC, IEND). */
-    const size_t pieces = 1 + blocks * 2 + (size_t)height * 2 + 1;
-    const size_t heads = 43 + blocks * 5 + 20;
+    const size_t pieces = sc_png_store_pieces(width, height);
     if (pieces > w->iov_cap) {
         struct iovec *v = realloc(w->iov, pieces * sizeof *v);
         if (!v) return errno = ENOMEM, false;
         w->iov = v;
         w->iov_cap = pieces;
     }
-    if (!reserve(&w->heads, &w->heads_cap, heads)) return errno = ENOMEM, false;
-    unsigned char *h = w->heads;
-    size_t n = 0;
-    static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-    memcpy(h, signature, 8);
-    memcpy(h + 8 + 4, "IHDR", 4);
-    put_u32(h + 8 + 8, (uint32_t)width);
-    put_u32(h + 8 + 12, (uint32_t)height);
-    const unsigned char ihdr_rest[5] = {8, 6, 0, 0, 0};
-    memcpy(h + 8 + 16, ihdr_rest, 5);
-    end_chunk(h + 8, 13);
-    /* IDAT: length, type, zlib header (deflate, 32 KiB window, no dictionary, fastest) */
-    unsigned char *idat = h + 33;
-    const size_t idat_len = 2 + blocks * 5 + data_len + 4;
-    if (idat_len > 0x7FFFFFFF) return errno = EFBIG, false;
-    put_u32(idat, (uint32_t)idat_len);
-    memcpy(idat + 4, "IDAT", 4);
-    idat[8] = 0x78;
-    idat[9] = 0x01;
-    w->iov[n++] = (struct iovec){h, 33 + 10};
-    uint32_t crc = libdeflate_crc32(0, idat + 4, 6), adler = 1;
-    unsigned char *p = h + 43;
-    static const unsigned char filter_none = 0;
-    size_t left = 0; /* bytes left in the current block */
-    size_t done = 0; /* data bytes emitted */
-#define SG_PIECE(ptr, len)                                                                         \
-    do {                                                                                           \
-        const unsigned char *ptr_ = (ptr);                                                         \
-        size_t len_ = (len);                                                                       \
-        while (len_) {                                                                             \
-            if (!left) { /* a stored block's header: final bit, length, its complement */          \
-                size_t b = data_len - done < BLOCK ? data_len - done : BLOCK;                      \
-                p[0] = (unsigned char)(done + b == data_len);                                      \
-                p[1] = (unsigned char)b, p[2] = (unsigned char)(b >> 8);                           \
-                p[3] = (unsigned char)~b, p[4] = (unsigned char)(~b >> 8);                         \
-                crc = libdeflate_crc32(crc, p, 5);                                                 \
-                w->iov[n++] = (struct iovec){p, 5};                                                \
-                p += 5;                                                                            \
-                left = b;                                                                          \
-            }                                                                                      \
-            size_t k = len_ < left ? len_ : left;                                                  \
-            crc = libdeflate_crc32(crc, ptr_, k);                                                  \
-            adler = libdeflate_adler32(adler, ptr_, k);                                            \
-            w->iov[n++] = (struct iovec){(void *)(uintptr_t)ptr_, k};                              \
-            ptr_ += k, len_ -= k, left -= k, done += k;                                            \
-        }                                                                                          \
-    } while (0)
-    for (int y = 0; y < height; y++) {
-        SG_PIECE(&filter_none, 1);
-        SG_PIECE(rgba + (size_t)y * row, row);
-    }
-#undef SG_PIECE
-    put_u32(p, adler);
-    crc = libdeflate_crc32(crc, p, 4);
-    put_u32(p + 4, crc);
-    memset(p + 8, 0, 4); /* IEND: length 0, type, CRC */
-    memcpy(p + 12, "IEND", 4);
-    w->iov[n++] = (struct iovec){p, 8 + 8};
-    put_u32(p + 16, libdeflate_crc32(0, p + 12, 4));
-    w->iov[n - 1].iov_len += 4;
+    if (!reserve(&w->heads, &w->heads_cap, sc_png_store_heads(width, height)))
+        return errno = ENOMEM, false;
+    size_t n = sc_png_store_build(w->iov, w->heads, width, height, rgba);
     /* writev takes at most IOV_MAX pieces and may write less than asked: go on from there. */
     struct iovec *v = w->iov;
     while (n) {
