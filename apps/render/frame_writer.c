@@ -1,11 +1,17 @@
 /* frame_writer.c - a bounded queue of frames and the threads that write them (frame_writer.h). */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* syscall */
 #include "frame_writer.h"
 
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
 
 #include "image_io.h"
 
@@ -35,6 +41,13 @@ struct frame_writer {
 static void *writer_main(void *arg) {
     frame_writer *w = arg;
     char err[1024];
+    /* The renderer first: writing takes the cores it leaves idle (between frames, and while it
+     * waits for a free slot) instead of taking turns with its workers, which would hold up
+     * every frame's last bins. The lowest priority that still runs the thread; per thread on
+     * Linux (elsewhere this is the process's, and left alone). */
+#if defined(__linux__)
+    (void)setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), 19);
+#endif
     sc_png_writer *png = sc_png_writer_create(w->level);
     pthread_mutex_lock(&w->lock);
     if (!png && !w->failed) {
