@@ -72,10 +72,14 @@ static void put_bits(store *s, uint32_t v, int n) {
 }
 
 /* Huffman codes go most significant bit first: reversed into the LSB-first stream. */
-static void put_code(store *s, uint32_t code, int n) {
+static uint32_t reversed(uint32_t code, int n) {
     uint32_t r = 0;
     for (int i = 0; i < n; i++) r |= ((code >> i) & 1u) << (n - 1 - i);
-    put_bits(s, r, n);
+    return r;
+}
+
+static void put_code(store *s, uint32_t code, int n) {
+    put_bits(s, reversed(code, n), n);
 }
 
 /* Symbol v of the fixed literal/length code (RFC 1951, 3.2.6). */
@@ -90,8 +94,9 @@ static void put_symbol(store *s, unsigned v) {
         put_code(s, 0xC0 + (v - 280), 8);
 }
 
-/* A match of len (3 to 258) bytes at distance dist (1 to 32768). */
-static void put_match(store *s, unsigned len, unsigned dist) {
+/* The bits of a match of len (3 to 258) bytes at distance dist (1 to 32768), at most 31, as they
+ * go into the stream; their count in *n. */
+static uint32_t match_bits(unsigned len, unsigned dist, int *n) {
     static const uint16_t len_base[29] = {3,  4,  5,  6,   7,   8,   9,   10,  11, 13,
                                           15, 17, 19, 23,  27,  31,  35,  43,  51, 59,
                                           67, 83, 99, 115, 131, 163, 195, 227, 258};
@@ -102,22 +107,32 @@ static void put_match(store *s, unsigned len, unsigned dist) {
         193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
     static const uint8_t dist_extra[30] = {0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
                                            6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
-    int l = 28;
+    int l = 28, d = 29;
     while (len_base[l] > len) l--;
-    put_symbol(s, 257u + (unsigned)l);
-    put_bits(s, len - len_base[l], len_extra[l]);
-    int d = 29;
     while (dist_base[d] > dist) d--;
-    put_code(s, (uint32_t)d, 5);
-    put_bits(s, dist - dist_base[d], dist_extra[d]);
+    /* length symbols 257 to 279 have 7-bit codes 0 to 22, 280 to 285 8-bit ones from 0xC0 */
+    uint32_t v = l < 23 ? reversed((uint32_t)l + 1, 7) : reversed(0xC0u + (uint32_t)(l - 23), 8);
+    int at = l < 23 ? 7 : 8;
+    v |= (len - len_base[l]) << at;
+    at += len_extra[l];
+    v |= reversed((uint32_t)d, 5) << at;
+    at += 5;
+    v |= (dist - dist_base[d]) << at;
+    *n = at + dist_extra[d];
+    return v;
 }
 
-/* Matches covering len bytes at distance dist, each 3 to 258 long. */
+/* Matches covering len bytes at distance dist, each 3 to 258 long: most of them 258, whose bits
+ * are worked out once. */
 static void put_run(store *s, size_t len, unsigned dist) {
+    int full_n = 0;
+    uint32_t full = len >= MATCH_MAX ? match_bits(MATCH_MAX, dist, &full_n) : 0;
     while (len) {
         size_t k = len < MATCH_MAX ? len : MATCH_MAX;
         if (len - k != 0 && len - k < MATCH_MIN) k = len - MATCH_MIN; /* leave the last one 3 */
-        put_match(s, (unsigned)k, dist);
+        int n = full_n;
+        uint32_t bits = k == MATCH_MAX ? full : match_bits((unsigned)k, dist, &n);
+        put_bits(s, bits, n);
         len -= k;
     }
 }
@@ -161,8 +176,14 @@ static void find_run(const uint32_t *p, int x, int width, int *start, int *end) 
         bool all = true;
         for (int k = i + 1; k < i + step && all; k++) all = p[k] == p[i];
         if (!all) continue;
-        while (a > x && p[a - 1] == p[i]) a--;
-        while (b < width && p[b] == p[i]) b++;
+        const uint32_t c = p[i];
+        while (a > x && p[a - 1] == c) a--;
+        for (; b + 16 <= width; b += 16) { /* sixteen at a time, then one by one */
+            uint32_t diff = 0;
+            for (int k = 0; k < 16; k++) diff |= p[b + k] ^ c;
+            if (diff) break;
+        }
+        while (b < width && p[b] == c) b++;
         if (b - a >= RUN_MIN) {
             *start = a;
             *end = b;
