@@ -172,8 +172,8 @@ void sc_image_free(sc_image *image) {
 
 /* ---- PNG writing ------------------------------------------------------------------------------
  * RGBA8, 8 bits a channel, one IDAT chunk compressed by libdeflate: several times faster than
- * stb_image_write and smaller (docs/performance.md, "Writing frames"), and at level 0 a stored
- * stream that costs little more than a copy. */
+ * stb_image_write and smaller (docs/performance.md, "Writing frames"); at level 0 a stream without
+ * search that costs little more than a copy (png_store.c). */
 
 struct sc_png_writer {
     struct libdeflate_compressor *compressor;
@@ -182,7 +182,7 @@ struct sc_png_writer {
     size_t raw_cap;
     unsigned char *file; /* the whole file: signature, IHDR, IDAT, IEND */
     size_t file_cap;
-    /* Level 0: the file as pieces written straight from the pixels (write_stored). */
+    /* Level 0: the file as pieces, most of them the pixels themselves (write_stored). */
     struct iovec *iov;
     size_t iov_cap;
     unsigned char *heads; /* the pieces that are not pixels: headers, block and row starts */
@@ -242,20 +242,15 @@ static unsigned char *end_chunk(unsigned char *p, size_t len) {
 static size_t encode_png(sc_png_writer *w, int width, int height, const unsigned char *rgba) {
     const size_t row = (size_t)width * 4, raw_len = (size_t)height * (row + 1);
     if (!reserve(&w->raw, &w->raw_cap, raw_len)) return 0;
-    /* Level 0 stores the rows as they are (filter None); compressed levels take filter Sub (each
-     * byte minus the same channel of the pixel to its left), which turns smooth shading and flat
-     * colour into small numbers and runs at the cost of one subtraction a byte. */
-    const unsigned char filter = w->level == 0 ? 0 : 1;
+    /* Filter Sub (each byte minus the same channel of the pixel to its left) turns smooth
+     * shading and flat colour into small numbers and runs, at the cost of one subtraction a
+     * byte. (Level 0 does not come here: write_stored.) */
     for (int y = 0; y < height; y++) {
         const unsigned char *src = rgba + (size_t)y * row;
         unsigned char *dst = w->raw + (size_t)y * (row + 1);
-        dst[0] = filter;
-        if (filter == 0) {
-            memcpy(dst + 1, src, row);
-        } else {
-            memcpy(dst + 1, src, 4);
-            for (size_t i = 4; i < row; i++) dst[1 + i] = (unsigned char)(src[i] - src[i - 4]);
-        }
+        dst[0] = 1;
+        memcpy(dst + 1, src, 4);
+        for (size_t i = 4; i < row; i++) dst[1 + i] = (unsigned char)(src[i] - src[i - 4]);
     }
     const size_t bound = libdeflate_zlib_compress_bound(w->compressor, raw_len);
     if (bound > SIZE_MAX - 64 || !reserve(&w->file, &w->file_cap, 8 + 25 + 12 + bound + 12))
@@ -273,7 +268,7 @@ static size_t encode_png(sc_png_writer *w, int width, int height, const unsigned
     p = end_chunk(p, 13);
     memcpy(p + 4, "IDAT", 4);
     size_t z = libdeflate_zlib_compress(w->compressor, w->raw, raw_len, p + 8, bound);
-    /* A chunk holds less than 2^31 bytes: a 16384^2 image stored (level 0) is 1 GiB, within it. */
+    /* A chunk holds less than 2^31 bytes: a 16384^2 image that does not compress is 1 GiB. */
     if (z == 0 || z > 0x7FFFFFFF) return 0;
     p = end_chunk(p, z);
     memcpy(p + 4, "IEND", 4);

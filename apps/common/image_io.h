@@ -22,8 +22,9 @@ bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, 
                           size_t errlen);
 /** Frees an image loaded by sc_image_load(_memory) and zeroes it; a zeroed image is fine. */
 void sc_image_free(sc_image *image);
-/* Compression levels of written PNG files: libdeflate's, 0 (stored: no compression, the fastest)
- * to 12 (the smallest files). */
+/* Compression levels of written PNG files: 0, no search (pixels stored as they are, repeated rows
+ * and runs of one colour as matches: png_store.c; the fastest), and libdeflate's 1 to 12 (12 the
+ * smallest files). */
 #define SC_PNG_LEVEL_MAX     12
 #define SC_PNG_LEVEL_DEFAULT 6 /* smaller than stb_image_write, in a quarter of its time */
 

@@ -112,8 +112,10 @@ static void usage(FILE *f) {
                "                  depth-only pass, no shadow pass) and write the depth as a grey\n"
                "                  image, white near, black at the far plane: the time of\n"
                "                  visibility alone\n"
-               "  --png-level L   PNG compression, 0 (stored: fastest, largest) to 12 (smallest);\n"
-               "                  default 6 for still images, 0 for turntable frames\n"
+               "  --png-level L   PNG compression, 0 (fastest, largest: pixels stored as they\n"
+               "                  are, but repeated rows and runs of one colour) to 12\n"
+               "                  (smallest); default 6 for still images, 0 for turntable\n"
+               "                  frames\n"
                "  --no-write      render and read each image back, but write no file (to time\n"
                "                  the rendering alone against a run that writes)\n"
                "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
@@ -1013,8 +1015,8 @@ int main(int argc, char **argv) {
         sg_fail(NULL, r, "sgCreateDevice");
         goto done;
     }
-    /* Still images are written one at a time here; a turntable's frames, stored by default, on
-     * writer threads while the next ones render (docs/performance.md, "Writing frames"). */
+    /* Still images are written one at a time here; a turntable's frames, at level 0 by default,
+     * on writer threads while the next ones render (docs/performance.md, "Writing frames"). */
     int level = o.png_level >= 0 ? o.png_level : o.turntable ? 0 : SC_PNG_LEVEL_DEFAULT;
     /* A thread per core: compressed levels are bound by the CPU, and at level 0 a second thread
      * keeps writing while the first waits for the disk. Two frames more than threads let
