@@ -109,48 +109,45 @@ INLINE void pair_fetch(const tex16 *tx, __m512i idx, __mmask16 m, __m512i *first
 }
 
 /* Texels from an 8 x 8 window of the texture around the tile's first pixel's texel, when every
- * texel the pixels of m need lies in it (a magnified or about 1:1 texture, away from a repeat
- * seam): eight row loads and two-source permutes instead of gathers; the same texels, so the same
- * bytes. False: the footprint is wider; the caller gathers. */
-INLINE bool window_fetch(const tex16 *tx, __m512i i0, __m512i i1, __m512i j0, __m512i j1,
-                         __mmask16 m, __m512i *t00, __m512i *t10, __m512i *t01, __m512i *t11) {
+ * texel the pixels of m need lies in it (a magnified or about 1:1 texture, away from the texture's
+ * edge): eight row loads and two-source permutes instead of gathers; the same texels, so the same
+ * bytes. a and b are the split's columns and rows before any wrap or clamp: where every pixel of m
+ * has a - wx and b - wy in [0, 6], columns a, a + 1 and rows b, b + 1 are all inside the texture
+ * and the window, so no wrap or clamp would change them, in either mode, and the four texels are
+ * window entries k, k + 1, k + 8 and k + 9. False: the footprint is wider or crosses an edge; the
+ * caller wraps and gathers. */
+INLINE bool window_fetch(const tex16 *tx, __m512i a, __m512i b, __mmask16 m, __m512i *t00,
+                         __m512i *t10, __m512i *t01, __m512i *t11) {
     const int tw = tx->width, th = tx->height;
     if (tw < 8 || th < 8) return false;
-    int wx = _mm_cvtsi128_si32(_mm512_castsi512_si128(i0)) - 3;
-    int wy = _mm_cvtsi128_si32(_mm512_castsi512_si128(j0)) - 3;
+    int wx = _mm_cvtsi128_si32(_mm512_castsi512_si128(a)) - 3;
+    int wy = _mm_cvtsi128_si32(_mm512_castsi512_si128(b)) - 3;
     wx = wx < 0 ? 0 : (wx > tw - 8 ? tw - 8 : wx);
     wy = wy < 0 ? 0 : (wy > th - 8 ? th - 8 : wy);
-    __m512i ox = _mm512_set1_epi32(wx), oy = _mm512_set1_epi32(wy), eight = _mm512_set1_epi32(8);
-    __m512i c0 = _mm512_sub_epi32(i0, ox), c1 = _mm512_sub_epi32(i1, ox);
-    __m512i d0 = _mm512_sub_epi32(j0, oy), d1 = _mm512_sub_epi32(j1, oy);
-    __mmask16 in = _mm512_mask_cmplt_epu32_mask(m, c0, eight);
-    in = _mm512_mask_cmplt_epu32_mask(in, c1, eight);
-    in = _mm512_mask_cmplt_epu32_mask(in, d0, eight);
-    in = _mm512_mask_cmplt_epu32_mask(in, d1, eight);
-    if (in != m) return false;
+    __m512i c = _mm512_sub_epi32(a, _mm512_set1_epi32(wx));
+    __m512i d = _mm512_sub_epi32(b, _mm512_set1_epi32(wy));
+    const __m512i seven = _mm512_set1_epi32(7);
+    __mmask16 in = _mm512_mask_cmplt_epu32_mask(m, c, seven);
+    if (_mm512_mask_cmplt_epu32_mask(in, d, seven) != m) return false;
     /* Texture row j is memory row th - 1 - j (top row first); window row r is row wy + r. */
     const int *row = tx->texels + (size_t)(th - 1 - wy) * (size_t)tw + (size_t)wx;
     __m512i w[4];
     for (int k = 0; k < 4; k++) {
-        const int *a = row - (size_t)(2 * k) * (size_t)tw, *b = a - tw;
+        const int *r0 = row - (size_t)(2 * k) * (size_t)tw, *r1 = r0 - tw;
         w[k] = _mm512_inserti64x4(
-            _mm512_castsi256_si512(_mm256_loadu_si256((const __m256i *)(const void *)a)),
-            _mm256_loadu_si256((const __m256i *)(const void *)b), 1);
+            _mm512_castsi256_si512(_mm256_loadu_si256((const __m256i *)(const void *)r0)),
+            _mm256_loadu_si256((const __m256i *)(const void *)r1), 1);
     }
-    __m512i r0 = _mm512_slli_epi32(d0, 3), r1 = _mm512_slli_epi32(d1, 3);
     const __m512i half = _mm512_set1_epi32(32);
 #define SG_LOOKUP(idx)                                                                             \
     _mm512_mask_blend_epi32(_mm512_test_epi32_mask(idx, half),                                     \
                             _mm512_permutex2var_epi32(w[0], idx, w[1]),                            \
                             _mm512_permutex2var_epi32(w[2], idx, w[3]))
-    __m512i idx = _mm512_add_epi32(r0, c0);
+    __m512i idx = _mm512_add_epi32(_mm512_slli_epi32(d, 3), c);
     *t00 = SG_LOOKUP(idx);
-    idx = _mm512_add_epi32(r0, c1);
-    *t10 = SG_LOOKUP(idx);
-    idx = _mm512_add_epi32(r1, c0);
-    *t01 = SG_LOOKUP(idx);
-    idx = _mm512_add_epi32(r1, c1);
-    *t11 = SG_LOOKUP(idx);
+    *t10 = SG_LOOKUP(_mm512_add_epi32(idx, _mm512_set1_epi32(1)));
+    *t01 = SG_LOOKUP(_mm512_add_epi32(idx, _mm512_set1_epi32(8)));
+    *t11 = SG_LOOKUP(_mm512_add_epi32(idx, _mm512_set1_epi32(9)));
 #undef SG_LOOKUP
     return true;
 }
@@ -177,18 +174,17 @@ INLINE tex16 tex16_of(const sg_texview *tv, const int bilinear) {
 /* bilinear8 of shade_avx2.c on a whole tile: x[k] gets channel k in bits 16 to 23 of each lane. */
 INLINE void bilinear16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const int repeat,
                        __m512i x[4]) {
-    __m512i i0, i1, j0, j1;
     __m512i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
     __m512i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
+    __m512i a = _mm512_srai_epi32(gx, 8), t00, t10, t01, t11;
+    if (window_fetch(tx, a, _mm512_srai_epi32(gy, 8), m, &t00, &t10, &t01, &t11)) goto fetched;
+    __m512i i0, i1, j0, j1;
     bilinear_wrap(gx, tx->n_x, tx->last_x, repeat, &i0, &i1);
     bilinear_wrap(gy, tx->n_y, tx->last_y, repeat, &j0, &j1);
-    __m512i t00, t10, t01, t11;
-    if (window_fetch(tx, i0, i1, j0, j1, m, &t00, &t10, &t01, &t11)) goto fetched;
     __m512i r0 = row_start(j0, tx), r1 = row_start(j1, tx);
     /* Where no pixel of the mask has a split column outside [0, n - 2], i1 = i0 + 1 for every
      * wrap mode and columns i0 and i1 are adjacent in memory: one 64-bit gather fetches both, half
      * the loads (64-bit gathers of 8 cost about as much as 32-bit ones of 16, per element). */
-    __m512i a = _mm512_srai_epi32(gx, 8);
     if (_mm512_mask_cmplt_epu32_mask(m, a, tx->last_x) == m) {
         pair_fetch(tx, _mm512_add_epi32(r0, a), m, &t00, &t10);
         pair_fetch(tx, _mm512_add_epi32(r1, a), m, &t01, &t11);
