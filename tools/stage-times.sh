@@ -24,7 +24,7 @@ stages() { # file scene [sgapi-render options]
     f=$1 s=$2
     shift 2
     "$build/apps/sgapi-render" "$f" --scene "$s" --frames 50 --threads 1 -o "$out/img" "$@" 2>&1 |
-        tr '\n' ' '
+        grep -v '^sgapi-render: warning:' | tr '\n' ' ' # a scene file's warnings are not figures
 }
 if [ -n "$compare" ]; then
     echo "| scene | coverage + depth of the ordinary pass, ms | depth-only pass, ms | ratio |"
