@@ -196,6 +196,25 @@ static void test_random_images(void **state) {
     }
 }
 
+/* The pixels need no alignment: an image one byte into its buffer gives the same file. */
+static void test_unaligned_pixels(void **state) {
+    (void)state;
+    const int w = 97, h = 9;
+    unsigned char *img = mixed(w, h, 77);
+    unsigned char *moved = malloc((size_t)w * h * 4 + 1);
+    assert_non_null(moved);
+    memcpy(moved + 1, img, (size_t)w * h * 4);
+    size_t len_a, len_b;
+    unsigned char *a = build(w, h, img, &len_a), *b = build(w, h, moved + 1, &len_b);
+    assert_int_equal(len_a, len_b);
+    assert_memory_equal(a, b, len_a);
+    round_trip(w, h, moved + 1);
+    free(a);
+    free(b);
+    free(moved);
+    free(img);
+}
+
 /* What the writer puts in a file is what stb_image reads back. */
 static void test_file_reads_back(void **state) {
     (void)state;
@@ -222,9 +241,9 @@ static void test_file_reads_back(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mixed_rows),      cmocka_unit_test(test_flat_and_noise),
-        cmocka_unit_test(test_wide_rows),       cmocka_unit_test(test_random_images),
-        cmocka_unit_test(test_file_reads_back),
+        cmocka_unit_test(test_mixed_rows),       cmocka_unit_test(test_flat_and_noise),
+        cmocka_unit_test(test_wide_rows),        cmocka_unit_test(test_random_images),
+        cmocka_unit_test(test_unaligned_pixels), cmocka_unit_test(test_file_reads_back),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -165,25 +165,32 @@ static void put_stored(store *s, const unsigned char *p, size_t len) {
     }
 }
 
-/* The first run of at least RUN_MIN equal pixels of p[x..width): [*start, *end), or both width.
+/* Pixel i of a row (any alignment: the caller's buffer need not be 4-byte aligned). */
+static inline uint32_t pixel(const unsigned char *row, int i) {
+    uint32_t v;
+    memcpy(&v, row + (size_t)i * 4, 4);
+    return v;
+}
+
+/* The first run of at least RUN_MIN equal pixels of row[x..width): [*start, *end), or both width.
  * A run that long holds two pixels RUN_MIN / 2 apart at the positions looked at, equal, with
  * every pixel between them: rows without runs cost one compare per RUN_MIN / 2 pixels. */
-static void find_run(const uint32_t *p, int x, int width, int *start, int *end) {
+static void find_run(const unsigned char *row, int x, int width, int *start, int *end) {
     const int step = RUN_MIN / 2;
     for (int i = x; i + step < width; i += step) {
-        if (p[i] != p[i + step]) continue;
-        int a = i, b = i + step + 1;
+        const uint32_t c = pixel(row, i);
+        if (pixel(row, i + step) != c) continue;
         bool all = true;
-        for (int k = i + 1; k < i + step && all; k++) all = p[k] == p[i];
+        for (int k = i + 1; k < i + step && all; k++) all = pixel(row, k) == c;
         if (!all) continue;
-        const uint32_t c = p[i];
-        while (a > x && p[a - 1] == c) a--;
+        int a = i, b = i + step + 1;
+        while (a > x && pixel(row, a - 1) == c) a--;
         for (; b + 16 <= width; b += 16) { /* sixteen at a time, then one by one */
             uint32_t diff = 0;
-            for (int k = 0; k < 16; k++) diff |= p[b + k] ^ c;
+            for (int k = 0; k < 16; k++) diff |= pixel(row, b + k) ^ c;
             if (diff) break;
         }
-        while (b < width && p[b] == c) b++;
+        while (b < width && pixel(row, b) == c) b++;
         if (b - a >= RUN_MIN) {
             *start = a;
             *end = b;
@@ -244,10 +251,9 @@ size_t sc_png_store_build(struct iovec *iov, unsigned char *heads, int width, in
             put_run(&s, row, (unsigned)(row + 1)); /* the row above again */
             continue;
         }
-        const uint32_t *p = (const uint32_t *)(const void *)px;
         for (int x = 0; x < width;) {
             int start, end;
-            find_run(p, x, width, &start, &end);
+            find_run(px, x, width, &start, &end);
             if (start > x) { /* pixels x to start as they are */
                 end_fixed(&s);
                 put_stored(&s, px + (size_t)x * 4, (size_t)(start - x) * 4);
