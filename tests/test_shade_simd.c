@@ -413,6 +413,7 @@ static void compare_variant(int variant, int kind) {
                has_neon = sg_isa_runs(SG_ISA_NEON);
     const int index = variant + (kind == SECONDARY ? SG_SHADE_SECONDARY : 0);
     sg_shade_fn scalar, sse2 = NULL, avx2 = NULL, avx512 = NULL, neon = NULL;
+    sg_shade2_fn pair = NULL; /* AVX-512's two whole tiles at once, for the unlit variants */
     if (kind >= PHONG) {
         const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
                            : kind == PHONG_SHADOW ? SG_PIXEL_PHONG_SHADOW
@@ -430,6 +431,7 @@ static void compare_variant(int variant, int kind) {
         sse2 = sg_shade_sse2(index);
         if (has_avx2) avx2 = sg_shade_avx2(index);
         if (has_avx512) avx512 = sg_shade_avx512(index);
+        if (has_avx512) pair = sg_shade2_avx512(index);
         if (has_neon) neon = sg_shade_neon(index);
 #if defined(__aarch64__)
         assert_non_null(neon); /* Advanced SIMD is the AArch64 baseline */
@@ -480,6 +482,19 @@ static void compare_variant(int variant, int kind) {
             if (neon && !same_as_reference(neon, "NEON", &ctx, &t, e, x0, y0, mask, sentinel, ref,
                                            variant, flat, n))
                 failures++;
+            if (pair) { /* this tile and another of the triangle, whole, as two scalar calls */
+                int x1 = x0 + 4 * (int)(next(&g) % 5) - 8, y1 = y0 + 4 * (int)(next(&g) % 3);
+                uint32_t r0[16], r1[16], p0[16], p1[16];
+                scalar(&ctx, &t, x0, y0, 0xffffu, r0);
+                scalar(&ctx, &t, x1, y1, 0xffffu, r1);
+                pair(&ctx, &t, x0, y0, x1, y1, p0, p1);
+                if (memcmp(r0, p0, sizeof r0) || memcmp(r1, p1, sizeof r1)) {
+                    printf("AVX-512 pair differs: variant %d flat %d case %ld, tiles (%d, %d) and "
+                           "(%d, %d)\n",
+                           variant, flat, n, x0, y0, x1, y1);
+                    failures++;
+                }
+            }
         }
     }
     for (int i = 0; i < NSIZES; i++) texture_free(&tex[i]);

@@ -63,6 +63,9 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
                      ? sg_shade_phong_select(SG_PIXEL_PHONG + variant, dev->isa)
                      : sg_shade_select_variant(variant, dev->isa);
     p.shade_sec = sg_shade_select_variant(variant + SG_SHADE_SECONDARY, dev->isa);
+    p.shade2_fn =
+        d->lighting == SG_LIGHTING_PHONG ? NULL : sg_shade2_select_variant(variant, dev->isa);
+    p.shade2_sec = sg_shade2_select_variant(variant + SG_SHADE_SECONDARY, dev->isa);
     /* Draws that receive a shadow map shade from each pixel's view position (shade_phong.c);
      * blended ones then call that shading from the blend (its unlit shading is not inlined). */
     if (d->lighting == SG_LIGHTING_PHONG || !lit)

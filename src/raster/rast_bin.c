@@ -66,9 +66,21 @@ shade_tile(const sg_bin_pass *p, const uint32_t *ids, int x0, int y0, uint32_t *
     }
 }
 
-/* Shades the visible ids of every reached tile into the colour. With `forget`, also sets them back
- * to 0 and the tiles to unreached: what visibility decided so far is final before a blended
- * triangle reads the colour. */
+/* The draw of tile `tile` and the next reached tile `next` when both are wholly one triangle's
+ * and that draw shades two tiles at once (shade2_fn); NULL otherwise. */
+static inline const sg_draw_state *pair_draw(const sg_bin_pass *p, const uint32_t *ids, int tile,
+                                             int next) {
+    const uint32_t *a = ids + tile * SG_TILE_PIXELS, *b = ids + next * SG_TILE_PIXELS;
+    const uint32_t id = a[0];
+    if (!id || b[0] != id || same_id(a, id) != 0xffffu || same_id(b, id) != 0xffffu) return NULL;
+    const sg_draw_state *d = &p->draws[p->binner->tris[id - 1].draw];
+    return d->shade2_fn ? d : NULL;
+}
+
+/* Shades the visible ids of every reached tile into the colour: two at a time where the next
+ * reached tile is, like this one, wholly one triangle's (the draw's sg_shade2_fn), else one by
+ * one. With `forget`, also sets them back to 0 and the tiles to unreached: what visibility
+ * decided so far is final before a blended triangle reads the colour. */
 static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pass *p, uint32_t *ids,
                                                                 uint64_t *touched, int x0, int y0,
                                                                 uint32_t *color,
@@ -78,8 +90,22 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
             int tile = word * 64 + __builtin_ctzll(left);
             int tx = tile % BIN_TILES, ty = tile / BIN_TILES;
             uint32_t *tids = ids + tile * SG_TILE_PIXELS;
-            shade_tile(p, tids, x0 + (tx << SG_TILE_SHIFT), y0 + (ty << SG_TILE_SHIFT),
-                       color + tile * SG_TILE_PIXELS);
+            const uint64_t rest = left & (left - 1);
+            const int next = rest ? word * 64 + __builtin_ctzll(rest) : -1;
+            const sg_draw_state *d =
+                p->any_pair && next >= 0 ? pair_draw(p, ids, tile, next) : NULL;
+            if (d) {
+                int nx = next % BIN_TILES, ny = next / BIN_TILES;
+                d->shade2_fn(&d->ctx, &p->binner->tris[tids[0] - 1], x0 + (tx << SG_TILE_SHIFT),
+                             y0 + (ty << SG_TILE_SHIFT), x0 + (nx << SG_TILE_SHIFT),
+                             y0 + (ny << SG_TILE_SHIFT), color + tile * SG_TILE_PIXELS,
+                             color + next * SG_TILE_PIXELS);
+                if (forget) memset(ids + next * SG_TILE_PIXELS, 0, SG_TILE_PIXELS * sizeof *tids);
+                left = rest; /* the loop's step then drops `next` too */
+            } else {
+                shade_tile(p, tids, x0 + (tx << SG_TILE_SHIFT), y0 + (ty << SG_TILE_SHIFT),
+                           color + tile * SG_TILE_PIXELS);
+            }
             if (forget) memset(tids, 0, SG_TILE_PIXELS * sizeof *tids);
         }
         if (forget) touched[word] = 0;

@@ -23,6 +23,7 @@
 typedef struct sg_draw_state {
     sg_raster_fn raster_fn; /* coverage and visibility (depth.h) */
     sg_shade_fn shade_fn;
+    sg_shade2_fn shade2_fn; /* two whole tiles of a triangle at once, or NULL */
     sg_shade_ctx ctx;
     sgCompare compare;
     bool blend; /* raster_fn blends into the colour as it goes (blend.h) */
@@ -49,6 +50,7 @@ typedef struct sg_bin_pass {
     float clear_depth;
     bool store_depth;
     bool any_blend;    /* some draw blends: bins take the ordered path (rast_bin.c) */
+    bool any_pair;     /* some draw shades two whole tiles at once (shade2_fn) */
     void *stage_times; /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 

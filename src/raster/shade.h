@@ -52,6 +52,12 @@ typedef enum sg_isa {
 typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, int y0, uint32_t mask,
                             uint32_t *dst);
 
+/* Shades two whole tiles of one triangle (top-left pixels (x0, y0) and (x1, y1)) into dst0 and
+ * dst1: the same bytes as two calls of the variant's sg_shade_fn, in less time where the
+ * instruction set can work on both at once. */
+typedef void (*sg_shade2_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, int y0, int x1,
+                             int y1, uint32_t *dst0, uint32_t *dst1);
+
 /** The index of a resolved shading state in the variant tables below: 0 vertex colour,
  *  1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */
 int sg_shade_variant(sgShade shade, sgFilter filter, sgWrap wrap);
@@ -86,6 +92,10 @@ sg_shade_fn sg_shade_scalar(int variant);
 sg_shade_fn sg_shade_sse2(int variant);
 sg_shade_fn sg_shade_avx2(int variant);
 sg_shade_fn sg_shade_avx512(int variant);
+/** The two-tile function of an unlit variant for the instruction set, or NULL where it has none
+ *  (all but AVX-512); the callers then shade each tile alone. */
+sg_shade2_fn sg_shade2_select_variant(int variant, sg_isa isa);
+sg_shade2_fn sg_shade2_avx512(int variant);
 sg_shade_fn sg_shade_neon(int variant);
 /** Attributes an unlit shading mode interpolates: r g b a, plus s t when textured. */
 int sg_shade_attr_count(sgShade shade);

@@ -171,13 +171,12 @@ INLINE tex16 tex16_of(const sg_texview *tv, const int bilinear) {
     return tx;
 }
 
-/* bilinear8 of shade_avx2.c on a whole tile: x[k] gets channel k in bits 16 to 23 of each lane. */
-INLINE void bilinear16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const int repeat,
-                       __m512i x[4]) {
-    __m512i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
-    __m512i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
-    __m512i a = _mm512_srai_epi32(gx, 8), t00, t10, t01, t11;
-    if (window_fetch(tx, a, _mm512_srai_epi32(gy, 8), m, &t00, &t10, &t01, &t11)) goto fetched;
+/* The four texels of each pixel of m's bilinear footprint (t00, t10, t01, t11) for the split
+ * coordinates gx, gy: from the texel window where it holds them, else gathered. */
+INLINE void bilinear_fetch16(const tex16 *tx, __m512i gx, __m512i gy, __mmask16 m, const int repeat,
+                             __m512i t[4]) {
+    __m512i a = _mm512_srai_epi32(gx, 8);
+    if (window_fetch(tx, a, _mm512_srai_epi32(gy, 8), m, &t[0], &t[1], &t[2], &t[3])) return;
     __m512i i0, i1, j0, j1;
     bilinear_wrap(gx, tx->n_x, tx->last_x, repeat, &i0, &i1);
     bilinear_wrap(gy, tx->n_y, tx->last_y, repeat, &j0, &j1);
@@ -186,15 +185,19 @@ INLINE void bilinear16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const i
      * wrap mode and columns i0 and i1 are adjacent in memory: one 64-bit gather fetches both, half
      * the loads (64-bit gathers of 8 cost about as much as 32-bit ones of 16, per element). */
     if (_mm512_mask_cmplt_epu32_mask(m, a, tx->last_x) == m) {
-        pair_fetch(tx, _mm512_add_epi32(r0, a), m, &t00, &t10);
-        pair_fetch(tx, _mm512_add_epi32(r1, a), m, &t01, &t11);
+        pair_fetch(tx, _mm512_add_epi32(r0, a), m, &t[0], &t[1]);
+        pair_fetch(tx, _mm512_add_epi32(r1, a), m, &t[2], &t[3]);
     } else {
-        t00 = fetch16(tx, _mm512_add_epi32(r0, i0), m);
-        t10 = fetch16(tx, _mm512_add_epi32(r0, i1), m);
-        t01 = fetch16(tx, _mm512_add_epi32(r1, i0), m);
-        t11 = fetch16(tx, _mm512_add_epi32(r1, i1), m);
+        t[0] = fetch16(tx, _mm512_add_epi32(r0, i0), m);
+        t[1] = fetch16(tx, _mm512_add_epi32(r0, i1), m);
+        t[2] = fetch16(tx, _mm512_add_epi32(r1, i0), m);
+        t[3] = fetch16(tx, _mm512_add_epi32(r1, i1), m);
     }
-fetched:;
+}
+
+/* bilinear8's filter (shade_avx2.c) on a whole tile: x[k] gets channel k in bits 16 to 23 of
+ * each lane. */
+INLINE void bilinear_filter16(__m512i gx, __m512i gy, const __m512i t[4], __m512i x[4]) {
     const __m512i lo8 = _mm512_set1_epi32(0x00ff00ff);
     const __m512i bias = _mm512_set1_epi32((int)0x80008000u);
     const __m512i w256 = _mm512_set1_epi16(256);
@@ -204,10 +207,10 @@ fetched:;
     __m512i wx = _mm512_mask_blend_epi16(HI16, _mm512_sub_epi16(w256, fx2), fx2);
 #define SG_VBLEND(a, b)                                                                            \
     _mm512_xor_si512(_mm512_add_epi16(_mm512_mullo_epi16(a, gy2), _mm512_mullo_epi16(b, fy2)), bias)
-    __m512i rb0 = SG_VBLEND(_mm512_and_si512(t00, lo8), _mm512_and_si512(t01, lo8));
-    __m512i rb1 = SG_VBLEND(_mm512_and_si512(t10, lo8), _mm512_and_si512(t11, lo8));
-    __m512i ga0 = SG_VBLEND(_mm512_srli_epi16(t00, 8), _mm512_srli_epi16(t01, 8));
-    __m512i ga1 = SG_VBLEND(_mm512_srli_epi16(t10, 8), _mm512_srli_epi16(t11, 8));
+    __m512i rb0 = SG_VBLEND(_mm512_and_si512(t[0], lo8), _mm512_and_si512(t[2], lo8));
+    __m512i rb1 = SG_VBLEND(_mm512_and_si512(t[1], lo8), _mm512_and_si512(t[3], lo8));
+    __m512i ga0 = SG_VBLEND(_mm512_srli_epi16(t[0], 8), _mm512_srli_epi16(t[2], 8));
+    __m512i ga1 = SG_VBLEND(_mm512_srli_epi16(t[1], 8), _mm512_srli_epi16(t[3], 8));
 #undef SG_VBLEND
 #define SG_HBLEND(v) _mm512_add_epi32(_mm512_madd_epi16(v, wx), round)
     x[0] = SG_HBLEND(_mm512_mask_blend_epi16(HI16, rb0, _mm512_slli_epi32(rb1, 16)));
@@ -215,6 +218,16 @@ fetched:;
     x[2] = SG_HBLEND(_mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(rb0, 16), rb1));
     x[3] = SG_HBLEND(_mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(ga0, 16), ga1));
 #undef SG_HBLEND
+}
+
+/* bilinear8 of shade_avx2.c on a whole tile: x[k] gets channel k in bits 16 to 23 of each lane. */
+INLINE void bilinear16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const int repeat,
+                       __m512i x[4]) {
+    __m512i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
+    __m512i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
+    __m512i t[4];
+    bilinear_fetch16(tx, gx, gy, m, repeat, t);
+    bilinear_filter16(gx, gy, t, x);
 }
 
 /* Four channels in bits 16 to 23 of their lanes, zeros above, to RGBA8. */
@@ -247,14 +260,17 @@ INLINE __m512i pack_unorm8(const __m512 col[4]) {
     return _mm512_shuffle_epi8(_mm512_packus_epi16(p01, p23), tr);
 }
 
-/* The colours of the pixels at offsets (dx, dy) from the triangle's bounds, lanes of `mask`, as
- * RGBA8 lanes (others undefined): the body of every variant, as shade_rows in shade.c; the
- * constant arguments fold away. Each lane computes what the reference computes for its pixel,
- * wherever that pixel is. */
-INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
-                             __m512 dx, __m512 dy, uint32_t mask, const int textured,
-                             const int bilinear, const int repeat, const int flat, const int sec) {
-    const __mmask16 m = (__mmask16)mask;
+/* The colours of n tiles' pixels (n is 1 or 2, a constant) at offsets (dx[i], dy[i]) from the
+ * triangle's bounds, lanes of mask[i], as RGBA8 lanes in out[i] (others undefined): the body of
+ * every variant, as shade_rows in shade.c; the constant arguments fold away. Each lane computes
+ * what the reference computes for its pixel, wherever that pixel is. The tiles go through each
+ * step together (planes, then texel coordinates, then fetches, then filters): a tile's steps
+ * form one long chain of dependent operations, and two chains side by side keep the vector
+ * units busy where one waits (a floor shades a sixth faster two tiles at a time). */
+INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
+                          const int n, const __m512 dx[], const __m512 dy[], const uint32_t mask[],
+                          __m512i out[], const int textured, const int bilinear, const int repeat,
+                          const int flat, const int sec) {
     const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) {
         float f[4] = {t->color[0], t->color[1], t->color[2], t->color[3]};
@@ -262,43 +278,78 @@ INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tr
             for (int k = 0; k < 3; k++) f[k] += ext->a[e + k];
         uint32_t px = sg_pack_rgba8(sg_to_unorm8(f[0]), sg_to_unorm8(f[1]), sg_to_unorm8(f[2]),
                                     sg_to_unorm8(f[3]));
-        return _mm512_set1_epi32((int)px);
+        for (int i = 0; i < n; i++) out[i] = _mm512_set1_epi32((int)px);
+        return;
     }
-#define SG_PLANE(a, adx, ady)                                                                      \
-    _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(a), _mm512_mul_ps(_mm512_set1_ps(adx), dx)),        \
-                  _mm512_mul_ps(_mm512_set1_ps(ady), dy))
-    const __m512 w = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy));
-    __m512 col[4];
-    for (int k = 0; k < 4; k++)
-        col[k] = flat != SG_FLAT_NONE ? _mm512_set1_ps(t->color[k])
-                                      : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
+#define SG_PLANE(a, adx, ady, i)                                                                   \
+    _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(a), _mm512_mul_ps(_mm512_set1_ps(adx), dx[i])),     \
+                  _mm512_mul_ps(_mm512_set1_ps(ady), dy[i]))
+    __m512 w[2], col[2][4];
+    for (int i = 0; i < n; i++)
+        w[i] = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy, i));
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++)
+            col[i][k] = flat != SG_FLAT_NONE
+                            ? _mm512_set1_ps(t->color[k])
+                            : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k], i), w[i]);
     if (textured) {
         const tex16 tx = tex16_of(&c->tex, bilinear);
-        __m512 s = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
-        __m512 u = _mm512_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
-        __m512i tc[4];
-        if (bilinear) {
-            __m512i x[4];
-            bilinear16(&tx, s, u, m, repeat, x);
-            if (flat == SG_FLAT_WHITE && !sec) return pack_hi8(x);
-            for (int k = 0; k < 4; k++) tc[k] = _mm512_srli_epi32(x[k], 16);
-        } else {
-            __m512i texel = nearest16(&tx, s, u, m, repeat);
-            if (flat == SG_FLAT_WHITE && !sec) return texel; /* the colour, as in the reference */
-            unpack_texels(texel, tc);
+        __m512 s[2], u[2];
+        for (int i = 0; i < n; i++) {
+            s[i] = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4], i), w[i]);
+            u[i] = _mm512_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5], i), w[i]);
         }
-        for (int k = 0; k < 4; k++)
-            col[k] = _mm512_mul_ps(
-                col[k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[k]), _mm512_set1_ps(1.0f / 255.0f)));
+        __m512i tc[2][4];
+        if (bilinear) {
+            __m512i gx[2], gy[2], texels[2][4], x[2][4];
+            for (int i = 0; i < n; i++) {
+                gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
+                gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
+            }
+            for (int i = 0; i < n; i++)
+                bilinear_fetch16(&tx, gx[i], gy[i], (__mmask16)mask[i], repeat, texels[i]);
+            for (int i = 0; i < n; i++) bilinear_filter16(gx[i], gy[i], texels[i], x[i]);
+            if (flat == SG_FLAT_WHITE && !sec) {
+                for (int i = 0; i < n; i++) out[i] = pack_hi8(x[i]);
+                return;
+            }
+            for (int i = 0; i < n; i++)
+                for (int k = 0; k < 4; k++) tc[i][k] = _mm512_srli_epi32(x[i][k], 16);
+        } else {
+            __m512i texel[2];
+            for (int i = 0; i < n; i++)
+                texel[i] = nearest16(&tx, s[i], u[i], (__mmask16)mask[i], repeat);
+            if (flat == SG_FLAT_WHITE && !sec) { /* the colour, as in the reference */
+                for (int i = 0; i < n; i++) out[i] = texel[i];
+                return;
+            }
+            for (int i = 0; i < n; i++) unpack_texels(texel[i], tc[i]);
+        }
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 4; k++)
+                col[i][k] = _mm512_mul_ps(col[i][k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[i][k]),
+                                                                   _mm512_set1_ps(1.0f / 255.0f)));
     }
-    for (int k = 0; sec && k < 3; k++)
-        col[k] = _mm512_add_ps(
-            col[k],
-            flat != SG_FLAT_NONE
-                ? _mm512_set1_ps(ext->a[e + k])
-                : _mm512_mul_ps(SG_PLANE(ext->a[e + k], ext->a_dx[e + k], ext->a_dy[e + k]), w));
+    for (int i = 0; i < n; i++)
+        for (int k = 0; sec && k < 3; k++)
+            col[i][k] = _mm512_add_ps(
+                col[i][k],
+                flat != SG_FLAT_NONE
+                    ? _mm512_set1_ps(ext->a[e + k])
+                    : _mm512_mul_ps(SG_PLANE(ext->a[e + k], ext->a_dx[e + k], ext->a_dy[e + k], i),
+                                    w[i]));
 #undef SG_PLANE
-    return pack_unorm8(col);
+    for (int i = 0; i < n; i++) out[i] = pack_unorm8(col[i]);
+}
+
+/* The colours of the pixels at offsets (dx, dy) from the triangle's bounds, lanes of `mask`, as
+ * RGBA8 lanes (others undefined): shade16_tiles on one tile. */
+INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
+                             __m512 dx, __m512 dy, uint32_t mask, const int textured,
+                             const int bilinear, const int repeat, const int flat, const int sec) {
+    __m512i out;
+    shade16_tiles(c, t, ext, 1, &dx, &dy, &mask, &out, textured, bilinear, repeat, flat, sec);
+    return out;
 }
 
 /* sg_shade16_at for the pixels of `mask` of the tile at (x0, y0), lane y * 4 + x. */
