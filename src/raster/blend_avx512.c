@@ -39,6 +39,18 @@ INLINE __m512i shade(const sg_vis_ctx *v, const sg_tri *t, __m512 dx, __m512 dy,
     return sg_shade16_at(c, t, NULL, dx, dy, mask, textured, bilinear, repeat, SG_FLAT_NONE, 0);
 }
 
+/* shade for two sets of sixteen pixels at once, side by side (shade16_tiles). */
+INLINE void shade2(const sg_vis_ctx *v, const sg_tri *t, const __m512 dx[2], const __m512 dy[2],
+                   const uint32_t mask[2], __m512i out[2], const int bilinear, const int repeat) {
+    const sg_shade_ctx *c = v->shade_ctx;
+    if (t->flat == SG_FLAT_WHITE)
+        shade16_tiles(c, t, NULL, 2, dx, dy, mask, out, 1, bilinear, repeat, SG_FLAT_WHITE, 0);
+    else if (t->flat == SG_FLAT_COLOR)
+        shade16_tiles(c, t, NULL, 2, dx, dy, mask, out, 1, bilinear, repeat, SG_FLAT_COLOR, 0);
+    else
+        shade16_tiles(c, t, NULL, 2, dx, dy, mask, out, 1, bilinear, repeat, SG_FLAT_NONE, 0);
+}
+
 /* Sixteen packed RGBA8 fragments over sixteen packed RGBA8 pixels (sg_blend_rgba8). */
 INLINE __m512i blend16(__m512i s, __m512i d) {
     const __m512i zero = _mm512_setzero_si512();
@@ -58,9 +70,22 @@ typedef struct queue {
     int n;
 } queue;
 
+/* Sixteen pixels of a textured triangle ready to shade: a whole tile, blended in place at bin
+ * offset base, or a full (or the last, partial) queue, blended through its offsets. One waits
+ * for the next, and the two are shaded side by side (shade2): a shading is a long chain of
+ * dependent steps, and two of them keep the vector units busy. */
+typedef struct job {
+    __m512 dx, dy;
+    __m512i off;
+    int base; /* -1: scattered through off */
+    uint32_t mask;
+} job;
+
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     queue *q;
+    job pending;
+    bool has_pending;
 } queued_ctx;
 
 /* Appends the pixels of mask of a tile (offsets dx, dy; colour at bin offset base) to q: packed,
@@ -96,10 +121,38 @@ INLINE void blend_scattered(const sg_vis_ctx *v, const queue *q, __m512i s, __mm
     _mm512_mask_i32scatter_epi32(v->color, m, q->off, blend16(s, d), 4);
 }
 
+/* The shaded fragments s of a job blended into the bin's colour. */
+INLINE void finish(const sg_vis_ctx *v, const job *j, __m512i s) {
+    if (j->base >= 0) {
+        uint32_t *dst = v->color + j->base;
+        _mm512_store_si512(dst, blend16(s, _mm512_load_si512(dst)));
+    } else {
+        const queue q = {j->dx, j->dy, j->off, 0};
+        blend_scattered(v, &q, s, (__mmask16)j->mask);
+    }
+}
+
+/* A job shaded with the one waiting, or left waiting for the next. */
+INLINE void submit(queued_ctx *p, const sg_tri *t, const job *j, const int bilinear,
+                   const int repeat) {
+    if (!p->has_pending) {
+        p->pending = *j;
+        p->has_pending = true;
+        return;
+    }
+    const __m512 dx[2] = {p->pending.dx, j->dx}, dy[2] = {p->pending.dy, j->dy};
+    const uint32_t mask[2] = {p->pending.mask, j->mask};
+    __m512i s[2];
+    shade2(p->v, t, dx, dy, mask, s, bilinear, repeat);
+    finish(p->v, &p->pending, s[0]);
+    finish(p->v, j, s[1]);
+    p->has_pending = false;
+}
+
 INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
                          const int ztest, const int zwrite, const int textured, const int bilinear,
                          const int repeat) {
-    const queued_ctx *p = vctx;
+    queued_ctx *p = (queued_ctx *)(uintptr_t)vctx; /* the walk's context, this function's own */
     const sg_vis_ctx *v = p->v;
     const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     __m512 dx, dy;
@@ -111,17 +164,36 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
         if (zwrite) _mm512_mask_storeu_ps(dp, (__mmask16)mask, z);
     }
     if (!mask) return;
-    /* Whole tiles need no packing, and vertex colours cost less to shade than to queue. One
-     * shading call site for both (each is a large body). */
-    const bool in_place = mask == 0xffffu || !textured;
-    queue job = {dx, dy, _mm512_setzero_si512(), 16};
-    if (!in_place && !enqueue(p->q, dx, dy, base, (__mmask16)mask, &job)) return;
-    __m512i s = shade(v, t, job.dx, job.dy, in_place ? mask : 0xffffu, textured, bilinear, repeat);
-    if (in_place) {
+    if (!textured) { /* vertex colours cost less to shade than to queue */
+        __m512i s = shade(v, t, dx, dy, mask, 0, 0, 0);
         uint32_t *dst = v->color + base;
         _mm512_mask_storeu_epi32(dst, (__mmask16)mask, blend16(s, _mm512_load_si512(dst)));
-    } else {
-        blend_scattered(v, &job, s, 0xffff);
+        return;
+    }
+    if (mask == 0xffffu) { /* a whole tile needs no packing */
+        const job j = {dx, dy, _mm512_setzero_si512(), base, 0xffffu};
+        submit(p, t, &j, bilinear, repeat);
+        return;
+    }
+    queue full;
+    if (enqueue(p->q, dx, dy, base, (__mmask16)mask, &full)) {
+        const job j = {full.dx, full.dy, full.off, -1, 0xffffu};
+        submit(p, t, &j, bilinear, repeat);
+    }
+}
+
+/* The end of a triangle: the partial queue and the job waiting, shaded and blended. */
+INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int bilinear,
+                  const int repeat) {
+    const queue *q = p->q;
+    if (q->n) {
+        const job j = {q->dx, q->dy, q->off, -1, (1u << q->n) - 1u};
+        submit(p, t, &j, bilinear, repeat);
+    }
+    if (p->has_pending) {
+        const job *j = &p->pending;
+        finish(p->v, j, shade(p->v, t, j->dx, j->dy, j->mask, textured, bilinear, repeat));
+        p->has_pending = false;
     }
 }
 
@@ -136,12 +208,12 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
     static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
                                               const void *c) {                                     \
         queue q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0};           \
-        queued_ctx p = {c, &q};                                                                    \
+        queued_ctx p;                                                                              \
+        p.v = c;                                                                                   \
+        p.q = &q;                                                                                  \
+        p.has_pending = false;                                                                     \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        if (q.n) {                                                                                 \
-            const __mmask16 m = (__mmask16)((1u << q.n) - 1u);                                     \
-            blend_scattered(c, &q, shade(c, t, q.dx, q.dy, m, tex, bil, rep), m);                  \
-        }                                                                                          \
+        drain(&p, t, tex, bil, rep);                                                               \
     }
 SG_BLEND_VARIANTS(SG_BLEND_QUEUED)
 
