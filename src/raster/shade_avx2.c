@@ -10,6 +10,80 @@
 
 #if defined(SG_SHADE_AVX2)
 
+/* Rows r[i] and r[i] + 1 (masks m[i]) of a tile, n halves (n is 1 or 2, a constant): each step
+ * done for every half before the next, so the two halves' long chains of dependent steps (1/q,
+ * texel coordinates, fetch, filter, packing) run side by side (as shade16_tiles in
+ * shade_avx512.h). ax, sx and qx are shade_rows's per-column parts. */
+INLINE void rows_body(const sg_tri *t, const sg_tri_ext *ext, const tex8 *tx, const __m256 ax[6],
+                      const __m256 sx[3], __m256 qx, float oy, const int r[2], const unsigned m[2],
+                      const int n, uint32_t *dst, const int textured, const int bilinear,
+                      const int repeat, const int flat, const int sec) {
+    const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
+    __m256 dy[2], w[2], col[2][4];
+    for (int i = 0; i < n; i++) {
+        /* dy of row r in the low half, of row r + 1 in the high half */
+        dy[i] = _mm256_set_m128(_mm_set1_ps(oy + (float)(r[i] + 1)), _mm_set1_ps(oy + (float)r[i]));
+        w[i] = _mm256_div_ps(_mm256_set1_ps(1.0f),
+                             _mm256_add_ps(qx, _mm256_mul_ps(_mm256_set1_ps(t->q_dy), dy[i])));
+    }
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++)
+            col[i][k] =
+                flat != SG_FLAT_NONE
+                    ? ax[k]
+                    : _mm256_mul_ps(
+                          _mm256_add_ps(ax[k], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[k]), dy[i])),
+                          w[i]);
+    if (textured) {
+        __m256 s[2], u[2];
+        for (int i = 0; i < n; i++) {
+            s[i] = _mm256_mul_ps(
+                _mm256_add_ps(ax[4], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[4]), dy[i])), w[i]);
+            u[i] = _mm256_mul_ps(
+                _mm256_add_ps(ax[5], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[5]), dy[i])), w[i]);
+        }
+        __m256i tc[2][4];
+        if (bilinear) {
+            __m256i gx[2], gy[2], texels[2][4], x[2][4];
+            for (int i = 0; i < n; i++) {
+                gx[i] = bilinear_split(s[i], tx->scale_x, tx->hi_x, repeat);
+                gy[i] = bilinear_split(u[i], tx->scale_y, tx->hi_y, repeat);
+            }
+            for (int i = 0; i < n; i++) bilinear_fetch8(tx, gx[i], gy[i], repeat, texels[i]);
+            for (int i = 0; i < n; i++) bilinear_filter8(gx[i], gy[i], texels[i], x[i]);
+            if (flat == SG_FLAT_WHITE && !sec) {
+                for (int i = 0; i < n; i++) store_rows(dst + 4 * r[i], pack_hi8(x[i]), m[i]);
+                return;
+            }
+            for (int i = 0; i < n; i++)
+                for (int k = 0; k < 4; k++) tc[i][k] = _mm256_srli_epi32(x[i][k], 16);
+        } else {
+            __m256i texel[2];
+            for (int i = 0; i < n; i++) texel[i] = nearest8(tx, s[i], u[i], repeat);
+            if (flat == SG_FLAT_WHITE && !sec) { /* the texel is the colour, as in the reference */
+                for (int i = 0; i < n; i++) store_rows(dst + 4 * r[i], texel[i], m[i]);
+                return;
+            }
+            for (int i = 0; i < n; i++) unpack_texels(texel[i], tc[i]);
+        }
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 4; k++)
+                col[i][k] = _mm256_mul_ps(col[i][k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[i][k]),
+                                                                   _mm256_set1_ps(1.0f / 255.0f)));
+    }
+    for (int i = 0; i < n; i++)
+        for (int k = 0; sec && k < 3; k++)
+            col[i][k] = _mm256_add_ps(
+                col[i][k],
+                flat != SG_FLAT_NONE
+                    ? sx[k]
+                    : _mm256_mul_ps(
+                          _mm256_add_ps(sx[k],
+                                        _mm256_mul_ps(_mm256_set1_ps(ext->a_dy[e + k]), dy[i])),
+                          w[i]));
+    for (int i = 0; i < n; i++) store_rows(dst + 4 * r[i], pack_unorm8(col[i]), m[i]);
+}
+
 /* The body of every variant, as shade_pixels in shade.c; the constant arguments fold away. */
 INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
                        int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
@@ -46,57 +120,17 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                                     _mm256_mul_ps(_mm256_set1_ps(ext->a_dx[e + k]), dx));
     tex8 tx;
     if (textured) tx = tex8_of(&c->tex, bilinear);
+    const unsigned m0 = mask & 255u, m1 = (mask >> 8) & 255u;
+    if (textured && m0 && m1) { /* both halves, side by side (see rows_body) */
+        rows_body(t, ext, &tx, ax, sx, qx, oy, (const int[2]){0, 2}, (const unsigned[2]){m0, m1}, 2,
+                  dst, textured, bilinear, repeat, flat, sec);
+        return;
+    }
     for (int r = 0; r < 4; r += 2) {
-        unsigned m = (mask >> (4 * r)) & 255u;
-        if (!m) continue;
-        /* dy of row r in the low half, of row r + 1 in the high half */
-        const __m256 dy =
-            _mm256_set_m128(_mm_set1_ps(oy + (float)(r + 1)), _mm_set1_ps(oy + (float)r));
-        const __m256 w = _mm256_div_ps(
-            _mm256_set1_ps(1.0f), _mm256_add_ps(qx, _mm256_mul_ps(_mm256_set1_ps(t->q_dy), dy)));
-        __m256 col[4];
-        for (int k = 0; k < 4; k++)
-            col[k] =
-                flat != SG_FLAT_NONE
-                    ? ax[k]
-                    : _mm256_mul_ps(
-                          _mm256_add_ps(ax[k], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[k]), dy)), w);
-        if (textured) {
-            __m256 s = _mm256_mul_ps(
-                _mm256_add_ps(ax[4], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[4]), dy)), w);
-            __m256 u = _mm256_mul_ps(
-                _mm256_add_ps(ax[5], _mm256_mul_ps(_mm256_set1_ps(t->a_dy[5]), dy)), w);
-            __m256i tc[4];
-            if (bilinear) {
-                __m256i x[4];
-                bilinear8(&tx, s, u, repeat, x);
-                if (flat == SG_FLAT_WHITE && !sec) {
-                    store_rows(dst + 4 * r, pack_hi8(x), m);
-                    continue;
-                }
-                for (int k = 0; k < 4; k++) tc[k] = _mm256_srli_epi32(x[k], 16);
-            } else {
-                __m256i texel = nearest8(&tx, s, u, repeat);
-                if (flat == SG_FLAT_WHITE &&
-                    !sec) { /* the texel is the colour, as in the reference */
-                    store_rows(dst + 4 * r, texel, m);
-                    continue;
-                }
-                unpack_texels(texel, tc);
-            }
-            for (int k = 0; k < 4; k++)
-                col[k] = _mm256_mul_ps(col[k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[k]),
-                                                             _mm256_set1_ps(1.0f / 255.0f)));
-        }
-        for (int k = 0; sec && k < 3; k++)
-            col[k] = _mm256_add_ps(
-                col[k],
-                flat != SG_FLAT_NONE
-                    ? sx[k]
-                    : _mm256_mul_ps(
-                          _mm256_add_ps(sx[k], _mm256_mul_ps(_mm256_set1_ps(ext->a_dy[e + k]), dy)),
-                          w));
-        store_rows(dst + 4 * r, pack_unorm8(col), m);
+        const unsigned m = r ? m1 : m0;
+        if (m)
+            rows_body(t, ext, &tx, ax, sx, qx, oy, (const int[2]){r, 0}, (const unsigned[2]){m, 0},
+                      1, dst, textured, bilinear, repeat, flat, sec);
     }
 }
 

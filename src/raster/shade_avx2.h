@@ -126,21 +126,13 @@ INLINE __m256i nearest8(const tex8 *tx, __m256 s, __m256 u, const int repeat) {
     return fetch8(tx, _mm256_add_epi32(row_start(j, tx), i));
 }
 
-/* sg_sample_bilinear of eight pixels, planar: x[k] gets channel k of the eight pixels in bits 16
- * to 23 of each lane, zeros above. Channels r, b and g, a are blended as pairs of 16-bit lanes. The
- * vertical blends t0 (256 - fy) + t1 fy are at most 255 * 256, exact in unsigned 16 bits; biased
- * by -32768 (the xor) they are signed, and the blends of columns i0 and i1 of a channel, put side
- * by side in a 32-bit lane, go through pmaddwd with (256 - fx, fx), whose sum brings the bias back
- * as 32768 * 256. That is the reference's four-weight sum exactly, plus 32768: its >> 16 is the
- * reference's result. No shuffles: all lanes stay in place. */
-INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m256i x[4]) {
+/* The four texels of each lane's footprint (t00, t10, t01, t11) for split coordinates gx, gy. */
+INLINE void bilinear_fetch8(const tex8 *tx, __m256i gx, __m256i gy, const int repeat,
+                            __m256i t[4]) {
     __m256i i0, i1, j0, j1;
-    __m256i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
-    __m256i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
     bilinear_wrap(gx, tx->n_x, tx->last_x, repeat, &i0, &i1);
     bilinear_wrap(gy, tx->n_y, tx->last_y, repeat, &j0, &j1);
     __m256i r0 = row_start(j0, tx), r1 = row_start(j1, tx);
-    __m256i t00, t10, t01, t11;
     /* Where every lane's split column is in [0, n - 2], i1 = i0 + 1 in every wrap mode and the
      * two columns are adjacent in memory: fetched as pairs. */
     __m256i a = _mm256_srai_epi32(gx, 8);
@@ -148,14 +140,18 @@ INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m2
         _mm256_or_si256(_mm256_cmpgt_epi32(_mm256_setzero_si256(), a),
                         _mm256_cmpgt_epi32(a, _mm256_sub_epi32(tx->last_x, _mm256_set1_epi32(1))));
     if (_mm256_testz_si256(outside, outside)) {
-        pair_fetch8(tx, _mm256_add_epi32(r0, a), &t00, &t10);
-        pair_fetch8(tx, _mm256_add_epi32(r1, a), &t01, &t11);
+        pair_fetch8(tx, _mm256_add_epi32(r0, a), &t[0], &t[1]);
+        pair_fetch8(tx, _mm256_add_epi32(r1, a), &t[2], &t[3]);
     } else {
-        t00 = fetch8(tx, _mm256_add_epi32(r0, i0));
-        t10 = fetch8(tx, _mm256_add_epi32(r0, i1));
-        t01 = fetch8(tx, _mm256_add_epi32(r1, i0));
-        t11 = fetch8(tx, _mm256_add_epi32(r1, i1));
+        t[0] = fetch8(tx, _mm256_add_epi32(r0, i0));
+        t[1] = fetch8(tx, _mm256_add_epi32(r0, i1));
+        t[2] = fetch8(tx, _mm256_add_epi32(r1, i0));
+        t[3] = fetch8(tx, _mm256_add_epi32(r1, i1));
     }
+}
+
+/* The filter of bilinear8 on fetched texels: x[k] gets channel k in bits 16 to 23. */
+INLINE void bilinear_filter8(__m256i gx, __m256i gy, const __m256i t[4], __m256i x[4]) {
     const __m256i lo8 = _mm256_set1_epi32(0x00ff00ff);
     const __m256i bias = _mm256_set1_epi32((int)0x80008000u);
     const __m256i w256 = _mm256_set1_epi16(256);
@@ -165,10 +161,10 @@ INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m2
     __m256i wx = _mm256_blend_epi16(_mm256_sub_epi16(w256, fx2), fx2, 0xaa); /* 256 - fx, fx */
 #define SG_VBLEND(a, b)                                                                            \
     _mm256_xor_si256(_mm256_add_epi16(_mm256_mullo_epi16(a, gy2), _mm256_mullo_epi16(b, fy2)), bias)
-    __m256i rb0 = SG_VBLEND(_mm256_and_si256(t00, lo8), _mm256_and_si256(t01, lo8));
-    __m256i rb1 = SG_VBLEND(_mm256_and_si256(t10, lo8), _mm256_and_si256(t11, lo8));
-    __m256i ga0 = SG_VBLEND(_mm256_srli_epi16(t00, 8), _mm256_srli_epi16(t01, 8));
-    __m256i ga1 = SG_VBLEND(_mm256_srli_epi16(t10, 8), _mm256_srli_epi16(t11, 8));
+    __m256i rb0 = SG_VBLEND(_mm256_and_si256(t[0], lo8), _mm256_and_si256(t[2], lo8));
+    __m256i rb1 = SG_VBLEND(_mm256_and_si256(t[1], lo8), _mm256_and_si256(t[3], lo8));
+    __m256i ga0 = SG_VBLEND(_mm256_srli_epi16(t[0], 8), _mm256_srli_epi16(t[2], 8));
+    __m256i ga1 = SG_VBLEND(_mm256_srli_epi16(t[1], 8), _mm256_srli_epi16(t[3], 8));
 #undef SG_VBLEND
 #define SG_HBLEND(v) _mm256_add_epi32(_mm256_madd_epi16(v, wx), round)
     x[0] = SG_HBLEND(_mm256_blend_epi16(rb0, _mm256_slli_epi32(rb1, 16), 0xaa));
@@ -176,6 +172,21 @@ INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m2
     x[2] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(rb0, 16), rb1, 0xaa));
     x[3] = SG_HBLEND(_mm256_blend_epi16(_mm256_srli_epi32(ga0, 16), ga1, 0xaa));
 #undef SG_HBLEND
+}
+
+/* sg_sample_bilinear of eight pixels, planar: x[k] gets channel k of the eight pixels in bits 16
+ * to 23 of each lane, zeros above. Channels r, b and g, a are blended as pairs of 16-bit lanes. The
+ * vertical blends t0 (256 - fy) + t1 fy are at most 255 * 256, exact in unsigned 16 bits; biased
+ * by -32768 (the xor) they are signed, and the blends of columns i0 and i1 of a channel, put side
+ * by side in a 32-bit lane, go through pmaddwd with (256 - fx, fx), whose sum brings the bias back
+ * as 32768 * 256. That is the reference's four-weight sum exactly, plus 32768: its >> 16 is the
+ * reference's result. No shuffles: all lanes stay in place. */
+INLINE void bilinear8(const tex8 *tx, __m256 s, __m256 u, const int repeat, __m256i x[4]) {
+    __m256i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
+    __m256i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
+    __m256i t[4];
+    bilinear_fetch8(tx, gx, gy, repeat, t);
+    bilinear_filter8(gx, gy, t, x);
 }
 
 /* Four channels in bits 16 to 23 of their lanes, zeros above, to RGBA8 (sg_pack_rgba8). */
