@@ -6,9 +6,10 @@
  * state, as in blend_avx512.c): no call per tile, no tile buffer. A pair of rows whose eight
  * pixels all pass is shaded and blended in place; the pixels of partly covered pairs of textured
  * draws are packed into a queue of eight lanes, shaded when it is full (small triangles and edges
- * cover tiles sparsely, and a shading pass costs the same for one pixel as for eight). The pixels
- * of one triangle are all different, so blending some later changes nothing, as long as it is done
- * before the next triangle. Lit draws call the draw's shading function per tile.
+ * cover tiles sparsely, and a shading pass costs the same for one pixel as for eight); whole pairs
+ * and full queues of a textured triangle are shaded two at a time, side by side. The pixels of one
+ * triangle are all different, so blending some later changes nothing, as long as it is done before
+ * the next triangle. Lit draws call the draw's shading function per tile.
  */
 #include "raster/blend.h"
 
@@ -105,30 +106,46 @@ typedef struct queue {
     int n;
 } queue;
 
+/* Eight pixels of a textured triangle ready to shade: two whole rows of a tile, blended in place
+ * at bin offset base, or a full (or the last, partial) queue of n pixels, blended through its
+ * offsets. One waits for the next, and the two are shaded side by side (shade8_sets): a shading
+ * is a long chain of dependent steps, and two of them keep the vector units busy. */
+typedef struct job {
+    __m256 dx, dy;
+    __m256i off;
+    int base; /* -1: scattered through off */
+    int n;
+} job;
+
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     queue *q;
+    job pending;
+    bool has_pending;
 } queued_ctx;
 
-/* The pipeline's colours of the pixels at (dx, dy), flat colours split off per triangle. */
-INLINE __m256i shade(const sg_vis_ctx *v, const sg_tri *t, __m256 dx, __m256 dy, const int textured,
-                     const int bilinear, const int repeat) {
+/* The pipeline's colours of n sets of eight pixels at (dx, dy), flat colours split off per
+ * triangle. */
+INLINE void shade(const sg_vis_ctx *v, const sg_tri *t, const int n, const __m256 dx[],
+                  const __m256 dy[], __m256i out[], const int textured, const int bilinear,
+                  const int repeat) {
     const sg_shade_ctx *c = v->shade_ctx;
     if (t->flat == SG_FLAT_WHITE)
-        return sg_shade8_at(c, t, NULL, dx, dy, textured, bilinear, repeat, SG_FLAT_WHITE, 0);
-    if (t->flat == SG_FLAT_COLOR)
-        return sg_shade8_at(c, t, NULL, dx, dy, textured, bilinear, repeat, SG_FLAT_COLOR, 0);
-    return sg_shade8_at(c, t, NULL, dx, dy, textured, bilinear, repeat, SG_FLAT_NONE, 0);
+        shade8_sets(c, t, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_WHITE, 0);
+    else if (t->flat == SG_FLAT_COLOR)
+        shade8_sets(c, t, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_COLOR, 0);
+    else
+        shade8_sets(c, t, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_NONE, 0);
 }
 
 /* The fragments s of the first n pixels of q blended into their pixels of the bin's colour. */
-INLINE void blend_scattered(const sg_vis_ctx *v, const queue *q, __m256i s, int n) {
+INLINE void blend_scattered(const sg_vis_ctx *v, __m256i qoff, __m256i s, int n) {
     /* Every lane's offset is a pixel of the bin, so the gather reads only the bin. */
-    __m256i d = _mm256_i32gather_epi32((const int *)(const void *)v->color, q->off, 4);
+    __m256i d = _mm256_i32gather_epi32((const int *)(const void *)v->color, qoff, 4);
     _Alignas(32) uint32_t out[8];
     _Alignas(32) int32_t off[8];
     _mm256_store_si256((__m256i *)(void *)out, blend8(s, d));
-    _mm256_store_si256((__m256i *)(void *)off, q->off);
+    _mm256_store_si256((__m256i *)(void *)off, qoff);
     for (int k = 0; k < n; k++) v->color[off[k]] = out[k];
 }
 
@@ -165,10 +182,34 @@ INLINE bool enqueue(queue *q, __m256 dx, __m256 dy, int off, unsigned bits, queu
     return true;
 }
 
+/* The shaded fragments s of a job blended into the bin's colour. */
+INLINE void finish(const sg_vis_ctx *v, const job *j, __m256i s) {
+    if (j->base >= 0)
+        blend_rows(v->color + j->base, s, 255u);
+    else
+        blend_scattered(v, j->off, s, j->n);
+}
+
+/* A job shaded with the one waiting, or left waiting for the next. */
+INLINE void submit(queued_ctx *p, const sg_tri *t, const job *j, const int bilinear,
+                   const int repeat) {
+    if (!p->has_pending) {
+        p->pending = *j;
+        p->has_pending = true;
+        return;
+    }
+    const __m256 dx[2] = {p->pending.dx, j->dx}, dy[2] = {p->pending.dy, j->dy};
+    __m256i s[2];
+    shade(p->v, t, 2, dx, dy, s, 1, bilinear, repeat);
+    finish(p->v, &p->pending, s[0]);
+    finish(p->v, j, s[1]);
+    p->has_pending = false;
+}
+
 INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
                          const int zmode, const int zwrite, const int textured, const int bilinear,
                          const int repeat) {
-    const queued_ctx *p = vctx;
+    queued_ctx *p = (queued_ctx *)(uintptr_t)vctx; /* the walk's context, this function's own */
     const sg_vis_ctx *v = p->v;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     if (zmode != Z_NONE || zwrite) mask = depth_tile(v, t, x0, y0, mask, base, zwrite);
@@ -178,23 +219,46 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
         if (!bits) continue;
         __m256 dx, dy;
         sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
-        /* Full rows need no packing, and vertex colours cost less to shade than to queue (the
-         * alpha_stack scene is clearly faster in place); a partial textured pair is shaded when it
-         * fills the queue. One shading call site (each is a large body). */
-        const bool in_place = bits == 255 || !textured;
-        queue job = {dx, dy, _mm256_setzero_si256(), 8};
-        if (!in_place && !enqueue(p->q, dx, dy, base + 8 * h, bits, &job)) continue;
-        __m256i s = shade(v, t, job.dx, job.dy, textured, bilinear, repeat);
-        if (in_place)
+        if (!textured) { /* vertex colours cost less to shade than to queue (alpha_stack) */
+            __m256i s;
+            shade(v, t, 1, &dx, &dy, &s, 0, 0, 0);
             blend_rows(v->color + base + 8 * h, s, bits);
-        else
-            blend_scattered(v, &job, s, 8);
+            continue;
+        }
+        if (bits == 255) { /* full rows need no packing */
+            const job j = {dx, dy, _mm256_setzero_si256(), base + 8 * h, 8};
+            submit(p, t, &j, bilinear, repeat);
+            continue;
+        }
+        queue full;
+        if (enqueue(p->q, dx, dy, base + 8 * h, bits, &full)) {
+            const job j = {full.dx, full.dy, full.off, -1, 8};
+            submit(p, t, &j, bilinear, repeat);
+        }
+    }
+}
+
+/* The end of a triangle: the partial queue and the job waiting, shaded and blended. */
+INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int bilinear,
+                  const int repeat) {
+    if (!textured) return; /* vertex colours were blended in place */
+    const queue *q = p->q;
+    if (q->n) {
+        const job j = {q->dx, q->dy, q->off, -1, q->n};
+        submit(p, t, &j, bilinear, repeat);
+    }
+    if (p->has_pending) {
+        const job *j = &p->pending;
+        __m256i s;
+        shade(p->v, t, 1, &j->dx, &j->dy, &s, 1, bilinear, repeat);
+        finish(p->v, j, s);
+        p->has_pending = false;
     }
 }
 
 /* One raster function per shading variant (vertex colour; texture nearest / bilinear, repeat /
- * clamp: tex, bil, rep) and depth state (test, write: 0 or 1); the pixels left in the queue are
- * shaded at the end. */
+ * clamp: tex, bil, rep) and depth state (test, write: 0 or 1); the pixels left in the queue and
+ * the job waiting are shaded at the end. */
 #define SG_BLEND_INLINE(tex, bil, rep, zt, zw)                                                     \
     INLINE void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t, int x0,       \
                                                      int y0, uint32_t m) {                         \
@@ -203,9 +267,9 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
     static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
                                               const void *c) {                                     \
         queue q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};           \
-        queued_ctx p = {c, &q};                                                                    \
+        queued_ctx p = {.v = c, .q = &q}; /* no job waiting */                                     \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        if (q.n) blend_scattered(c, &q, shade(c, t, q.dx, q.dy, tex, bil, rep), q.n);              \
+        drain(&p, t, tex, bil, rep);                                                               \
     }
 SG_BLEND_VARIANTS(SG_BLEND_INLINE)
 

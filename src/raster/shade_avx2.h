@@ -2,7 +2,7 @@
  * compiled with -mavx2, no FMA): texel fetches with gathers, bilinear filtering in exact integer
  * arithmetic on 16-bit lanes, and float colours to RGBA8, eight pixels a vector (two rows of a
  * tile). shade_avx2.c makes the shading table of them, shade_phong_avx2.c the per-pixel lighting,
- * blend_avx2.c inlines sg_shade8_at into the raster functions of blended draws.
+ * blend_avx2.c inlines shade8_sets into the raster functions of blended draws.
  * Each computes the scalar reference's operations (shade.c, sample.h) in the same order.
  */
 #ifndef SG_SHADE_AVX2_H
@@ -242,56 +242,90 @@ INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
     return tx;
 }
 
-/* The colours of eight pixels at offsets (dx, dy) from the triangle's bounds, as RGBA8 lanes: the
- * body of every variant (the constant arguments fold away), in the reference's operation order
- * ((a + a_dx dx) + a_dy dy, then times 1/q). Lanes need not be neighbours: each computes what
- * the reference computes for its pixel, wherever that is, so the blend can shade pixels of
+/* The colours of eight pixels at offsets (dx, dy) from the triangle's bounds, as RGBA8 lanes, for
+ * n sets of eight (n is 1 or 2, a constant): the body of every variant (the constant arguments
+ * fold away), in the reference's operation order ((a + a_dx dx) + a_dy dy, then times 1/q). Each
+ * step is done for every set before the next, so two sets' long chains of dependent steps run
+ * side by side (as shade16_tiles in shade_avx512.h). Lanes need not be neighbours: each computes
+ * what the reference computes for its pixel, wherever that is, so the blend can shade pixels of
  * several tiles together. Every lane's fetch stays in the texture whatever its coordinates.
  * shade_rows (shade_avx2.c) is the same body for the two row pairs of one tile, with the terms
  * both pairs share computed once (keep the two in step). */
-INLINE __m256i sg_shade8_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
-                            __m256 dx, __m256 dy, const int textured, const int bilinear,
-                            const int repeat, const int flat, const int sec) {
+INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, const int n,
+                        const __m256 dx[], const __m256 dy[], __m256i out[], const int textured,
+                        const int bilinear, const int repeat, const int flat, const int sec) {
     const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
         uint32_t px = sg_flat_pixel(t, ext, sec);
-        return _mm256_set1_epi32((int)px);
+        for (int i = 0; i < n; i++) out[i] = _mm256_set1_epi32((int)px);
+        return;
     }
-#define SG_PLANE(a, adx, ady)                                                                      \
-    _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(a), _mm256_mul_ps(_mm256_set1_ps(adx), dx)),        \
-                  _mm256_mul_ps(_mm256_set1_ps(ady), dy))
-    const __m256 w = _mm256_div_ps(_mm256_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy));
-    __m256 col[4];
-    for (int k = 0; k < 4; k++)
-        col[k] = flat != SG_FLAT_NONE ? _mm256_set1_ps(t->color[k])
-                                      : _mm256_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
+#define SG_PLANE(a, adx, ady, i)                                                                   \
+    _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(a), _mm256_mul_ps(_mm256_set1_ps(adx), dx[i])),     \
+                  _mm256_mul_ps(_mm256_set1_ps(ady), dy[i]))
+    __m256 w[2], col[2][4];
+    for (int i = 0; i < n; i++)
+        w[i] = _mm256_div_ps(_mm256_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy, i));
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++)
+            col[i][k] = flat != SG_FLAT_NONE
+                            ? _mm256_set1_ps(t->color[k])
+                            : _mm256_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k], i), w[i]);
     if (textured) {
         const tex8 tx = tex8_of(&c->tex, bilinear);
-        __m256 s = _mm256_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
-        __m256 u = _mm256_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
-        __m256i tc[4];
-        if (bilinear) {
-            __m256i x[4];
-            bilinear8(&tx, s, u, repeat, x);
-            if (flat == SG_FLAT_WHITE && !sec) return pack_hi8(x);
-            for (int k = 0; k < 4; k++) tc[k] = _mm256_srli_epi32(x[k], 16);
-        } else {
-            __m256i texel = nearest8(&tx, s, u, repeat);
-            if (flat == SG_FLAT_WHITE && !sec) return texel; /* the colour, as in the reference */
-            unpack_texels(texel, tc);
+        __m256 s[2], u[2];
+        for (int i = 0; i < n; i++) {
+            s[i] = _mm256_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4], i), w[i]);
+            u[i] = _mm256_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5], i), w[i]);
         }
-        for (int k = 0; k < 4; k++)
-            col[k] = _mm256_mul_ps(
-                col[k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[k]), _mm256_set1_ps(1.0f / 255.0f)));
+        __m256i tc[2][4];
+        if (bilinear) {
+            __m256i gx[2], gy[2], texels[2][4], x[2][4];
+            for (int i = 0; i < n; i++) {
+                gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
+                gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
+            }
+            for (int i = 0; i < n; i++) bilinear_fetch8(&tx, gx[i], gy[i], repeat, texels[i]);
+            for (int i = 0; i < n; i++) bilinear_filter8(gx[i], gy[i], texels[i], x[i]);
+            if (flat == SG_FLAT_WHITE && !sec) {
+                for (int i = 0; i < n; i++) out[i] = pack_hi8(x[i]);
+                return;
+            }
+            for (int i = 0; i < n; i++)
+                for (int k = 0; k < 4; k++) tc[i][k] = _mm256_srli_epi32(x[i][k], 16);
+        } else {
+            __m256i texel[2];
+            for (int i = 0; i < n; i++) texel[i] = nearest8(&tx, s[i], u[i], repeat);
+            if (flat == SG_FLAT_WHITE && !sec) { /* the colour, as in the reference */
+                for (int i = 0; i < n; i++) out[i] = texel[i];
+                return;
+            }
+            for (int i = 0; i < n; i++) unpack_texels(texel[i], tc[i]);
+        }
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 4; k++)
+                col[i][k] = _mm256_mul_ps(col[i][k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[i][k]),
+                                                                   _mm256_set1_ps(1.0f / 255.0f)));
     }
-    for (int k = 0; sec && k < 3; k++)
-        col[k] = _mm256_add_ps(
-            col[k],
-            flat != SG_FLAT_NONE
-                ? _mm256_set1_ps(ext->a[e + k])
-                : _mm256_mul_ps(SG_PLANE(ext->a[e + k], ext->a_dx[e + k], ext->a_dy[e + k]), w));
+    for (int i = 0; i < n; i++)
+        for (int k = 0; sec && k < 3; k++)
+            col[i][k] = _mm256_add_ps(
+                col[i][k],
+                flat != SG_FLAT_NONE
+                    ? _mm256_set1_ps(ext->a[e + k])
+                    : _mm256_mul_ps(SG_PLANE(ext->a[e + k], ext->a_dx[e + k], ext->a_dy[e + k], i),
+                                    w[i]));
 #undef SG_PLANE
-    return pack_unorm8(col);
+    for (int i = 0; i < n; i++) out[i] = pack_unorm8(col[i]);
+}
+
+/* shade8_sets on one set of eight pixels. */
+INLINE __m256i sg_shade8_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
+                            __m256 dx, __m256 dy, const int textured, const int bilinear,
+                            const int repeat, const int flat, const int sec) {
+    __m256i out;
+    shade8_sets(c, t, ext, 1, &dx, &dy, &out, textured, bilinear, repeat, flat, sec);
+    return out;
 }
 
 /* dx and dy of rows 2h and 2h + 1 of the tile at (x0, y0), from the triangle's bounds: row 2h in
