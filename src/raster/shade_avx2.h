@@ -29,6 +29,7 @@ _Static_assert(SG_MAX_IMAGE_SIZE < 32768, "texture sides must fit signed 16 bits
  * 256 n when bilinear) and "hi" the clamp's upper limit (n - 1 texels, or 256 (n + 1)). */
 typedef struct tex8 {
     const int *texels;
+    int width, height;
     __m256 scale_x, scale_y, hi_x, hi_y;
     __m256i n_x, n_y, last_x, last_y; /* n and n - 1 */
 } tex8;
@@ -126,9 +127,58 @@ INLINE __m256i nearest8(const tex8 *tx, __m256 s, __m256 u, const int repeat) {
     return fetch8(tx, _mm256_add_epi32(row_start(j, tx), i));
 }
 
-/* The four texels of each lane's footprint (t00, t10, t01, t11) for split coordinates gx, gy. */
+/* Texels from an 8 x 4 window of the texture around the first lane's texel, when every texel the
+ * eight lanes need lies in it (a magnified or about 1:1 texture, away from the texture's edge):
+ * four row loads and in-register permutes instead of gathers; the same texels, so the same bytes
+ * (as window_fetch in shade_avx512.h, whose window is 8 x 8). a and b are the split's columns
+ * and rows before any wrap or clamp: where every lane has a - wx in [0, 6] and b - wy in [0, 2],
+ * columns a, a + 1 and rows b, b + 1 are all inside the texture and the window, so no wrap or
+ * clamp would change them, in either mode. False: the footprint is wider or crosses an edge; the
+ * caller wraps and gathers. */
+INLINE bool window_fetch8(const tex8 *tx, __m256i a, __m256i b, __m256i t[4]) {
+    const int tw = tx->width, th = tx->height;
+    if (tw < 8 || th < 4) return false;
+    int wx = _mm_cvtsi128_si32(_mm256_castsi256_si128(a)) - 3;
+    int wy = _mm_cvtsi128_si32(_mm256_castsi256_si128(b)) - 1;
+    wx = wx < 0 ? 0 : (wx > tw - 8 ? tw - 8 : wx);
+    wy = wy < 0 ? 0 : (wy > th - 4 ? th - 4 : wy);
+    const __m256i c = _mm256_sub_epi32(a, _mm256_set1_epi32(wx));
+    const __m256i d = _mm256_sub_epi32(b, _mm256_set1_epi32(wy));
+    /* Unsigned c <= 6 and d <= 2: min leaves them as they are. */
+    const __m256i in =
+        _mm256_and_si256(_mm256_cmpeq_epi32(_mm256_min_epu32(c, _mm256_set1_epi32(6)), c),
+                         _mm256_cmpeq_epi32(_mm256_min_epu32(d, _mm256_set1_epi32(2)), d));
+    if (_mm256_movemask_ps(_mm256_castsi256_ps(in)) != 255) return false;
+    /* Texture row j is memory row th - 1 - j (top row first); window row r is row wy + r. */
+    const int *row = tx->texels + (size_t)(th - 1 - wy) * (size_t)tw + (size_t)wx;
+    __m256i w[4], p[4], q[4];
+    for (int r = 0; r < 4; r++)
+        w[r] = _mm256_loadu_si256((const __m256i *)(const void *)(row - (size_t)r * (size_t)tw));
+    const __m256i c1 = _mm256_add_epi32(c, _mm256_set1_epi32(1));
+    for (int r = 0; r < 4; r++) {
+        p[r] = _mm256_permutevar8x32_epi32(w[r], c);  /* column a of window row r */
+        q[r] = _mm256_permutevar8x32_epi32(w[r], c1); /* column a + 1 */
+    }
+    /* d is 0, 1 or 2: its bit 0 and bit 1 moved to the sign bit pick the row. */
+    const __m256 d0 = _mm256_castsi256_ps(_mm256_slli_epi32(d, 31));
+    const __m256 d1 = _mm256_castsi256_ps(_mm256_slli_epi32(d, 30));
+#define SG_PICK(v, r)                                                                              \
+    _mm256_castps_si256(_mm256_blendv_ps(                                                          \
+        _mm256_blendv_ps(_mm256_castsi256_ps(v[r]), _mm256_castsi256_ps(v[r + 1]), d0),            \
+        _mm256_castsi256_ps(v[r + 2]), d1))
+    t[0] = SG_PICK(p, 0);
+    t[1] = SG_PICK(q, 0);
+    t[2] = SG_PICK(p, 1);
+    t[3] = SG_PICK(q, 1);
+#undef SG_PICK
+    return true;
+}
+
+/* The four texels of each lane's footprint (t00, t10, t01, t11) for split coordinates gx, gy:
+ * from the texel window where it holds them, else gathered. */
 INLINE void bilinear_fetch8(const tex8 *tx, __m256i gx, __m256i gy, const int repeat,
                             __m256i t[4]) {
+    if (window_fetch8(tx, _mm256_srai_epi32(gx, 8), _mm256_srai_epi32(gy, 8), t)) return;
     __m256i i0, i1, j0, j1;
     bilinear_wrap(gx, tx->n_x, tx->last_x, repeat, &i0, &i1);
     bilinear_wrap(gy, tx->n_y, tx->last_y, repeat, &j0, &j1);
@@ -231,6 +281,8 @@ INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
     const float sc = bilinear ? 256.0f : 1.0f;
     tex8 tx;
     tx.texels = (const int *)(const void *)tv->texels;
+    tx.width = w;
+    tx.height = h;
     tx.scale_x = _mm256_set1_ps(sc * (float)w);
     tx.scale_y = _mm256_set1_ps(sc * (float)h);
     tx.hi_x = _mm256_set1_ps(bilinear ? 256.0f * (float)(w + 1) : (float)(w - 1));
