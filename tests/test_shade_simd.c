@@ -23,6 +23,8 @@
 #define HAVE_GUARD_PAGES 1
 #endif
 
+#include "raster/bin.h"
+#include "raster/framebuffer.h"
 #include "raster/shade.h"
 
 enum { CASES_PER_FLAT = 70000, VARIANTS = 5, FLATS = 3 };
@@ -413,7 +415,8 @@ static void compare_variant(int variant, int kind) {
                has_neon = sg_isa_runs(SG_ISA_NEON);
     const int index = variant + (kind == SECONDARY ? SG_SHADE_SECONDARY : 0);
     sg_shade_fn scalar, sse2 = NULL, avx2 = NULL, avx512 = NULL, neon = NULL;
-    sg_shade2_fn pair = NULL; /* AVX-512's two whole tiles at once, for the unlit variants */
+    sg_shade2_fn pair = NULL;     /* AVX-512's two whole tiles at once, for the unlit variants */
+    sg_shade_runs_fn runs = NULL; /* AVX-512's partly covered tiles packed together */
     if (kind >= PHONG) {
         const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
                            : kind == PHONG_SHADOW ? SG_PIXEL_PHONG_SHADOW
@@ -432,6 +435,7 @@ static void compare_variant(int variant, int kind) {
         if (has_avx2) avx2 = sg_shade_avx2(index);
         if (has_avx512) avx512 = sg_shade_avx512(index);
         if (has_avx512) pair = sg_shade2_avx512(index);
+        if (has_avx512) runs = sg_shade_runs_avx512(index);
         if (has_neon) neon = sg_shade_neon(index);
 #if defined(__aarch64__)
         assert_non_null(neon); /* Advanced SIMD is the AArch64 baseline */
@@ -445,6 +449,11 @@ static void compare_variant(int variant, int kind) {
     const long cases = kind >= PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
     long seen[3] = {0, 0, 0}; /* shadow kinds: pixel 0 hidden, partly seen, seen */
     long failures = 0;
+    enum { BIN_TILES = SG_BIN_SIZE / SG_TILE, BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE };
+    uint32_t *bin_ref = malloc(BIN_PIXELS * sizeof *bin_ref);
+    uint32_t *bin_out = malloc(BIN_PIXELS * sizeof *bin_out);
+    assert_non_null(bin_ref);
+    assert_non_null(bin_out);
     for (int flat = 0; flat < FLATS; flat++) {
         for (long n = 0; n < cases && failures < 5; n++) {
             const texture *tx = &tex[n % NSIZES];
@@ -495,10 +504,38 @@ static void compare_variant(int variant, int kind) {
                     failures++;
                 }
             }
+            if (runs && n % 8 == 0) { /* runs of distinct tiles of a bin, as one scalar call each */
+                const int bx0 = x0 - 4 * irange(&g, 0, BIN_TILES - 1);
+                const int by0 = y0 - 4 * irange(&g, 0, BIN_TILES - 1);
+                sg_run list[64];
+                int nruns = irange(&g, 1, 64);
+                for (int i = 0; i < BIN_PIXELS; i++) bin_ref[i] = bin_out[i] = sentinel;
+                for (int i = 0; i < nruns; i++) {
+                    int tile = irange(&g, 0, BIN_TILES * BIN_TILES - 1);
+                    for (int j = 0; j < i; j++)
+                        if (list[j].tile == tile) tile = -1;
+                    if (tile < 0) { /* a triangle's runs are in different tiles */
+                        nruns = i;
+                        break;
+                    }
+                    uint32_t m = chance(&g, 10) ? 0xffffu : random_mask(&g);
+                    list[i] = (sg_run){(uint16_t)tile, (uint16_t)m};
+                    scalar(&ctx, &t, bx0 + 4 * (tile % BIN_TILES), by0 + 4 * (tile / BIN_TILES), m,
+                           bin_ref + tile * 16);
+                }
+                runs(&ctx, &t, bx0, by0, list, nruns, bin_out);
+                if (memcmp(bin_ref, bin_out, BIN_PIXELS * sizeof *bin_out)) {
+                    printf("AVX-512 runs differ: variant %d flat %d case %ld, %d runs\n", variant,
+                           flat, n, nruns);
+                    failures++;
+                }
+            }
         }
     }
     for (int i = 0; i < NSIZES; i++) texture_free(&tex[i]);
     for (int i = 0; i < NMAPS; i++) texture_free(&maps[i]);
+    free(bin_ref);
+    free(bin_out);
     assert_int_equal(failures, 0);
     if (shadow) { /* the cases reach every outcome of the comparison */
         printf("pixel 0 hidden %ld, partly seen %ld, seen %ld\n", seen[0], seen[1], seen[2]);

@@ -41,6 +41,8 @@ typedef struct sg_pso {
     sg_shade_fn shade_shadow;   /* receiving a shadow map (NULL: flat and Gouraud lighting) */
     sg_shade2_fn shade2_fn;     /* two whole tiles at once (NULL: none for this set or state) */
     sg_shade2_fn shade2_sec;    /* the same for shade_sec */
+    sg_shade_runs_fn runs_fn;   /* partly covered tiles packed together (NULL: none) */
+    sg_shade_runs_fn runs_sec;  /* the same for shade_sec */
     sg_raster_fn raster_shadow; /* raster_fn, for draws that receive a shadow map */
     int nattr;
     bool uses_depth;

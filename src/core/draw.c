@@ -499,11 +499,13 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     ds->raster_fn = depth_only ? pso->depth_fn : shadowed ? pso->raster_shadow : pso->raster_fn;
     ds->shade_fn = shadowed ? pso->shade_shadow : sec ? pso->shade_sec : pso->shade_fn;
     ds->shade2_fn = shadowed ? NULL : sec ? pso->shade2_sec : pso->shade2_fn;
+    ds->runs_fn = shadowed ? NULL : sec ? pso->runs_sec : pso->runs_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
     ds->blend = !depth_only && pso->desc.blend == SG_BLEND_ALPHA;
     dev->pass.any_blend |= ds->blend;
     dev->pass.any_pair |= ds->shade2_fn != NULL;
+    dev->pass.any_runs |= ds->runs_fn != NULL;
     if (tex) tex->pass_use = dev->pass_serial;
     if (smap) smap->pass_use = dev->pass_serial;
     SG_STAGE_ADD(dev->pass.stage_times, SG_STAGE_FRONT, clock);

@@ -66,6 +66,9 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     p.shade2_fn =
         d->lighting == SG_LIGHTING_PHONG ? NULL : sg_shade2_select_variant(variant, dev->isa);
     p.shade2_sec = sg_shade2_select_variant(variant + SG_SHADE_SECONDARY, dev->isa);
+    p.runs_fn =
+        d->lighting == SG_LIGHTING_PHONG ? NULL : sg_shade_runs_select_variant(variant, dev->isa);
+    p.runs_sec = sg_shade_runs_select_variant(variant + SG_SHADE_SECONDARY, dev->isa);
     /* Draws that receive a shadow map shade from each pixel's view position (shade_phong.c);
      * blended ones then call that shading from the blend (its unlit shading is not inlined). */
     if (d->lighting == SG_LIGHTING_PHONG || !lit)

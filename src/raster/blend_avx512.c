@@ -59,17 +59,9 @@ INLINE __m512i blend16(__m512i s, __m512i d) {
     return _mm512_packus_epi16(lo, hi);
 }
 
-/* Up to sixteen pixels of a triangle waiting to be shaded together (a partly covered tile fills
- * few lanes, and the shading costs the same for 1 pixel as for 16): their offsets from the
- * triangle's bounds and in the bin's colour, lanes 0 to n - 1. The tiles of one triangle share no
- * pixel, so blending a pixel later changes nothing, as long as it is done before the next
+/* The queue (sg_queue16, shade_avx512.h) holds pixels of one triangle; the tiles of one triangle
+ * share no pixel, so blending a pixel later changes nothing, as long as it is done before the next
  * triangle. */
-typedef struct queue {
-    __m512 dx, dy;
-    __m512i off;
-    int n;
-} queue;
-
 /* Sixteen pixels of a textured triangle ready to shade: a whole tile, blended in place at bin
  * offset base, or a full (or the last, partial) queue, blended through its offsets. One waits
  * for the next, and the two are shaded side by side (shade2): a shading is a long chain of
@@ -83,40 +75,14 @@ typedef struct job {
 
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
-    queue *q;
+    sg_queue16 *q;
     job pending;
     bool has_pending;
 } queued_ctx;
 
-/* Appends the pixels of mask of a tile (offsets dx, dy; colour at bin offset base) to q: packed,
- * then rotated to start at lane n. When that fills the queue, full gets the sixteen lanes to
- * shade and q keeps the rest; true then. */
-INLINE bool enqueue(queue *q, __m512 dx, __m512 dy, int base, __mmask16 mask, queue *full) {
-    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const int n = q->n, k = __builtin_popcount(mask);
-    /* Lane j takes packed pixel (j - n) mod 16: the first 16 - n go after the queue's n, the ones
-     * that do not fit into lanes 0 to n + k - 17. */
-    __m512i from =
-        _mm512_and_si512(_mm512_sub_epi32(lane, _mm512_set1_epi32(n)), _mm512_set1_epi32(15));
-    __m512 rdx = _mm512_permutexvar_ps(from, _mm512_maskz_compress_ps(mask, dx));
-    __m512 rdy = _mm512_permutexvar_ps(from, _mm512_maskz_compress_ps(mask, dy));
-    __m512i roff = _mm512_permutexvar_epi32(
-        from, _mm512_maskz_compress_epi32(mask, _mm512_add_epi32(_mm512_set1_epi32(base), lane)));
-    const __mmask16 keep = (__mmask16)((1u << n) - 1u);
-    queue merged = {_mm512_mask_mov_ps(rdx, keep, q->dx), _mm512_mask_mov_ps(rdy, keep, q->dy),
-                    _mm512_mask_mov_epi32(roff, keep, q->off), n + k};
-    if (n + k < 16) {
-        *q = merged;
-        return false;
-    }
-    *full = merged;
-    *q = (queue){rdx, rdy, roff, n + k - 16};
-    return true;
-}
-
 /* The fragments s of the pixels of q's lanes m blended into their pixels of the bin's colour
  * (every offset is a pixel of the bin, and no two lanes of m share one). */
-INLINE void blend_scattered(const sg_vis_ctx *v, const queue *q, __m512i s, __mmask16 m) {
+INLINE void blend_scattered(const sg_vis_ctx *v, const sg_queue16 *q, __m512i s, __mmask16 m) {
     __m512i d = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), m, q->off, v->color, 4);
     _mm512_mask_i32scatter_epi32(v->color, m, q->off, blend16(s, d), 4);
 }
@@ -127,7 +93,7 @@ INLINE void finish(const sg_vis_ctx *v, const job *j, __m512i s) {
         uint32_t *dst = v->color + j->base;
         _mm512_store_si512(dst, blend16(s, _mm512_load_si512(dst)));
     } else {
-        const queue q = {j->dx, j->dy, j->off, 0};
+        const sg_queue16 q = {j->dx, j->dy, j->off, 0};
         blend_scattered(v, &q, s, (__mmask16)j->mask);
     }
 }
@@ -175,8 +141,8 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
         submit(p, t, &j, bilinear, repeat);
         return;
     }
-    queue full;
-    if (enqueue(p->q, dx, dy, base, (__mmask16)mask, &full)) {
+    sg_queue16 full;
+    if (sg_enqueue16(p->q, dx, dy, base, (__mmask16)mask, &full)) {
         const job j = {full.dx, full.dy, full.off, -1, 0xffffu};
         submit(p, t, &j, bilinear, repeat);
     }
@@ -185,7 +151,7 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
 /* The end of a triangle: the partial queue and the job waiting, shaded and blended. */
 INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int bilinear,
                   const int repeat) {
-    const queue *q = p->q;
+    const sg_queue16 *q = p->q;
     if (q->n) {
         const job j = {q->dx, q->dy, q->off, -1, (1u << q->n) - 1u};
         submit(p, t, &j, bilinear, repeat);
@@ -207,7 +173,7 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int 
     }                                                                                              \
     static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
                                               const void *c) {                                     \
-        queue q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0};           \
+        sg_queue16 q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0};      \
         queued_ctx p;                                                                              \
         p.v = c;                                                                                   \
         p.q = &q;                                                                                  \

@@ -40,28 +40,106 @@ static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
 #endif
 }
 
-static inline void shade_run(const sg_bin_pass *p, uint32_t id, int x0, int y0, uint32_t mask,
-                             uint32_t *dst) {
+/* Runs of partly covered tiles waiting to be shaded, grouped by triangle so that a draw with a
+ * runs function (sg_shade_runs_fn) packs each triangle's pixels from several tiles into full
+ * vectors: small triangles cover most of their tiles partly. A group per triangle id, found by
+ * a hash of the id (open addressing); the runs are put in group order when shaded. */
+enum { RUN_CAP = 1024, RUN_SLOTS = 2 * RUN_CAP };
+typedef struct run_set {
+    int n, groups;
+    bool fresh;                   /* slot not emptied yet */
+    uint16_t slot[RUN_SLOTS];     /* group + 1, 0 empty */
+    uint32_t group_id[RUN_CAP];   /* the triangle id of each group */
+    uint16_t group_slot[RUN_CAP]; /* its slot, emptied after the shading */
+    uint16_t group_n[RUN_CAP];    /* its runs */
+    uint16_t run_group[RUN_CAP];
+    sg_run run[RUN_CAP];
+} run_set;
+
+/* s ready to collect runs, or NULL when no draw of the pass packs them (its slots are emptied at
+ * the first run: bins without one skip that). */
+static run_set *start_runs(const sg_bin_pass *p, run_set *s) {
+    if (!p->any_runs) return NULL;
+    s->n = s->groups = 0;
+    s->fresh = true;
+    return s;
+}
+
+/* Shades the runs collected so far, group by group, and empties the set. */
+static __attribute__((noinline)) void flush_runs(const sg_bin_pass *p, run_set *s, int x0, int y0,
+                                                 uint32_t *color) {
+    uint16_t start[RUN_CAP];
+    sg_run sorted[RUN_CAP];
+    int at = 0;
+    for (int g = 0; g < s->groups; g++) {
+        start[g] = (uint16_t)at;
+        at += s->group_n[g];
+    }
+    for (int i = 0; i < s->n; i++) sorted[start[s->run_group[i]]++] = s->run[i];
+    at = 0;
+    for (int g = 0; g < s->groups; g++) {
+        const sg_tri *t = &p->binner->tris[s->group_id[g] - 1];
+        const sg_draw_state *d = &p->draws[t->draw];
+        d->runs_fn(&d->ctx, t, x0, y0, sorted + at, s->group_n[g], color);
+        at += s->group_n[g];
+        s->slot[s->group_slot[g]] = 0;
+    }
+    s->n = s->groups = 0;
+}
+
+/* Adds a run of triangle `id` to its group (shading what the set holds first when it is full). */
+static inline void add_run(const sg_bin_pass *p, run_set *s, uint32_t id, int tile, uint32_t mask,
+                           int x0, int y0, uint32_t *color) {
+    if (s->n == RUN_CAP) flush_runs(p, s, x0, y0, color);
+    if (s->fresh) {
+        memset(s->slot, 0, sizeof s->slot);
+        s->fresh = false;
+    }
+    unsigned h = (id * 2654435761u) >> (32 - 11); /* RUN_SLOTS = 2^11 */
+    while (s->slot[h] && s->group_id[s->slot[h] - 1] != id) h = (h + 1) & (RUN_SLOTS - 1);
+    int g = s->slot[h] - 1;
+    if (g < 0) { /* a new group: fewer groups than runs, so fewer than half the slots are used */
+        g = s->groups++;
+        s->slot[h] = (uint16_t)(g + 1);
+        s->group_id[g] = id;
+        s->group_slot[g] = (uint16_t)h;
+        s->group_n[g] = 0;
+    }
+    s->group_n[g]++;
+    s->run_group[s->n] = (uint16_t)g;
+    s->run[s->n++] = (sg_run){(uint16_t)tile, (uint16_t)mask};
+}
+
+/* The pixels of `mask` of a tile that see triangle `id`: shaded now, or collected in s when the
+ * draw packs runs and the tile is partly covered (s is NULL when no draw of the pass does). */
+static inline void shade_run(const sg_bin_pass *p, run_set *s, uint32_t id, int tile, int x0,
+                             int y0, uint32_t mask, uint32_t *color) {
     const sg_tri *t = &p->binner->tris[id - 1];
     const sg_draw_state *d = &p->draws[t->draw];
-    d->shade_fn(&d->ctx, t, x0, y0, mask, dst);
+    if (s && d->runs_fn && mask != 0xffffu) {
+        add_run(p, s, id, tile, mask, x0, y0, color);
+        return;
+    }
+    d->shade_fn(&d->ctx, t, x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT),
+                y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT), mask, color + tile * SG_TILE_PIXELS);
 }
 
 /* Shades the visible pixels of one tile: each run of pixels that see the same triangle is one
- * call of that triangle's shading function. */
-static inline __attribute__((always_inline)) void
-shade_tile(const sg_bin_pass *p, const uint32_t *ids, int x0, int y0, uint32_t *dst) {
+ * call of that triangle's shading function (or collected in s, see shade_run). */
+static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *p, run_set *s,
+                                                             const uint32_t *ids, int tile, int x0,
+                                                             int y0, uint32_t *color) {
     uint32_t left = 0xffffu;
     if (ids[0]) { /* the first pixel's triangle first: often the tile's only one */
         uint32_t mask = same_id(ids, ids[0]);
-        shade_run(p, ids[0], x0, y0, mask, dst);
+        shade_run(p, s, ids[0], tile, x0, y0, mask, color);
         left &= ~mask;
         if (!left) return;
     }
     left &= ~same_id(ids, 0);
     while (left) {
         uint32_t id = ids[__builtin_ctz(left)], mask = same_id(ids, id);
-        shade_run(p, id, x0, y0, mask, dst);
+        shade_run(p, s, id, tile, x0, y0, mask, color);
         left &= ~mask;
     }
 }
@@ -79,11 +157,12 @@ static inline const sg_draw_state *pair_draw(const sg_bin_pass *p, const uint32_
 
 /* Shades the visible ids of every reached tile into the colour: two at a time where the next
  * reached tile is, like this one, wholly one triangle's (the draw's sg_shade2_fn), else one by
- * one. With `forget`, also sets them back to 0 and the tiles to unreached: what visibility
- * decided so far is final before a blended triangle reads the colour. */
-static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pass *p, uint32_t *ids,
-                                                                uint64_t *touched, int x0, int y0,
-                                                                uint32_t *color,
+ * one, partly covered tiles of draws that pack runs collected in `runs` and shaded at the end
+ * (all before this returns). With `forget`, also sets them back to 0 and the tiles to unreached:
+ * what visibility decided so far is final before a blended triangle reads the colour. */
+static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pass *p, run_set *runs,
+                                                                uint32_t *ids, uint64_t *touched,
+                                                                int x0, int y0, uint32_t *color,
                                                                 const bool forget) {
     for (int word = 0; word < BIN_TILES * BIN_TILES / 64; word++) {
         for (uint64_t left = touched[word]; left; left &= left - 1) {
@@ -103,13 +182,13 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
                 if (forget) memset(ids + next * SG_TILE_PIXELS, 0, SG_TILE_PIXELS * sizeof *tids);
                 left = rest; /* the loop's step then drops `next` too */
             } else {
-                shade_tile(p, tids, x0 + (tx << SG_TILE_SHIFT), y0 + (ty << SG_TILE_SHIFT),
-                           color + tile * SG_TILE_PIXELS);
+                shade_tile(p, runs, tids, tile, x0, y0, color);
             }
             if (forget) memset(tids, 0, SG_TILE_PIXELS * sizeof *tids);
         }
         if (forget) touched[word] = 0;
     }
+    if (runs && runs->n) flush_runs(p, runs, x0, y0, color);
 }
 
 /* Where a bin's pixels are in the target images. */
@@ -174,6 +253,7 @@ static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg
     sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   touched, x0,  y0, 0,
                       SG_COMPARE_ALWAYS,       color, NULL,    NULL};
     bool pending = false; /* ids hold opaque triangles not shaded yet */
+    run_set run_buf, *runs = start_runs(p, &run_buf);
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
@@ -181,7 +261,7 @@ static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg
         vis.id = ti + 1;
         vis.compare = d->compare;
         if (d->blend) {
-            if (pending) shade_reached(p, ids, touched, x0, y0, color, true);
+            if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
             pending = false;
             vis.shade = d->shade_fn;
             vis.shade_ctx = &d->ctx;
@@ -190,7 +270,7 @@ static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg
         }
         d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
     }
-    if (pending) shade_reached(p, ids, touched, x0, y0, color, true);
+    if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
     write_bin(p, v, color, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
@@ -285,7 +365,8 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     start_color(p, &v, color);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     /* Only tiles some triangle reached hold ids (depth.h). */
-    shade_reached(p, ids, touched, x0, y0, color, false);
+    run_set run_buf, *runs = start_runs(p, &run_buf);
+    shade_reached(p, runs, ids, touched, x0, y0, color, false);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
     write_bin(p, &v, color, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);

@@ -23,7 +23,8 @@
 typedef struct sg_draw_state {
     sg_raster_fn raster_fn; /* coverage and visibility (depth.h) */
     sg_shade_fn shade_fn;
-    sg_shade2_fn shade2_fn; /* two whole tiles of a triangle at once, or NULL */
+    sg_shade2_fn shade2_fn;   /* two whole tiles of a triangle at once, or NULL */
+    sg_shade_runs_fn runs_fn; /* partly covered tiles of a triangle packed together, or NULL */
     sg_shade_ctx ctx;
     sgCompare compare;
     bool blend; /* raster_fn blends into the colour as it goes (blend.h) */
@@ -51,6 +52,7 @@ typedef struct sg_bin_pass {
     bool store_depth;
     bool any_blend;    /* some draw blends: bins take the ordered path (rast_bin.c) */
     bool any_pair;     /* some draw shades two whole tiles at once (shade2_fn) */
+    bool any_runs;     /* some draw packs partly covered tiles (runs_fn) */
     void *stage_times; /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 

@@ -71,6 +71,10 @@ sg_shade2_fn sg_shade2_select_variant(int variant, sg_isa isa) {
     return isa == SG_ISA_AVX512 ? sg_shade2_avx512(variant) : NULL;
 }
 
+sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa) {
+    return isa == SG_ISA_AVX512 ? sg_shade_runs_avx512(variant) : NULL;
+}
+
 int sg_shade_attr_count(sgShade shade) {
     return shade == SG_SHADE_TEXTURE_MODULATE ? 6 : 4;
 }

@@ -58,6 +58,19 @@ typedef void (*sg_shade_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, in
 typedef void (*sg_shade2_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int x0, int y0, int x1,
                              int y1, uint32_t *dst0, uint32_t *dst1);
 
+/* Part of a tile that sees one triangle: the tile's index among a bin's tiles (row by row,
+ * SG_BIN_SIZE / SG_TILE a row) and its pixels (bit y * 4 + x). */
+typedef struct sg_run {
+    uint16_t tile, mask;
+} sg_run;
+
+/* Shades n runs of one triangle in the bin whose top-left pixel is (bx0, by0) into the bin's
+ * colour (tile after tile, SG_TILE_PIXELS each): the same bytes as the variant's sg_shade_fn on
+ * each run, with the pixels of several runs packed into one vector (small triangles leave tiles
+ * partly covered, and a vector pass costs the same for one pixel as for all). */
+typedef void (*sg_shade_runs_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int bx0, int by0,
+                                 const sg_run *runs, int n, uint32_t *color);
+
 /** The index of a resolved shading state in the variant tables below: 0 vertex colour,
  *  1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */
 int sg_shade_variant(sgShade shade, sgFilter filter, sgWrap wrap);
@@ -96,6 +109,10 @@ sg_shade_fn sg_shade_avx512(int variant);
  *  (all but AVX-512); the callers then shade each tile alone. */
 sg_shade2_fn sg_shade2_select_variant(int variant, sg_isa isa);
 sg_shade2_fn sg_shade2_avx512(int variant);
+/** The packed-runs function of an unlit variant for the instruction set, or NULL where it has
+ *  none; the callers then shade each run alone. */
+sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa);
+sg_shade_runs_fn sg_shade_runs_avx512(int variant);
 sg_shade_fn sg_shade_neon(int variant);
 /** Attributes an unlit shading mode interpolates: r g b a, plus s t when textured. */
 int sg_shade_attr_count(sgShade shade);

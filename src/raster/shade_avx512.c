@@ -5,6 +5,8 @@
  */
 #include "raster/shade_avx512.h"
 
+#include "raster/bin.h"
+
 #if defined(SG_SHADE_AVX512)
 
 /* The mask is the store mask: pixels outside it are not written. */
@@ -61,6 +63,70 @@ sg_shade2_fn sg_shade2_avx512(int index) {
     return table[index];
 }
 
+/* Runs of a triangle (sg_shade_runs_fn): their pixels packed sixteen to a vector (sg_queue16),
+ * two full vectors shaded side by side, and each lane's colour stored at its own offset. */
+INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
+                       int by0, const sg_run *runs, int n, uint32_t *color, const int textured,
+                       const int bilinear, const int repeat, const int flat, const int sec) {
+    enum { ROW = SG_BIN_SIZE / SG_TILE };
+    sg_queue16 q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0};
+    sg_queue16 full[2];
+    int nfull = 0;
+    for (int i = 0; i < n; i++) {
+        const int tile = runs[i].tile;
+        __m512 dx, dy;
+        sg_tile_dxdy16(t, bx0 + (tile % ROW) * SG_TILE, by0 + (tile / ROW) * SG_TILE, &dx, &dy);
+        if (!sg_enqueue16(&q, dx, dy, tile * SG_TILE_PIXELS, runs[i].mask, &full[nfull]) ||
+            ++nfull < 2)
+            continue;
+        const __m512 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
+        const uint32_t all[2] = {0xffffu, 0xffffu};
+        __m512i v[2];
+        shade16_tiles(c, t, ext, 2, fdx, fdy, all, v, textured, bilinear, repeat, flat, sec);
+        _mm512_i32scatter_epi32(color, full[0].off, v[0], 4);
+        _mm512_i32scatter_epi32(color, full[1].off, v[1], 4);
+        nfull = 0;
+    }
+    if (nfull) {
+        __m512i v = sg_shade16_at(c, t, ext, full[0].dx, full[0].dy, 0xffffu, textured, bilinear,
+                                  repeat, flat, sec);
+        _mm512_i32scatter_epi32(color, full[0].off, v, 4);
+    }
+    if (q.n) {
+        const __mmask16 m = (__mmask16)((1u << q.n) - 1u);
+        __m512i v = sg_shade16_at(c, t, ext, q.dx, q.dy, m, textured, bilinear, repeat, flat, sec);
+        _mm512_mask_i32scatter_epi32(color, m, q.off, v, 4);
+    }
+}
+
+#define SG_RUNS(tex, bil, rep, sec)                                                                \
+    static void runs_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int bx0,         \
+                                          int by0, const sg_run *r, int n, uint32_t *color) {      \
+        const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
+        if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
+            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_WHITE, sec);       \
+        else if (t->flat != SG_FLAT_NONE)                                                          \
+            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_COLOR, sec);       \
+        else                                                                                       \
+            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_NONE, sec);        \
+    }
+/* Textured variants only, as the pairs. */
+SG_RUNS(1, 0, 1, 0)
+SG_RUNS(1, 0, 0, 0)
+SG_RUNS(1, 1, 1, 0)
+SG_RUNS(1, 1, 0, 0)
+SG_RUNS(1, 0, 1, 1)
+SG_RUNS(1, 0, 0, 1)
+SG_RUNS(1, 1, 1, 1)
+SG_RUNS(1, 1, 0, 1)
+#undef SG_RUNS
+
+sg_shade_runs_fn sg_shade_runs_avx512(int index) {
+    static const sg_shade_runs_fn table[10] = {NULL, runs_1010, runs_1000, runs_1110, runs_1100,
+                                               NULL, runs_1011, runs_1001, runs_1111, runs_1101};
+    return table[index];
+}
+
 #else
 
 sg_shade_fn sg_shade_avx512(int index) {
@@ -69,6 +135,11 @@ sg_shade_fn sg_shade_avx512(int index) {
 }
 
 sg_shade2_fn sg_shade2_avx512(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade_runs_fn sg_shade_runs_avx512(int index) {
     (void)index;
     return NULL;
 }

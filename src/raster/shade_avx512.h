@@ -352,6 +352,42 @@ INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tr
     return out;
 }
 
+/* Up to sixteen pixels of a triangle waiting to be shaded together (a partly covered tile fills
+ * few lanes, and the shading costs the same for 1 pixel as for 16): their offsets from the
+ * triangle's bounds and in the bin's colour, lanes 0 to n - 1. */
+typedef struct sg_queue16 {
+    __m512 dx, dy;
+    __m512i off;
+    int n;
+} sg_queue16;
+
+/* Appends the pixels of mask of a tile (offsets dx, dy; colour at bin offset base) to q: packed,
+ * then rotated to start at lane n. When that fills the queue, full gets the sixteen lanes to
+ * shade and q keeps the rest; true then. */
+INLINE bool sg_enqueue16(sg_queue16 *q, __m512 dx, __m512 dy, int base, __mmask16 mask,
+                         sg_queue16 *full) {
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const int n = q->n, k = __builtin_popcount(mask);
+    /* Lane j takes packed pixel (j - n) mod 16: the first 16 - n go after the queue's n, the ones
+     * that do not fit into lanes 0 to n + k - 17. */
+    __m512i from =
+        _mm512_and_si512(_mm512_sub_epi32(lane, _mm512_set1_epi32(n)), _mm512_set1_epi32(15));
+    __m512 rdx = _mm512_permutexvar_ps(from, _mm512_maskz_compress_ps(mask, dx));
+    __m512 rdy = _mm512_permutexvar_ps(from, _mm512_maskz_compress_ps(mask, dy));
+    __m512i roff = _mm512_permutexvar_epi32(
+        from, _mm512_maskz_compress_epi32(mask, _mm512_add_epi32(_mm512_set1_epi32(base), lane)));
+    const __mmask16 keep = (__mmask16)((1u << n) - 1u);
+    sg_queue16 merged = {_mm512_mask_mov_ps(rdx, keep, q->dx), _mm512_mask_mov_ps(rdy, keep, q->dy),
+                         _mm512_mask_mov_epi32(roff, keep, q->off), n + k};
+    if (n + k < 16) {
+        *q = merged;
+        return false;
+    }
+    *full = merged;
+    *q = (sg_queue16){rdx, rdy, roff, n + k - 16};
+    return true;
+}
+
 /* sg_shade16_at for the pixels of `mask` of the tile at (x0, y0), lane y * 4 + x. */
 INLINE __m512i sg_shade16(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
                           int y0, uint32_t mask, const int textured, const int bilinear,
