@@ -415,8 +415,10 @@ static void compare_variant(int variant, int kind) {
                has_neon = sg_isa_runs(SG_ISA_NEON);
     const int index = variant + (kind == SECONDARY ? SG_SHADE_SECONDARY : 0);
     sg_shade_fn scalar, sse2 = NULL, avx2 = NULL, avx512 = NULL, neon = NULL;
-    sg_shade2_fn pair = NULL;     /* AVX-512's two whole tiles at once, for the unlit variants */
-    sg_shade_runs_fn runs = NULL; /* AVX-512's partly covered tiles packed together */
+    sg_shade2_fn pair = NULL; /* AVX-512's two whole tiles at once, for the unlit variants */
+    /* AVX2's and AVX-512's partly covered tiles packed together */
+    sg_shade_runs_fn runs[2] = {NULL, NULL};
+    static const char *const runs_set[2] = {"AVX2", "AVX-512"};
     if (kind >= PHONG) {
         const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
                            : kind == PHONG_SHADOW ? SG_PIXEL_PHONG_SHADOW
@@ -435,7 +437,8 @@ static void compare_variant(int variant, int kind) {
         if (has_avx2) avx2 = sg_shade_avx2(index);
         if (has_avx512) avx512 = sg_shade_avx512(index);
         if (has_avx512) pair = sg_shade2_avx512(index);
-        if (has_avx512) runs = sg_shade_runs_avx512(index);
+        if (has_avx2) runs[0] = sg_shade_runs_avx2(index);
+        if (has_avx512) runs[1] = sg_shade_runs_avx512(index);
         if (has_neon) neon = sg_shade_neon(index);
 #if defined(__aarch64__)
         assert_non_null(neon); /* Advanced SIMD is the AArch64 baseline */
@@ -504,7 +507,9 @@ static void compare_variant(int variant, int kind) {
                     failures++;
                 }
             }
-            if (runs && n % 8 == 0) { /* runs of distinct tiles of a bin, as one scalar call each */
+            for (int set = 0; set < 2; set++) {
+                if (!runs[set] || n % 8 != 0) continue;
+                /* runs of distinct tiles of a bin, as one scalar call each */
                 const int bx0 = x0 - 4 * irange(&g, 0, BIN_TILES - 1);
                 const int by0 = y0 - 4 * irange(&g, 0, BIN_TILES - 1);
                 sg_run list[64];
@@ -523,10 +528,10 @@ static void compare_variant(int variant, int kind) {
                     scalar(&ctx, &t, bx0 + 4 * (tile % BIN_TILES), by0 + 4 * (tile / BIN_TILES), m,
                            bin_ref + tile * 16);
                 }
-                runs(&ctx, &t, bx0, by0, list, nruns, bin_out);
+                runs[set](&ctx, &t, bx0, by0, list, nruns, bin_out);
                 if (memcmp(bin_ref, bin_out, BIN_PIXELS * sizeof *bin_out)) {
-                    printf("AVX-512 runs differ: variant %d flat %d case %ld, %d runs\n", variant,
-                           flat, n, nruns);
+                    printf("%s runs differ: variant %d flat %d case %ld, %d runs\n", runs_set[set],
+                           variant, flat, n, nruns);
                     failures++;
                 }
             }

@@ -97,15 +97,6 @@ SG_WALK_FN(blend_none_1, blend_call, Z_NONE, 1)
 SG_WALK_FN(blend_any_0, blend_call, Z_ANY, 0)
 SG_WALK_FN(blend_any_1, blend_call, Z_ANY, 1)
 
-/* Up to eight pixels of a triangle waiting to be shaded together: their offsets from the
- * triangle's bounds and in the bin's colour, lanes 0 to n - 1 (the others hold earlier pixels of
- * the bin, or zeros: shaded and blended but not stored). */
-typedef struct queue {
-    __m256 dx, dy;
-    __m256i off;
-    int n;
-} queue;
-
 /* Eight pixels of a textured triangle ready to shade: two whole rows of a tile, blended in place
  * at bin offset base, or a full (or the last, partial) queue of n pixels, blended through its
  * offsets. One waits for the next, and the two are shaded side by side (shade8_sets): a shading
@@ -119,7 +110,7 @@ typedef struct job {
 
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
-    queue *q;
+    sg_queue8 *q;
     job pending;
     bool has_pending;
 } queued_ctx;
@@ -138,48 +129,12 @@ INLINE void shade(const sg_vis_ctx *v, const sg_tri *t, const int n, const __m25
         shade8_sets(c, t, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_NONE, 0);
 }
 
-/* The fragments s of the first n pixels of q blended into their pixels of the bin's colour. */
+/* The fragments s of the first n pixels at offsets qoff blended into their pixels of the bin's
+ * colour. */
 INLINE void blend_scattered(const sg_vis_ctx *v, __m256i qoff, __m256i s, int n) {
     /* Every lane's offset is a pixel of the bin, so the gather reads only the bin. */
     __m256i d = _mm256_i32gather_epi32((const int *)(const void *)v->color, qoff, 4);
-    _Alignas(32) uint32_t out[8];
-    _Alignas(32) int32_t off[8];
-    _mm256_store_si256((__m256i *)(void *)out, blend8(s, d));
-    _mm256_store_si256((__m256i *)(void *)off, qoff);
-    for (int k = 0; k < n; k++) v->color[off[k]] = out[k];
-}
-
-/* Appends the pixels of bits (8 bits) of the rows at (dx, dy), bin offset off, to q: the lanes of
- * bits are packed (a permutation from their positions) and rotated to start at lane n. When that
- * fills the queue, full gets the eight lanes to shade and q keeps the rest; true then. */
-INLINE bool enqueue(queue *q, __m256 dx, __m256 dy, int off, unsigned bits, queue *full) {
-    /* The positions of the set bits of each 4-bit value, packed in bytes (the rest: any lane). */
-    static const uint32_t set_bits4[16] = {0x00000000, 0x00000000, 0x00000001, 0x00000100,
-                                           0x00000002, 0x00000200, 0x00000201, 0x00020100,
-                                           0x00000003, 0x00000300, 0x00000301, 0x00030100,
-                                           0x00000302, 0x00030200, 0x00030201, 0x03020100};
-    const int n = q->n, k = __builtin_popcount(bits), lo = __builtin_popcount(bits & 15u);
-    uint64_t pos = (uint64_t)set_bits4[bits & 15u] |
-                   ((uint64_t)(set_bits4[bits >> 4] + 0x04040404u) << (8 * lo));
-    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    /* Lane j takes packed pixel (j - n) mod 8: the first 8 - n go after the queue's n, the ones
-     * that do not fit into lanes 0 to n + k - 9. */
-    __m256i from = _mm256_permutevar8x32_epi32(
-        _mm256_cvtepu8_epi32(_mm_cvtsi64_si128((long long)pos)),
-        _mm256_and_si256(_mm256_sub_epi32(lane, _mm256_set1_epi32(n)), _mm256_set1_epi32(7)));
-    __m256 rdx = _mm256_permutevar8x32_ps(dx, from), rdy = _mm256_permutevar8x32_ps(dy, from);
-    __m256i roff = _mm256_add_epi32(_mm256_set1_epi32(off), from);
-    __m256i keep = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), lane);
-    __m256 keepf = _mm256_castsi256_ps(keep);
-    queue merged = {_mm256_blendv_ps(rdx, q->dx, keepf), _mm256_blendv_ps(rdy, q->dy, keepf),
-                    _mm256_blendv_epi8(roff, q->off, keep), n + k};
-    if (n + k < 8) {
-        *q = merged;
-        return false;
-    }
-    *full = merged;
-    *q = (queue){rdx, rdy, roff, n + k - 8};
-    return true;
+    sg_scatter8(v->color, qoff, blend8(s, d), n);
 }
 
 /* The shaded fragments s of a job blended into the bin's colour. */
@@ -230,8 +185,8 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
             submit(p, t, &j, bilinear, repeat);
             continue;
         }
-        queue full;
-        if (enqueue(p->q, dx, dy, base + 8 * h, bits, &full)) {
+        sg_queue8 full;
+        if (sg_enqueue8(p->q, dx, dy, base + 8 * h, bits, &full)) {
             const job j = {full.dx, full.dy, full.off, -1, 8};
             submit(p, t, &j, bilinear, repeat);
         }
@@ -242,7 +197,7 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
 INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int bilinear,
                   const int repeat) {
     if (!textured) return; /* vertex colours were blended in place */
-    const queue *q = p->q;
+    const sg_queue8 *q = p->q;
     if (q->n) {
         const job j = {q->dx, q->dy, q->off, -1, q->n};
         submit(p, t, &j, bilinear, repeat);
@@ -266,7 +221,7 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int 
     }                                                                                              \
     static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
                                               const void *c) {                                     \
-        queue q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};           \
+        sg_queue8 q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};       \
         queued_ctx p = {.v = c, .q = &q}; /* no job waiting */                                     \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
         drain(&p, t, tex, bil, rep);                                                               \

@@ -72,7 +72,8 @@ sg_shade2_fn sg_shade2_select_variant(int variant, sg_isa isa) {
 }
 
 sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa) {
-    return isa == SG_ISA_AVX512 ? sg_shade_runs_avx512(variant) : NULL;
+    if (isa == SG_ISA_AVX512) return sg_shade_runs_avx512(variant);
+    return isa == SG_ISA_AVX2 ? sg_shade_runs_avx2(variant) : NULL;
 }
 
 int sg_shade_attr_count(sgShade shade) {

@@ -112,6 +112,7 @@ sg_shade2_fn sg_shade2_avx512(int variant);
 /** The packed-runs function of an unlit variant for the instruction set, or NULL where it has
  *  none; the callers then shade each run alone. */
 sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa);
+sg_shade_runs_fn sg_shade_runs_avx2(int variant);
 sg_shade_runs_fn sg_shade_runs_avx512(int variant);
 sg_shade_fn sg_shade_neon(int variant);
 /** Attributes an unlit shading mode interpolates: r g b a, plus s t when textured. */

@@ -8,6 +8,8 @@
  */
 #include "raster/shade_avx2.h"
 
+#include "raster/bin.h"
+
 #if defined(SG_SHADE_AVX2)
 
 /* Rows r[i] and r[i] + 1 (masks m[i]) of a tile, n halves (n is 1 or 2, a constant): each step
@@ -137,9 +139,58 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 #define SG_SHADE_TABLE sg_shade_avx2
 #include "raster/shade_variants.h"
 
+/* Runs of a triangle (sg_shade_runs_fn): the pixels of each pair of rows packed eight to a vector
+ * (sg_queue8), two full vectors shaded side by side, each lane stored at its own offset. */
+INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
+                       int by0, const sg_run *runs, int n, uint32_t *color, const int textured,
+                       const int bilinear, const int repeat, const int flat, const int sec) {
+    enum { ROW = SG_BIN_SIZE / SG_TILE };
+    sg_queue8 q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};
+    sg_queue8 full[2];
+    int nfull = 0;
+    for (int i = 0; i < n; i++) {
+        const int tile = runs[i].tile;
+        const int x0 = bx0 + (tile % ROW) * SG_TILE, y0 = by0 + (tile / ROW) * SG_TILE;
+        for (int h = 0; h < 2; h++) {
+            const unsigned bits = (runs[i].mask >> (8 * h)) & 255u;
+            if (!bits) continue;
+            __m256 dx, dy;
+            sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
+            if (!sg_enqueue8(&q, dx, dy, tile * SG_TILE_PIXELS + 8 * h, bits, &full[nfull]) ||
+                ++nfull < 2)
+                continue;
+            const __m256 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
+            __m256i v[2];
+            shade8_sets(c, t, ext, 2, fdx, fdy, v, textured, bilinear, repeat, flat, sec);
+            sg_scatter8(color, full[0].off, v[0], 8);
+            sg_scatter8(color, full[1].off, v[1], 8);
+            nfull = 0;
+        }
+    }
+    if (nfull) {
+        __m256i v;
+        shade8_sets(c, t, ext, 1, &full[0].dx, &full[0].dy, &v, textured, bilinear, repeat, flat,
+                    sec);
+        sg_scatter8(color, full[0].off, v, 8);
+    }
+    if (q.n) {
+        __m256i v;
+        shade8_sets(c, t, ext, 1, &q.dx, &q.dy, &v, textured, bilinear, repeat, flat, sec);
+        sg_scatter8(color, q.off, v, q.n);
+    }
+}
+
+#define SG_RUNS_TABLE sg_shade_runs_avx2
+#include "raster/shade_runs_variants.h"
+
 #else
 
 sg_shade_fn sg_shade_avx2(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade_runs_fn sg_shade_runs_avx2(int index) {
     (void)index;
     return NULL;
 }

@@ -389,6 +389,59 @@ INLINE void sg_rows_dxdy8(const sg_tri *t, int x0, int y0, int h, __m256 *dx, __
     *dy = _mm256_set_m128(_mm_set1_ps(r0 + 1.0f), _mm_set1_ps(r0));
 }
 
+/* Up to eight pixels of a triangle waiting to be shaded together (a partly covered pair of rows
+ * fills few lanes, and a shading pass costs the same for one pixel as for eight): their offsets
+ * from the triangle's bounds and in the bin's colour, lanes 0 to n - 1 (the others hold earlier
+ * pixels, or zeros: shaded but not stored). */
+typedef struct sg_queue8 {
+    __m256 dx, dy;
+    __m256i off;
+    int n;
+} sg_queue8;
+
+/* Appends the pixels of bits (8 bits) of the rows at (dx, dy), bin offset off, to q: the lanes of
+ * bits are packed (a permutation from their positions) and rotated to start at lane n. When that
+ * fills the queue, full gets the eight lanes to shade and q keeps the rest; true then. */
+INLINE bool sg_enqueue8(sg_queue8 *q, __m256 dx, __m256 dy, int off, unsigned bits,
+                        sg_queue8 *full) {
+    /* The positions of the set bits of each 4-bit value, packed in bytes (the rest: any lane). */
+    static const uint32_t set_bits4[16] = {0x00000000, 0x00000000, 0x00000001, 0x00000100,
+                                           0x00000002, 0x00000200, 0x00000201, 0x00020100,
+                                           0x00000003, 0x00000300, 0x00000301, 0x00030100,
+                                           0x00000302, 0x00030200, 0x00030201, 0x03020100};
+    const int n = q->n, k = __builtin_popcount(bits), lo = __builtin_popcount(bits & 15u);
+    uint64_t pos = (uint64_t)set_bits4[bits & 15u] |
+                   ((uint64_t)(set_bits4[bits >> 4] + 0x04040404u) << (8 * lo));
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    /* Lane j takes packed pixel (j - n) mod 8: the first 8 - n go after the queue's n, the ones
+     * that do not fit into lanes 0 to n + k - 9. */
+    __m256i from = _mm256_permutevar8x32_epi32(
+        _mm256_cvtepu8_epi32(_mm_cvtsi64_si128((long long)pos)),
+        _mm256_and_si256(_mm256_sub_epi32(lane, _mm256_set1_epi32(n)), _mm256_set1_epi32(7)));
+    __m256 rdx = _mm256_permutevar8x32_ps(dx, from), rdy = _mm256_permutevar8x32_ps(dy, from);
+    __m256i roff = _mm256_add_epi32(_mm256_set1_epi32(off), from);
+    __m256i keep = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), lane);
+    __m256 keepf = _mm256_castsi256_ps(keep);
+    sg_queue8 merged = {_mm256_blendv_ps(rdx, q->dx, keepf), _mm256_blendv_ps(rdy, q->dy, keepf),
+                        _mm256_blendv_epi8(roff, q->off, keep), n + k};
+    if (n + k < 8) {
+        *q = merged;
+        return false;
+    }
+    *full = merged;
+    *q = (sg_queue8){rdx, rdy, roff, n + k - 8};
+    return true;
+}
+
+/* Writes v's first n lanes at their offsets in dst (eight offsets, different ones). */
+INLINE void sg_scatter8(uint32_t *dst, __m256i off, __m256i v, int n) {
+    _Alignas(32) uint32_t val[8];
+    _Alignas(32) int32_t at[8];
+    _mm256_store_si256((__m256i *)(void *)val, v);
+    _mm256_store_si256((__m256i *)(void *)at, off);
+    for (int k = 0; k < n; k++) dst[at[k]] = val[k];
+}
+
 /* Writes the lanes of `m` (8 bits) of two rows; other pixels are not touched. */
 INLINE void store_rows(uint32_t *dst, __m256i v, unsigned m) {
     if (m == 255) {

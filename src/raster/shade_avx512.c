@@ -99,33 +99,8 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     }
 }
 
-#define SG_RUNS(tex, bil, rep, sec)                                                                \
-    static void runs_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int bx0,         \
-                                          int by0, const sg_run *r, int n, uint32_t *color) {      \
-        const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
-        if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
-            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_WHITE, sec);       \
-        else if (t->flat != SG_FLAT_NONE)                                                          \
-            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_COLOR, sec);       \
-        else                                                                                       \
-            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_NONE, sec);        \
-    }
-/* Textured variants only, as the pairs. */
-SG_RUNS(1, 0, 1, 0)
-SG_RUNS(1, 0, 0, 0)
-SG_RUNS(1, 1, 1, 0)
-SG_RUNS(1, 1, 0, 0)
-SG_RUNS(1, 0, 1, 1)
-SG_RUNS(1, 0, 0, 1)
-SG_RUNS(1, 1, 1, 1)
-SG_RUNS(1, 1, 0, 1)
-#undef SG_RUNS
-
-sg_shade_runs_fn sg_shade_runs_avx512(int index) {
-    static const sg_shade_runs_fn table[10] = {NULL, runs_1010, runs_1000, runs_1110, runs_1100,
-                                               NULL, runs_1011, runs_1001, runs_1111, runs_1101};
-    return table[index];
-}
+#define SG_RUNS_TABLE sg_shade_runs_avx512
+#include "raster/shade_runs_variants.h"
 
 #else
 
