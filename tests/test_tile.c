@@ -2,8 +2,10 @@
 #include "test_common.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "raster/framebuffer.h"
+#include "raster/shade.h"
 
 static void index_layout(void **state) {
     (void)state;
@@ -40,10 +42,53 @@ static void round_trip_odd_sizes(void **state) {
     free(ft);
 }
 
+/* The instruction sets' fills and writes (sg_fb_ops) give the portable functions' bytes for every
+ * size of a bin's part of an image (edges included), into a target at any 4-byte offset, and
+ * touch nothing outside the w x h pixels. */
+static void fb_ops_match_portable(void **state) {
+    (void)state;
+    enum { BIN = 64, PITCH = 80 * 4, GUARD = 0x5a };
+    const struct {
+        sg_isa isa;
+        const sg_fb_ops *ops;
+    } sets[] = {{SG_ISA_AVX2, &sg_fb_ops_avx2}, {SG_ISA_AVX512, &sg_fb_ops_avx512}};
+    _Alignas(64) uint32_t tiles[BIN * BIN], a[BIN * BIN], b[BIN * BIN];
+    uint8_t *want = malloc(PITCH * (BIN + 2)), *got = malloc(PITCH * (BIN + 2));
+    for (int i = 0; i < BIN * BIN; i++) tiles[i] = (uint32_t)i * 2654435761u;
+    for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++) {
+        if (!sg_isa_runs(sets[k].isa)) continue;
+        const sg_fb_ops *ops = sets[k].ops, *ref = &sg_fb_ops_portable;
+        ops->fill_color(a, BIN * BIN, 0x01020304u);
+        ref->fill_color(b, BIN * BIN, 0x01020304u);
+        assert_memory_equal(a, b, sizeof a);
+        ops->fill_depth((float *)(void *)a, BIN * BIN, 0.25f);
+        ref->fill_depth((float *)(void *)b, BIN * BIN, 0.25f);
+        assert_memory_equal(a, b, sizeof a);
+        for (int w = 1; w <= BIN; w++)
+            for (int h = 1; h <= BIN; h += (h < 8 ? 1 : 7))
+                for (int off = 0; off < 64; off += 20) {
+                    memset(want, GUARD, PITCH * (BIN + 2));
+                    memset(got, GUARD, PITCH * (BIN + 2));
+                    ref->color_to_linear(want + PITCH + off, PITCH, tiles, w, h, BIN / 4);
+                    ops->color_to_linear(got + PITCH + off, PITCH, tiles, w, h, BIN / 4);
+                    assert_memory_equal(want, got, PITCH * (BIN + 2));
+                    ops->depth_to_linear((float *)(void *)(got + PITCH + off), PITCH,
+                                         (const float *)(const void *)tiles, w, h, BIN / 4);
+                    assert_memory_equal(want, got, PITCH * (BIN + 2));
+                    ref->fill_linear(want + PITCH + off, PITCH, w, h, 0xdeadbeefu);
+                    ops->fill_linear(got + PITCH + off, PITCH, w, h, 0xdeadbeefu);
+                    assert_memory_equal(want, got, PITCH * (BIN + 2));
+                }
+    }
+    free(want);
+    free(got);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(index_layout),
         cmocka_unit_test(round_trip_odd_sizes),
+        cmocka_unit_test(fb_ops_match_portable),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

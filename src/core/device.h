@@ -20,7 +20,8 @@ typedef struct sg_image {
     int width, height;
     sgFormat format;
     size_t pixel_size;
-    uint8_t *data;     /* linear, top row first */
+    uint8_t *data;     /* linear, top row first, 64-byte aligned */
+    void *block;       /* the allocation holding data */
     uint32_t pass_use; /* serial of the last pass a draw sampled it in */
 } sg_image;
 

@@ -14,9 +14,15 @@ static const char *format_name(sgFormat f) {
 }
 
 void sg_image_release(sgDevice *dev, sg_image *img) {
-    sg_free(dev, img->data);
+    sg_free(dev, img->block);
+    img->block = NULL;
     img->data = NULL;
 }
+
+/* Pixels start on a cache line (malloc's large blocks start 16 bytes into a page): a bin's rows
+ * of a target are then whole lines of its own, written with whole-line stores and never shared
+ * with the neighbouring bin that another thread writes. */
+enum { DATA_ALIGN = 64 };
 
 static bool is_pass_target(const sgDevice *dev, sgImage2D h) {
     return dev->in_pass && (dev->pass_color.id == h.id || dev->pass_depth.id == h.id);
@@ -45,13 +51,14 @@ sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *ou
                         desc->width, desc->height, SG_MAX_IMAGE_SIZE);
     size_t ps = format_size(desc->format);
     size_t bytes = (size_t)desc->width * (size_t)desc->height * ps;
-    uint8_t *data = sg_alloc(dev, bytes);
-    if (!data)
+    uint8_t *block = sg_alloc(dev, bytes + DATA_ALIGN - 1);
+    if (!block)
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgCreateImage2D: out of memory (%zu bytes)",
                         bytes);
+    uint8_t *data = block + (-(uintptr_t)block & (DATA_ALIGN - 1));
     uint32_t id = sg_acquire(dev, &dev->image_pool, "sgCreateImage2D", "image_pool_size");
     if (!id) {
-        sg_free(dev, data);
+        sg_free(dev, block);
         return SG_ERROR_POOL_EXHAUSTED;
     }
     if (desc->data)
@@ -63,6 +70,7 @@ sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *ou
     img->height = desc->height;
     img->format = desc->format;
     img->pixel_size = ps;
+    img->block = block;
     img->data = data;
     img->pass_use = 0;
     out->id = id;

@@ -135,6 +135,9 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                                    sg_to_unorm8(c[3]));
     p->clear_depth = pass->depth_load == SG_LOAD_CLEAR ? pass->clear_depth : 1.0f;
     p->store_depth = pass->depth_store != SG_STORE_DONT_CARE;
+    p->fb = dev->isa == SG_ISA_AVX512 ? &sg_fb_ops_avx512
+            : dev->isa == SG_ISA_AVX2 ? &sg_fb_ops_avx2
+                                      : &sg_fb_ops_portable;
 #if defined(SG_STAGE_TIMES)
     p->stage_times = &dev->stage_times;
     dev->stage_times.passes++;

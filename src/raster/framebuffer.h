@@ -50,4 +50,26 @@ void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, 
 /** Fills w x h 32-bit pixels of linear rows `pitch` bytes apart. */
 void sg_fill_linear_u32(void *dst, size_t pitch, int w, int h, uint32_t value);
 
+/* A bin's traffic with its own buffers and the target images, per instruction set: the same
+ * bytes, stored a whole cache line (AVX-512) or half a line (AVX2) at a time. A bin's rows of a
+ * 64-byte aligned target are whole lines, and whole-line stores into them take about a third
+ * less time than 16-byte ones (the write of every bin is most of a small scene's frame). */
+typedef struct sg_fb_ops {
+    /* Fills n 32-bit values of a bin buffer (n a multiple of 16, dst 64-byte aligned). */
+    void (*fill_color)(uint32_t *dst, size_t n, uint32_t value);
+    void (*fill_depth)(float *dst, size_t n, float value);
+    /* As sg_tile_to_linear_rgba8 and sg_tile_to_linear_f32 (on x86 the same copy). */
+    void (*color_to_linear)(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h,
+                            int tx);
+    void (*depth_to_linear)(float *dst, size_t pitch, const float *tiles, int w, int h, int tx);
+    /* As sg_fill_linear_u32. */
+    void (*fill_linear)(void *dst, size_t pitch, int w, int h, uint32_t value);
+} sg_fb_ops;
+
+/** The portable functions (any byte order). */
+extern const sg_fb_ops sg_fb_ops_portable;
+/** AVX2 and AVX-512 (call only where the CPU runs the set; the portable functions in builds
+ *  without them). */
+extern const sg_fb_ops sg_fb_ops_avx2, sg_fb_ops_avx512;
+
 #endif

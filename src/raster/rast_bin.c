@@ -205,14 +205,14 @@ static void start_depth(const sg_bin_pass *p, const bin_view *v, float *depth) {
     if (p->load_depth)
         sg_tile_from_linear_f32(depth, v->depth, v->pitch, v->w, v->h, BIN_TILES);
     else
-        sg_fb_fill_depth(depth, BIN_PIXELS, p->clear_depth);
+        p->fb->fill_depth(depth, BIN_PIXELS, p->clear_depth);
 }
 
 static void start_color(const sg_bin_pass *p, const bin_view *v, uint32_t *color) {
     if (p->load_color)
         sg_tile_from_linear_rgba8(color, v->color, v->pitch, v->w, v->h, BIN_TILES);
     else
-        sg_fb_fill_color(color, BIN_PIXELS, p->clear_color);
+        p->fb->fill_color(color, BIN_PIXELS, p->clear_color);
 }
 
 /* The bin's rows of the colour target are written at its end (write_bin): asked for before the
@@ -230,9 +230,9 @@ static void prefetch_target(const bin_view *v) {
 /* The bin's pixels written once to the targets. */
 static void write_bin(const sg_bin_pass *p, const bin_view *v, const uint32_t *color,
                       const float *depth) {
-    sg_tile_to_linear_rgba8(v->color, v->pitch, color, v->w, v->h, BIN_TILES);
+    p->fb->color_to_linear(v->color, v->pitch, color, v->w, v->h, BIN_TILES);
     if (v->depth && p->store_depth)
-        sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
+        p->fb->depth_to_linear(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
 }
 
 /* A bin of a pass with blended draws: the colour starts from the pass's load or clear, opaque
@@ -314,7 +314,7 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
     sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, NULL, NULL, NULL};
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
-    if (p->store_depth) sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
+    if (p->store_depth) p->fb->depth_to_linear(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }
 
@@ -334,11 +334,11 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     SG_STAGE_START(clock);
     if (!bin->count) { /* nothing drawn here: the pass's load and clear are the result */
         if (v.color && !p->load_color)
-            sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
+            p->fb->fill_linear(v.color, v.pitch, v.w, v.h, p->clear_color);
         if (v.depth && p->store_depth && !p->load_depth) {
             uint32_t bits;
             memcpy(&bits, &p->clear_depth, 4);
-            sg_fill_linear_u32(v.depth, v.pitch, v.w, v.h, bits);
+            p->fb->fill_linear(v.depth, v.pitch, v.w, v.h, bits);
         }
         SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
         return;

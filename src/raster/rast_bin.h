@@ -16,6 +16,7 @@
 
 #include "raster/bin.h"
 #include "raster/depth.h"
+#include "raster/framebuffer.h"
 #include "raster/rast_tile.h"
 #include "raster/shade.h"
 
@@ -50,10 +51,11 @@ typedef struct sg_bin_pass {
     uint32_t clear_color;
     float clear_depth;
     bool store_depth;
-    bool any_blend;    /* some draw blends: bins take the ordered path (rast_bin.c) */
-    bool any_pair;     /* some draw shades two whole tiles at once (shade2_fn) */
-    bool any_runs;     /* some draw packs partly covered tiles (runs_fn) */
-    void *stage_times; /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
+    bool any_blend;      /* some draw blends: bins take the ordered path (rast_bin.c) */
+    bool any_pair;       /* some draw shades two whole tiles at once (shade2_fn) */
+    bool any_runs;       /* some draw packs partly covered tiles (runs_fn) */
+    const sg_fb_ops *fb; /* fills and the write, for the device's instruction set */
+    void *stage_times;   /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 
 /** Renders bin `index` of the pass into its target images. */
