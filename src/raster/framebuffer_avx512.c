@@ -4,7 +4,6 @@
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
-#include <string.h>
 
 static void fill_color(uint32_t *dst, size_t n, uint32_t value) {
     const __m512i v = _mm512_set1_epi32((int32_t)value);
@@ -49,21 +48,6 @@ static void to_linear(void *dst, size_t pitch, const uint32_t *tiles, int w, int
     }
 }
 
-static void fill_depth(float *dst, size_t n, float value) {
-    uint32_t bits;
-    memcpy(&bits, &value, 4);
-    fill_color((uint32_t *)(void *)dst, n, bits); /* stored by intrinsics, which may alias */
-}
-
-static void color_to_linear(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h,
-                            int tx) {
-    to_linear(dst, pitch, tiles, w, h, tx);
-}
-
-static void depth_to_linear(float *dst, size_t pitch, const float *tiles, int w, int h, int tx) {
-    to_linear(dst, pitch, (const uint32_t *)(const void *)tiles, w, h, tx);
-}
-
 static void fill_linear(void *dst, size_t pitch, int w, int h, uint32_t value) {
     const __m512i v = _mm512_set1_epi32((int32_t)value);
     for (int y = 0; y < h; y++) {
@@ -74,8 +58,8 @@ static void fill_linear(void *dst, size_t pitch, int w, int h, uint32_t value) {
     }
 }
 
-const sg_fb_ops sg_fb_ops_avx512 = {fill_color, fill_depth, color_to_linear, depth_to_linear,
-                                    fill_linear};
+#define SG_FB_TABLE sg_fb_ops_avx512
+#include "raster/framebuffer_table.h"
 #else
 const sg_fb_ops sg_fb_ops_avx512 = {sg_fb_fill_color, sg_fb_fill_depth, sg_tile_to_linear_rgba8,
                                     sg_tile_to_linear_f32, sg_fill_linear_u32};
