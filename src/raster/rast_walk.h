@@ -461,39 +461,65 @@ static inline int64_t sg_walk_floor_div(int64_t a, int64_t b) { /* b > 0 */
     return q - (a % b < 0);
 }
 
-/* A line (line.h) longer than a few tiles: along its major axis a tile column (row) at a time,
- * visiting only the tiles its band crosses there, one or two, instead of every tile of its
- * bounds. Its one pixel a major column lies where edge 0 turns negative. */
-SG_WALK_INLINE void line_walk(const walk *w, int tx0, int ty0, int tx1, int ty1, sg_tile_fn fn,
+/* A line (line.h): one pixel a major column (x for an x-major line, y for a y-major one), at the
+ * minor coordinate min_lo + floor(F / minor_step), F being edge 0's value at (that column,
+ * min_lo): there edge 0 is in [0, minor_step) and edge 1, minor_step - 1 minus edge 0, is not
+ * negative, and at no other pixel of the column are both. F changes by major_step a column and
+ * |major_step| <= minor_step, so an integer DDA follows the quotient exactly (the pixels are the
+ * edge functions' own), a step moving it by at most one. Each four columns' pixels fall in one or
+ * two tiles, whose masks are built here: no tile is tested, none is visited without a pixel. */
+SG_WALK_INLINE void line_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
                               const void *ctx) {
-    const sg_tri *t = w->t;
     const bool xm = t->line == 1;
     const int64_t major_step = xm ? t->edge_dx[0] : t->edge_dy[0];
     const int64_t minor_step = -(xm ? t->edge_dy[0] : t->edge_dx[0]); /* > 0 */
-    const int maj_lo = xm ? t->minx : t->miny, maj_hi = xm ? t->maxx : t->maxy;
-    const int min_lo = xm ? t->miny : t->minx, min_hi = xm ? t->maxy : t->maxx;
-    const int mt0 = xm ? tx0 : ty0, mt1 = xm ? tx1 : ty1, nt0 = xm ? ty0 : tx0,
-              nt1 = xm ? ty1 : tx1;
-    for (int mt = mt0; mt <= mt1; mt++) {
-        int u0 = mt << SG_TILE_SHIFT, u1 = u0 + SG_TILE - 1;
-        if (u0 < maj_lo) u0 = maj_lo;
-        if (u1 > maj_hi) u1 = maj_hi;
-        int64_t v0 =
-            sg_walk_floor_div(t->edge[0] + (int64_t)(u0 - maj_lo) * major_step, minor_step);
-        int64_t v1 =
-            sg_walk_floor_div(t->edge[0] + (int64_t)(u1 - maj_lo) * major_step, minor_step);
-        int64_t lo = (v0 < v1 ? v0 : v1) + min_lo, hi = (v0 < v1 ? v1 : v0) + min_lo;
-        if (lo < min_lo) lo = min_lo;
-        if (hi > min_hi) hi = min_hi;
-        if (lo > hi) continue;
-        int n0 = (int)(lo >> SG_TILE_SHIFT), n1 = (int)(hi >> SG_TILE_SHIFT);
-        if (n0 < nt0) n0 = nt0;
-        if (n1 > nt1) n1 = nt1;
-        if (n0 > n1) continue;
-        if (xm)
-            walk_tiles(w, mt, n0, mt, n1, fn, ctx);
-        else
-            walk_tiles(w, n0, mt, n1, mt, fn, ctx);
+    const int maj_lo = xm ? t->minx : t->miny, min_lo = xm ? t->miny : t->minx;
+    /* The columns and the minor range to draw: the line's bounds within [rx0, rx1) x [ry0, ry1). */
+    int u0 = maj_lo, u1 = xm ? t->maxx : t->maxy;
+    int v0 = min_lo, v1 = xm ? t->maxy : t->maxx;
+    const int ru0 = xm ? rx0 : ry0, ru1 = (xm ? rx1 : ry1) - 1;
+    const int rv0 = xm ? ry0 : rx0, rv1 = (xm ? ry1 : rx1) - 1;
+    if (u0 < ru0) u0 = ru0;
+    if (u1 > ru1) u1 = ru1;
+    if (v0 < rv0) v0 = rv0;
+    if (v1 > rv1) v1 = rv1;
+    if (u0 > u1 || v0 > v1) return;
+    const int64_t f = t->edge[0] + (int64_t)(u0 - maj_lo) * major_step;
+    const int64_t q0 = sg_walk_floor_div(f, minor_step), rem = f - q0 * minor_step;
+    /* The pixel v and a remainder r in [0, minor_step) that grows by |major_step| a column: when
+     * it reaches minor_step, v moves by `dir`. (Going down, r is minor_step - 1 minus the true
+     * remainder, which falls by |major_step| and moves v when it turns negative.) */
+    const int64_t grow = major_step < 0 ? -major_step : major_step;
+    const int dir = major_step < 0 ? -1 : 1;
+    int64_t r = major_step < 0 ? minor_step - 1 - rem : rem;
+    int v = min_lo + (int)q0; /* within the snapped coordinates / 256: it fits */
+    for (int ub = u0 & ~(SG_TILE - 1); ub <= u1; ub += SG_TILE) {
+        /* The tile column's pixels in the tiles `first` and first + 1 across (a 16-bit mask
+         * each, the low and the high half): the first column's pixel fixes `first`, and the
+         * others are within 3 of it, on the side the line goes. */
+        const int first = (v >> SG_TILE_SHIFT) - (dir < 0 && (v & (SG_TILE - 1)) < SG_TILE - 1);
+        uint32_t mask = 0;
+        const int ue = ub + SG_TILE - 1 < u1 ? ub + SG_TILE - 1 : u1;
+        for (int u = ub > u0 ? ub : u0; u <= ue; u++) {
+            if (v >= v0 && v <= v1) {
+                const int at = ((v >> SG_TILE_SHIFT) - first) * SG_TILE_PIXELS +
+                               (xm ? (v & (SG_TILE - 1)) * SG_TILE + (u & (SG_TILE - 1))
+                                   : (u & (SG_TILE - 1)) * SG_TILE + (v & (SG_TILE - 1)));
+                mask |= 1u << at;
+            }
+            r += grow; /* without branches: where v moves is not predictable */
+            const bool move = r >= minor_step;
+            v += move ? dir : 0;
+            r -= move ? minor_step : 0;
+        }
+        for (int k = 0; k < 2; k++, mask >>= SG_TILE_PIXELS) {
+            if (!(mask & 0xffffu)) continue;
+            const int vt = (first + k) << SG_TILE_SHIFT;
+            if (xm)
+                fn(ctx, t, ub, vt, mask & 0xffffu);
+            else
+                fn(ctx, t, vt, ub, mask & 0xffffu);
+        }
     }
 }
 
@@ -511,6 +537,10 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
 #elif defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
     if (tx1 - tx0 < 2 && ty1 - ty0 < 2 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
 #endif
+    if (t->line) {
+        line_walk(t, rx0, ry0, rx1, ry1, fn, ctx);
+        return;
+    }
     walk w;
     w.t = t;
     corners(t, SG_TILE - 1, w.hi, w.lo);
@@ -549,10 +579,6 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
 #endif
         }
 #endif
-    if (t->line) {
-        line_walk(&w, tx0, ty0, tx1, ty1, fn, ctx);
-        return;
-    }
     /* Small triangles: one block at most, so go straight to the tiles. */
     if (tx1 - tx0 < 4 && ty1 - ty0 < 4) {
         walk_tiles(&w, tx0, ty0, tx1, ty1, fn, ctx);
