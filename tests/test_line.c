@@ -209,6 +209,43 @@ static void random_segments(void **state) {
     assert_int_equal(failures, 0);
 }
 
+/* Segments whose ends lie far outside the canvas (up to about 30000 pixels, the clipper's guard
+ * band) and which cross it or pass near it: edge values far past 32 bits, long walks cut to the
+ * canvas, lines of every slope. One end near the canvas and the other far, or both far on
+ * either side of a point near it. */
+static void far_segments(void **state) {
+    (void)state;
+    long n = 20000;
+    const char *env = getenv("SG_LINE_SEGMENTS");
+    if (env) n = atol(env) / 5;
+    for (long k = 0; k < n; k++) {
+        const int32_t px = coord(W), py = coord(H);
+        const int32_t dx = pick(-30000 * ONE, 30000 * ONE), dy = pick(-30000 * ONE, 30000 * ONE);
+        sg_svert s[2];
+        memset(s, 0, sizeof s);
+        if (next() % 2) { /* from far away to near the canvas, or back */
+            s[0].x = px + dx;
+            s[0].y = py + dy;
+            s[1].x = px;
+            s[1].y = py;
+            if (next() % 2) {
+                const sg_svert t = s[0];
+                s[0] = s[1];
+                s[1] = t;
+            }
+        } else { /* through a point near the canvas, both ends far */
+            const int32_t f = pick(1, 4);
+            s[0].x = px + dx;
+            s[0].y = py + dy;
+            s[1].x = px - dx / f;
+            s[1].y = py - dy / f;
+        }
+        check(s);
+    }
+    printf("%ld far segments, %ld differ\n", n, failures);
+    assert_int_equal(failures, 0);
+}
+
 /* Every direction through a pixel centre and through a pixel corner, a few pixels long, in both
  * directions: the rule's hard cases, every one of them decided by its ties. */
 static void fans_through_centres_and_corners(void **state) {
@@ -521,6 +558,7 @@ int main(void) {
         cmocka_unit_test(known_lines),
         cmocka_unit_test(fans_through_centres_and_corners),
         cmocka_unit_test(random_segments),
+        cmocka_unit_test(far_segments),
         cmocka_unit_test(segments_through_the_api),
         cmocka_unit_test(long_segments_across_bins),
         cmocka_unit_test(wireframe),
