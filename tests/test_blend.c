@@ -15,6 +15,7 @@
  *   quads included.
  */
 #include "test_common.h"
+#include "test_objects.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -115,7 +116,8 @@ static void make_scene(tri_scene *s) {
 
 /* Renders the scene; per_triangle: every triangle in a pass of its own that loads the previous
  * colour and depth, the plain order no binning can reorder. */
-static void render(const tri_scene *s, int threads, sgSimd simd, bool per_triangle, uint8_t *out) {
+static void render(const void *scene, int threads, sgSimd simd, bool per_triangle, uint8_t *out) {
+    const tri_scene *s = scene;
     sgDevice *dev;
     sgDeviceDesc dd = {.thread_count = threads, .simd = simd};
     assert_int_equal(sgCreateDevice(&dd, &dev), SG_OK);
@@ -180,18 +182,7 @@ static void blending_follows_submission_order(void **state) {
     int blended = 0;
     for (int i = 0; i < S * S; i++) blended += want[i * 4 + 3] != 255 && want[i * 4 + 3] != 128;
     assert_true(blended > S * S / 4);
-    const int threads[] = {1, 2, 3};
-    for (int simd = SG_SIMD_SCALAR; simd <= SG_SIMD_NEON; simd++) {
-        sgDevice *probe;
-        if (sgCreateDevice(&(sgDeviceDesc){.simd = (sgSimd)simd}, &probe) != SG_OK) continue;
-        sgDestroyDevice(probe);
-        for (int t = 0; t < 3; t++) {
-            render(s, threads[t], (sgSimd)simd, false, got);
-            if (memcmp(want, got, S * S * 4) != 0)
-                fail_msg("simd %d, %d threads: differs from the triangle-by-triangle render", simd,
-                         threads[t]);
-        }
-    }
+    test_same_in_one_pass(render, s, want, got, S * S * 4);
     free(want);
     free(got);
     free(s);
@@ -391,9 +382,7 @@ static void blended_variants_identical(void **state) {
     for (int i = 0; i < TS * TS; i++) changed += want[i * 4 + 1] != 153;
     assert_true(changed > TS * TS / 2);
     for (int simd = SG_SIMD_SCALAR + 1; simd <= SG_SIMD_NEON; simd++) {
-        sgDevice *probe;
-        if (sgCreateDevice(&(sgDeviceDesc){.simd = (sgSimd)simd}, &probe) != SG_OK) continue;
-        sgDestroyDevice(probe);
+        if (!test_simd_runs((sgSimd)simd)) continue;
         render_variants((sgSimd)simd, got);
         for (int i = 0; i < TS * TS * 4; i++)
             if (want[i] != got[i])

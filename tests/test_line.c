@@ -3,7 +3,8 @@
  * setup rectangle), the pixels line setup and the tile raster draw (every instruction set's walk)
  * equal those of a slow reference that evaluates the rule as it is written: clip the moved
  * segment to each pixel's diamond, in exact arithmetic, and drop the pixel whose diamond holds the
- * moved end point.
+ * moved end point. Opaque lines, shaded as they are rasterised, keep the submission order among
+ * the triangles of their pass (lines_in_submission_order).
  *
  * The seed is fixed. SG_LINE_SEGMENTS sets how many random segments to test (default 100000).
  */
@@ -553,6 +554,163 @@ static void flat_lit_lines_are_refused(void **state) {
     sgDestroyDevice(a.dev);
 }
 
+/* ---- submission order ---- */
+
+/* Opaque line draws are shaded as they are rasterised (blend.h), opaque triangles visibility
+ * first: a pass that mixes them, with blended triangles, wireframes, textured lines and several
+ * depth states, gives the bytes of drawing each primitive in a pass of its own that loads the
+ * last one's colour and depth (the plain order), at 1, 2 and 3 threads, with every instruction
+ * set this CPU runs. */
+enum { OS = 150, NPRIM = 168, PER_DRAW = 8, KINDS = 7 };
+
+typedef struct order_scene {
+    float pos[NPRIM * 3 * 4], col[NPRIM * 3 * 4], uv[NPRIM * 3 * 2];
+    uint32_t idx[NPRIM * 3];
+} order_scene;
+
+/* Draw kinds, by draw index mod KINDS: the primitive, the pipeline. */
+static bool kind_is_line(int kind) {
+    return kind == 1 || kind == 2 || kind == 4 || kind == 6;
+}
+
+static sgPipelineDesc kind_pipeline(int kind) {
+    switch (kind) {
+    case 0:
+        return (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS_EQUAL, .write = true}};
+    case 1:
+        return (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}};
+    case 2:
+        return (sgPipelineDesc){.shade = SG_SHADE_TEXTURE_MODULATE,
+                                .depth = {.compare = SG_COMPARE_LESS_EQUAL}};
+    case 3:
+        return (sgPipelineDesc){.blend = SG_BLEND_ALPHA,
+                                .depth = {.compare = SG_COMPARE_LESS_EQUAL}};
+    case 4:
+        return (sgPipelineDesc){.depth = {.compare = SG_COMPARE_ALWAYS, .write = true}};
+    case 5:
+        return (sgPipelineDesc){.polygon_mode = SG_POLYGON_MODE_LINE,
+                                .depth = {.compare = SG_COMPARE_LESS, .write = true}};
+    default:
+        return (sgPipelineDesc){.depth = {.compare = SG_COMPARE_GREATER}};
+    }
+}
+
+/* A number in [0, 1) from the state *x (a linear congruential step). */
+static float unit(uint32_t *x) {
+    *x = *x * 1664525u + 1013904223u;
+    return (float)(*x >> 8) / 16777216.0f;
+}
+
+static void make_order_scene(order_scene *s) {
+    uint32_t x = 4242;
+    for (int p = 0; p < NPRIM; p++) {
+        const bool line = kind_is_line(p / PER_DRAW % KINDS);
+        float cx = unit(&x) * 2.2f - 1.1f, cy = unit(&x) * 2.2f - 1.1f, z = unit(&x) * 1.6f - 0.8f;
+        const float reach = line ? 2.4f : 1.0f; /* lines cross several bins */
+        for (int v = 0; v < 3; v++) {
+            float *q = s->pos + (p * 3 + v) * 4;
+            q[0] = cx + (unit(&x) - 0.5f) * reach;
+            q[1] = cy + (unit(&x) - 0.5f) * reach;
+            q[2] = z + unit(&x) * 0.4f - 0.2f;
+            q[3] = 1.0f;
+            for (int k = 0; k < 4; k++) s->col[(p * 3 + v) * 4 + k] = 0.2f + 0.8f * unit(&x);
+            s->uv[(p * 3 + v) * 2] = unit(&x) * 3.0f;
+            s->uv[(p * 3 + v) * 2 + 1] = unit(&x) * 3.0f;
+            s->idx[p * 3 + v] = (uint32_t)(p * 3 + v);
+        }
+    }
+}
+
+/* The scene in one pass, draws of PER_DRAW primitives; or (per_primitive) each primitive in a
+ * pass of its own that loads the last one's colour and depth. */
+static void render_order(const void *scene, int threads, sgSimd simd, bool per_primitive,
+                         uint8_t *out) {
+    const order_scene *s = scene;
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .simd = simd}, &dev),
+                     SG_OK);
+    sgImage2D color = test_image(dev, OS, OS, SG_FORMAT_RGBA8_UNORM);
+    sgImage2D depth = test_image(dev, OS, OS, SG_FORMAT_D32_FLOAT);
+    uint8_t texels[4 * 4 * 4];
+    for (int i = 0; i < 16; i++)
+        for (int k = 0; k < 4; k++) texels[i * 4 + k] = (uint8_t)(40 + 13 * i + 50 * k);
+    sgImage2D tex;
+    assert_int_equal(sgCreateImage2D(dev,
+                                     &(sgImage2DDesc){.width = 4,
+                                                      .height = 4,
+                                                      .format = SG_FORMAT_RGBA8_UNORM,
+                                                      .data = texels},
+                                     &tex),
+                     SG_OK);
+    sgPipelineStateObject pso[KINDS];
+    for (int k = 0; k < KINDS; k++) pso[k] = test_pso(dev, kind_pipeline(k));
+    sgDrawParams params = {.texture = tex};
+    memcpy(params.world_view, IDENTITY, sizeof IDENTITY);
+    memcpy(params.proj, IDENTITY, sizeof IDENTITY);
+    sgPassDesc pass = {.color = color,
+                       .depth = depth,
+                       .clear_color = {0.1f, 0.2f, 0.3f, 1.0f},
+                       .clear_depth = 1.0f};
+    const int per = per_primitive ? 1 : PER_DRAW;
+    if (!per_primitive) assert_int_equal(sgBeginRenderPass(dev, &pass), SG_OK);
+    for (int first = 0; first < NPRIM; first += per) {
+        const int kind = first / PER_DRAW % KINDS, n = kind_is_line(kind) ? 2 : 3;
+        uint32_t idx[PER_DRAW * 3];
+        for (int p = 0; p < per; p++)
+            for (int v = 0; v < n; v++) idx[p * n + v] = s->idx[(first + p) * 3 + v];
+        sgGeom g;
+        assert_int_equal(sgCreateGeom(dev,
+                                      &(sgGeomDesc){.vertex_count = NPRIM * 3,
+                                                    .positions = s->pos,
+                                                    .colors = s->col,
+                                                    .texcoords = s->uv,
+                                                    .index_count = per * n,
+                                                    .indices = idx,
+                                                    .primitive = n == 2 ? SG_PRIMITIVE_LINES
+                                                                        : SG_PRIMITIVE_TRIANGLES},
+                                      &g),
+                         SG_OK);
+        if (per_primitive) assert_int_equal(sgBeginRenderPass(dev, &pass), SG_OK);
+        assert_int_equal(sgDraw(dev, pso[kind], g, &params), SG_OK);
+        if (per_primitive) {
+            assert_int_equal(sgEndRenderPass(dev, &pass), SG_OK);
+            pass.color_load = pass.depth_load = SG_LOAD_LOAD;
+        }
+        sgDestroyGeom(dev, g); /* the pass keeps what it binned */
+    }
+    if (!per_primitive) assert_int_equal(sgEndRenderPass(dev, &pass), SG_OK);
+    assert_int_equal(sgReadImage2D(dev, color, out, 0), SG_OK);
+    sgDestroyDevice(dev);
+}
+
+static void lines_in_submission_order(void **state) {
+    (void)state;
+    order_scene *s = calloc(1, sizeof *s);
+    make_order_scene(s);
+    uint8_t *want = malloc(OS * OS * 4), *got = malloc(OS * OS * 4);
+    render_order(s, 1, SG_SIMD_SCALAR, true, want);
+    /* The lines show: against the same scene with every line behind the eye (clipped away),
+     * they change over 5 % of the pixels. */
+    int changed = 0;
+    {
+        order_scene *t = calloc(1, sizeof *t);
+        memcpy(t, s, sizeof *t);
+        for (int p = 0; p < NPRIM; p++)
+            if (kind_is_line(p / PER_DRAW % KINDS))
+                for (int v = 0; v < 3; v++) t->pos[(p * 3 + v) * 4 + 3] = -1.0f; /* behind */
+        uint8_t *bare = malloc(OS * OS * 4);
+        render_order(t, 1, SG_SIMD_SCALAR, true, bare);
+        for (int i = 0; i < OS * OS; i++) changed += memcmp(want + 4 * i, bare + 4 * i, 4) != 0;
+        free(bare);
+        free(t);
+    }
+    assert_true(changed > OS * OS / 20);
+    test_same_in_one_pass(render_order, s, want, got, OS * OS * 4);
+    free(want);
+    free(got);
+    free(s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(known_lines),
@@ -564,6 +722,7 @@ int main(void) {
         cmocka_unit_test(wireframe),
         cmocka_unit_test(clipped_lines),
         cmocka_unit_test(flat_lit_lines_are_refused),
+        cmocka_unit_test(lines_in_submission_order),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

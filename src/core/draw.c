@@ -496,14 +496,18 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                         "sgDraw: out of memory for %zu triangles in the pass", total);
     }
     sg_draw_state *ds = &dev->draws[dev->draw_count++];
-    ds->raster_fn = depth_only ? pso->depth_fn : shadowed ? pso->raster_shadow : pso->raster_fn;
+    const bool put_lines = a.lines && pso->raster_line && !depth_only && !shadowed && !sec;
+    ds->raster_fn = depth_only  ? pso->depth_fn
+                    : shadowed  ? pso->raster_shadow
+                    : put_lines ? pso->raster_line
+                                : pso->raster_fn;
     ds->shade_fn = shadowed ? pso->shade_shadow : sec ? pso->shade_sec : pso->shade_fn;
     ds->shade2_fn = shadowed ? NULL : sec ? pso->shade2_sec : pso->shade2_fn;
     ds->runs_fn = shadowed ? NULL : sec ? pso->runs_sec : pso->runs_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
-    ds->blend = !depth_only && pso->desc.blend == SG_BLEND_ALPHA;
-    dev->pass.any_blend |= ds->blend;
+    ds->in_place = put_lines || (!depth_only && pso->desc.blend == SG_BLEND_ALPHA);
+    dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_pair |= ds->shade2_fn != NULL;
     dev->pass.any_runs |= ds->runs_fn != NULL;
     if (tex) tex->pass_use = dev->pass_serial;

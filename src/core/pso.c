@@ -77,6 +77,10 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     p.raster_shadow = d->blend == SG_BLEND_ALPHA
                           ? sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa)
                           : p.depth_fn;
+    /* Lines and wireframes of opaque draws are shaded as they are rasterised (blend.h); Phong
+     * lighting, a specular material and a shadow map keep them visibility first (sgDraw). */
+    if (d->blend == SG_BLEND_OPAQUE && d->lighting != SG_LIGHTING_PHONG)
+        p.raster_line = sg_put_select(variant, d->depth.compare, d->depth.write, dev->isa);
     p.nattr = sg_shade_attr_count(d->shade);
     p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;
 

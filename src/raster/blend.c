@@ -1,7 +1,7 @@
-/* blend.c - the raster functions of blended draws (see blend.h): per covered tile, the depth
- * test, then the pipeline's shading of the passing pixels, then each blended into the bin's
- * colour. Portable C (the reference) and SSE2, which computes the same integer blend and the
- * same float depth, so both give the same bytes. */
+/* blend.c - the raster functions of draws shaded in place (see blend.h): per covered tile, the
+ * depth test, then the pipeline's shading of the passing pixels, then each blended into the bin's
+ * colour (or, for an opaque line, put there). Portable C (the reference) and SSE2, which computes
+ * the same integer blend and the same float depth, so both give the same bytes. */
 #include "raster/blend.h"
 
 #include "raster/depth_simd.h"
@@ -30,9 +30,11 @@ static inline __attribute__((always_inline)) uint32_t depth_scalar(const sg_vis_
     return pass;
 }
 
-static inline __attribute__((always_inline)) void blend_scalar(const void *vctx, const sg_tri *t,
-                                                               int x0, int y0, uint32_t mask,
-                                                               const int zmode, const int zwrite) {
+/* put: the fragments replace the pixels (an opaque line), else they are blended over them. */
+static inline __attribute__((always_inline)) void in_place_scalar(const void *vctx, const sg_tri *t,
+                                                                  int x0, int y0, uint32_t mask,
+                                                                  const int zmode, const int zwrite,
+                                                                  const int put) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     if (zmode != Z_NONE || zwrite) mask = depth_scalar(v, t, x0, y0, mask, base, zwrite);
@@ -42,14 +44,14 @@ static inline __attribute__((always_inline)) void blend_scalar(const void *vctx,
     uint32_t *dst = v->color + base;
     for (; mask; mask &= mask - 1) {
         int bit = __builtin_ctz(mask);
-        dst[bit] = sg_blend_rgba8(src[bit], dst[bit]);
+        dst[bit] = put ? src[bit] : sg_blend_rgba8(src[bit], dst[bit]);
     }
 }
 
-SG_WALK_FN(blend_none_0, blend_scalar, Z_NONE, 0)
-SG_WALK_FN(blend_none_1, blend_scalar, Z_NONE, 1)
-SG_WALK_FN(blend_any_0, blend_scalar, Z_ANY, 0)
-SG_WALK_FN(blend_any_1, blend_scalar, Z_ANY, 1)
+SG_IN_PLACE_BODY(blend_scalar, in_place_scalar, 0)
+SG_IN_PLACE_BODY(put_scalar, in_place_scalar, 1)
+SG_IN_PLACE_SET(blend, blend_scalar)
+SG_IN_PLACE_SET(put, put_scalar)
 
 #if defined(__SSE2__)
 /* x y / 255 as sg_mul_unorm8 rounds it, in 16-bit lanes (x, y <= 255, so no lane overflows). */
@@ -74,9 +76,10 @@ static inline __m128i blend4_sse2(__m128i s, __m128i d) {
     return _mm_packus_epi16(lo, hi);
 }
 
-static inline __attribute__((always_inline)) void blend_sse2(const void *vctx, const sg_tri *t,
-                                                             int x0, int y0, uint32_t mask,
-                                                             const int zmode, const int zwrite) {
+static inline __attribute__((always_inline)) void in_place_sse2(const void *vctx, const sg_tri *t,
+                                                                int x0, int y0, uint32_t mask,
+                                                                const int zmode, const int zwrite,
+                                                                const int put) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     const __m128i lanes = _mm_setr_epi32(1, 2, 4, 8);
@@ -107,36 +110,52 @@ static inline __attribute__((always_inline)) void blend_sse2(const void *vctx, c
         if (!bits) continue;
         __m128i *pd = (__m128i *)(void *)(dst + 4 * j);
         __m128i d = _mm_load_si128(pd);
-        __m128i out = blend4_sse2(_mm_load_si128((const __m128i *)(const void *)(src + 4 * j)), d);
+        __m128i s = _mm_load_si128((const __m128i *)(const void *)(src + 4 * j));
+        __m128i out = put ? s : blend4_sse2(s, d);
         __m128i sel = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)bits), lanes), lanes);
         _mm_store_si128(pd, _mm_or_si128(_mm_and_si128(sel, out), _mm_andnot_si128(sel, d)));
     }
 }
 
-SG_WALK_FN(blend_none_0_sse2, blend_sse2, Z_NONE, 0)
-SG_WALK_FN(blend_none_1_sse2, blend_sse2, Z_NONE, 1)
-SG_WALK_FN(blend_any_0_sse2, blend_sse2, Z_ANY, 0)
-SG_WALK_FN(blend_any_1_sse2, blend_sse2, Z_ANY, 1)
+SG_IN_PLACE_BODY(blend_sse2, in_place_sse2, 0)
+SG_IN_PLACE_BODY(put_sse2, in_place_sse2, 1)
+SG_IN_PLACE_SET(blend_sse2, blend_sse2)
+SG_IN_PLACE_SET(put_sse2, put_sse2)
 #endif
 
-sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa) {
+/* The raster function that shades in place: with `put` an opaque line's (its fragments replace
+ * the pixels), else a blend's. */
+static sg_raster_fn in_place_select(const bool put, int variant, sgCompare compare,
+                                    bool depth_write, sg_isa isa) {
     const bool test = compare != SG_COMPARE_ALWAYS; /* Z_ANY, else Z_NONE */
+    const int write = depth_write ? 1 : 0;
     sg_raster_fn fn = NULL;
-    if (isa == SG_ISA_NEON) fn = sg_blend_neon(test, depth_write);
+    if (isa == SG_ISA_NEON)
+        fn = put ? sg_put_neon(test, depth_write) : sg_blend_neon(test, depth_write);
     if (fn) return fn;
-    /* A negative variant (lit shading) calls the draw's shading function: AVX2 at best. */
-    if (isa >= SG_ISA_AVX512 && shade_variant >= 0)
-        fn = sg_blend_avx512(shade_variant, test, depth_write);
-    if (!fn && isa >= SG_ISA_AVX2) fn = sg_blend_avx2(shade_variant, test, depth_write);
+    /* AVX-512 inlines the unlit shading of every blend and of vertex-coloured lines; AVX2 calls
+     * the draw's shading function for a lit blend (a negative variant) and for textured lines. */
+    if (isa >= SG_ISA_AVX512 && (put ? variant == 0 : variant >= 0))
+        fn = put ? sg_put_avx512(test, depth_write) : sg_blend_avx512(variant, test, depth_write);
+    if (!fn && isa >= SG_ISA_AVX2)
+        fn = put ? sg_put_avx2(variant, test, depth_write)
+                 : sg_blend_avx2(variant, test, depth_write);
     if (fn) return fn;
 #if defined(__SSE2__)
-    static const sg_raster_fn sse2[2][2] = {{blend_none_0_sse2, blend_none_1_sse2},
-                                            {blend_any_0_sse2, blend_any_1_sse2}};
-    if (isa >= SG_ISA_SSE2) return sse2[test][depth_write ? 1 : 0];
+    static const sg_raster_fn sse2[2][2][2] = {SG_IN_PLACE_TABLE(blend_sse2),
+                                               SG_IN_PLACE_TABLE(put_sse2)};
+    if (isa >= SG_ISA_SSE2) return sse2[put][test][write];
 #else
     (void)isa;
 #endif
-    static const sg_raster_fn scalar[2][2] = {{blend_none_0, blend_none_1},
-                                              {blend_any_0, blend_any_1}};
-    return scalar[test][depth_write ? 1 : 0];
+    static const sg_raster_fn scalar[2][2][2] = {SG_IN_PLACE_TABLE(blend), SG_IN_PLACE_TABLE(put)};
+    return scalar[put][test][write];
+}
+
+sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa) {
+    return in_place_select(false, shade_variant, compare, depth_write, isa);
+}
+
+sg_raster_fn sg_put_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa) {
+    return in_place_select(true, shade_variant, compare, depth_write, isa);
 }

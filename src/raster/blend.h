@@ -1,9 +1,14 @@
-/* blend.h - alpha blending (SG_BLEND_ALPHA): out = src * a + dst * (1 - a) in 8-bit arithmetic.
+/* blend.h - draws shaded in place: alpha blending (SG_BLEND_ALPHA: out = src * a + dst * (1 - a)
+ * in 8-bit arithmetic), and opaque lines.
  *
- * Opaque draws are rasterised visibility first (depth.h) and shaded once per pixel. A blended
+ * Opaque triangles are rasterised visibility first (depth.h) and shaded once per pixel. A blended
  * triangle cannot wait for that: each pixel must see the triangles in submission order, so the
  * bin's visible ids are shaded first (rast_bin.c), and the blended triangle is then depth tested,
- * shaded and blended into the bin's colour tile by tile, in order.
+ * shaded and blended into the bin's colour tile by tile, in order. Opaque lines and wireframes of
+ * unlit shading go the same way, their fragments put in place of the pixels: a line covers a
+ * pixel or two of each tile it crosses and is rarely drawn over, so shading it at once, while
+ * its tile is at hand, costs less than keeping its ids for a later pass over the tiles (and gives
+ * the same bytes: in both, a pixel shows the last fragment that passed the depth test).
  */
 #ifndef SG_BLEND_H
 #define SG_BLEND_H
@@ -46,5 +51,15 @@ sg_raster_fn sg_blend_avx2(int shade_variant, bool depth_test, bool depth_write)
 sg_raster_fn sg_blend_avx512(int shade_variant, bool depth_test, bool depth_write);
 /** The NEON ones (blend_neon.c; NULL off AArch64). */
 sg_raster_fn sg_blend_neon(bool depth_test, bool depth_write);
+
+/** The raster function of an opaque line draw of unlit shading variant `shade_variant`
+ *  (sg_shade_variant) shaded in place: its fragments replace the pixels they pass (ctx as for
+ *  sg_blend_select). */
+sg_raster_fn sg_put_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa);
+/** The AVX2 ones (vertex colours inlined, other variants through the draw's function), the
+ *  AVX-512 ones (vertex colours only) and the NEON ones; NULL where not built. */
+sg_raster_fn sg_put_avx2(int shade_variant, bool depth_test, bool depth_write);
+sg_raster_fn sg_put_avx512(bool depth_test, bool depth_write);
+sg_raster_fn sg_put_neon(bool depth_test, bool depth_write);
 
 #endif

@@ -1,6 +1,6 @@
-/* blend_avx2.c - the raster functions of blended draws in AVX2 (see blend.h): two rows of a tile
- * a vector; the same depth (z, clamp, compare) as the scalar and SSE2 code, the same shading and
- * the same integer blend, so the same bytes.
+/* blend_avx2.c - the raster functions of draws shaded in place in AVX2 (see blend.h): two rows of
+ * a tile a vector; the same depth (z, clamp, compare) as the scalar and SSE2 code, the same
+ * shading and the same integer blend, so the same bytes.
  *
  * Unlit draws inline the shading body of shade_avx2.h (one function per shading variant and depth
  * state, as in blend_avx512.c): no call per tile, no tile buffer. A pair of rows whose eight
@@ -9,7 +9,9 @@
  * cover tiles sparsely, and a shading pass costs the same for one pixel as for eight); whole pairs
  * and full queues of a textured triangle are shaded two at a time, side by side. The pixels of one
  * triangle are all different, so blending some later changes nothing, as long as it is done before
- * the next triangle. Lit draws call the draw's shading function per tile.
+ * the next triangle. Lit draws call the draw's shading function per tile. Opaque lines put their
+ * fragments in place the same ways: vertex colours inlined, the others through the draw's
+ * function.
  */
 #include "raster/blend.h"
 
@@ -47,11 +49,16 @@ INLINE __m256i lanes_of(unsigned bits) {
     return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes);
 }
 
-/* The fragments s of the pixels of bits (two rows of a tile) blended into dst. */
-INLINE void blend_rows(uint32_t *dst, __m256i s, unsigned bits) {
+/* The fragments s of the pixels of bits (two rows of a tile) blended into dst, or with `put`
+ * put there. */
+INLINE void blend_rows(uint32_t *dst, __m256i s, unsigned bits, const int put) {
     __m256i *pd = (__m256i *)(void *)dst;
+    if (put && bits == 255) {
+        _mm256_store_si256(pd, s);
+        return;
+    }
     __m256i d = _mm256_load_si256(pd);
-    __m256i out = blend8(s, d);
+    __m256i out = put ? s : blend8(s, d);
     _mm256_store_si256(pd, bits == 255 ? out : _mm256_blendv_epi8(d, out, lanes_of(bits)));
 }
 
@@ -75,9 +82,10 @@ INLINE uint32_t depth_tile(const sg_vis_ctx *v, const sg_tri *t, int x0, int y0,
     return pass;
 }
 
-/* Lit draws: the draw's shading function into a tile buffer, then the blend. */
-INLINE void blend_call(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
-                       const int zmode, const int zwrite) {
+/* Lit draws and textured lines: the draw's shading function into a tile buffer, then the blend
+ * (or, with `put`, the fragments put in place). */
+INLINE void in_place_call(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
+                          const int zmode, const int zwrite, const int put) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     if (zmode != Z_NONE || zwrite) mask = depth_tile(v, t, x0, y0, mask, base, zwrite);
@@ -88,14 +96,14 @@ INLINE void blend_call(const void *vctx, const sg_tri *t, int x0, int y0, uint32
         unsigned bits = (mask >> (8 * h)) & 255u;
         if (bits)
             blend_rows(v->color + base + 8 * h,
-                       _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h)), bits);
+                       _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h)), bits, put);
     }
 }
 
-SG_WALK_FN(blend_none_0, blend_call, Z_NONE, 0)
-SG_WALK_FN(blend_none_1, blend_call, Z_NONE, 1)
-SG_WALK_FN(blend_any_0, blend_call, Z_ANY, 0)
-SG_WALK_FN(blend_any_1, blend_call, Z_ANY, 1)
+SG_IN_PLACE_BODY(blend_call, in_place_call, 0)
+SG_IN_PLACE_BODY(put_call, in_place_call, 1)
+SG_IN_PLACE_SET(blend, blend_call)
+SG_IN_PLACE_SET(put_call, put_call)
 
 /* Eight pixels of a textured triangle ready to shade: two whole rows of a tile, blended in place
  * at bin offset base, or a full (or the last, partial) queue of n pixels, blended through its
@@ -140,7 +148,7 @@ INLINE void blend_scattered(const sg_vis_ctx *v, __m256i qoff, __m256i s, int n)
 /* The shaded fragments s of a job blended into the bin's colour. */
 INLINE void finish(const sg_vis_ctx *v, const job *j, __m256i s) {
     if (j->base >= 0)
-        blend_rows(v->color + j->base, s, 255u);
+        blend_rows(v->color + j->base, s, 255u, 0);
     else
         blend_scattered(v, j->off, s, j->n);
 }
@@ -177,7 +185,7 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
         if (!textured) { /* vertex colours cost less to shade than to queue (alpha_stack) */
             __m256i s;
             shade(v, t, 1, &dx, &dy, &s, 0, 0, 0);
-            blend_rows(v->color + base + 8 * h, s, bits);
+            blend_rows(v->color + base + 8 * h, s, bits, 0);
             continue;
         }
         if (bits == 255) { /* full rows need no packing */
@@ -228,19 +236,50 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int 
     }
 SG_BLEND_VARIANTS(SG_BLEND_INLINE)
 
+/* An opaque vertex-coloured line's tile: the passing pixels shaded and put in place. */
+INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
+                       const int zmode, const int zwrite) {
+    const sg_vis_ctx *v = vctx;
+    int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    if (zmode != Z_NONE || zwrite) mask = depth_tile(v, t, x0, y0, mask, base, zwrite);
+    for (int h = 0; h < 2; h++) {
+        unsigned bits = (mask >> (8 * h)) & 255u;
+        if (!bits) continue;
+        __m256 dx, dy;
+        __m256i s;
+        sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
+        shade(v, t, 1, &dx, &dy, &s, 0, 0, 0);
+        blend_rows(v->color + base + 8 * h, s, bits, 1);
+    }
+}
+
+SG_IN_PLACE_SET(put, put_inline)
+
 sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
-    const int z = (depth_test ? 2 : 0) + (depth_write ? 1 : 0);
     if (variant < 0) {
-        static const sg_raster_fn call[4] = {blend_none_0, blend_none_1, blend_any_0, blend_any_1};
-        return call[z];
+        static const sg_raster_fn call[2][2] = SG_IN_PLACE_TABLE(blend);
+        return call[depth_test][depth_write];
     }
     static const sg_raster_fn fns[5][4] = SG_BLEND_TABLE; /* in sg_shade_variant order */
-    return fns[variant][z];
+    return fns[variant][(depth_test ? 2 : 0) + (depth_write ? 1 : 0)];
+}
+
+sg_raster_fn sg_put_avx2(int variant, bool depth_test, bool depth_write) {
+    static const sg_raster_fn inlined[2][2] = SG_IN_PLACE_TABLE(put);
+    static const sg_raster_fn call[2][2] = SG_IN_PLACE_TABLE(put_call);
+    return (variant == 0 ? inlined : call)[depth_test][depth_write];
 }
 
 #else
 
 sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
+    (void)variant;
+    (void)depth_test;
+    (void)depth_write;
+    return NULL;
+}
+
+sg_raster_fn sg_put_avx2(int variant, bool depth_test, bool depth_write) {
     (void)variant;
     (void)depth_test;
     (void)depth_write;

@@ -1,8 +1,9 @@
-/* blend_avx512.c - the raster functions of blended draws in AVX-512 (see blend.h): a whole tile
- * a vector, the pixels of partly covered tiles of a textured triangle packed sixteen to a vector;
- * the same depth (z, clamp, compare) as the scalar and SSE2 code, the shading body of
+/* blend_avx512.c - the raster functions of draws shaded in place in AVX-512 (see blend.h): a whole
+ * tile a vector, the pixels of partly covered tiles of a textured triangle packed sixteen to a
+ * vector; the same depth (z, clamp, compare) as the scalar and SSE2 code, the shading body of
  * shade_avx512.h inlined (a call per tile would spill every vector register of the walk), and
- * the same integer blend, so the same bytes. One function per shading variant and depth state. */
+ * the same integer blend, so the same bytes. One function per shading variant and depth state;
+ * opaque lines of vertex colours put their fragments in place. */
 #include "raster/blend.h"
 
 #include "raster/depth_simd.h"
@@ -188,10 +189,41 @@ sg_raster_fn sg_blend_avx512(int variant, bool depth_test, bool depth_write) {
     return fns[variant][(depth_test ? 2 : 0) + (depth_write ? 1 : 0)];
 }
 
+/* An opaque vertex-coloured line's tile: the passing pixels shaded and put in place. */
+INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
+                       const int zmode, const int zwrite) {
+    const sg_vis_ctx *v = vctx;
+    const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    __m512 dx, dy;
+    sg_tile_dxdy16(t, x0, y0, &dx, &dy);
+    if (zmode != Z_NONE || zwrite) {
+        float *dp = v->depth + base;
+        __m512 z = sg_z16(t, dx, dy);
+        if (zmode != Z_NONE)
+            mask = sg_compare16(v->compare, (__mmask16)mask, z, _mm512_loadu_ps(dp));
+        if (zwrite) _mm512_mask_storeu_ps(dp, (__mmask16)mask, z);
+    }
+    if (!mask) return;
+    _mm512_mask_storeu_epi32(v->color + base, (__mmask16)mask, shade(v, t, dx, dy, mask, 0, 0, 0));
+}
+
+SG_IN_PLACE_SET(put, put_inline)
+
+sg_raster_fn sg_put_avx512(bool depth_test, bool depth_write) {
+    static const sg_raster_fn fns[2][2] = SG_IN_PLACE_TABLE(put);
+    return fns[depth_test][depth_write];
+}
+
 #else
 
 sg_raster_fn sg_blend_avx512(int variant, bool depth_test, bool depth_write) {
     (void)variant;
+    (void)depth_test;
+    (void)depth_write;
+    return NULL;
+}
+
+sg_raster_fn sg_put_avx512(bool depth_test, bool depth_write) {
     (void)depth_test;
     (void)depth_write;
     return NULL;

@@ -1,6 +1,6 @@
-/* blend_neon.c - the raster functions of blended draws in NEON (AArch64; see blend.h): one row of
- * a tile a vector; the same depth (z, clamp, compare) as the scalar code (depth_neon.h) and the
- * same integer blend, so the same bytes. */
+/* blend_neon.c - the raster functions of draws shaded in place in NEON (AArch64; see blend.h):
+ * one row of a tile a vector; the same depth (z, clamp, compare) as the scalar code
+ * (depth_neon.h) and the same integer blend, so the same bytes. */
 #include "raster/blend.h"
 
 #include "raster/depth_neon.h"
@@ -27,9 +27,11 @@ static inline uint8x16_t blend4(uint8x16_t s, uint8x16_t d) {
     return vcombine_u8(vqmovn_u16(lo), vqmovn_u16(hi));
 }
 
-static inline __attribute__((always_inline)) void blend_neon(const void *vctx, const sg_tri *t,
-                                                             int x0, int y0, uint32_t mask,
-                                                             const int zmode, const int zwrite) {
+/* put: the fragments replace the pixels (an opaque line), else they are blended over them. */
+static inline __attribute__((always_inline)) void in_place_neon(const void *vctx, const sg_tri *t,
+                                                                int x0, int y0, uint32_t mask,
+                                                                const int zmode, const int zwrite,
+                                                                const int put) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     if (zmode != Z_NONE || zwrite) {
@@ -55,27 +57,38 @@ static inline __attribute__((always_inline)) void blend_neon(const void *vctx, c
     for (int j = 0; j < 4; j++) {
         uint32_t bits = (mask >> (4 * j)) & 15u;
         if (!bits) continue;
-        uint32x4_t d = vld1q_u32(dst + 4 * j);
-        uint8x16_t out =
-            blend4(vreinterpretq_u8_u32(vld1q_u32(src + 4 * j)), vreinterpretq_u8_u32(d));
-        vst1q_u32(dst + 4 * j, vbslq_u32(sg_lanes4n(bits), vreinterpretq_u32_u8(out), d));
+        uint32x4_t d = vld1q_u32(dst + 4 * j), s = vld1q_u32(src + 4 * j);
+        uint32x4_t out =
+            put ? s
+                : vreinterpretq_u32_u8(blend4(vreinterpretq_u8_u32(s), vreinterpretq_u8_u32(d)));
+        vst1q_u32(dst + 4 * j, vbslq_u32(sg_lanes4n(bits), out, d));
     }
 }
 
-SG_WALK_FN(blend_none_0, blend_neon, Z_NONE, 0)
-SG_WALK_FN(blend_none_1, blend_neon, Z_NONE, 1)
-SG_WALK_FN(blend_any_0, blend_neon, Z_ANY, 0)
-SG_WALK_FN(blend_any_1, blend_neon, Z_ANY, 1)
+SG_IN_PLACE_BODY(blend_neon, in_place_neon, 0)
+SG_IN_PLACE_BODY(put_neon, in_place_neon, 1)
+SG_IN_PLACE_SET(blend, blend_neon)
+SG_IN_PLACE_SET(put, put_neon)
 
 sg_raster_fn sg_blend_neon(bool depth_test, bool depth_write) {
-    static const sg_raster_fn fns[2][2] = {{blend_none_0, blend_none_1},
-                                           {blend_any_0, blend_any_1}};
+    static const sg_raster_fn fns[2][2] = SG_IN_PLACE_TABLE(blend);
+    return fns[depth_test][depth_write];
+}
+
+sg_raster_fn sg_put_neon(bool depth_test, bool depth_write) {
+    static const sg_raster_fn fns[2][2] = SG_IN_PLACE_TABLE(put);
     return fns[depth_test][depth_write];
 }
 
 #else
 
 sg_raster_fn sg_blend_neon(bool depth_test, bool depth_write) {
+    (void)depth_test;
+    (void)depth_write;
+    return NULL;
+}
+
+sg_raster_fn sg_put_neon(bool depth_test, bool depth_write) {
     (void)depth_test;
     (void)depth_write;
     return NULL;

@@ -1,10 +1,36 @@
-/* blend_walk.h - what every instruction set's blend file shares: the table of its raster
- * functions, one per shading variant and depth state (the depth modes and the walk macro are
- * depth_walk.h's; a blended tile is Z_NONE or Z_ANY). Included only by blend*.c. */
+/* blend_walk.h - what every instruction set's blend file shares: the tables of its raster
+ * functions, per depth state and per shading variant (the depth modes and the walk macro are
+ * depth_walk.h's; a tile shaded in place is Z_NONE or Z_ANY). Included only by blend*.c. */
 #ifndef SG_RASTER_BLEND_WALK_H
 #define SG_RASTER_BLEND_WALK_H
 
 #include "raster/depth_walk.h"
+
+/* name(): a tile body that calls body(..., put) with `put` constant (1: the fragments replace the
+ * pixels, an opaque line; 0: they are blended over them). */
+#define SG_IN_PLACE_BODY(name, body, put)                                                          \
+    static inline __attribute__((always_inline)) void name(const void *c, const sg_tri *t, int x0, \
+                                                           int y0, uint32_t m, const int zmode,    \
+                                                           const int zwrite) {                     \
+        body(c, t, x0, y0, m, zmode, zwrite, put);                                                 \
+    }
+
+/* The four raster functions of a tile body, prefix_none_0 ... prefix_any_1 (depth test, depth
+ * write), and their [test][write] table; their tile functions always inlined into the walk. */
+#define SG_IN_PLACE_SET(prefix, body)                                                              \
+    SG_WALK_FN_AS(prefix##_none_0, body, Z_NONE, 0, SG_IN_PLACE_TILE)                              \
+    SG_WALK_FN_AS(prefix##_none_1, body, Z_NONE, 1, SG_IN_PLACE_TILE)                              \
+    SG_WALK_FN_AS(prefix##_any_0, body, Z_ANY, 0, SG_IN_PLACE_TILE)                                \
+    SG_WALK_FN_AS(prefix##_any_1, body, Z_ANY, 1, SG_IN_PLACE_TILE)
+/* Their tile functions are inlined into the walk: a call per tile costs a line's tiles more
+ * than the code's size does. */
+#define SG_IN_PLACE_TILE inline __attribute__((always_inline))
+#define SG_IN_PLACE_TABLE(prefix)                                                                  \
+    {                                                                                              \
+        {prefix##_none_0, prefix##_none_1}, {                                                      \
+            prefix##_any_0, prefix##_any_1                                                         \
+        }                                                                                          \
+    }
 
 /* The blend functions specialised per shading variant of the unlit table (vertex colour; texture
  * nearest / bilinear, repeat / clamp: tex, bil, rep) and depth state (test, write): fn(tex, bil,

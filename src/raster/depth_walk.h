@@ -18,8 +18,12 @@ static inline int sg_zmode(sgCompare compare) {
 /* name(): a raster function (sg_raster_fn) that walks with body(ctx, t, x0, y0, mask, zmode,
  * zwrite) inlined per tile, zmode and zwrite constant, so each compiles without the branches it
  * does not take. */
-#define SG_WALK_FN(name, body, zm, zw)                                                             \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
+#define SG_WALK_FN(name, body, zm, zw) SG_WALK_FN_AS(name, body, zm, zw, inline)
+/* The same with the tile function declared `tile_attr` (inline, or always inlined where the
+ * compiler would keep a large body out of the walk). */
+#define SG_WALK_FN_AS(name, body, zm, zw, tile_attr)                                               \
+    static tile_attr void name##_tile(const void *c, const sg_tri *t, int x0, int y0,              \
+                                      uint32_t m) {                                                \
         body(c, t, x0, y0, m, zm, zw);                                                             \
     }                                                                                              \
     static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \

@@ -159,7 +159,8 @@ static inline const sg_draw_state *pair_draw(const sg_bin_pass *p, const uint32_
  * reached tile is, like this one, wholly one triangle's (the draw's sg_shade2_fn), else one by
  * one, partly covered tiles of draws that pack runs collected in `runs` and shaded at the end
  * (all before this returns). With `forget`, also sets them back to 0 and the tiles to unreached:
- * what visibility decided so far is final before a blended triangle reads the colour. */
+ * what visibility decided so far is final before a triangle shaded in place (blended, or a line)
+ * writes the colour. */
 static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pass *p, run_set *runs,
                                                                 uint32_t *ids, uint64_t *touched,
                                                                 int x0, int y0, uint32_t *color,
@@ -235,12 +236,12 @@ static void write_bin(const sg_bin_pass *p, const bin_view *v, const uint32_t *c
         p->fb->depth_to_linear(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
 }
 
-/* A bin of a pass with blended draws: the colour starts from the pass's load or clear, opaque
- * triangles go through visibility as usual, and before each run of blended triangles the visible
- * ids so far are shaded (shade_reached), so every pixel sees the triangles in submission order.
- * Kept out of line, with its own buffers, so that the opaque path of sg_rast_bin stays as it
- * is. */
-static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg_bin *bin,
+/* A bin of a pass with draws shaded in place (blended ones, lines: blend.h): the colour starts
+ * from the pass's load or clear, other triangles go through visibility as usual, and before each
+ * run of triangles shaded in place the visible ids so far are shaded (shade_reached), so every
+ * pixel sees the triangles in submission order. Kept out of line, with its own buffers, so that
+ * the opaque path of sg_rast_bin stays as it is. */
+static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg_bin *bin,
                                                   const bin_view *v) {
     _Alignas(64) uint32_t color[BIN_PIXELS];
     _Alignas(64) float depth[BIN_PIXELS];
@@ -263,7 +264,7 @@ static __attribute__((noinline)) void blended_bin(const sg_bin_pass *p, const sg
         const sg_draw_state *d = &p->draws[t->draw];
         vis.id = ti + 1;
         vis.compare = d->compare;
-        if (d->blend) {
+        if (d->in_place) {
             if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
             pending = false;
             vis.shade = d->shade_fn;
@@ -347,8 +348,8 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
         depth_only_bin(p, bin, &v);
         return;
     }
-    if (p->any_blend) {
-        blended_bin(p, bin, &v);
+    if (p->any_in_place) {
+        ordered_bin(p, bin, &v);
         return;
     }
 

@@ -28,7 +28,7 @@ typedef struct sg_draw_state {
     sg_shade_runs_fn runs_fn; /* partly covered tiles of a triangle packed together, or NULL */
     sg_shade_ctx ctx;
     sgCompare compare;
-    bool blend; /* raster_fn blends into the colour as it goes (blend.h) */
+    bool in_place; /* raster_fn shades into the colour as it goes: blends, lines (blend.h) */
 } sg_draw_state;
 
 /* Stages of a pass whose wall time a build with SGAPI_STAGE_TIMES adds up (stage_times.h). */
@@ -51,7 +51,7 @@ typedef struct sg_bin_pass {
     uint32_t clear_color;
     float clear_depth;
     bool store_depth;
-    bool any_blend;      /* some draw blends: bins take the ordered path (rast_bin.c) */
+    bool any_in_place;   /* some draw is shaded in place: bins take the ordered path */
     bool any_pair;       /* some draw shades two whole tiles at once (shade2_fn) */
     bool any_runs;       /* some draw packs partly covered tiles (runs_fn) */
     const sg_fb_ops *fb; /* fills and the write, for the device's instruction set */
