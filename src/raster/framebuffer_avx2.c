@@ -11,25 +11,40 @@ static void fill_color(uint32_t *dst, size_t n, uint32_t value) {
     for (size_t i = 0; i < n; i += 8) _mm256_store_si256((__m256i *)(void *)(dst + i), v);
 }
 
-/* Two tiles side by side (8 x 4 pixels) become four rows of 8: the 128-bit tile rows of the two
- * exchanged. A last single tile is copied a tile row at a time. */
+/* The four rows of 8 pixels of two tiles side by side at s (16 pixels a tile): the 128-bit tile
+ * rows of the two exchanged. */
+static inline void pair_rows(const uint32_t *s, __m256i r[4]) {
+    const __m256i a01 = _mm256_loadu_si256((const __m256i *)(const void *)s);
+    const __m256i a23 = _mm256_loadu_si256((const __m256i *)(const void *)(s + 8));
+    const __m256i b01 = _mm256_loadu_si256((const __m256i *)(const void *)(s + 16));
+    const __m256i b23 = _mm256_loadu_si256((const __m256i *)(const void *)(s + 24));
+    r[0] = _mm256_permute2x128_si256(a01, b01, 0x20);
+    r[1] = _mm256_permute2x128_si256(a01, b01, 0x31);
+    r[2] = _mm256_permute2x128_si256(a23, b23, 0x20);
+    r[3] = _mm256_permute2x128_si256(a23, b23, 0x31);
+}
+
+/* Tiles side by side become rows: four tiles (16 x 4 pixels) give each of four rows a whole
+ * 64-byte line, written in one go; then two tiles, half a line; a last single tile is copied a
+ * tile row at a time. */
 static void to_linear(void *dst, size_t pitch, const uint32_t *tiles, int w, int h, int tx) {
     for (int y = 0; y < h; y += 4) {
         const uint32_t *src = tiles + (size_t)(y >> 2) * (size_t)tx * 16;
         uint8_t *row = (uint8_t *)dst + (size_t)y * pitch;
         const int rows = h - y < 4 ? h - y : 4;
         int x = 0;
+        for (; x + 16 <= w; x += 16) { /* four tiles: each row's whole line, both halves */
+            __m256i r[2][4];
+            for (int p = 0; p < 2; p++) pair_rows(src + (size_t)(x + 8 * p) * 4, r[p]);
+            uint8_t *out = row + (size_t)x * 4;
+            for (int k = 0; k < rows; k++) {
+                _mm256_storeu_si256((__m256i *)(void *)(out + (size_t)k * pitch), r[0][k]);
+                _mm256_storeu_si256((__m256i *)(void *)(out + (size_t)k * pitch + 32), r[1][k]);
+            }
+        }
         for (; x + 8 <= w; x += 8) {
-            const uint32_t *s = src + (size_t)x * 4; /* tile x / 4: 16 pixels a tile */
-            const __m256i a01 = _mm256_loadu_si256((const __m256i *)(const void *)s);
-            const __m256i a23 = _mm256_loadu_si256((const __m256i *)(const void *)(s + 8));
-            const __m256i b01 = _mm256_loadu_si256((const __m256i *)(const void *)(s + 16));
-            const __m256i b23 = _mm256_loadu_si256((const __m256i *)(const void *)(s + 24));
             __m256i r[4];
-            r[0] = _mm256_permute2x128_si256(a01, b01, 0x20);
-            r[1] = _mm256_permute2x128_si256(a01, b01, 0x31);
-            r[2] = _mm256_permute2x128_si256(a23, b23, 0x20);
-            r[3] = _mm256_permute2x128_si256(a23, b23, 0x31);
+            pair_rows(src + (size_t)x * 4, r);
             uint8_t *out = row + (size_t)x * 4;
             for (int k = 0; k < rows; k++)
                 _mm256_storeu_si256((__m256i *)(void *)(out + (size_t)k * pitch), r[k]);
