@@ -241,15 +241,29 @@ INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32
                        const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
-    if (zmode != Z_NONE || zwrite) mask = depth_tile(v, t, x0, y0, mask, base, zwrite);
     for (int h = 0; h < 2; h++) {
         unsigned bits = (mask >> (8 * h)) & 255u;
         if (!bits) continue;
         __m256 dx, dy;
-        __m256i s;
         sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
+        __m256i pass = lanes_of(bits);
+        if (zmode != Z_NONE || zwrite) { /* z from the same dx, dy: as sg_zrows8_half has it */
+            float *dp = v->depth + base + 8 * h;
+            __m256 z = _mm256_add_ps(
+                _mm256_add_ps(_mm256_set1_ps(t->z), _mm256_mul_ps(_mm256_set1_ps(t->z_dx), dx)),
+                _mm256_mul_ps(_mm256_set1_ps(t->z_dy), dy));
+            z = _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z));
+            const __m256 d = _mm256_load_ps(dp);
+            if (zmode != Z_NONE) {
+                pass = _mm256_and_si256(pass, _mm256_castps_si256(sg_compare8(v->compare, z, d)));
+                if (_mm256_testz_si256(pass, pass)) continue;
+            }
+            if (zwrite) _mm256_store_ps(dp, _mm256_blendv_ps(d, z, _mm256_castsi256_ps(pass)));
+        }
+        __m256i s;
         shade(v, t, 1, &dx, &dy, &s, 0, 0, 0);
-        blend_rows(v->color + base + 8 * h, s, bits, 1);
+        __m256i *pc = (__m256i *)(void *)(v->color + base + 8 * h);
+        _mm256_store_si256(pc, _mm256_blendv_epi8(_mm256_load_si256(pc), s, pass));
     }
 }
 
