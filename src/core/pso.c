@@ -77,8 +77,8 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     p.raster_shadow = d->blend == SG_BLEND_ALPHA
                           ? sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa)
                           : p.depth_fn;
-    /* Lines and wireframes of opaque draws are shaded as they are rasterised (blend.h); Phong
-     * lighting, a specular material and a shadow map keep them visibility first (sgDraw). */
+    /* Opaque line draws are shaded as they are rasterised (blend.h); Phong lighting, a specular
+     * material and a shadow map keep them visibility first (sgDraw), and so do wireframes. */
     if (d->blend == SG_BLEND_OPAQUE && d->lighting != SG_LIGHTING_PHONG)
         p.raster_line = sg_put_select(variant, d->depth.compare, d->depth.write, dev->isa);
     p.nattr = sg_shade_attr_count(d->shade);

@@ -4,11 +4,12 @@
  * Opaque triangles are rasterised visibility first (depth.h) and shaded once per pixel. A blended
  * triangle cannot wait for that: each pixel must see the triangles in submission order, so the
  * bin's visible ids are shaded first (rast_bin.c), and the blended triangle is then depth tested,
- * shaded and blended into the bin's colour tile by tile, in order. Opaque lines and wireframes of
- * unlit shading go the same way, their fragments put in place of the pixels: a line covers a
- * pixel or two of each tile it crosses and is rarely drawn over, so shading it at once, while
- * its tile is at hand, costs less than keeping its ids for a later pass over the tiles (and gives
- * the same bytes: in both, a pixel shows the last fragment that passed the depth test).
+ * shaded and blended into the bin's colour tile by tile, in order. Opaque line draws of unlit
+ * shading go the same way, their fragments put in place of the pixels: a line covers a pixel or
+ * two of each tile it crosses and is rarely drawn over, so shading it at once, while its tile is
+ * at hand, costs less than keeping its ids for a later pass over the tiles (and gives the same
+ * bytes: in both, a pixel shows the last fragment that passed the depth test). Wireframes stay
+ * visibility first: a mesh's edges are shared and cross at every vertex.
  */
 #ifndef SG_BLEND_H
 #define SG_BLEND_H
