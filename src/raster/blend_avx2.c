@@ -247,13 +247,9 @@ INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32
         __m256 dx, dy;
         sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
         __m256i pass = lanes_of(bits);
-        if (zmode != Z_NONE || zwrite) { /* z from the same dx, dy: as sg_zrows8_half has it */
+        if (zmode != Z_NONE || zwrite) { /* z from the shading's own dx, dy */
             float *dp = v->depth + base + 8 * h;
-            __m256 z = _mm256_add_ps(
-                _mm256_add_ps(_mm256_set1_ps(t->z), _mm256_mul_ps(_mm256_set1_ps(t->z_dx), dx)),
-                _mm256_mul_ps(_mm256_set1_ps(t->z_dy), dy));
-            z = _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z));
-            const __m256 d = _mm256_load_ps(dp);
+            const __m256 z = sg_z8(t, dx, dy), d = _mm256_load_ps(dp);
             if (zmode != Z_NONE) {
                 pass = _mm256_and_si256(pass, _mm256_castps_si256(sg_compare8(v->compare, z, d)));
                 if (_mm256_testz_si256(pass, pass)) continue;

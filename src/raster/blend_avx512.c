@@ -99,6 +99,18 @@ INLINE void finish(const sg_vis_ctx *v, const job *j, __m512i s) {
     }
 }
 
+/* The lanes of `mask` (the tile at bin offset base, pixels at dx, dy) that pass the depth test,
+ * their depth written when the pipeline writes depth; with neither, mask itself. */
+INLINE uint32_t depth16(const sg_vis_ctx *v, const sg_tri *t, __m512 dx, __m512 dy, int base,
+                        uint32_t mask, const int ztest, const int zwrite) {
+    if (!ztest && !zwrite) return mask;
+    float *dp = v->depth + base;
+    __m512 z = sg_z16(t, dx, dy);
+    if (ztest) mask = sg_compare16(v->compare, (__mmask16)mask, z, _mm512_loadu_ps(dp));
+    if (zwrite) _mm512_mask_storeu_ps(dp, (__mmask16)mask, z);
+    return mask;
+}
+
 /* A job shaded with the one waiting, or left waiting for the next. */
 INLINE void submit(queued_ctx *p, const sg_tri *t, const job *j, const int bilinear,
                    const int repeat) {
@@ -124,12 +136,7 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
     const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     __m512 dx, dy;
     sg_tile_dxdy16(t, x0, y0, &dx, &dy);
-    if (ztest || zwrite) {
-        float *dp = v->depth + base;
-        __m512 z = sg_z16(t, dx, dy);
-        mask = sg_compare16(v->compare, (__mmask16)mask, z, _mm512_loadu_ps(dp));
-        if (zwrite) _mm512_mask_storeu_ps(dp, (__mmask16)mask, z);
-    }
+    mask = depth16(v, t, dx, dy, base, mask, ztest, zwrite);
     if (!mask) return;
     if (!textured) { /* vertex colours cost less to shade than to queue */
         __m512i s = shade(v, t, dx, dy, mask, 0, 0, 0);
@@ -196,13 +203,7 @@ INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32
     const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     __m512 dx, dy;
     sg_tile_dxdy16(t, x0, y0, &dx, &dy);
-    if (zmode != Z_NONE || zwrite) {
-        float *dp = v->depth + base;
-        __m512 z = sg_z16(t, dx, dy);
-        if (zmode != Z_NONE)
-            mask = sg_compare16(v->compare, (__mmask16)mask, z, _mm512_loadu_ps(dp));
-        if (zwrite) _mm512_mask_storeu_ps(dp, (__mmask16)mask, z);
-    }
+    mask = depth16(v, t, dx, dy, base, mask, zmode != Z_NONE, zwrite);
     if (!mask) return;
     _mm512_mask_storeu_epi32(v->color + base, (__mmask16)mask, shade(v, t, dx, dy, mask, 0, 0, 0));
 }

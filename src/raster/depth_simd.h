@@ -83,6 +83,14 @@ static inline __m256 sg_zrows8_half(const sg_zrows8 *r, int h) {
     return _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z));
 }
 
+/* The clamped z of the pixels at (dx, dy), any lanes: the same value as sg_zrows8_half gives. */
+static inline __m256 sg_z8(const sg_tri *t, __m256 dx, __m256 dy) {
+    __m256 z = _mm256_add_ps(
+        _mm256_add_ps(_mm256_set1_ps(t->z), _mm256_mul_ps(_mm256_set1_ps(t->z_dx), dx)),
+        _mm256_mul_ps(_mm256_set1_ps(t->z_dy), dy));
+    return _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z));
+}
+
 static inline __m256 sg_compare8(sgCompare op, __m256 z, __m256 d) {
     switch (op) {
     case SG_COMPARE_NEVER:
