@@ -20,8 +20,8 @@ void sg_image_release(sgDevice *dev, sg_image *img) {
 }
 
 /* Pixels start on a cache line (malloc's large blocks start 16 bytes into a page): a bin's rows
- * of a target are then whole lines of its own, written with whole-line stores and never shared
- * with the neighbouring bin that another thread writes. */
+ * of a target are then whole lines of its own, never shared with the neighbouring bin that
+ * another thread writes. */
 enum { DATA_ALIGN = 64 };
 
 static bool is_pass_target(const sgDevice *dev, sgImage2D h) {

@@ -51,9 +51,10 @@ void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, 
 void sg_fill_linear_u32(void *dst, size_t pitch, int w, int h, uint32_t value);
 
 /* A bin's traffic with its own buffers and the target images, per instruction set: the same
- * bytes, stored a whole cache line (AVX-512) or half a line (AVX2) at a time. A bin's rows of a
- * 64-byte aligned target are whole lines, and whole-line stores into them take about a third
- * less time than 16-byte ones (the write of every bin is most of a small scene's frame). */
+ * bytes. The bin's fills (its buffers are in cache) are a whole cache line (AVX-512) or half a
+ * line (AVX2) a store; the writes into the targets, which are not in cache, are 16-byte stores
+ * on every set: wider ones took up to twice as long there (docs/performance.md, "Narrow stores
+ * into the targets"), and the write of every bin is most of a small scene's frame. */
 typedef struct sg_fb_ops {
     /* Fills n 32-bit values of a bin buffer (n a multiple of 16, dst 64-byte aligned). */
     void (*fill_color)(uint32_t *dst, size_t n, uint32_t value);

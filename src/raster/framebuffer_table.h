@@ -1,7 +1,7 @@
 /* framebuffer_table.h - the parts of an instruction set's sg_fb_ops that only adapt its
- * fill_color and to_linear: the depth fill and the two typed writes, then the table itself.
- * Included once, at the end of framebuffer_<set>.c, after that file defines fill_color,
- * to_linear and fill_linear and sets SG_FB_TABLE to the table's name. */
+ * fill_color: the depth fill, then the table itself, whose writes into the targets are the
+ * portable ones. Included once, at the end of framebuffer_<set>.c, after that file defines
+ * fill_color and sets SG_FB_TABLE to the table's name. */
 #include <string.h>
 
 static void fill_depth(float *dst, size_t n, float value) {
@@ -10,14 +10,5 @@ static void fill_depth(float *dst, size_t n, float value) {
     fill_color((uint32_t *)(void *)dst, n, bits); /* stored by intrinsics, which may alias */
 }
 
-static void color_to_linear(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h,
-                            int tx) {
-    to_linear(dst, pitch, tiles, w, h, tx);
-}
-
-static void depth_to_linear(float *dst, size_t pitch, const float *tiles, int w, int h, int tx) {
-    to_linear(dst, pitch, (const uint32_t *)(const void *)tiles, w, h, tx);
-}
-
-const sg_fb_ops SG_FB_TABLE = {fill_color, fill_depth, color_to_linear, depth_to_linear,
-                               fill_linear};
+const sg_fb_ops SG_FB_TABLE = {fill_color, fill_depth, sg_tile_to_linear_rgba8,
+                               sg_tile_to_linear_f32, sg_fill_linear_u32};
