@@ -42,19 +42,15 @@ static void round_trip_odd_sizes(void **state) {
     free(ft);
 }
 
-/* The instruction sets' fills and writes (sg_fb_ops) give the portable functions' bytes for every
- * size of a bin's part of an image (edges included), into a target at any 4-byte offset, and
- * touch nothing outside the w x h pixels. */
+/* The instruction sets' fills of a bin's buffers (sg_fb_ops) give the portable functions' bytes. */
 static void fb_ops_match_portable(void **state) {
     (void)state;
-    enum { BIN = 64, PITCH = 80 * 4, GUARD = 0x5a };
+    enum { BIN = 64 };
     const struct {
         sg_isa isa;
         const sg_fb_ops *ops;
     } sets[] = {{SG_ISA_AVX2, &sg_fb_ops_avx2}, {SG_ISA_AVX512, &sg_fb_ops_avx512}};
-    _Alignas(64) uint32_t tiles[BIN * BIN], a[BIN * BIN], b[BIN * BIN];
-    uint8_t *want = malloc(PITCH * (BIN + 2)), *got = malloc(PITCH * (BIN + 2));
-    for (int i = 0; i < BIN * BIN; i++) tiles[i] = (uint32_t)i * 2654435761u;
+    _Alignas(64) uint32_t a[BIN * BIN], b[BIN * BIN];
     for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++) {
         if (!sg_isa_runs(sets[k].isa)) continue;
         const sg_fb_ops *ops = sets[k].ops, *ref = &sg_fb_ops_portable;
@@ -64,22 +60,41 @@ static void fb_ops_match_portable(void **state) {
         ops->fill_depth((float *)(void *)a, BIN * BIN, 0.25f);
         ref->fill_depth((float *)(void *)b, BIN * BIN, 0.25f);
         assert_memory_equal(a, b, sizeof a);
-        for (int w = 1; w <= BIN; w++)
-            for (int h = 1; h <= BIN; h += (h < 8 ? 1 : 7))
-                for (int off = 0; off < 64; off += 20) {
-                    memset(want, GUARD, PITCH * (BIN + 2));
-                    memset(got, GUARD, PITCH * (BIN + 2));
-                    ref->color_to_linear(want + PITCH + off, PITCH, tiles, w, h, BIN / 4);
-                    ops->color_to_linear(got + PITCH + off, PITCH, tiles, w, h, BIN / 4);
-                    assert_memory_equal(want, got, PITCH * (BIN + 2));
-                    ops->depth_to_linear((float *)(void *)(got + PITCH + off), PITCH,
-                                         (const float *)(const void *)tiles, w, h, BIN / 4);
-                    assert_memory_equal(want, got, PITCH * (BIN + 2));
-                    ref->fill_linear(want + PITCH + off, PITCH, w, h, 0xdeadbeefu);
-                    ops->fill_linear(got + PITCH + off, PITCH, w, h, 0xdeadbeefu);
-                    assert_memory_equal(want, got, PITCH * (BIN + 2));
-                }
     }
+}
+
+/* A bin's writes into a target (every set's) put each pixel of every size of a bin's part of an
+ * image (edges included) where sg_fb_index says, into a target at any 4-byte offset in a line,
+ * and touch nothing outside the w x h pixels. */
+static void bin_writes_stay_in_place(void **state) {
+    (void)state;
+    enum { BIN = 64, PITCH = 80 * 4, GUARD = 0x5a };
+    _Alignas(64) uint32_t tiles[BIN * BIN];
+    uint8_t *want = malloc(PITCH * (BIN + 2)), *got = malloc(PITCH * (BIN + 2));
+    for (int i = 0; i < BIN * BIN; i++) tiles[i] = (uint32_t)i * 2654435761u;
+    for (int w = 1; w <= BIN; w++)
+        for (int h = 1; h <= BIN; h += (h < 8 ? 1 : 7))
+            for (int off = 0; off < 64; off += 20) {
+                uint8_t *at = got + PITCH + off;
+                memset(want, GUARD, PITCH * (BIN + 2));
+                for (int y = 0; y < h; y++)
+                    for (int x = 0; x < w; x++)
+                        memcpy(want + PITCH + off + (size_t)y * PITCH + (size_t)x * 4,
+                               &tiles[sg_fb_index(BIN / 4, x, y)], 4);
+                memset(got, GUARD, PITCH * (BIN + 2));
+                sg_tile_to_linear_rgba8(at, PITCH, tiles, w, h, BIN / 4);
+                assert_memory_equal(want, got, PITCH * (BIN + 2));
+                memset(got, GUARD, PITCH * (BIN + 2));
+                sg_tile_to_linear_f32((float *)(void *)at, PITCH,
+                                      (const float *)(const void *)tiles, w, h, BIN / 4);
+                assert_memory_equal(want, got, PITCH * (BIN + 2));
+                for (int y = 0; y < h; y++)
+                    for (int x = 0; x < w; x++)
+                        memcpy(want + PITCH + off + (size_t)y * PITCH + (size_t)x * 4,
+                               &(uint32_t){0xdeadbeefu}, 4);
+                sg_fill_linear_u32(at, PITCH, w, h, 0xdeadbeefu);
+                assert_memory_equal(want, got, PITCH * (BIN + 2));
+            }
     free(want);
     free(got);
 }
@@ -89,6 +104,7 @@ int main(void) {
         cmocka_unit_test(index_layout),
         cmocka_unit_test(round_trip_odd_sizes),
         cmocka_unit_test(fb_ops_match_portable),
+        cmocka_unit_test(bin_writes_stay_in_place),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -84,5 +84,4 @@ void sg_fill_linear_u32(void *dst, size_t pitch, int w, int h, uint32_t value) {
     }
 }
 
-const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth, sg_tile_to_linear_rgba8,
-                                      sg_tile_to_linear_f32, sg_fill_linear_u32};
+const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth};

@@ -50,21 +50,15 @@ void sg_tile_to_linear_f32(float *dst, size_t pitch, const float *tiles, int w, 
 /** Fills w x h 32-bit pixels of linear rows `pitch` bytes apart. */
 void sg_fill_linear_u32(void *dst, size_t pitch, int w, int h, uint32_t value);
 
-/* A bin's traffic with its own buffers and the target images, per instruction set: the same
- * bytes. The bin's fills (its buffers are in cache) are a whole cache line (AVX-512) or half a
- * line (AVX2) a store; the writes into the targets, which are not in cache, are 16-byte stores
- * on every set: wider ones took up to twice as long there (docs/performance.md, "Narrow stores
- * into the targets"), and the write of every bin is most of a small scene's frame. */
+/* The fills of a bin's own buffers, per instruction set: the same bytes, a whole cache line
+ * (AVX-512) or half a line (AVX2) a store, faster than 16-byte ones into buffers in cache. The
+ * writes into the target images (sg_tile_to_linear_*, sg_fill_linear_u32) are the portable ones
+ * on every set: 16 bytes a store, which took up to half the time of wider ones into lines not in
+ * cache (docs/performance.md, "Narrow stores into the targets"). */
 typedef struct sg_fb_ops {
     /* Fills n 32-bit values of a bin buffer (n a multiple of 16, dst 64-byte aligned). */
     void (*fill_color)(uint32_t *dst, size_t n, uint32_t value);
     void (*fill_depth)(float *dst, size_t n, float value);
-    /* As sg_tile_to_linear_rgba8 and sg_tile_to_linear_f32 (on x86 the same copy). */
-    void (*color_to_linear)(uint8_t *dst, size_t pitch, const uint32_t *tiles, int w, int h,
-                            int tx);
-    void (*depth_to_linear)(float *dst, size_t pitch, const float *tiles, int w, int h, int tx);
-    /* As sg_fill_linear_u32. */
-    void (*fill_linear)(void *dst, size_t pitch, int w, int h, uint32_t value);
 } sg_fb_ops;
 
 /** The portable functions (any byte order). */

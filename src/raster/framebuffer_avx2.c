@@ -1,5 +1,5 @@
-/* framebuffer_avx2.c - a bin's fills half a cache line (8 pixels) a store; its writes into the
- * target images are the portable ones (see sg_fb_ops in framebuffer.h). */
+/* framebuffer_avx2.c - a bin's fills half a cache line (8 pixels) a store (see sg_fb_ops in
+ * framebuffer.h). */
 #include "raster/framebuffer.h"
 
 #if defined(__AVX2__)
@@ -13,6 +13,5 @@ static void fill_color(uint32_t *dst, size_t n, uint32_t value) {
 #define SG_FB_TABLE sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
 #else
-const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth, sg_tile_to_linear_rgba8,
-                                  sg_tile_to_linear_f32, sg_fill_linear_u32};
+const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth};
 #endif

@@ -1,7 +1,7 @@
-/* framebuffer_table.h - the parts of an instruction set's sg_fb_ops that only adapt its
- * fill_color: the depth fill, then the table itself, whose writes into the targets are the
- * portable ones. Included once, at the end of framebuffer_<set>.c, after that file defines
- * fill_color and sets SG_FB_TABLE to the table's name. */
+/* framebuffer_table.h - the part of an instruction set's sg_fb_ops that only adapts its
+ * fill_color: the depth fill, then the table itself. Included once, at the end of
+ * framebuffer_<set>.c, after that file defines fill_color and sets SG_FB_TABLE to the table's
+ * name. */
 #include <string.h>
 
 static void fill_depth(float *dst, size_t n, float value) {
@@ -10,5 +10,4 @@ static void fill_depth(float *dst, size_t n, float value) {
     fill_color((uint32_t *)(void *)dst, n, bits); /* stored by intrinsics, which may alias */
 }
 
-const sg_fb_ops SG_FB_TABLE = {fill_color, fill_depth, sg_tile_to_linear_rgba8,
-                               sg_tile_to_linear_f32, sg_fill_linear_u32};
+const sg_fb_ops SG_FB_TABLE = {fill_color, fill_depth};

@@ -231,9 +231,9 @@ static void prefetch_target(const bin_view *v) {
 /* The bin's pixels written once to the targets. */
 static void write_bin(const sg_bin_pass *p, const bin_view *v, const uint32_t *color,
                       const float *depth) {
-    p->fb->color_to_linear(v->color, v->pitch, color, v->w, v->h, BIN_TILES);
+    sg_tile_to_linear_rgba8(v->color, v->pitch, color, v->w, v->h, BIN_TILES);
     if (v->depth && p->store_depth)
-        p->fb->depth_to_linear(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
+        sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
 }
 
 /* A bin of a pass with draws shaded in place (blended ones, lines: blend.h): the colour starts
@@ -315,7 +315,7 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
     sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, NULL, NULL, NULL};
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
-    if (p->store_depth) p->fb->depth_to_linear(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
+    if (p->store_depth) sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }
 
@@ -335,11 +335,11 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     SG_STAGE_START(clock);
     if (!bin->count) { /* nothing drawn here: the pass's load and clear are the result */
         if (v.color && !p->load_color)
-            p->fb->fill_linear(v.color, v.pitch, v.w, v.h, p->clear_color);
+            sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
         if (v.depth && p->store_depth && !p->load_depth) {
             uint32_t bits;
             memcpy(&bits, &p->clear_depth, 4);
-            p->fb->fill_linear(v.depth, v.pitch, v.w, v.h, bits);
+            sg_fill_linear_u32(v.depth, v.pitch, v.w, v.h, bits);
         }
         SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
         return;

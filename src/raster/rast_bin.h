@@ -54,7 +54,7 @@ typedef struct sg_bin_pass {
     bool any_in_place;   /* some draw is shaded in place: bins take the ordered path */
     bool any_pair;       /* some draw shades two whole tiles at once (shade2_fn) */
     bool any_runs;       /* some draw packs partly covered tiles (runs_fn) */
-    const sg_fb_ops *fb; /* fills and the write, for the device's instruction set */
+    const sg_fb_ops *fb; /* the bin's fills, for the device's instruction set */
     void *stage_times;   /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 
