@@ -257,6 +257,67 @@ static void huge_triangle_stays_exact(void **state) {
     free(c);
 }
 
+static float uniform(uint32_t *seed, float lo, float hi) {
+    *seed = *seed * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (float)(*seed >> 8) / 16777216.0f;
+}
+
+/* sg_depth_passes_all, against every pixel's own depth (sg_tri_depth, as every set computes it):
+ * a range just past the triangle's largest (smallest) pixel depth never passes all for LESS and
+ * LESS_EQUAL (GREATER and GREATER_EQUAL), so the margin covers the pixels' rounding; when it says
+ * all pass, they do, at both ends of the range. Planes reach outside [0, 1] (clamped depths). */
+static void depth_bound_holds_every_pixel(void **state) {
+    (void)state;
+    uint32_t seed = 12345;
+    int passed = 0;
+    for (int round = 0; round < 3000; round++) {
+        sg_tri t;
+        memset(&t, 0, sizeof t);
+        t.minx = (int)uniform(&seed, 0, 40);
+        t.miny = (int)uniform(&seed, 0, 40);
+        t.maxx = t.minx + (int)uniform(&seed, 0, 30);
+        t.maxy = t.miny + (int)uniform(&seed, 0, 30);
+        t.z = uniform(&seed, -0.1f, 1.1f);
+        const float slope = round % 3 ? 1e-3f : 0.05f;
+        t.z_dx = uniform(&seed, -slope, slope);
+        t.z_dy = uniform(&seed, -slope, slope);
+        /* the rectangle the bound is asked for: part of the bounds, or beyond them */
+        const int x0 = (int)uniform(&seed, 0, 48), y0 = (int)uniform(&seed, 0, 48);
+        const int x1 = x0 + (int)uniform(&seed, 0, 32), y1 = y0 + (int)uniform(&seed, 0, 32);
+        float zmin = INFINITY, zmax = -INFINITY;
+        for (int y = t.miny > y0 ? t.miny : y0; y <= (t.maxy < y1 ? t.maxy : y1); y++)
+            for (int x = t.minx > x0 ? t.minx : x0; x <= (t.maxx < x1 ? t.maxx : x1); x++) {
+                float z = sg_tri_depth(&t, (float)(x - t.minx), (float)(y - t.miny));
+                zmin = z < zmin ? z : zmin;
+                zmax = z > zmax ? z : zmax;
+            }
+        if (zmin > zmax) { /* no pixel there: nothing to claim */
+            assert_false(sg_depth_passes_all(&t, SG_COMPARE_LESS, x0, y0, x1, y1, 1.0f, 1.0f));
+            continue;
+        }
+        assert_false(sg_depth_passes_all(&t, SG_COMPARE_LESS, x0, y0, x1, y1, zmax, 1.0f));
+        assert_false(sg_depth_passes_all(&t, SG_COMPARE_LESS_EQUAL, x0, y0, x1, y1,
+                                         nextafterf(zmax, 0.0f), 1.0f));
+        assert_false(sg_depth_passes_all(&t, SG_COMPARE_GREATER, x0, y0, x1, y1, 0.0f, zmin));
+        assert_false(sg_depth_passes_all(&t, SG_COMPARE_GREATER_EQUAL, x0, y0, x1, y1, 0.0f,
+                                         nextafterf(zmin, 1.0f)));
+        assert_false(sg_depth_passes_all(&t, SG_COMPARE_EQUAL, x0, y0, x1, y1, 1.0f, 1.0f));
+        const sgCompare ops[] = {SG_COMPARE_LESS, SG_COMPARE_LESS_EQUAL, SG_COMPARE_GREATER,
+                                 SG_COMPARE_GREATER_EQUAL};
+        for (int k = 0; k < 4; k++) {
+            const float lo = uniform(&seed, 0.0f, 1.0f), hi = uniform(&seed, lo, 1.0f);
+            if (!sg_depth_passes_all(&t, ops[k], x0, y0, x1, y1, lo, hi)) continue;
+            passed++;
+            for (int y = t.miny > y0 ? t.miny : y0; y <= (t.maxy < y1 ? t.maxy : y1); y++)
+                for (int x = t.minx > x0 ? t.minx : x0; x <= (t.maxx < x1 ? t.maxx : x1); x++) {
+                    float z = sg_tri_depth(&t, (float)(x - t.minx), (float)(y - t.miny));
+                    assert_true(sg_depth_passes(ops[k], z, lo) && sg_depth_passes(ops[k], z, hi));
+                }
+        }
+    }
+    assert_true(passed > 1000); /* the bound is not only safe but of use */
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(square_halves_cover_each_pixel_once),
@@ -265,6 +326,7 @@ int main(void) {
         cmocka_unit_test(walks_agree_with_edge_functions),
         cmocka_unit_test(culling_and_zero_area),
         cmocka_unit_test(huge_triangle_stays_exact),
+        cmocka_unit_test(depth_bound_holds_every_pixel),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,6 +1,7 @@
 /* test_tile.c - the 4x4 tiled framebuffer layout and its conversion to and from linear images. */
 #include "test_common.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -63,6 +64,42 @@ static void fb_ops_match_portable(void **state) {
     }
 }
 
+/* Every set's depth range of a bin buffer is its smallest and largest value, and none is given
+ * when a value is negative, -0 or NaN (+inf is a value). */
+static void depth_range_of_bin(void **state) {
+    (void)state;
+    enum { N = 64 * 64 };
+    const sg_fb_ops *sets[] = {&sg_fb_ops_portable, &sg_fb_ops_avx2, &sg_fb_ops_avx512};
+    const sg_isa isas[] = {SG_ISA_SCALAR, SG_ISA_AVX2, SG_ISA_AVX512};
+    _Alignas(64) static float d[N];
+    uint32_t seed = 7;
+    for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++) {
+        if (!sg_isa_runs(isas[k])) continue;
+        for (int round = 0; round < 40; round++) {
+            float want_lo = 2.0f, want_hi = -1.0f;
+            for (int i = 0; i < N; i++) {
+                seed = seed * 1664525u + 1013904223u;
+                d[i] = (float)(seed >> 8) / 16777216.0f * (round % 2 ? 1.0f : 1e-30f);
+                want_lo = d[i] < want_lo ? d[i] : want_lo;
+                want_hi = d[i] > want_hi ? d[i] : want_hi;
+            }
+            float lo, hi;
+            assert_true(sets[k]->depth_range(d, N, &lo, &hi));
+            assert_true(lo == want_lo && hi == want_hi);
+            const int at = (round * 977) % N;
+            const float keep = d[at];
+            const float odd[] = {-0.0f, -0.5f, NAN, -NAN, INFINITY};
+            for (size_t j = 0; j < sizeof odd / sizeof odd[0]; j++) {
+                d[at] = odd[j];
+                const bool ok = sets[k]->depth_range(d, N, &lo, &hi);
+                assert_int_equal(ok, odd[j] == INFINITY);
+                if (ok) assert_true(hi == INFINITY);
+            }
+            d[at] = keep;
+        }
+    }
+}
+
 /* A bin's writes into a target (every set's) put each pixel of every size of a bin's part of an
  * image (edges included) where sg_fb_index says, into a target at any 4-byte offset in a line,
  * and touch nothing outside the w x h pixels. */
@@ -104,6 +141,7 @@ int main(void) {
         cmocka_unit_test(index_layout),
         cmocka_unit_test(round_trip_odd_sizes),
         cmocka_unit_test(fb_ops_match_portable),
+        cmocka_unit_test(depth_range_of_bin),
         cmocka_unit_test(bin_writes_stay_in_place),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -45,7 +45,9 @@ typedef struct sg_pso {
     sg_shade_runs_fn runs_fn;   /* partly covered tiles packed together (NULL: none) */
     sg_shade_runs_fn runs_sec;  /* the same for shade_sec */
     sg_raster_fn raster_shadow; /* raster_fn, for draws that receive a shadow map */
-    sg_raster_fn raster_line;   /* opaque unlit lines shaded in place (blend.h), or NULL */
+    sg_raster_fn raster_pass;   /* raster_fn without depth test (sg_draw_state), or NULL */
+    sg_raster_fn raster_shadow_pass; /* the same for raster_shadow */
+    sg_raster_fn raster_line;        /* opaque unlit lines shaded in place (blend.h), or NULL */
     int nattr;
     bool uses_depth;
 } sg_pso;

@@ -501,6 +501,10 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                     : shadowed  ? pso->raster_shadow
                     : put_lines ? pso->raster_line
                                 : pso->raster_fn;
+    ds->raster_pass_fn = depth_only || put_lines ? NULL
+                         : shadowed              ? pso->raster_shadow_pass
+                                                 : pso->raster_pass;
+    ds->writes_depth = pso->desc.depth.write;
     ds->shade_fn = shadowed ? pso->shade_shadow : sec ? pso->shade_sec : pso->shade_fn;
     ds->shade2_fn = shadowed ? NULL : sec ? pso->shade2_sec : pso->shade2_fn;
     ds->runs_fn = shadowed ? NULL : sec ? pso->runs_sec : pso->runs_fn;

@@ -77,6 +77,15 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     p.raster_shadow = d->blend == SG_BLEND_ALPHA
                           ? sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa)
                           : p.depth_fn;
+    /* A blend that tests depth without writing it: the same functions without the test, for
+     * triangles in front of a whole bin's depth (rast_bin.c). */
+    const sgCompare c = d->depth.compare;
+    if (d->blend == SG_BLEND_ALPHA && !d->depth.write &&
+        (c == SG_COMPARE_LESS || c == SG_COMPARE_LESS_EQUAL || c == SG_COMPARE_GREATER ||
+         c == SG_COMPARE_GREATER_EQUAL)) {
+        p.raster_pass = sg_blend_select(lit ? -1 : variant, SG_COMPARE_ALWAYS, false, dev->isa);
+        p.raster_shadow_pass = sg_blend_select(-1, SG_COMPARE_ALWAYS, false, dev->isa);
+    }
     /* Opaque line draws are shaded as they are rasterised (blend.h); Phong lighting, a specular
      * material and a shadow map keep them visibility first (sgDraw), and so do wireframes. */
     if (d->blend == SG_BLEND_OPAQUE && d->lighting != SG_LIGHTING_PHONG)

@@ -75,6 +75,13 @@ static inline bool sg_depth_passes(sgCompare op, float z, float d) {
     }
 }
 
+/** Whether every pixel of t in the rectangle [x0, x1] x [y0, y1] (inclusive) passes compare `op`
+ *  against every stored depth in [lo, hi], whatever the pixel's value there: a bound of t's plane
+ *  with a margin for rounding. False also for the compares it does not bound (EQUAL, NOT_EQUAL,
+ *  NEVER, ALWAYS). */
+bool sg_depth_passes_all(const sg_tri *t, sgCompare op, int x0, int y0, int x1, int y1, float lo,
+                         float hi);
+
 /** The tile's ids in the bin, the tile marked as reached: shading visits only reached tiles.
  *  (No branch on a first visit: one that mispredicts once per tile costs more than clearing the
  *  bin's ids up front.) */

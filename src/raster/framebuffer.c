@@ -84,4 +84,8 @@ void sg_fill_linear_u32(void *dst, size_t pitch, int w, int h, uint32_t value) {
     }
 }
 
-const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth};
+bool sg_fb_depth_range(const float *src, size_t n, float *lo, float *hi) {
+    return sg_fb_depth_range_of(src, n, lo, hi);
+}
+
+const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth, sg_fb_depth_range};

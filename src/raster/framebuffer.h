@@ -8,8 +8,10 @@
 #ifndef SG_FRAMEBUFFER_H
 #define SG_FRAMEBUFFER_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #define SG_TILE        4
 #define SG_TILE_SHIFT  2
@@ -59,7 +61,30 @@ typedef struct sg_fb_ops {
     /* Fills n 32-bit values of a bin buffer (n a multiple of 16, dst 64-byte aligned). */
     void (*fill_color)(uint32_t *dst, size_t n, uint32_t value);
     void (*fill_depth)(float *dst, size_t n, float value);
+    /* sg_fb_depth_range, vectorised for the set */
+    bool (*depth_range)(const float *src, size_t n, float *lo, float *hi);
 } sg_fb_ops;
+
+/* The body of every set's sg_fb_depth_range: floats in [+0, +inf] order as their bit patterns
+ * do, and an integer min and max vectorise on every set; a negative value or -0 (below 0 as
+ * int32) or a NaN (above +inf) gives up. */
+static inline bool sg_fb_depth_range_of(const float *src, size_t n, float *lo, float *hi) {
+    int32_t mn = INT32_MAX, mx = INT32_MIN;
+    for (size_t i = 0; i < n; i++) {
+        int32_t b;
+        memcpy(&b, src + i, sizeof b);
+        mn = b < mn ? b : mn;
+        mx = b > mx ? b : mx;
+    }
+    if (mn < 0 || mx > 0x7f800000) return false;
+    memcpy(lo, &mn, sizeof *lo);
+    memcpy(hi, &mx, sizeof *hi);
+    return true;
+}
+
+/** The smallest and largest of n depths of a bin buffer; false (nothing given) when one is
+ *  negative, -0 or NaN. */
+bool sg_fb_depth_range(const float *src, size_t n, float *lo, float *hi);
 
 /** The portable functions (any byte order). */
 extern const sg_fb_ops sg_fb_ops_portable;

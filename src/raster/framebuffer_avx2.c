@@ -13,5 +13,5 @@ static void fill_color(uint32_t *dst, size_t n, uint32_t value) {
 #define SG_FB_TABLE sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
 #else
-const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth};
+const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth, sg_fb_depth_range};
 #endif

@@ -236,6 +236,32 @@ static void write_bin(const sg_bin_pass *p, const bin_view *v, const uint32_t *c
         sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
 }
 
+/* Asks for the bin's i-th triangle, if any: a triangle is four cache lines, often not in cache
+ * (visibility and the ordered bins ask two triangles ahead). */
+static inline void prefetch_tri(const sg_binner *b, const sg_bin *bin, uint32_t i) {
+    if (i >= bin->count) return;
+    const char *t = (const char *)&b->tris[bin->tris[i]];
+    for (size_t off = 0; off < sizeof(sg_tri); off += 64) __builtin_prefetch(t + off);
+}
+
+/* A bin's depth range (sg_fb_depth_range), known or not yet; valid: known and given. */
+typedef struct depth_range {
+    bool known, valid;
+    float lo, hi;
+} depth_range;
+
+/* Whether triangle t passes its depth compare at each of its pixels in the bin at (x0, y0), so
+ * that its raster function without the test draws the same (depth_range.c). */
+static bool passes_bin(const sg_bin_pass *p, depth_range *r, const float *depth, const sg_tri *t,
+                       sgCompare op, int x0, int y0) {
+    if (!r->known) {
+        r->valid = p->fb->depth_range(depth, BIN_PIXELS, &r->lo, &r->hi);
+        r->known = true;
+    }
+    return r->valid && sg_depth_passes_all(t, op, x0, y0, x0 + SG_BIN_SIZE - 1,
+                                           y0 + SG_BIN_SIZE - 1, r->lo, r->hi);
+}
+
 /* A bin of a pass with draws shaded in place (blended ones, lines: blend.h): the colour starts
  * from the pass's load or clear, other triangles go through visibility as usual, and before each
  * run of triangles shaded in place the visible ids so far are shaded (shade_reached), so every
@@ -258,21 +284,31 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
                       SG_COMPARE_ALWAYS,       color, NULL,    NULL};
     bool pending = false; /* ids hold opaque triangles not shaded yet */
     run_set run_buf, *runs = start_runs(p, &run_buf);
+    /* The bin's depth range, worked out when a blend first asks for it after a depth write
+     * (passes_bin). It takes every value of the buffer: a loaded bin's pixels outside the target
+     * were never written, so such bins have none. */
+    depth_range range = {.known = !v->depth ||
+                                  (p->load_depth && (v->w < SG_BIN_SIZE || v->h < SG_BIN_SIZE))};
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
+        prefetch_tri(b, bin, i + 2);
         const sg_draw_state *d = &p->draws[t->draw];
         vis.id = ti + 1;
         vis.compare = d->compare;
+        sg_raster_fn fn = d->raster_fn;
         if (d->in_place) {
             if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
             pending = false;
             vis.shade = d->shade_fn;
             vis.shade_ctx = &d->ctx;
+            if (d->raster_pass_fn && passes_bin(p, &range, depth, t, d->compare, x0, y0))
+                fn = d->raster_pass_fn;
         } else {
             pending = true;
         }
-        d->raster_fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
+        fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
+        if (d->writes_depth && range.valid) range.known = false;
     }
     if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
@@ -288,10 +324,7 @@ static inline __attribute__((always_inline)) void visibility(const sg_bin_pass *
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
-        if (i + 2 < bin->count) { /* a triangle is four cache lines, often not in cache */
-            const char *next = (const char *)&b->tris[bin->tris[i + 2]];
-            for (size_t off = 0; off < sizeof(sg_tri); off += 64) __builtin_prefetch(next + off);
-        }
+        prefetch_tri(b, bin, i + 2);
         const sg_draw_state *d = &p->draws[t->draw];
         vis->id = ti + 1;
         vis->compare = d->compare;

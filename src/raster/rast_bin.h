@@ -23,6 +23,10 @@
 /* What the back end needs of one draw: its pipeline's functions and its bound texture. */
 typedef struct sg_draw_state {
     sg_raster_fn raster_fn; /* coverage and visibility (depth.h) */
+    /* raster_fn without its depth test, for triangles that pass it at every pixel of a bin
+     * (sg_depth_passes_all): blends that test depth and do not write it; else NULL. */
+    sg_raster_fn raster_pass_fn;
+    bool writes_depth;
     sg_shade_fn shade_fn;
     sg_shade2_fn shade2_fn;   /* two whole tiles of a triangle at once, or NULL */
     sg_shade_runs_fn runs_fn; /* partly covered tiles of a triangle packed together, or NULL */
