@@ -371,15 +371,6 @@ INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext
     for (int i = 0; i < n; i++) out[i] = pack_unorm8(col[i]);
 }
 
-/* shade8_sets on one set of eight pixels. */
-INLINE __m256i sg_shade8_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
-                            __m256 dx, __m256 dy, const int textured, const int bilinear,
-                            const int repeat, const int flat, const int sec) {
-    __m256i out;
-    shade8_sets(c, t, ext, 1, &dx, &dy, &out, textured, bilinear, repeat, flat, sec);
-    return out;
-}
-
 /* dx and dy of rows 2h and 2h + 1 of the tile at (x0, y0), from the triangle's bounds: row 2h in
  * the low half, 2h + 1 in the high half (exact small integers). */
 INLINE void sg_rows_dxdy8(const sg_tri *t, int x0, int y0, int h, __m256 *dx, __m256 *dy) {
