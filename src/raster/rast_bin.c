@@ -236,8 +236,13 @@ static void write_bin(const sg_bin_pass *p, const bin_view *v, const uint32_t *c
         sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
 }
 
-/* Asks for the bin's i-th triangle, if any: a triangle is four cache lines, often not in cache
- * (visibility and the ordered bins ask two triangles ahead). */
+/* How many triangles ahead visibility and the ordered bins ask for the next: a triangle is four
+ * cache lines, often not in cache (a big mesh's triangles outgrow it), and a small triangle's
+ * visibility takes less time than a load from memory, so two ahead came too late (08_terrain 0.94
+ * with twelve; docs/performance.md, "Triangles asked for twelve ahead"). */
+enum { PREFETCH_AHEAD = 12 };
+
+/* Asks for the bin's i-th triangle, if any. */
 static inline void prefetch_tri(const sg_binner *b, const sg_bin *bin, uint32_t i) {
     if (i >= bin->count) return;
     const char *t = (const char *)&b->tris[bin->tris[i]];
@@ -292,7 +297,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
-        prefetch_tri(b, bin, i + 2);
+        prefetch_tri(b, bin, i + PREFETCH_AHEAD);
         const sg_draw_state *d = &p->draws[t->draw];
         vis.id = ti + 1;
         vis.compare = d->compare;
@@ -324,7 +329,7 @@ static inline __attribute__((always_inline)) void visibility(const sg_bin_pass *
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
-        prefetch_tri(b, bin, i + 2);
+        prefetch_tri(b, bin, i + PREFETCH_AHEAD);
         const sg_draw_state *d = &p->draws[t->draw];
         vis->id = ti + 1;
         vis->compare = d->compare;
