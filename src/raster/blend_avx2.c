@@ -259,7 +259,14 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int 
         sg_queue8 q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};       \
         const flat_src f =                                                                         \
             flat_src_of(!tex && t->flat != SG_FLAT_NONE ? sg_flat_pixel(t, NULL, 0) : 0u);         \
-        queued_ctx p = {.v = c, .q = &q, .flat = &f}; /* no job waiting */                         \
+        /* Field by field: an initializer clears all 192 bytes with a string store, whose start    \
+         * costs more than the stores of the fields (a call per triangle and bin). */              \
+        queued_ctx p;                                                                              \
+        p.v = c;                                                                                   \
+        p.q = &q;                                                                                  \
+        p.pending = (job){_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0, 0}; \
+        p.has_pending = false; /* no job waiting */                                                \
+        p.flat = &f;                                                                               \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
         drain(&p, t, tex, bil, rep);                                                               \
     }
