@@ -278,7 +278,6 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
     uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
-    memset(ids, 0, sizeof ids);
     SG_STAGE_START(clock);
     start_depth(p, v, depth);
     start_color(p, v, color);
@@ -288,6 +287,9 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   touched, x0,  y0, 0,
                       SG_COMPARE_ALWAYS,       color, NULL,    NULL};
     bool pending = false; /* ids hold opaque triangles not shaded yet */
+    /* The ids are cleared when the first triangle that writes them comes: a bin of lines and
+     * blends alone never reads them (16 KB a bin not cleared). */
+    bool ids_clear = false;
     run_set run_buf, *runs = start_runs(p, &run_buf);
     /* The bin's depth range, worked out when a blend first asks for it after a depth write
      * (passes_bin). It takes every value of the buffer: a loaded bin's pixels outside the target
@@ -310,6 +312,8 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
             if (d->raster_pass_fn && passes_bin(p, &range, depth, t, d->compare, x0, y0))
                 fn = d->raster_pass_fn;
         } else {
+            if (!ids_clear) memset(ids, 0, sizeof ids);
+            ids_clear = true;
             pending = true;
         }
         fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
