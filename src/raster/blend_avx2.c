@@ -10,10 +10,12 @@
  * and full queues of a textured triangle are shaded two at a time, side by side. The pixels of one
  * triangle are all different, so blending some later changes nothing, as long as it is done before
  * the next triangle. Lit draws call the draw's shading function per tile. Opaque lines put their
- * fragments in place the same ways: vertex colours inlined, the others through the draw's
- * function.
+ * fragments in place: vertex colours eight columns of the line a vector (put_line), the others
+ * through the draw's function per tile.
  */
 #include "raster/blend.h"
+
+#include <string.h>
 
 #include "raster/blend_walk.h"
 #include "raster/depth_simd.h"
@@ -301,6 +303,86 @@ INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32
 
 SG_IN_PLACE_SET(put, put_inline)
 
+/* The 32-bit lanes of `bits` of v stored at their offsets (in 4-byte units) from dst. */
+INLINE void scatter_lanes(void *dst, __m256i off, __m256i v, unsigned bits) {
+    _Alignas(32) uint32_t val[8];
+    _Alignas(32) int32_t at[8];
+    _mm256_store_si256((__m256i *)(void *)val, v);
+    _mm256_store_si256((__m256i *)(void *)at, off);
+    for (; bits; bits &= bits - 1) {
+        const int k = __builtin_ctz(bits);
+        memcpy((uint32_t *)dst + at[k], &val[k], 4);
+    }
+}
+
+/* An opaque vertex-coloured line put along its major axis, eight columns a vector: a line has one
+ * pixel a column, so a tile holds at most four of them, in one pair of rows or both, and the tile
+ * walk shades a vector of eight lanes for one to four pixels. Here each lane is a pixel: its
+ * depth is read and written, and its colour stored, through its offset in the bin. The pixels of
+ * a line are all different, so the order of the stores changes nothing; each lane computes what
+ * put_inline computes for its pixel, so the bytes are the same. */
+INLINE void put_line(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, const sg_vis_ctx *v,
+                     const int zmode, const int zwrite) {
+    sg_line_dda d;
+    if (!sg_line_dda_start(t, rx0, ry0, rx1, ry1, &d)) return;
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), three = _mm256_set1_epi32(3);
+    for (int u = d.u0; u <= d.u1; u += 8) {
+        _Alignas(32) int32_t vs[8];
+        unsigned bits = 0;
+        const int n = d.u1 - u < 7 ? d.u1 - u + 1 : 8;
+        for (int k = 0; k < 8; k++) { /* lanes past the last column repeat it, unused */
+            vs[k] = d.v;
+            if (k >= n) continue;
+            bits |= (unsigned)(d.v >= d.v0 && d.v <= d.v1) << k;
+            sg_line_dda_step(&d);
+        }
+        if (!bits) continue;
+        const __m256i cu = _mm256_add_epi32(_mm256_set1_epi32(u), lane);
+        const __m256i cv = _mm256_load_si256((const __m256i *)(const void *)vs);
+        const __m256i x = d.xm ? cu : cv, y = d.xm ? cv : cu;
+        __m256 dx = _mm256_cvtepi32_ps(_mm256_sub_epi32(x, _mm256_set1_epi32(t->minx)));
+        __m256 dy = _mm256_cvtepi32_ps(_mm256_sub_epi32(y, _mm256_set1_epi32(t->miny)));
+        /* The pixel's place in the bin: its tile's (sg_bin_tile_offset), then its row and column.
+         */
+        const __m256i bx = _mm256_sub_epi32(x, _mm256_set1_epi32(v->bx0));
+        const __m256i by = _mm256_sub_epi32(y, _mm256_set1_epi32(v->by0));
+        const __m256i off =
+            _mm256_add_epi32(_mm256_add_epi32(_mm256_slli_epi32(_mm256_srli_epi32(by, 2), 8),
+                                              _mm256_slli_epi32(_mm256_srli_epi32(bx, 2), 4)),
+                             _mm256_add_epi32(_mm256_slli_epi32(_mm256_and_si256(by, three), 2),
+                                              _mm256_and_si256(bx, three)));
+        if (zmode != Z_NONE || zwrite) {
+            const __m256 z = sg_z8(t, dx, dy);
+            if (zmode != Z_NONE) {
+                const __m256 pass = _mm256_castsi256_ps(lanes_of(bits));
+                const __m256 dd =
+                    _mm256_mask_i32gather_ps(_mm256_setzero_ps(), v->depth, off, pass, 4);
+                bits &= (unsigned)_mm256_movemask_ps(
+                    _mm256_and_ps(pass, sg_compare8(v->compare, z, dd)));
+                if (!bits) continue;
+            }
+            if (zwrite) scatter_lanes(v->depth, off, _mm256_castps_si256(z), bits);
+        }
+        __m256i s;
+        shade(v, t, 1, &dx, &dy, &s, 0, 0, 0);
+        scatter_lanes(v->color, off, s, bits);
+    }
+}
+
+/* The raster functions of opaque vertex-coloured lines, per depth state: put_line, or the tile
+ * walk (put_*) for anything else. */
+#define SG_PUT_LINE_FN(zname, zm, zw)                                                              \
+    static void put_line_##zname(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) { \
+        if (t->line)                                                                               \
+            put_line(t, x0, y0, x1, y1, c, zm, zw);                                                \
+        else                                                                                       \
+            put_##zname(t, x0, y0, x1, y1, c);                                                     \
+    }
+SG_PUT_LINE_FN(none_0, Z_NONE, 0)
+SG_PUT_LINE_FN(none_1, Z_NONE, 1)
+SG_PUT_LINE_FN(any_0, Z_ANY, 0)
+SG_PUT_LINE_FN(any_1, Z_ANY, 1)
+
 sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
     if (variant < 0) {
         static const sg_raster_fn call[2][2] = SG_IN_PLACE_TABLE(blend);
@@ -311,7 +393,7 @@ sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
 }
 
 sg_raster_fn sg_put_avx2(int variant, bool depth_test, bool depth_write) {
-    static const sg_raster_fn inlined[2][2] = SG_IN_PLACE_TABLE(put);
+    static const sg_raster_fn inlined[2][2] = SG_IN_PLACE_TABLE(put_line);
     static const sg_raster_fn call[2][2] = SG_IN_PLACE_TABLE(put_call);
     return (variant == 0 ? inlined : call)[depth_test][depth_write];
 }

@@ -466,10 +466,20 @@ static inline int64_t sg_walk_floor_div(int64_t a, int64_t b) { /* b > 0 */
  * min_lo): there edge 0 is in [0, minor_step) and edge 1, minor_step - 1 minus edge 0, is not
  * negative, and at no other pixel of the column are both. F changes by major_step a column and
  * |major_step| <= minor_step, so an integer DDA follows the quotient exactly (the pixels are the
- * edge functions' own), a step moving it by at most one. Each four columns' pixels fall in one or
- * two tiles, whose masks are built here: no tile is tested, none is visited without a pixel. */
-SG_WALK_INLINE void line_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
-                              const void *ctx) {
+ * edge functions' own), a step moving it by at most one. */
+typedef struct sg_line_dda {
+    bool xm;    /* x-major: u is x, v is y */
+    int u0, u1; /* the columns to draw */
+    int v0, v1; /* the minor range to draw (a pixel outside is skipped) */
+    int v;      /* the pixel of the current column (u0 at the start) */
+    int dir;    /* where v moves: +1 or -1 */
+    int64_t r;  /* a remainder in [0, minor_step) that grows by `grow` a column */
+    int64_t grow, minor_step;
+} sg_line_dda;
+
+/* The DDA of line t at its first column within [rx0, rx1) x [ry0, ry1); false: no pixel there. */
+SG_WALK_INLINE bool sg_line_dda_start(const sg_tri *t, int rx0, int ry0, int rx1, int ry1,
+                                      sg_line_dda *d) {
     const bool xm = t->line == 1;
     const int64_t major_step = xm ? t->edge_dx[0] : t->edge_dy[0];
     const int64_t minor_step = -(xm ? t->edge_dy[0] : t->edge_dx[0]); /* > 0 */
@@ -483,34 +493,56 @@ SG_WALK_INLINE void line_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry
     if (u1 > ru1) u1 = ru1;
     if (v0 < rv0) v0 = rv0;
     if (v1 > rv1) v1 = rv1;
-    if (u0 > u1 || v0 > v1) return;
+    if (u0 > u1 || v0 > v1) return false;
     const int64_t f = t->edge[0] + (int64_t)(u0 - maj_lo) * major_step;
     const int64_t q0 = sg_walk_floor_div(f, minor_step), rem = f - q0 * minor_step;
-    /* The pixel v and a remainder r in [0, minor_step) that grows by |major_step| a column: when
-     * it reaches minor_step, v moves by `dir`. (Going down, r is minor_step - 1 minus the true
-     * remainder, which falls by |major_step| and moves v when it turns negative.) */
-    const int64_t grow = major_step < 0 ? -major_step : major_step;
-    const int dir = major_step < 0 ? -1 : 1;
-    int64_t r = major_step < 0 ? minor_step - 1 - rem : rem;
-    int v = min_lo + (int)q0; /* within the snapped coordinates / 256: it fits */
-    for (int ub = u0 & ~(SG_TILE - 1); ub <= u1; ub += SG_TILE) {
+    /* Going down, r is minor_step - 1 minus the true remainder, which falls by |major_step| and
+     * moves v when it turns negative. */
+    *d = (sg_line_dda){xm,
+                       u0,
+                       u1,
+                       v0,
+                       v1,
+                       min_lo + (int)q0, /* within the snapped coordinates / 256: it fits */
+                       major_step < 0 ? -1 : 1,
+                       major_step < 0 ? minor_step - 1 - rem : rem,
+                       major_step < 0 ? -major_step : major_step,
+                       minor_step};
+    return true;
+}
+
+/* On to the next column. */
+SG_WALK_INLINE void sg_line_dda_step(sg_line_dda *d) {
+    d->r += d->grow; /* without branches: where v moves is not predictable */
+    const bool move = d->r >= d->minor_step;
+    d->v += move ? d->dir : 0;
+    d->r -= move ? d->minor_step : 0;
+}
+
+/* The tile walk of a line: each four columns' pixels fall in one or two tiles, whose masks are
+ * built here: no tile is tested, none is visited without a pixel. */
+SG_WALK_INLINE void line_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
+                              const void *ctx) {
+    sg_line_dda d;
+    if (!sg_line_dda_start(t, rx0, ry0, rx1, ry1, &d)) return;
+    const bool xm = d.xm;
+    for (int ub = d.u0 & ~(SG_TILE - 1); ub <= d.u1; ub += SG_TILE) {
         /* The tile column's pixels in the tiles `first` and first + 1 across (a 16-bit mask
          * each, the low and the high half): the first column's pixel fixes `first`, and the
          * others are within 3 of it, on the side the line goes. */
-        const int first = (v >> SG_TILE_SHIFT) - (dir < 0 && (v & (SG_TILE - 1)) < SG_TILE - 1);
+        const int first =
+            (d.v >> SG_TILE_SHIFT) - (d.dir < 0 && (d.v & (SG_TILE - 1)) < SG_TILE - 1);
         uint32_t mask = 0;
-        const int ue = ub + SG_TILE - 1 < u1 ? ub + SG_TILE - 1 : u1;
-        for (int u = ub > u0 ? ub : u0; u <= ue; u++) {
-            if (v >= v0 && v <= v1) {
+        const int ue = ub + SG_TILE - 1 < d.u1 ? ub + SG_TILE - 1 : d.u1;
+        for (int u = ub > d.u0 ? ub : d.u0; u <= ue; u++) {
+            const int v = d.v;
+            if (v >= d.v0 && v <= d.v1) {
                 const int at = ((v >> SG_TILE_SHIFT) - first) * SG_TILE_PIXELS +
                                (xm ? (v & (SG_TILE - 1)) * SG_TILE + (u & (SG_TILE - 1))
                                    : (u & (SG_TILE - 1)) * SG_TILE + (v & (SG_TILE - 1)));
                 mask |= 1u << at;
             }
-            r += grow; /* without branches: where v moves is not predictable */
-            const bool move = r >= minor_step;
-            v += move ? dir : 0;
-            r -= move ? minor_step : 0;
+            sg_line_dda_step(&d);
         }
         for (int k = 0; k < 2; k++, mask >>= SG_TILE_PIXELS) {
             if (!(mask & 0xffffu)) continue;
