@@ -328,14 +328,7 @@ INLINE void put_line(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, const 
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), three = _mm256_set1_epi32(3);
     for (int u = d.u0; u <= d.u1; u += 8) {
         _Alignas(32) int32_t vs[8];
-        unsigned bits = 0;
-        const int n = d.u1 - u < 7 ? d.u1 - u + 1 : 8;
-        for (int k = 0; k < 8; k++) { /* lanes past the last column repeat it, unused */
-            vs[k] = d.v;
-            if (k >= n) continue;
-            bits |= (unsigned)(d.v >= d.v0 && d.v <= d.v1) << k;
-            sg_line_dda_step(&d);
-        }
+        unsigned bits = sg_line_dda_columns(&d, vs, 8, d.u1 - u < 7 ? d.u1 - u + 1 : 8);
         if (!bits) continue;
         const __m256i cu = _mm256_add_epi32(_mm256_set1_epi32(u), lane);
         const __m256i cv = _mm256_load_si256((const __m256i *)(const void *)vs);
@@ -369,19 +362,7 @@ INLINE void put_line(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, const 
     }
 }
 
-/* The raster functions of opaque vertex-coloured lines, per depth state: put_line, or the tile
- * walk (put_*) for anything else. */
-#define SG_PUT_LINE_FN(zname, zm, zw)                                                              \
-    static void put_line_##zname(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) { \
-        if (t->line)                                                                               \
-            put_line(t, x0, y0, x1, y1, c, zm, zw);                                                \
-        else                                                                                       \
-            put_##zname(t, x0, y0, x1, y1, c);                                                     \
-    }
-SG_PUT_LINE_FN(none_0, Z_NONE, 0)
-SG_PUT_LINE_FN(none_1, Z_NONE, 1)
-SG_PUT_LINE_FN(any_0, Z_ANY, 0)
-SG_PUT_LINE_FN(any_1, Z_ANY, 1)
+SG_PUT_LINE_SET(put_line)
 
 sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
     if (variant < 0) {

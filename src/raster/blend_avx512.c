@@ -3,7 +3,8 @@
  * vector; the same depth (z, clamp, compare) as the scalar and SSE2 code, the shading body of
  * shade_avx512.h inlined (a call per tile would spill every vector register of the walk), and
  * the same integer blend, so the same bytes. One function per shading variant and depth state;
- * opaque lines of vertex colours put their fragments in place. */
+ * opaque lines of vertex colours put their fragments in place, sixteen columns of the line a
+ * vector (put_line). */
 #include "raster/blend.h"
 
 #include "raster/depth_simd.h"
@@ -241,8 +242,55 @@ INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32
 
 SG_IN_PLACE_SET(put, put_inline)
 
+/* An opaque vertex-coloured line put along its major axis, sixteen columns a vector: a line has
+ * one pixel a column, so a tile holds at most four of them, and the tile walk shades a vector of
+ * sixteen lanes for one to four pixels. Here each lane is a pixel, its depth and colour gathered
+ * and scattered through its offset in the bin. The pixels of a line are all different, so the
+ * order of the stores changes nothing; each lane computes what put_inline computes for its
+ * pixel, so the bytes are the same. */
+INLINE void put_line(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, const sg_vis_ctx *v,
+                     const int zmode, const int zwrite) {
+    sg_line_dda d;
+    if (!sg_line_dda_start(t, rx0, ry0, rx1, ry1, &d)) return;
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512i three = _mm512_set1_epi32(3);
+    for (int u = d.u0; u <= d.u1; u += 16) {
+        _Alignas(64) int32_t vs[16];
+        uint32_t bits = sg_line_dda_columns(&d, vs, 16, d.u1 - u < 15 ? d.u1 - u + 1 : 16);
+        if (!bits) continue;
+        const __m512i cu = _mm512_add_epi32(_mm512_set1_epi32(u), lane);
+        const __m512i cv = _mm512_load_si512(vs);
+        const __m512i x = d.xm ? cu : cv, y = d.xm ? cv : cu;
+        const __m512 dx = _mm512_cvtepi32_ps(_mm512_sub_epi32(x, _mm512_set1_epi32(t->minx)));
+        const __m512 dy = _mm512_cvtepi32_ps(_mm512_sub_epi32(y, _mm512_set1_epi32(t->miny)));
+        /* The pixel's place in the bin: its tile's (sg_bin_tile_offset), then its row and column.
+         */
+        const __m512i bx = _mm512_sub_epi32(x, _mm512_set1_epi32(v->bx0));
+        const __m512i by = _mm512_sub_epi32(y, _mm512_set1_epi32(v->by0));
+        const __m512i off =
+            _mm512_add_epi32(_mm512_add_epi32(_mm512_slli_epi32(_mm512_srli_epi32(by, 2), 8),
+                                              _mm512_slli_epi32(_mm512_srli_epi32(bx, 2), 4)),
+                             _mm512_add_epi32(_mm512_slli_epi32(_mm512_and_si512(by, three), 2),
+                                              _mm512_and_si512(bx, three)));
+        if (zmode != Z_NONE || zwrite) {
+            const __m512 z = sg_z16(t, dx, dy);
+            if (zmode != Z_NONE) {
+                const __m512 dd = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), (__mmask16)bits,
+                                                           off, v->depth, 4);
+                bits = sg_compare16(v->compare, (__mmask16)bits, z, dd);
+                if (!bits) continue;
+            }
+            if (zwrite) _mm512_mask_i32scatter_ps(v->depth, (__mmask16)bits, off, z, 4);
+        }
+        _mm512_mask_i32scatter_epi32(v->color, (__mmask16)bits, off,
+                                     shade(v, t, dx, dy, bits, 0, 0, 0), 4);
+    }
+}
+
+SG_PUT_LINE_SET(put_line)
+
 sg_raster_fn sg_put_avx512(bool depth_test, bool depth_write) {
-    static const sg_raster_fn fns[2][2] = SG_IN_PLACE_TABLE(put);
+    static const sg_raster_fn fns[2][2] = SG_IN_PLACE_TABLE(put_line);
     return fns[depth_test][depth_write];
 }
 

@@ -32,6 +32,22 @@
         }                                                                                          \
     }
 
+/* The raster functions of opaque lines, put_line_none_0 ... put_line_any_1 and their table
+ * (SG_IN_PLACE_TABLE(put_line)): line_fn(t, x0, y0, x1, y1, ctx, zmode, zwrite) for a line, and for
+ * anything else the tile walk of SG_IN_PLACE_SET(put, ...). */
+#define SG_PUT_LINE_SET(line_fn)                                                                   \
+    SG_PUT_LINE_FN(line_fn, none_0, Z_NONE, 0)                                                     \
+    SG_PUT_LINE_FN(line_fn, none_1, Z_NONE, 1)                                                     \
+    SG_PUT_LINE_FN(line_fn, any_0, Z_ANY, 0)                                                       \
+    SG_PUT_LINE_FN(line_fn, any_1, Z_ANY, 1)
+#define SG_PUT_LINE_FN(line_fn, zname, zm, zw)                                                     \
+    static void put_line_##zname(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) { \
+        if (t->line)                                                                               \
+            line_fn(t, x0, y0, x1, y1, c, zm, zw);                                                 \
+        else                                                                                       \
+            put_##zname(t, x0, y0, x1, y1, c);                                                     \
+    }
+
 /* The blend functions specialised per shading variant of the unlit table (vertex colour; texture
  * nearest / bilinear, repeat / clamp: tex, bil, rep) and depth state (test, write): fn(tex, bil,
  * rep, zt, zw) defines blend_<tex><bil><rep><zt><zw> once per combination, and SG_BLEND_TABLE is

@@ -519,6 +519,20 @@ SG_WALK_INLINE void sg_line_dda_step(sg_line_dda *d) {
     d->r -= move ? d->minor_step : 0;
 }
 
+/* The pixels of the next `lanes` columns of which n (1 .. lanes) are drawn, the DDA moved past
+ * those n: their minor coordinates in vs (the lanes past n repeat the next pixel, unused), and
+ * the bits of the lanes inside the minor range. */
+SG_WALK_INLINE uint32_t sg_line_dda_columns(sg_line_dda *d, int32_t *vs, const int lanes, int n) {
+    uint32_t bits = 0;
+    for (int k = 0; k < lanes; k++) {
+        vs[k] = d->v;
+        if (k >= n) continue;
+        bits |= (uint32_t)(d->v >= d->v0 && d->v <= d->v1) << k;
+        sg_line_dda_step(d);
+    }
+    return bits;
+}
+
 /* The tile walk of a line: each four columns' pixels fall in one or two tiles, whose masks are
  * built here: no tile is tested, none is visited without a pixel. */
 SG_WALK_INLINE void line_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
