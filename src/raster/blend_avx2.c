@@ -15,8 +15,6 @@
  */
 #include "raster/blend.h"
 
-#include <string.h>
-
 #include "raster/blend_walk.h"
 #include "raster/depth_simd.h"
 #include "raster/shade_avx2.h"
@@ -165,7 +163,7 @@ INLINE void shade(const sg_vis_ctx *v, const sg_tri *t, const int n, const __m25
 INLINE void blend_scattered(const sg_vis_ctx *v, __m256i qoff, __m256i s, int n) {
     /* Every lane's offset is a pixel of the bin, so the gather reads only the bin. */
     __m256i d = _mm256_i32gather_epi32((const int *)(const void *)v->color, qoff, 4);
-    sg_scatter8(v->color, qoff, blend8(s, d), n);
+    sg_scatter8(v->color, qoff, blend8(s, d), (1u << n) - 1u);
 }
 
 /* The shaded fragments s of a job blended into the bin's colour. */
@@ -303,18 +301,6 @@ INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32
 
 SG_IN_PLACE_SET(put, put_inline)
 
-/* The 32-bit lanes of `bits` of v stored at their offsets (in 4-byte units) from dst. */
-INLINE void scatter_lanes(void *dst, __m256i off, __m256i v, unsigned bits) {
-    _Alignas(32) uint32_t val[8];
-    _Alignas(32) int32_t at[8];
-    _mm256_store_si256((__m256i *)(void *)val, v);
-    _mm256_store_si256((__m256i *)(void *)at, off);
-    for (; bits; bits &= bits - 1) {
-        const int k = __builtin_ctz(bits);
-        memcpy((uint32_t *)dst + at[k], &val[k], 4);
-    }
-}
-
 /* An opaque vertex-coloured line put along its major axis, eight columns a vector: a line has one
  * pixel a column, so a tile holds at most four of them, in one pair of rows or both, and the tile
  * walk shades a vector of eight lanes for one to four pixels. Here each lane is a pixel: its
@@ -354,11 +340,11 @@ INLINE void put_line(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, const 
                     _mm256_and_ps(pass, sg_compare8(v->compare, z, dd)));
                 if (!bits) continue;
             }
-            if (zwrite) scatter_lanes(v->depth, off, _mm256_castps_si256(z), bits);
+            if (zwrite) sg_scatter8(v->depth, off, _mm256_castps_si256(z), bits);
         }
         __m256i s;
         shade(v, t, 1, &dx, &dy, &s, 0, 0, 0);
-        scatter_lanes(v->color, off, s, bits);
+        sg_scatter8(v->color, off, s, bits);
     }
 }
 

@@ -162,8 +162,8 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
             const __m256 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
             __m256i v[2];
             shade8_sets(c, t, ext, 2, fdx, fdy, v, textured, bilinear, repeat, flat, sec);
-            sg_scatter8(color, full[0].off, v[0], 8);
-            sg_scatter8(color, full[1].off, v[1], 8);
+            sg_scatter8(color, full[0].off, v[0], 255u);
+            sg_scatter8(color, full[1].off, v[1], 255u);
             nfull = 0;
         }
     }
@@ -171,12 +171,12 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
         __m256i v;
         shade8_sets(c, t, ext, 1, &full[0].dx, &full[0].dy, &v, textured, bilinear, repeat, flat,
                     sec);
-        sg_scatter8(color, full[0].off, v, 8);
+        sg_scatter8(color, full[0].off, v, 255u);
     }
     if (q.n) {
         __m256i v;
         shade8_sets(c, t, ext, 1, &q.dx, &q.dy, &v, textured, bilinear, repeat, flat, sec);
-        sg_scatter8(color, q.off, v, q.n);
+        sg_scatter8(color, q.off, v, (1u << q.n) - 1u);
     }
 }
 

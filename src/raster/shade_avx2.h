@@ -9,6 +9,7 @@
 #define SG_SHADE_AVX2_H
 
 #include <float.h>
+#include <string.h>
 
 #include "raster/shade.h"
 
@@ -424,13 +425,17 @@ INLINE bool sg_enqueue8(sg_queue8 *q, __m256 dx, __m256 dy, int off, unsigned bi
     return true;
 }
 
-/* Writes v's first n lanes at their offsets in dst (eight offsets, different ones). */
-INLINE void sg_scatter8(uint32_t *dst, __m256i off, __m256i v, int n) {
+/* Writes v's lanes of `bits` (32-bit values) at their offsets in dst, in 4-byte units (different
+ * offsets). */
+INLINE void sg_scatter8(void *dst, __m256i off, __m256i v, unsigned bits) {
     _Alignas(32) uint32_t val[8];
     _Alignas(32) int32_t at[8];
     _mm256_store_si256((__m256i *)(void *)val, v);
     _mm256_store_si256((__m256i *)(void *)at, off);
-    for (int k = 0; k < n; k++) dst[at[k]] = val[k];
+    for (; bits; bits &= bits - 1) {
+        const int k = __builtin_ctz(bits);
+        memcpy((uint32_t *)dst + at[k], &val[k], 4);
+    }
 }
 
 /* Writes the lanes of `m` (8 bits) of two rows; other pixels are not touched. */
