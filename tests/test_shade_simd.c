@@ -415,10 +415,11 @@ static void compare_variant(int variant, int kind) {
                has_neon = sg_isa_runs(SG_ISA_NEON);
     const int index = variant + (kind == SECONDARY ? SG_SHADE_SECONDARY : 0);
     sg_shade_fn scalar, sse2 = NULL, avx2 = NULL, avx512 = NULL, neon = NULL;
-    sg_shade2_fn pair = NULL; /* AVX-512's two whole tiles at once, for the unlit variants */
+    /* AVX2's and AVX-512's two whole tiles at once, for the unlit variants */
+    sg_shade2_fn pair[2] = {NULL, NULL};
     /* AVX2's and AVX-512's partly covered tiles packed together */
     sg_shade_runs_fn runs[2] = {NULL, NULL};
-    static const char *const runs_set[2] = {"AVX2", "AVX-512"};
+    static const char *const set_name[2] = {"AVX2", "AVX-512"};
     if (kind >= PHONG) {
         const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
                            : kind == PHONG_SHADOW ? SG_PIXEL_PHONG_SHADOW
@@ -436,7 +437,8 @@ static void compare_variant(int variant, int kind) {
         sse2 = sg_shade_sse2(index);
         if (has_avx2) avx2 = sg_shade_avx2(index);
         if (has_avx512) avx512 = sg_shade_avx512(index);
-        if (has_avx512) pair = sg_shade2_avx512(index);
+        if (has_avx2) pair[0] = sg_shade2_avx2(index);
+        if (has_avx512) pair[1] = sg_shade2_avx512(index);
         if (has_avx2) runs[0] = sg_shade_runs_avx2(index);
         if (has_avx512) runs[1] = sg_shade_runs_avx512(index);
         if (has_neon) neon = sg_shade_neon(index);
@@ -494,16 +496,18 @@ static void compare_variant(int variant, int kind) {
             if (neon && !same_as_reference(neon, "NEON", &ctx, &t, e, x0, y0, mask, sentinel, ref,
                                            variant, flat, n))
                 failures++;
-            if (pair) { /* this tile and another of the triangle, whole, as two scalar calls */
+            for (int set = 0; set < 2; set++) {
+                if (!pair[set]) continue;
+                /* this tile and another of the triangle, whole, as two scalar calls */
                 int x1 = x0 + 4 * (int)(next(&g) % 5) - 8, y1 = y0 + 4 * (int)(next(&g) % 3);
                 uint32_t r0[16], r1[16], p0[16], p1[16];
                 scalar(&ctx, &t, x0, y0, 0xffffu, r0);
                 scalar(&ctx, &t, x1, y1, 0xffffu, r1);
-                pair(&ctx, &t, x0, y0, x1, y1, p0, p1);
+                pair[set](&ctx, &t, x0, y0, x1, y1, p0, p1);
                 if (memcmp(r0, p0, sizeof r0) || memcmp(r1, p1, sizeof r1)) {
-                    printf("AVX-512 pair differs: variant %d flat %d case %ld, tiles (%d, %d) and "
+                    printf("%s pair differs: variant %d flat %d case %ld, tiles (%d, %d) and "
                            "(%d, %d)\n",
-                           variant, flat, n, x0, y0, x1, y1);
+                           set_name[set], variant, flat, n, x0, y0, x1, y1);
                     failures++;
                 }
             }
@@ -530,7 +534,7 @@ static void compare_variant(int variant, int kind) {
                 }
                 runs[set](&ctx, &t, bx0, by0, list, nruns, bin_out);
                 if (memcmp(bin_ref, bin_out, BIN_PIXELS * sizeof *bin_out)) {
-                    printf("%s runs differ: variant %d flat %d case %ld, %d runs\n", runs_set[set],
+                    printf("%s runs differ: variant %d flat %d case %ld, %d runs\n", set_name[set],
                            variant, flat, n, nruns);
                     failures++;
                 }

@@ -68,7 +68,8 @@ sg_shade_fn sg_shade_select_variant(int variant, sg_isa isa) {
 }
 
 sg_shade2_fn sg_shade2_select_variant(int variant, sg_isa isa) {
-    return isa == SG_ISA_AVX512 ? sg_shade2_avx512(variant) : NULL;
+    if (isa == SG_ISA_AVX512) return sg_shade2_avx512(variant);
+    return isa == SG_ISA_AVX2 ? sg_shade2_avx2(variant) : NULL;
 }
 
 sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa) {

@@ -106,9 +106,10 @@ sg_shade_fn sg_shade_sse2(int variant);
 sg_shade_fn sg_shade_avx2(int variant);
 sg_shade_fn sg_shade_avx512(int variant);
 /** The two-tile function of an unlit variant for the instruction set, or NULL where it has none
- *  (all but AVX-512); the callers then shade each tile alone. */
+ *  (all but AVX2 and AVX-512); the callers then shade each tile alone. */
 sg_shade2_fn sg_shade2_select_variant(int variant, sg_isa isa);
 sg_shade2_fn sg_shade2_avx512(int variant);
+sg_shade2_fn sg_shade2_avx2(int variant);
 /** The packed-runs function of an unlit variant for the instruction set, or NULL where it has
  *  none; the callers then shade each run alone. */
 sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa);

@@ -139,6 +139,37 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 #define SG_SHADE_TABLE sg_shade_avx2
 #include "raster/shade_variants.h"
 
+/* Two whole tiles of a triangle at once (sg_shade2_fn): their four pairs of rows shaded side by
+ * side, the flat kind split off as in shade_flat. */
+INLINE void shade_pair(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
+                       int y0, int x1, int y1, uint32_t *dst0, uint32_t *dst1, const int textured,
+                       const int bilinear, const int repeat, const int flat, const int sec) {
+    __m256 dx[4], dy[4];
+    for (int h = 0; h < 2; h++) {
+        sg_rows_dxdy8(t, x0, y0, h, &dx[h], &dy[h]);
+        sg_rows_dxdy8(t, x1, y1, h, &dx[2 + h], &dy[2 + h]);
+    }
+    __m256i v[4];
+    shade8_sets(c, t, ext, 4, dx, dy, v, textured, bilinear, repeat, flat, sec);
+    _mm256_storeu_si256((__m256i *)(void *)dst0, v[0]);
+    _mm256_storeu_si256((__m256i *)(void *)(dst0 + 8), v[1]);
+    _mm256_storeu_si256((__m256i *)(void *)dst1, v[2]);
+    _mm256_storeu_si256((__m256i *)(void *)(dst1 + 8), v[3]);
+}
+
+/* Bilinear variants only: a nearest texel is a short chain, and 04_textured_cube (nearest) was
+ * slower in pairs. */
+SG_PAIR_VARIANT(1, 1, 1, 0)
+SG_PAIR_VARIANT(1, 1, 0, 0)
+SG_PAIR_VARIANT(1, 1, 1, 1)
+SG_PAIR_VARIANT(1, 1, 0, 1)
+
+sg_shade2_fn sg_shade2_avx2(int index) {
+    static const sg_shade2_fn table[10] = {NULL, NULL, NULL, pair_1110, pair_1100,
+                                           NULL, NULL, NULL, pair_1111, pair_1101};
+    return table[index];
+}
+
 /* Runs of a triangle (sg_shade_runs_fn): the pixels of each pair of rows packed eight to a vector
  * (sg_queue8), two full vectors shaded side by side, each lane stored at its own offset. */
 INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
@@ -186,6 +217,11 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 #else
 
 sg_shade_fn sg_shade_avx2(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade2_fn sg_shade2_avx2(int index) {
     (void)index;
     return NULL;
 }

@@ -296,14 +296,14 @@ INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
 }
 
 /* The colours of eight pixels at offsets (dx, dy) from the triangle's bounds, as RGBA8 lanes, for
- * n sets of eight (n is 1 or 2, a constant): the body of every variant (the constant arguments
+ * n sets of eight (n is 1, 2 or 4, a constant): the body of every variant (the constant arguments
  * fold away), in the reference's operation order ((a + a_dx dx) + a_dy dy, then times 1/q). Each
- * step is done for every set before the next, so two sets' long chains of dependent steps run
- * side by side (as shade16_tiles in shade_avx512.h). Lanes need not be neighbours: each computes
- * what the reference computes for its pixel, wherever that is, so the blend can shade pixels of
- * several tiles together. Every lane's fetch stays in the texture whatever its coordinates.
- * shade_rows (shade_avx2.c) is the same body for the two row pairs of one tile, with the terms
- * both pairs share computed once (keep the two in step). */
+ * step is done for every set before the next, so the sets' long chains of dependent steps run
+ * side by side (as shade16_tiles in shade_avx512.h): two, or four for two whole tiles. Lanes need
+ * not be neighbours: each computes what the reference computes for its pixel, wherever that is, so
+ * the blend can shade pixels of several tiles together. Every lane's fetch stays in the texture
+ * whatever its coordinates. shade_rows (shade_avx2.c) is the same body for the two row pairs of one
+ * tile, with the terms both pairs share computed once (keep the two in step). */
 INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, const int n,
                         const __m256 dx[], const __m256 dy[], __m256i out[], const int textured,
                         const int bilinear, const int repeat, const int flat, const int sec) {
@@ -316,7 +316,7 @@ INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext
 #define SG_PLANE(a, adx, ady, i)                                                                   \
     _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(a), _mm256_mul_ps(_mm256_set1_ps(adx), dx[i])),     \
                   _mm256_mul_ps(_mm256_set1_ps(ady), dy[i]))
-    __m256 w[2], col[2][4];
+    __m256 w[4], col[4][4];
     for (int i = 0; i < n; i++)
         w[i] = _mm256_div_ps(_mm256_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy, i));
     for (int i = 0; i < n; i++)
@@ -326,14 +326,14 @@ INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext
                             : _mm256_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k], i), w[i]);
     if (textured) {
         const tex8 tx = tex8_of(&c->tex, bilinear);
-        __m256 s[2], u[2];
+        __m256 s[4], u[4];
         for (int i = 0; i < n; i++) {
             s[i] = _mm256_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4], i), w[i]);
             u[i] = _mm256_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5], i), w[i]);
         }
-        __m256i tc[2][4];
+        __m256i tc[4][4];
         if (bilinear) {
-            __m256i gx[2], gy[2], texels[2][4], x[2][4];
+            __m256i gx[4], gy[4], texels[4][4], x[4][4];
             for (int i = 0; i < n; i++) {
                 gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
                 gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
@@ -347,7 +347,7 @@ INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext
             for (int i = 0; i < n; i++)
                 for (int k = 0; k < 4; k++) tc[i][k] = _mm256_srli_epi32(x[i][k], 16);
         } else {
-            __m256i texel[2];
+            __m256i texel[4];
             for (int i = 0; i < n; i++) texel[i] = nearest8(&tx, s[i], u[i], repeat);
             if (flat == SG_FLAT_WHITE && !sec) { /* the colour, as in the reference */
                 for (int i = 0; i < n; i++) out[i] = texel[i];

@@ -35,27 +35,15 @@ INLINE void shade_pair(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     _mm512_storeu_si512(dst1, v[1]);
 }
 
-#define SG_PAIR(tex, bil, rep, sec)                                                                \
-    static void pair_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,  \
-                                          int x1, int y1, uint32_t *d0, uint32_t *d1) {            \
-        const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
-        if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
-            shade_pair(c, t, ext, x0, y0, x1, y1, d0, d1, tex, bil, rep, SG_FLAT_WHITE, sec);      \
-        else if (t->flat != SG_FLAT_NONE)                                                          \
-            shade_pair(c, t, ext, x0, y0, x1, y1, d0, d1, tex, bil, rep, SG_FLAT_COLOR, sec);      \
-        else                                                                                       \
-            shade_pair(c, t, ext, x0, y0, x1, y1, d0, d1, tex, bil, rep, SG_FLAT_NONE, sec);       \
-    }
 /* Textured variants only: vertex-colour tiles measured no faster in pairs. */
-SG_PAIR(1, 0, 1, 0)
-SG_PAIR(1, 0, 0, 0)
-SG_PAIR(1, 1, 1, 0)
-SG_PAIR(1, 1, 0, 0)
-SG_PAIR(1, 0, 1, 1)
-SG_PAIR(1, 0, 0, 1)
-SG_PAIR(1, 1, 1, 1)
-SG_PAIR(1, 1, 0, 1)
-#undef SG_PAIR
+SG_PAIR_VARIANT(1, 0, 1, 0)
+SG_PAIR_VARIANT(1, 0, 0, 0)
+SG_PAIR_VARIANT(1, 1, 1, 0)
+SG_PAIR_VARIANT(1, 1, 0, 0)
+SG_PAIR_VARIANT(1, 0, 1, 1)
+SG_PAIR_VARIANT(1, 0, 0, 1)
+SG_PAIR_VARIANT(1, 1, 1, 1)
+SG_PAIR_VARIANT(1, 1, 0, 1)
 
 sg_shade2_fn sg_shade2_avx512(int index) {
     static const sg_shade2_fn table[10] = {NULL, pair_1010, pair_1000, pair_1110, pair_1100,

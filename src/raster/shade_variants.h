@@ -44,6 +44,22 @@ SG_VARIANT(1, 1, 0, 1)
 #endif
 #undef SG_VARIANT
 
+/* pair_<tex><bil><rep><sec>: a two-tile function (sg_shade2_fn) of the file's
+ *   shade_pair(ctx, tri, ext, x0, y0, x1, y1, dst0, dst1, textured, bilinear, repeat, flat, sec)
+ * (always inlined), the flat kind split off as in shade_flat; for the files that shade two whole
+ * tiles at once. */
+#define SG_PAIR_VARIANT(tex, bil, rep, sec)                                                        \
+    static void pair_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,  \
+                                          int x1, int y1, uint32_t *d0, uint32_t *d1) {            \
+        const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
+        if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
+            shade_pair(c, t, ext, x0, y0, x1, y1, d0, d1, tex, bil, rep, SG_FLAT_WHITE, sec);      \
+        else if (t->flat != SG_FLAT_NONE)                                                          \
+            shade_pair(c, t, ext, x0, y0, x1, y1, d0, d1, tex, bil, rep, SG_FLAT_COLOR, sec);      \
+        else                                                                                       \
+            shade_pair(c, t, ext, x0, y0, x1, y1, d0, d1, tex, bil, rep, SG_FLAT_NONE, sec);       \
+    }
+
 sg_shade_fn SG_SHADE_TABLE(int index) {
 #if defined(SG_SHADE_NO_SECONDARY)
     static const sg_shade_fn table[10] = {shade_0000, shade_1010, shade_1000, shade_1110,
