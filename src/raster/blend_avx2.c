@@ -6,12 +6,12 @@
  * state, as in blend_avx512.c): no call per tile, no tile buffer. A pair of rows whose eight
  * pixels all pass is shaded and blended in place; the pixels of partly covered pairs of textured
  * draws are packed into a queue of eight lanes, shaded when it is full (small triangles and edges
- * cover tiles sparsely, and a shading pass costs the same for one pixel as for eight); whole pairs
- * and full queues of a textured triangle are shaded two at a time, side by side. The pixels of one
- * triangle are all different, so blending some later changes nothing, as long as it is done before
- * the next triangle. Lit draws call the draw's shading function per tile. Opaque lines put their
- * fragments in place: vertex colours eight columns of the line a vector (put_line), the others
- * through the draw's function per tile.
+ * cover tiles sparsely, and a shading pass costs the same for one pixel as for eight). The whole
+ * pairs and full queues of a textured triangle are collected as jobs during its walk and shaded
+ * after it, four side by side. The pixels of one triangle are all different, so blending some
+ * later changes nothing, as long as it is done before the next triangle. Lit draws call the draw's
+ * shading function per tile. Opaque lines put their fragments in place: vertex colours eight
+ * columns of the line a vector (put_line), the others through the draw's function per tile.
  */
 #include "raster/blend.h"
 
@@ -127,8 +127,9 @@ SG_IN_PLACE_SET(put_call, put_call)
 
 /* Eight pixels of a textured triangle ready to shade: two whole rows of a tile, blended in place
  * at bin offset base, or a full (or the last, partial) queue of n pixels, blended through its
- * offsets. One waits for the next, and the two are shaded side by side (shade8_sets): a shading
- * is a long chain of dependent steps, and two of them keep the vector units busy. */
+ * offsets. The walk collects them; they are shaded after it, four side by side (shade8_sets): a
+ * shading is a long chain of dependent steps, several keep the vector units busy, and out of the
+ * walk they do not share the registers with its state. */
 typedef struct job {
     __m256 dx, dy;
     __m256i off;
@@ -136,12 +137,17 @@ typedef struct job {
     int n;
 } job;
 
+/* Jobs a triangle's walk collects before they are shaded (the teapots' triangles give about ten
+ * a bin), and how many are shaded side by side. */
+enum { JOBS = 32, JOB_SETS = 4 };
+
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     sg_queue8 *q;
-    job pending;
-    bool has_pending;
-    const flat_src *flat; /* untextured triangles of one colour */
+    job *jobs; /* JOBS of them */
+    int njobs;
+    const flat_src *flat;                                 /* untextured triangles of one colour */
+    void (*flush)(struct queued_ctx *p, const sg_tri *t); /* the variant's shade_jobs */
 } queued_ctx;
 
 /* The pipeline's colours of n sets of eight pixels at (dx, dy), flat colours split off per
@@ -174,25 +180,53 @@ INLINE void finish(const sg_vis_ctx *v, const job *j, __m256i s) {
         blend_scattered(v, j->off, s, j->n);
 }
 
-/* A job shaded with the one waiting, or left waiting for the next. */
-INLINE void submit(queued_ctx *p, const sg_tri *t, const job *j, const int bilinear,
-                   const int repeat) {
-    if (!p->has_pending) {
-        p->pending = *j;
-        p->has_pending = true;
-        return;
+/* n jobs (a constant) shaded side by side and blended. */
+INLINE void shade_some(const sg_vis_ctx *v, const sg_tri *t, const job *j, const int n,
+                       const int bilinear, const int repeat, const int flat) {
+    __m256 dx[JOB_SETS], dy[JOB_SETS];
+    __m256i s[JOB_SETS];
+    for (int i = 0; i < n; i++) {
+        dx[i] = j[i].dx;
+        dy[i] = j[i].dy;
     }
-    const __m256 dx[2] = {p->pending.dx, j->dx}, dy[2] = {p->pending.dy, j->dy};
-    __m256i s[2];
-    shade(p->v, t, 2, dx, dy, s, 1, bilinear, repeat);
-    finish(p->v, &p->pending, s[0]);
-    finish(p->v, j, s[1]);
-    p->has_pending = false;
+    shade8_sets(v->shade_ctx, t, NULL, n, dx, dy, s, 1, bilinear, repeat, flat, 0);
+    for (int i = 0; i < n; i++) finish(v, &j[i], s[i]);
+}
+
+/* The jobs collected so far shaded and blended, JOB_SETS at a time, then two and one; the list
+ * emptied. The pixels of one triangle are all different, so their order does not matter. */
+INLINE void shade_jobs_flat(queued_ctx *p, const sg_tri *t, const int bilinear, const int repeat,
+                            const int flat) {
+    const job *j = p->jobs;
+    int i = 0;
+    for (; i + JOB_SETS <= p->njobs; i += JOB_SETS)
+        shade_some(p->v, t, j + i, JOB_SETS, bilinear, repeat, flat);
+    if (p->njobs - i >= 2) {
+        shade_some(p->v, t, j + i, 2, bilinear, repeat, flat);
+        i += 2;
+    }
+    if (i < p->njobs) shade_some(p->v, t, j + i, 1, bilinear, repeat, flat);
+    p->njobs = 0;
+}
+
+/* shade_jobs_flat with the triangle's flat kind split off. */
+INLINE void shade_jobs(queued_ctx *p, const sg_tri *t, const int bilinear, const int repeat) {
+    if (t->flat == SG_FLAT_WHITE)
+        shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_WHITE);
+    else if (t->flat == SG_FLAT_COLOR)
+        shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_COLOR);
+    else
+        shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_NONE);
+}
+
+/* A job added to the list, which is shaded when full. */
+INLINE void submit(queued_ctx *p, const sg_tri *t, const job *j) {
+    p->jobs[p->njobs++] = *j;
+    if (p->njobs == JOBS) p->flush(p, t);
 }
 
 INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
-                         const int zmode, const int zwrite, const int textured, const int bilinear,
-                         const int repeat) {
+                         const int zmode, const int zwrite, const int textured) {
     queued_ctx *p = (queued_ctx *)(uintptr_t)vctx; /* the walk's context, this function's own */
     const sg_vis_ctx *v = p->v;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
@@ -217,33 +251,23 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
         }
         if (bits == 255) { /* full rows need no packing */
             const job j = {dx, dy, _mm256_setzero_si256(), base + 8 * h, 8};
-            submit(p, t, &j, bilinear, repeat);
+            submit(p, t, &j);
             continue;
         }
         sg_queue8 full;
         if (sg_enqueue8(p->q, dx, dy, base + 8 * h, bits, &full)) {
             const job j = {full.dx, full.dy, full.off, -1, 8};
-            submit(p, t, &j, bilinear, repeat);
+            submit(p, t, &j);
         }
     }
 }
 
-/* The end of a triangle: the partial queue and the job waiting, shaded and blended. */
-INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int bilinear,
-                  const int repeat) {
+/* The end of a triangle: the partial queue and the jobs waiting, shaded and blended. */
+INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
     if (!textured) return; /* vertex colours were blended in place */
     const sg_queue8 *q = p->q;
-    if (q->n) {
-        const job j = {q->dx, q->dy, q->off, -1, q->n};
-        submit(p, t, &j, bilinear, repeat);
-    }
-    if (p->has_pending) {
-        const job *j = &p->pending;
-        __m256i s;
-        shade(p->v, t, 1, &j->dx, &j->dy, &s, 1, bilinear, repeat);
-        finish(p->v, j, s);
-        p->has_pending = false;
-    }
+    if (q->n) p->jobs[p->njobs++] = (job){q->dx, q->dy, q->off, -1, q->n};
+    if (p->njobs) p->flush(p, t);
 }
 
 /* One raster function per shading variant (vertex colour; texture nearest / bilinear, repeat /
@@ -252,24 +276,37 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int 
 #define SG_BLEND_INLINE(tex, bil, rep, zt, zw)                                                     \
     INLINE void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t, int x0,       \
                                                      int y0, uint32_t m) {                         \
-        blend_inline(c, t, x0, y0, m, zt ? Z_ANY : Z_NONE, zw, tex, bil, rep);                     \
+        blend_inline(c, t, x0, y0, m, zt ? Z_ANY : Z_NONE, zw, tex);                               \
     }                                                                                              \
     static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
                                               const void *c) {                                     \
         sg_queue8 q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};       \
         const flat_src f =                                                                         \
             flat_src_of(!tex && t->flat != SG_FLAT_NONE ? sg_flat_pixel(t, NULL, 0) : 0u);         \
-        /* Field by field: an initializer clears all 192 bytes with a string store, whose start    \
+        job jobs[tex ? JOBS : 1]; /* vertex colours are blended in place */                        \
+        /* Field by field: an initializer would clear the context with a string store, whose start \
          * costs more than the stores of the fields (a call per triangle and bin). */              \
         queued_ctx p;                                                                              \
         p.v = c;                                                                                   \
         p.q = &q;                                                                                  \
-        p.pending = (job){_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0, 0}; \
-        p.has_pending = false; /* no job waiting */                                                \
+        p.jobs = jobs;                                                                             \
+        p.njobs = 0;                                                                               \
         p.flat = &f;                                                                               \
+        p.flush = blend_jobs_##bil##rep;                                                           \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        drain(&p, t, tex, bil, rep);                                                               \
+        drain(&p, t, tex);                                                                         \
     }
+/* The shading of the jobs of each texture variant (nearest / bilinear, repeat / clamp), called at
+ * a triangle's end (and when JOBS are waiting): one copy, not one per place the walk visits a
+ * tile. */
+#define SG_BLEND_JOBS(bil, rep)                                                                    \
+    static __attribute__((noinline)) void blend_jobs_##bil##rep(queued_ctx *p, const sg_tri *t) {  \
+        shade_jobs(p, t, bil, rep);                                                                \
+    }
+SG_BLEND_JOBS(0, 0)
+SG_BLEND_JOBS(0, 1)
+SG_BLEND_JOBS(1, 0)
+SG_BLEND_JOBS(1, 1)
 SG_BLEND_VARIANTS(SG_BLEND_INLINE)
 
 /* An opaque vertex-coloured line's tile: the passing pixels shaded and put in place. */
