@@ -193,37 +193,7 @@ INLINE void shade_some(const sg_vis_ctx *v, const sg_tri *t, const job *j, const
     for (int i = 0; i < n; i++) finish(v, &j[i], s[i]);
 }
 
-/* The jobs collected so far shaded and blended, JOB_SETS at a time, then two and one; the list
- * emptied. The pixels of one triangle are all different, so their order does not matter. */
-INLINE void shade_jobs_flat(queued_ctx *p, const sg_tri *t, const int bilinear, const int repeat,
-                            const int flat) {
-    const job *j = p->jobs;
-    int i = 0;
-    for (; i + JOB_SETS <= p->njobs; i += JOB_SETS)
-        shade_some(p->v, t, j + i, JOB_SETS, bilinear, repeat, flat);
-    if (p->njobs - i >= 2) {
-        shade_some(p->v, t, j + i, 2, bilinear, repeat, flat);
-        i += 2;
-    }
-    if (i < p->njobs) shade_some(p->v, t, j + i, 1, bilinear, repeat, flat);
-    p->njobs = 0;
-}
-
-/* shade_jobs_flat with the triangle's flat kind split off. */
-INLINE void shade_jobs(queued_ctx *p, const sg_tri *t, const int bilinear, const int repeat) {
-    if (t->flat == SG_FLAT_WHITE)
-        shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_WHITE);
-    else if (t->flat == SG_FLAT_COLOR)
-        shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_COLOR);
-    else
-        shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_NONE);
-}
-
-/* A job added to the list, which is shaded when full. */
-INLINE void submit(queued_ctx *p, const sg_tri *t, const job *j) {
-    p->jobs[p->njobs++] = *j;
-    if (p->njobs == JOBS) p->flush(p, t);
-}
+SG_JOB_LIST_FNS
 
 INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
                          const int zmode, const int zwrite, const int textured) {
@@ -296,17 +266,6 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
         drain(&p, t, tex);                                                                         \
     }
-/* The shading of the jobs of each texture variant (nearest / bilinear, repeat / clamp), called at
- * a triangle's end (and when JOBS are waiting): one copy, not one per place the walk visits a
- * tile. */
-#define SG_BLEND_JOBS(bil, rep)                                                                    \
-    static __attribute__((noinline)) void blend_jobs_##bil##rep(queued_ctx *p, const sg_tri *t) {  \
-        shade_jobs(p, t, bil, rep);                                                                \
-    }
-SG_BLEND_JOBS(0, 0)
-SG_BLEND_JOBS(0, 1)
-SG_BLEND_JOBS(1, 0)
-SG_BLEND_JOBS(1, 1)
 SG_BLEND_VARIANTS(SG_BLEND_INLINE)
 
 /* An opaque vertex-coloured line's tile: the passing pixels shaded and put in place. */

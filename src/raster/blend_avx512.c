@@ -1,8 +1,10 @@
 /* blend_avx512.c - the raster functions of draws shaded in place in AVX-512 (see blend.h): a whole
  * tile a vector, the pixels of partly covered tiles of a textured triangle packed sixteen to a
  * vector; the same depth (z, clamp, compare) as the scalar and SSE2 code, the shading body of
- * shade_avx512.h inlined (a call per tile would spill every vector register of the walk), and
- * the same integer blend, so the same bytes. One function per shading variant and depth state;
+ * shade_avx512.h inlined (a call per tile would spill every vector register of the walk; a
+ * textured triangle's tiles and full queues are collected during its walk and shaded after it,
+ * four at a time, by one function per texture variant), and the same integer blend, so the same
+ * bytes. One function per shading variant and depth state;
  * opaque lines of vertex colours put their fragments in place, sixteen columns of the line a
  * vector (put_line). */
 #include "raster/blend.h"
@@ -41,18 +43,6 @@ INLINE __m512i shade(const sg_vis_ctx *v, const sg_tri *t, __m512 dx, __m512 dy,
     return sg_shade16_at(c, t, NULL, dx, dy, mask, textured, bilinear, repeat, SG_FLAT_NONE, 0);
 }
 
-/* shade for two sets of sixteen pixels at once, side by side (shade16_tiles). */
-INLINE void shade2(const sg_vis_ctx *v, const sg_tri *t, const __m512 dx[2], const __m512 dy[2],
-                   const uint32_t mask[2], __m512i out[2], const int bilinear, const int repeat) {
-    const sg_shade_ctx *c = v->shade_ctx;
-    if (t->flat == SG_FLAT_WHITE)
-        shade16_tiles(c, t, NULL, 2, dx, dy, mask, out, 1, bilinear, repeat, SG_FLAT_WHITE, 0);
-    else if (t->flat == SG_FLAT_COLOR)
-        shade16_tiles(c, t, NULL, 2, dx, dy, mask, out, 1, bilinear, repeat, SG_FLAT_COLOR, 0);
-    else
-        shade16_tiles(c, t, NULL, 2, dx, dy, mask, out, 1, bilinear, repeat, SG_FLAT_NONE, 0);
-}
-
 /* A fragment colour the same at every pixel (a triangle of one colour, untextured): its part of
  * the blend, s a / 255, and 255 - a, in 16-bit lanes (four pixels), worked out once a triangle.
  */
@@ -86,9 +76,9 @@ INLINE __m512i blend16(__m512i s, __m512i d) {
  * share no pixel, so blending a pixel later changes nothing, as long as it is done before the next
  * triangle. */
 /* Sixteen pixels of a textured triangle ready to shade: a whole tile, blended in place at bin
- * offset base, or a full (or the last, partial) queue, blended through its offsets. One waits
- * for the next, and the two are shaded side by side (shade2): a shading is a long chain of
- * dependent steps, and two of them keep the vector units busy. */
+ * offset base, or a full (or the last, partial) queue, blended through its offsets. The walk
+ * collects them; they are shaded after it, four side by side (shade16_tiles): a shading is a
+ * long chain of dependent steps, and several keep the vector units busy. */
 typedef struct job {
     __m512 dx, dy;
     __m512i off;
@@ -96,12 +86,17 @@ typedef struct job {
     uint32_t mask;
 } job;
 
+/* Jobs a triangle's walk collects before they are shaded, and how many are shaded side by side
+ * (as in blend_avx2.c). */
+enum { JOBS = 32, JOB_SETS = 4 };
+
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     sg_queue16 *q;
-    job pending;
-    bool has_pending;
-    const flat_src *flat; /* untextured triangles of one colour */
+    job *jobs; /* JOBS of them */
+    int njobs;
+    const flat_src *flat;                                 /* untextured triangles of one colour */
+    void (*flush)(struct queued_ctx *p, const sg_tri *t); /* the variant's shade_jobs */
 } queued_ctx;
 
 /* The fragments s of the pixels of q's lanes m blended into their pixels of the bin's colour
@@ -134,26 +129,25 @@ INLINE uint32_t depth16(const sg_vis_ctx *v, const sg_tri *t, __m512 dx, __m512 
     return mask;
 }
 
-/* A job shaded with the one waiting, or left waiting for the next. */
-INLINE void submit(queued_ctx *p, const sg_tri *t, const job *j, const int bilinear,
-                   const int repeat) {
-    if (!p->has_pending) {
-        p->pending = *j;
-        p->has_pending = true;
-        return;
+/* n jobs (a constant) shaded side by side (shade16_tiles) and blended. */
+INLINE void shade_some(const sg_vis_ctx *v, const sg_tri *t, const job *j, const int n,
+                       const int bilinear, const int repeat, const int flat) {
+    __m512 dx[JOB_SETS], dy[JOB_SETS];
+    uint32_t mask[JOB_SETS];
+    __m512i s[JOB_SETS];
+    for (int i = 0; i < n; i++) {
+        dx[i] = j[i].dx;
+        dy[i] = j[i].dy;
+        mask[i] = j[i].mask;
     }
-    const __m512 dx[2] = {p->pending.dx, j->dx}, dy[2] = {p->pending.dy, j->dy};
-    const uint32_t mask[2] = {p->pending.mask, j->mask};
-    __m512i s[2];
-    shade2(p->v, t, dx, dy, mask, s, bilinear, repeat);
-    finish(p->v, &p->pending, s[0]);
-    finish(p->v, j, s[1]);
-    p->has_pending = false;
+    shade16_tiles(v->shade_ctx, t, NULL, n, dx, dy, mask, s, 1, bilinear, repeat, flat, 0);
+    for (int i = 0; i < n; i++) finish(v, &j[i], s[i]);
 }
 
+SG_JOB_LIST_FNS
+
 INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
-                         const int ztest, const int zwrite, const int textured, const int bilinear,
-                         const int repeat) {
+                         const int ztest, const int zwrite, const int textured) {
     queued_ctx *p = (queued_ctx *)(uintptr_t)vctx; /* the walk's context, this function's own */
     const sg_vis_ctx *v = p->v;
     const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
@@ -175,29 +169,22 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
     }
     if (mask == 0xffffu) { /* a whole tile needs no packing */
         const job j = {dx, dy, _mm512_setzero_si512(), base, 0xffffu};
-        submit(p, t, &j, bilinear, repeat);
+        submit(p, t, &j);
         return;
     }
     sg_queue16 full;
     if (sg_enqueue16(p->q, dx, dy, base, (__mmask16)mask, &full)) {
         const job j = {full.dx, full.dy, full.off, -1, 0xffffu};
-        submit(p, t, &j, bilinear, repeat);
+        submit(p, t, &j);
     }
 }
 
-/* The end of a triangle: the partial queue and the job waiting, shaded and blended. */
-INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int bilinear,
-                  const int repeat) {
+/* The end of a triangle: the partial queue and the jobs waiting, shaded and blended. */
+INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
+    if (!textured) return; /* vertex colours were blended in place */
     const sg_queue16 *q = p->q;
-    if (q->n) {
-        const job j = {q->dx, q->dy, q->off, -1, (1u << q->n) - 1u};
-        submit(p, t, &j, bilinear, repeat);
-    }
-    if (p->has_pending) {
-        const job *j = &p->pending;
-        finish(p->v, j, shade(p->v, t, j->dx, j->dy, j->mask, textured, bilinear, repeat));
-        p->has_pending = false;
-    }
+    if (q->n) p->jobs[p->njobs++] = (job){q->dx, q->dy, q->off, -1, (1u << q->n) - 1u};
+    if (p->njobs) p->flush(p, t);
 }
 
 /* One raster function per shading variant (vertex colour; texture nearest / bilinear, repeat /
@@ -206,20 +193,23 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured, const int 
 #define SG_BLEND_QUEUED(tex, bil, rep, zt, zw)                                                     \
     static inline void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t,        \
                                                             int x0, int y0, uint32_t m) {          \
-        blend_avx512(c, t, x0, y0, m, zt, zw, tex, bil, rep);                                      \
+        blend_avx512(c, t, x0, y0, m, zt, zw, tex);                                                \
     }                                                                                              \
     static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
                                               const void *c) {                                     \
         sg_queue16 q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0};      \
+        job jobs[tex ? JOBS : 1]; /* vertex colours are blended in place */                        \
         queued_ctx p;                                                                              \
         p.v = c;                                                                                   \
         p.q = &q;                                                                                  \
-        p.has_pending = false;                                                                     \
+        p.jobs = jobs;                                                                             \
+        p.njobs = 0;                                                                               \
+        p.flush = blend_jobs_##bil##rep;                                                           \
         const flat_src f =                                                                         \
             flat_src_of(!tex && t->flat != SG_FLAT_NONE ? sg_flat_pixel(t, NULL, 0) : 0u);         \
         p.flat = &f;                                                                               \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        drain(&p, t, tex, bil, rep);                                                               \
+        drain(&p, t, tex);                                                                         \
     }
 SG_BLEND_VARIANTS(SG_BLEND_QUEUED)
 

@@ -71,4 +71,49 @@
             SG_BLEND_ROW(1, 1, 1), SG_BLEND_ROW(1, 1, 0)                                           \
     }
 
+/* A textured blended triangle's jobs (sets of pixels to shade) collected during its walk and
+ * shaded after it: the functions every vector blend file shares, for a file that defines `job`,
+ * `queued_ctx` (with v, jobs, njobs and flush: the variant's blend_jobs_<bil><rep>), JOBS,
+ * JOB_SETS and shade_some(v, t, jobs, n, bilinear, repeat, flat), which shades n jobs (a constant)
+ * side by side and blends them. Defines shade_jobs_flat, shade_jobs, submit and
+ * blend_jobs_00 ... blend_jobs_11 (nearest / bilinear, clamp / repeat: one copy each, called at a
+ * triangle's end and when JOBS are waiting, not one per place the walk visits a tile). The pixels
+ * of one triangle are all different, so the order they are blended in does not matter. */
+#define SG_JOB_LIST_FNS                                                                            \
+    static inline __attribute__((always_inline)) void shade_jobs_flat(                             \
+        queued_ctx *p, const sg_tri *t, const int bilinear, const int repeat, const int flat) {    \
+        const job *j = p->jobs;                                                                    \
+        int i = 0;                                                                                 \
+        for (; i + JOB_SETS <= p->njobs; i += JOB_SETS)                                            \
+            shade_some(p->v, t, j + i, JOB_SETS, bilinear, repeat, flat);                          \
+        if (p->njobs - i >= 2) {                                                                   \
+            shade_some(p->v, t, j + i, 2, bilinear, repeat, flat);                                 \
+            i += 2;                                                                                \
+        }                                                                                          \
+        if (i < p->njobs) shade_some(p->v, t, j + i, 1, bilinear, repeat, flat);                   \
+        p->njobs = 0;                                                                              \
+    }                                                                                              \
+    static inline __attribute__((always_inline)) void shade_jobs(                                  \
+        queued_ctx *p, const sg_tri *t, const int bilinear, const int repeat) {                    \
+        if (t->flat == SG_FLAT_WHITE)                                                              \
+            shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_WHITE);                                \
+        else if (t->flat == SG_FLAT_COLOR)                                                         \
+            shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_COLOR);                                \
+        else                                                                                       \
+            shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_NONE);                                 \
+    }                                                                                              \
+    static inline __attribute__((always_inline)) void submit(queued_ctx *p, const sg_tri *t,       \
+                                                             const job *j) {                       \
+        p->jobs[p->njobs++] = *j;                                                                  \
+        if (p->njobs == JOBS) p->flush(p, t);                                                      \
+    }                                                                                              \
+    SG_BLEND_JOBS(0, 0)                                                                            \
+    SG_BLEND_JOBS(0, 1)                                                                            \
+    SG_BLEND_JOBS(1, 0)                                                                            \
+    SG_BLEND_JOBS(1, 1)
+#define SG_BLEND_JOBS(bil, rep)                                                                    \
+    static __attribute__((noinline)) void blend_jobs_##bil##rep(queued_ctx *p, const sg_tri *t) {  \
+        shade_jobs(p, t, bil, rep);                                                                \
+    }
+
 #endif

@@ -260,13 +260,14 @@ INLINE __m512i pack_unorm8(const __m512 col[4]) {
     return _mm512_shuffle_epi8(_mm512_packus_epi16(p01, p23), tr);
 }
 
-/* The colours of n tiles' pixels (n is 1 or 2, a constant) at offsets (dx[i], dy[i]) from the
+/* The colours of n tiles' pixels (n is 1, 2 or 4, a constant) at offsets (dx[i], dy[i]) from the
  * triangle's bounds, lanes of mask[i], as RGBA8 lanes in out[i] (others undefined): the body of
  * every variant, as shade_rows in shade.c; the constant arguments fold away. Each lane computes
  * what the reference computes for its pixel, wherever that pixel is. The tiles go through each
  * step together (planes, then texel coordinates, then fetches, then filters): a tile's steps
  * form one long chain of dependent operations, and two chains side by side keep the vector
- * units busy where one waits (a floor shades a sixth faster two tiles at a time). */
+ * units busy where one waits (a floor shades a sixth faster two tiles at a time; the blend's
+ * jobs go four at a time). */
 INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
                           const int n, const __m512 dx[], const __m512 dy[], const uint32_t mask[],
                           __m512i out[], const int textured, const int bilinear, const int repeat,
@@ -284,7 +285,7 @@ INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_e
 #define SG_PLANE(a, adx, ady, i)                                                                   \
     _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(a), _mm512_mul_ps(_mm512_set1_ps(adx), dx[i])),     \
                   _mm512_mul_ps(_mm512_set1_ps(ady), dy[i]))
-    __m512 w[2], col[2][4];
+    __m512 w[4], col[4][4];
     for (int i = 0; i < n; i++)
         w[i] = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy, i));
     for (int i = 0; i < n; i++)
@@ -294,14 +295,14 @@ INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_e
                             : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k], i), w[i]);
     if (textured) {
         const tex16 tx = tex16_of(&c->tex, bilinear);
-        __m512 s[2], u[2];
+        __m512 s[4], u[4];
         for (int i = 0; i < n; i++) {
             s[i] = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4], i), w[i]);
             u[i] = _mm512_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5], i), w[i]);
         }
-        __m512i tc[2][4];
+        __m512i tc[4][4];
         if (bilinear) {
-            __m512i gx[2], gy[2], texels[2][4], x[2][4];
+            __m512i gx[4], gy[4], texels[4][4], x[4][4];
             for (int i = 0; i < n; i++) {
                 gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
                 gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
@@ -316,7 +317,7 @@ INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_e
             for (int i = 0; i < n; i++)
                 for (int k = 0; k < 4; k++) tc[i][k] = _mm512_srli_epi32(x[i][k], 16);
         } else {
-            __m512i texel[2];
+            __m512i texel[4];
             for (int i = 0; i < n; i++)
                 texel[i] = nearest16(&tx, s[i], u[i], (__mmask16)mask[i], repeat);
             if (flat == SG_FLAT_WHITE && !sec) { /* the colour, as in the reference */
