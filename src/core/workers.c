@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 /* workers.c - a small fork-join pool: a batch of jobs is handed out one index at a time under a
  * lock (jobs are whole screen bins or front-end chunks, so the lock is taken a few hundred times a
  * frame at most).
@@ -5,8 +6,8 @@
  * A draw runs two short batches (vertex stage, assembly) and a pass one more, often well under a
  * millisecond apart; a thread woken from a condition variable takes tens of microseconds to start,
  * which would leave the caller to do most of a short batch alone. So a worker that finishes a batch
- * watches for the next one for a short while before it sleeps, and the caller watches for the end
- * of its batch the same way. */
+ * watches for the next one for a while (SPIN_NS) before it sleeps, and the caller watches for the
+ * end of its batch the same way. */
 #include "core/workers.h"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -16,8 +17,29 @@
 #define SG_SPIN_PAUSE() ((void)0)
 #endif
 
-/* Polls (about 100 microseconds on current x86) before falling back to sleeping. */
-enum { SPIN_POLLS = 4000 };
+#include <stdint.h>
+#include <time.h>
+
+/* How long a worker watches for the next batch, and the caller for the end of its own, before
+ * sleeping: 1 ms, by the clock (a pause instruction takes from a few to about 150 cycles,
+ * depending on the CPU). 4000 pauses (about 90 microseconds on the development machine) let the
+ * workers fall asleep between the frames of a small scene: the scenes of under a millisecond ran
+ * 5 % faster at two threads with this (docs/performance.md, "The workers' watch"). The cost: after
+ * the last batch of a frame each worker spins for up to a millisecond before it sleeps. */
+enum { SPIN_NS = 1000000 };
+
+static uint64_t now_ns(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
+
+/* Whether the spin that started at `start` (now_ns) may go on, asked after each pause: the clock
+ * is read every 64th time. */
+static inline bool spin_on(uint64_t start, unsigned *polls) {
+    SG_SPIN_PAUSE();
+    return (++*polls & 63u) != 0 || now_ns() - start < SPIN_NS;
+}
 
 /* Takes job indices until the batch is exhausted; returns with the lock held. */
 static void drain(sg_workers *w) {
@@ -38,9 +60,11 @@ static void *worker_main(void *arg) {
     pthread_mutex_lock(&w->lock);
     for (;;) {
         pthread_mutex_unlock(&w->lock);
-        for (int i = 0;
-             i < SPIN_POLLS && atomic_load(&w->generation) == seen && !atomic_load(&w->quit); i++)
-            SG_SPIN_PAUSE();
+        const uint64_t start = now_ns();
+        unsigned polls = 0;
+        while (atomic_load(&w->generation) == seen && !atomic_load(&w->quit) &&
+               spin_on(start, &polls)) {
+        }
         pthread_mutex_lock(&w->lock);
         while (!w->quit && w->generation == seen) pthread_cond_wait(&w->start, &w->lock);
         if (w->quit) break;
@@ -89,9 +113,11 @@ void sg_workers_run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx) {
     drain(w);
     if (w->finished < w->jobs || w->busy > 0) { /* others are still on the last jobs */
         pthread_mutex_unlock(&w->lock);
-        for (int i = 0;
-             i < SPIN_POLLS && (atomic_load(&w->finished) < jobs || atomic_load(&w->busy) > 0); i++)
-            SG_SPIN_PAUSE();
+        const uint64_t start = now_ns();
+        unsigned polls = 0;
+        while ((atomic_load(&w->finished) < jobs || atomic_load(&w->busy) > 0) &&
+               spin_on(start, &polls)) {
+        }
         pthread_mutex_lock(&w->lock);
     }
     while (w->finished < w->jobs || w->busy > 0) pthread_cond_wait(&w->done, &w->lock);
