@@ -24,7 +24,7 @@
  * sleeping: 1 ms, by the clock (a pause instruction takes from a few to about 150 cycles,
  * depending on the CPU). 4000 pauses (about 90 microseconds on the development machine) let the
  * workers fall asleep between the frames of a small scene: the scenes of under a millisecond ran
- * 5 % faster at two threads with this (docs/performance.md, "The workers' watch"). The cost: after
+ * 5 % faster at two threads with this (docs/performance.md, "Four shading chains"). The cost: after
  * the last batch of a frame each worker spins for up to a millisecond before it sleeps. */
 enum { SPIN_NS = 1000000 };
 

@@ -20,9 +20,11 @@ static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, con
     float *dp = depth ? v->depth + base : NULL; /* NULL: the pass may have no depth target */
     const sg_zrows8 zr = depth ? sg_zrows8_at(t, x0, y0) : (sg_zrows8){0};
     __m256i id = _mm256_set1_epi32((int)v->id);
+    /* Both halves tested and written whatever their masks, no branch: a lane that does not pass
+     * writes back what it read, and a small triangle's halves pass or fail in no pattern a branch
+     * predictor follows (docs/performance.md, "Four shading chains"). */
     for (int h = 0; h < 2; h++) {
         uint32_t bits = (mask >> (8 * h)) & 255u;
-        if (!bits) continue;
         __m256 pass = _mm256_castsi256_ps(
             _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes));
         if (depth) {
@@ -31,7 +33,6 @@ static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, con
             if (zmode != Z_NONE)
                 pass = _mm256_and_ps(
                     pass, sg_compare8(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, z, d));
-            if (!_mm256_movemask_ps(pass)) continue;
             if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, pass));
         }
         __m256i *ip = (__m256i *)(void *)(ids + 8 * h);

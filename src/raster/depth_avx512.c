@@ -24,7 +24,8 @@ static inline __attribute__((always_inline)) void vis_avx512(const void *vctx, c
         if (zmode != Z_NONE)
             pass = sg_compare16(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, pass, z,
                                 _mm512_loadu_ps(dp));
-        if (!pass) return;
+        /* No test of an empty mask: the masked stores then write nothing, and a small
+         * triangle's tiles pass or fail in no pattern a branch predictor follows. */
         if (zwrite) _mm512_mask_storeu_ps(dp, pass, z);
     }
     _mm512_mask_storeu_epi32(ids, pass, _mm512_set1_epi32((int)v->id));
