@@ -167,8 +167,8 @@ INLINE void shade(const sg_vis_ctx *v, const sg_tri *t, const int n, const __m25
 /* The fragments s of the first n pixels at offsets qoff blended into their pixels of the bin's
  * colour. */
 INLINE void blend_scattered(const sg_vis_ctx *v, __m256i qoff, __m256i s, int n) {
-    /* Every lane's offset is a pixel of the bin, so the gather reads only the bin. */
-    __m256i d = _mm256_i32gather_epi32((const int *)(const void *)v->color, qoff, 4);
+    /* Every lane's offset is a pixel of the bin, so the loads read only the bin. */
+    __m256i d = sg_load8((const int *)(const void *)v->color, qoff);
     sg_scatter8(v->color, qoff, blend8(s, d), (1u << n) - 1u);
 }
 

@@ -101,25 +101,50 @@ INLINE __m256i row_start(__m256i j, const tex8 *tx) {
     return _mm256_madd_epi16(_mm256_sub_epi32(tx->last_y, j), tx->n_x);
 }
 
+/* base[idx] of the eight lanes: eight plain loads put together, which cost about half what a
+ * gather of eight does (docs/performance.md). */
+INLINE __m256i sg_load8(const int *base, __m256i idx) {
+    _Alignas(32) int at[8];
+    _mm256_store_si256((__m256i *)(void *)at, idx);
+    __m128i lo = _mm_cvtsi32_si128(base[at[0]]), hi = _mm_cvtsi32_si128(base[at[4]]);
+    lo = _mm_insert_epi32(lo, base[at[1]], 1);
+    hi = _mm_insert_epi32(hi, base[at[5]], 1);
+    lo = _mm_insert_epi32(lo, base[at[2]], 2);
+    hi = _mm_insert_epi32(hi, base[at[6]], 2);
+    lo = _mm_insert_epi32(lo, base[at[3]], 3);
+    hi = _mm_insert_epi32(hi, base[at[7]], 3);
+    return _mm256_inserti128_si256(_mm256_castsi128_si256(lo), hi, 1);
+}
+
 /* Every lane's index is inside the texture, whatever its coordinates, so lanes outside the mask
  * need not be masked off. */
 INLINE __m256i fetch8(const tex8 *tx, __m256i idx) {
-    return _mm256_i32gather_epi32(tx->texels, idx, 4);
+    return sg_load8(tx->texels, idx);
 }
 
-/* Texels idx and idx + 1 of each of the eight lanes, as two vectors: two 64-bit gathers of four
- * pairs instead of two 32-bit gathers of eight (half the loads). The pixels go in as 0 1 4 5 and
- * 2 3 6 7, so that picking the even and odd texels of each 128-bit half puts them back in order.
- * Both texels must lie in the texture for every lane. */
-INLINE void pair_fetch8(const tex8 *tx, __m256i idx, __m256i *first, __m256i *second) {
-    idx = _mm256_permutevar8x32_epi32(idx, _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7));
-    const long long *base = (const long long *)(const void *)tx->texels;
-    __m256 lo = _mm256_castsi256_ps(
-        _mm256_i32gather_epi64((const void *)base, _mm256_castsi256_si128(idx), 4));
-    __m256 hi = _mm256_castsi256_ps(
-        _mm256_i32gather_epi64((const void *)base, _mm256_extracti128_si256(idx, 1), 4));
-    *first = _mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0x88));
-    *second = _mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0xdd));
+/* Texels idx0, idx0 + 1 (row pair 0) and idx1, idx1 + 1 (row pair 1) of each of the eight lanes,
+ * as t[0] to t[3]: a 64-bit load of each pair, both pairs of a lane in one 128-bit half, then a
+ * 4 x 4 transpose of 32-bit texels. Sixteen plain loads cost less than four 64-bit gathers
+ * (docs/performance.md). All four texels must lie in the texture for every lane. */
+INLINE void pair_fetch8(const tex8 *tx, __m256i idx0, __m256i idx1, __m256i t[4]) {
+    _Alignas(32) int o0[8], o1[8];
+    _mm256_store_si256((__m256i *)(void *)o0, idx0);
+    _mm256_store_si256((__m256i *)(void *)o1, idx1);
+    const int *base = tx->texels;
+#define SG_TWO(k)                                                                                  \
+    _mm_castps_si128(_mm_loadh_pi(                                                                 \
+        _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)(base + o0[k]))),          \
+        (const __m64 *)(const void *)(base + o1[k])))
+#define SG_LANES(k) _mm256_inserti128_si256(_mm256_castsi128_si256(SG_TWO(k)), SG_TWO(k + 4), 1)
+    const __m256i a = SG_LANES(0), b = SG_LANES(1), c = SG_LANES(2), d = SG_LANES(3);
+#undef SG_LANES
+#undef SG_TWO
+    const __m256i ab0 = _mm256_unpacklo_epi32(a, b), ab1 = _mm256_unpackhi_epi32(a, b);
+    const __m256i cd0 = _mm256_unpacklo_epi32(c, d), cd1 = _mm256_unpackhi_epi32(c, d);
+    t[0] = _mm256_unpacklo_epi64(ab0, cd0);
+    t[1] = _mm256_unpackhi_epi64(ab0, cd0);
+    t[2] = _mm256_unpacklo_epi64(ab1, cd1);
+    t[3] = _mm256_unpackhi_epi64(ab1, cd1);
 }
 
 INLINE __m256i nearest8(const tex8 *tx, __m256 s, __m256 u, const int repeat) {
@@ -191,8 +216,7 @@ INLINE void bilinear_fetch8(const tex8 *tx, __m256i gx, __m256i gy, const int re
         _mm256_or_si256(_mm256_cmpgt_epi32(_mm256_setzero_si256(), a),
                         _mm256_cmpgt_epi32(a, _mm256_sub_epi32(tx->last_x, _mm256_set1_epi32(1))));
     if (_mm256_testz_si256(outside, outside)) {
-        pair_fetch8(tx, _mm256_add_epi32(r0, a), &t[0], &t[1]);
-        pair_fetch8(tx, _mm256_add_epi32(r1, a), &t[2], &t[3]);
+        pair_fetch8(tx, _mm256_add_epi32(r0, a), _mm256_add_epi32(r1, a), t);
     } else {
         t[0] = fetch8(tx, _mm256_add_epi32(r0, i0));
         t[1] = fetch8(tx, _mm256_add_epi32(r0, i1));
