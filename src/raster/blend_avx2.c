@@ -7,9 +7,9 @@
  * pixels all pass is shaded and blended in place; the pixels of partly covered pairs of textured
  * draws are packed into a queue of eight lanes, shaded when it is full (small triangles and edges
  * cover tiles sparsely, and a shading pass costs the same for one pixel as for eight). The whole
- * pairs and full queues of a textured triangle are collected as jobs during its walk and shaded
- * after it, four side by side. The pixels of one triangle are all different, so blending some
- * later changes nothing, as long as it is done before the next triangle. Lit draws call the draw's
+ * pairs and full queues of a textured draw are collected as jobs during its triangles' walks and
+ * shaded later in the bin, four side by side, in the order they came (blend_walk.h). Lit draws
+ * call the draw's
  * shading function per tile. Opaque lines put their fragments in place: vertex colours eight
  * columns of the line a vector (put_line), the others through the draw's function per tile.
  */
@@ -127,27 +127,26 @@ SG_IN_PLACE_SET(put_call, put_call)
 
 /* Eight pixels of a textured triangle ready to shade: two whole rows of a tile, blended in place
  * at bin offset base, or a full (or the last, partial) queue of n pixels, blended through its
- * offsets. The walk collects them; they are shaded after it, four side by side (shade8_sets): a
- * shading is a long chain of dependent steps, several keep the vector units busy, and out of the
- * walk they do not share the registers with its state. */
+ * offsets. The walks collect them in the bin's list (blend_walk.h); they are shaded later, four
+ * side by side (shade8_sets): a shading is a long chain of dependent steps, several keep the
+ * vector units busy, and out of the walk they do not share the registers with its state. */
 typedef struct job {
     __m256 dx, dy;
     __m256i off;
+    const sg_tri *t;
     int base; /* -1: scattered through off */
     int n;
 } job;
 
-/* Jobs a triangle's walk collects before they are shaded (the teapots' triangles give about ten
- * a bin), and how many are shaded side by side. */
+/* Jobs waiting at most (the teapots' triangles give about ten a bin), and how many are shaded
+ * side by side. */
 enum { JOBS = 32, JOB_SETS = 4 };
 
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     sg_queue8 *q;
-    job *jobs; /* JOBS of them */
-    int njobs;
-    const flat_src *flat;                                 /* untextured triangles of one colour */
-    void (*flush)(struct queued_ctx *p, const sg_tri *t); /* the variant's shade_jobs */
+    sg_blend_pending *jobs; /* the bin's */
+    const flat_src *flat;   /* untextured triangles of one colour */
 } queued_ctx;
 
 /* The pipeline's colours of n sets of eight pixels at (dx, dy), flat colours split off per
@@ -157,11 +156,11 @@ INLINE void shade(const sg_vis_ctx *v, const sg_tri *t, const int n, const __m25
                   const int repeat) {
     const sg_shade_ctx *c = v->shade_ctx;
     if (t->flat == SG_FLAT_WHITE)
-        shade8_sets(c, t, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_WHITE, 0);
+        shade8_sets(c, t, NULL, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_WHITE, 0);
     else if (t->flat == SG_FLAT_COLOR)
-        shade8_sets(c, t, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_COLOR, 0);
+        shade8_sets(c, t, NULL, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_COLOR, 0);
     else
-        shade8_sets(c, t, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_NONE, 0);
+        shade8_sets(c, t, NULL, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_NONE, 0);
 }
 
 /* The fragments s of the first n pixels at offsets qoff blended into their pixels of the bin's
@@ -180,16 +179,22 @@ INLINE void finish(const sg_vis_ctx *v, const job *j, __m256i s) {
         blend_scattered(v, j->off, s, j->n);
 }
 
-/* n jobs (a constant) shaded side by side and blended. */
-INLINE void shade_some(const sg_vis_ctx *v, const sg_tri *t, const job *j, const int n,
-                       const int bilinear, const int repeat, const int flat) {
+/* n jobs (a constant) shaded side by side and blended, in their order. */
+INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int bilinear,
+                       const int repeat, const int flat) {
     __m256 dx[JOB_SETS], dy[JOB_SETS];
     __m256i s[JOB_SETS];
+    const sg_tri *ts[JOB_SETS];
     for (int i = 0; i < n; i++) {
         dx[i] = j[i].dx;
         dy[i] = j[i].dy;
+        ts[i] = j[i].t;
     }
-    shade8_sets(v->shade_ctx, t, NULL, n, dx, dy, s, 1, bilinear, repeat, flat, 0);
+    /* One triangle's jobs (they come together): its planes' terms broadcast once for all. */
+    if (ts[0] == ts[n - 1])
+        shade8_sets(v->shade_ctx, ts[0], NULL, NULL, n, dx, dy, s, 1, bilinear, repeat, flat, 0);
+    else
+        shade8_sets(v->shade_ctx, ts[0], ts, NULL, n, dx, dy, s, 1, bilinear, repeat, flat, 0);
     for (int i = 0; i < n; i++) finish(v, &j[i], s[i]);
 }
 
@@ -220,29 +225,27 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
             continue;
         }
         if (bits == 255) { /* full rows need no packing */
-            const job j = {dx, dy, _mm256_setzero_si256(), base + 8 * h, 8};
-            submit(p, t, &j);
+            const job j = {dx, dy, _mm256_setzero_si256(), t, base + 8 * h, 8};
+            submit(p, &j);
             continue;
         }
         sg_queue8 full;
         if (sg_enqueue8(p->q, dx, dy, base + 8 * h, bits, &full)) {
-            const job j = {full.dx, full.dy, full.off, -1, 8};
-            submit(p, t, &j);
+            const job j = {full.dx, full.dy, full.off, t, -1, 8};
+            submit(p, &j);
         }
     }
 }
 
-/* The end of a triangle: the partial queue and the jobs waiting, shaded and blended. */
-INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
-    if (!textured) return; /* vertex colours were blended in place */
+/* The end of a triangle: its partial queue joins the jobs waiting. */
+INLINE void drain(queued_ctx *p, const sg_tri *t) {
     const sg_queue8 *q = p->q;
-    if (q->n) p->jobs[p->njobs++] = (job){q->dx, q->dy, q->off, -1, q->n};
-    if (p->njobs) p->flush(p, t);
+    if (q->n) submit(p, &(job){q->dx, q->dy, q->off, t, -1, q->n});
 }
 
 /* One raster function per shading variant (vertex colour; texture nearest / bilinear, repeat /
- * clamp: tex, bil, rep) and depth state (test, write: 0 or 1); the pixels left in the queue and
- * the job waiting are shaded at the end. */
+ * clamp: tex, bil, rep) and depth state (test, write: 0 or 1); the pixels left in the queue join
+ * the jobs waiting at the end. */
 #define SG_BLEND_INLINE(tex, bil, rep, zt, zw)                                                     \
     INLINE void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t, int x0,       \
                                                      int y0, uint32_t m) {                         \
@@ -253,18 +256,16 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
         sg_queue8 q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};       \
         const flat_src f =                                                                         \
             flat_src_of(!tex && t->flat != SG_FLAT_NONE ? sg_flat_pixel(t, NULL, 0) : 0u);         \
-        job jobs[tex ? JOBS : 1]; /* vertex colours are blended in place */                        \
         /* Field by field: an initializer would clear the context with a string store, whose start \
          * costs more than the stores of the fields (a call per triangle and bin). */              \
         queued_ctx p;                                                                              \
         p.v = c;                                                                                   \
         p.q = &q;                                                                                  \
-        p.jobs = jobs;                                                                             \
-        p.njobs = 0;                                                                               \
+        p.jobs = p.v->pending;                                                                     \
         p.flat = &f;                                                                               \
-        p.flush = blend_jobs_##bil##rep;                                                           \
+        if (tex) start_jobs(&p, t, blend_jobs_##bil##rep);                                         \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        drain(&p, t, tex);                                                                         \
+        if (tex) drain(&p, t); /* vertex colours were blended in place */                          \
     }
 SG_BLEND_VARIANTS(SG_BLEND_INLINE)
 

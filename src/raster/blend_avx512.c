@@ -2,9 +2,9 @@
  * tile a vector, the pixels of partly covered tiles of a textured triangle packed sixteen to a
  * vector; the same depth (z, clamp, compare) as the scalar and SSE2 code, the shading body of
  * shade_avx512.h inlined (a call per tile would spill every vector register of the walk; a
- * textured triangle's tiles and full queues are collected during its walk and shaded after it,
- * four at a time, by one function per texture variant), and the same integer blend, so the same
- * bytes. One function per shading variant and depth state;
+ * textured draw's tiles and full queues are collected during its triangles' walks and shaded
+ * later in the bin, four at a time, by one function per texture variant: blend_walk.h), and the
+ * same integer blend, so the same bytes. One function per shading variant and depth state;
  * opaque lines of vertex colours put their fragments in place, sixteen columns of the line a
  * vector (put_line). */
 #include "raster/blend.h"
@@ -72,16 +72,15 @@ INLINE __m512i blend16(__m512i s, __m512i d) {
     return _mm512_packus_epi16(lo, hi);
 }
 
-/* The queue (sg_queue16, shade_avx512.h) holds pixels of one triangle; the tiles of one triangle
- * share no pixel, so blending a pixel later changes nothing, as long as it is done before the next
- * triangle. */
 /* Sixteen pixels of a textured triangle ready to shade: a whole tile, blended in place at bin
- * offset base, or a full (or the last, partial) queue, blended through its offsets. The walk
- * collects them; they are shaded after it, four side by side (shade16_tiles): a shading is a
- * long chain of dependent steps, and several keep the vector units busy. */
+ * offset base, or a full (or the triangle's last, partial) queue, blended through its offsets
+ * (the queue, sg_queue16 in shade_avx512.h, holds pixels of one triangle). The walks collect them
+ * in the bin's list (blend_walk.h); they are shaded later, four side by side (shade16_tiles): a
+ * shading is a long chain of dependent steps, and several keep the vector units busy. */
 typedef struct job {
     __m512 dx, dy;
     __m512i off;
+    const sg_tri *t;
     int base; /* -1: scattered through off */
     uint32_t mask;
 } job;
@@ -93,10 +92,8 @@ enum { JOBS = 32, JOB_SETS = 4 };
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     sg_queue16 *q;
-    job *jobs; /* JOBS of them */
-    int njobs;
-    const flat_src *flat;                                 /* untextured triangles of one colour */
-    void (*flush)(struct queued_ctx *p, const sg_tri *t); /* the variant's shade_jobs */
+    sg_blend_pending *jobs; /* the bin's */
+    const flat_src *flat;   /* untextured triangles of one colour */
 } queued_ctx;
 
 /* The fragments s of the pixels of q's lanes m blended into their pixels of the bin's colour
@@ -129,18 +126,20 @@ INLINE uint32_t depth16(const sg_vis_ctx *v, const sg_tri *t, __m512 dx, __m512 
     return mask;
 }
 
-/* n jobs (a constant) shaded side by side (shade16_tiles) and blended. */
-INLINE void shade_some(const sg_vis_ctx *v, const sg_tri *t, const job *j, const int n,
-                       const int bilinear, const int repeat, const int flat) {
+/* n jobs (a constant) shaded side by side (shade16_tiles) and blended, in their order. */
+INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int bilinear,
+                       const int repeat, const int flat) {
     __m512 dx[JOB_SETS], dy[JOB_SETS];
     uint32_t mask[JOB_SETS];
     __m512i s[JOB_SETS];
+    const sg_tri *ts[JOB_SETS];
     for (int i = 0; i < n; i++) {
         dx[i] = j[i].dx;
         dy[i] = j[i].dy;
         mask[i] = j[i].mask;
+        ts[i] = j[i].t;
     }
-    shade16_tiles(v->shade_ctx, t, NULL, n, dx, dy, mask, s, 1, bilinear, repeat, flat, 0);
+    shade16_tiles(v->shade_ctx, ts[0], ts, NULL, n, dx, dy, mask, s, 1, bilinear, repeat, flat, 0);
     for (int i = 0; i < n; i++) finish(v, &j[i], s[i]);
 }
 
@@ -168,28 +167,26 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
         return;
     }
     if (mask == 0xffffu) { /* a whole tile needs no packing */
-        const job j = {dx, dy, _mm512_setzero_si512(), base, 0xffffu};
-        submit(p, t, &j);
+        const job j = {dx, dy, _mm512_setzero_si512(), t, base, 0xffffu};
+        submit(p, &j);
         return;
     }
     sg_queue16 full;
     if (sg_enqueue16(p->q, dx, dy, base, (__mmask16)mask, &full)) {
-        const job j = {full.dx, full.dy, full.off, -1, 0xffffu};
-        submit(p, t, &j);
+        const job j = {full.dx, full.dy, full.off, t, -1, 0xffffu};
+        submit(p, &j);
     }
 }
 
-/* The end of a triangle: the partial queue and the jobs waiting, shaded and blended. */
-INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
-    if (!textured) return; /* vertex colours were blended in place */
+/* The end of a triangle: its partial queue joins the jobs waiting. */
+INLINE void drain(queued_ctx *p, const sg_tri *t) {
     const sg_queue16 *q = p->q;
-    if (q->n) p->jobs[p->njobs++] = (job){q->dx, q->dy, q->off, -1, (1u << q->n) - 1u};
-    if (p->njobs) p->flush(p, t);
+    if (q->n) submit(p, &(job){q->dx, q->dy, q->off, t, -1, (1u << q->n) - 1u});
 }
 
 /* One raster function per shading variant (vertex colour; texture nearest / bilinear, repeat /
- * clamp: tex, bil, rep) and depth state (test, write); the pixels left in the queue are shaded
- * at the end. */
+ * clamp: tex, bil, rep) and depth state (test, write); the pixels left in the queue join the
+ * jobs waiting at the end. */
 #define SG_BLEND_QUEUED(tex, bil, rep, zt, zw)                                                     \
     static inline void blend_##tex##bil##rep##zt##zw##_tile(const void *c, const sg_tri *t,        \
                                                             int x0, int y0, uint32_t m) {          \
@@ -198,18 +195,16 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
     static void blend_##tex##bil##rep##zt##zw(const sg_tri *t, int x0, int y0, int x1, int y1,     \
                                               const void *c) {                                     \
         sg_queue16 q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0};      \
-        job jobs[tex ? JOBS : 1]; /* vertex colours are blended in place */                        \
         queued_ctx p;                                                                              \
         p.v = c;                                                                                   \
         p.q = &q;                                                                                  \
-        p.jobs = jobs;                                                                             \
-        p.njobs = 0;                                                                               \
-        p.flush = blend_jobs_##bil##rep;                                                           \
+        p.jobs = p.v->pending;                                                                     \
         const flat_src f =                                                                         \
             flat_src_of(!tex && t->flat != SG_FLAT_NONE ? sg_flat_pixel(t, NULL, 0) : 0u);         \
         p.flat = &f;                                                                               \
+        if (tex) start_jobs(&p, t, blend_jobs_##bil##rep);                                         \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        drain(&p, t, tex);                                                                         \
+        if (tex) drain(&p, t); /* vertex colours were blended in place */                          \
     }
 SG_BLEND_VARIANTS(SG_BLEND_QUEUED)
 

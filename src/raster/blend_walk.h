@@ -71,49 +71,64 @@
             SG_BLEND_ROW(1, 1, 1), SG_BLEND_ROW(1, 1, 0)                                           \
     }
 
-/* A textured blended triangle's jobs (sets of pixels to shade) collected during its walk and
- * shaded after it: the functions every vector blend file shares, for a file that defines `job`,
- * `queued_ctx` (with v, jobs, njobs and flush: the variant's blend_jobs_<bil><rep>), JOBS,
- * JOB_SETS and shade_some(v, t, jobs, n, bilinear, repeat, flat), which shades n jobs (a constant)
- * side by side and blends them. Defines shade_jobs_flat, shade_jobs, submit and
- * blend_jobs_00 ... blend_jobs_11 (nearest / bilinear, clamp / repeat: one copy each, called at a
- * triangle's end and when JOBS are waiting, not one per place the walk visits a tile). The pixels
- * of one triangle are all different, so the order they are blended in does not matter. */
+/* A textured blended draw's jobs (sets of pixels to shade) collected during its triangles' walks
+ * and shaded later, in the bin's sg_blend_pending (depth.h): the functions every vector blend
+ * file shares, for a file that defines `job` (with t, its triangle), `queued_ctx` (with v and
+ * jobs, the bin's sg_blend_pending), JOBS, JOB_SETS and shade_some(v, jobs, n, bilinear, repeat,
+ * flat), which shades n jobs (a constant) side by side and blends them in their order. Defines
+ * shade_jobs_flat, shade_jobs, submit, start_jobs and blend_jobs_00 ... blend_jobs_11 (nearest /
+ * bilinear, clamp / repeat: the flush, one copy each, not one per place the walk visits a tile).
+ * Jobs are shaded in the order they came, and each is blended after the ones before it: a pixel
+ * in two jobs (two triangles of the draw) is blended in the triangles' order. Jobs of several
+ * triangles go side by side, so a triangle's last few do not go alone. */
 #define SG_JOB_LIST_FNS                                                                            \
     static inline __attribute__((always_inline)) void shade_jobs_flat(                             \
-        queued_ctx *p, const sg_tri *t, const int bilinear, const int repeat, const int flat) {    \
-        const job *j = p->jobs;                                                                    \
+        sg_blend_pending *w, const sg_vis_ctx *v, const int bilinear, const int repeat,            \
+        const int flat) {                                                                          \
+        const job *j = (const job *)(const void *)w->jobs;                                         \
         int i = 0;                                                                                 \
-        for (; i + JOB_SETS <= p->njobs; i += JOB_SETS)                                            \
-            shade_some(p->v, t, j + i, JOB_SETS, bilinear, repeat, flat);                          \
-        if (p->njobs - i >= 2) {                                                                   \
-            shade_some(p->v, t, j + i, 2, bilinear, repeat, flat);                                 \
+        for (; i + JOB_SETS <= w->n; i += JOB_SETS)                                                \
+            shade_some(v, j + i, JOB_SETS, bilinear, repeat, flat);                                \
+        if (w->n - i >= 2) {                                                                       \
+            shade_some(v, j + i, 2, bilinear, repeat, flat);                                       \
             i += 2;                                                                                \
         }                                                                                          \
-        if (i < p->njobs) shade_some(p->v, t, j + i, 1, bilinear, repeat, flat);                   \
-        p->njobs = 0;                                                                              \
+        if (i < w->n) shade_some(v, j + i, 1, bilinear, repeat, flat);                             \
+        w->n = 0;                                                                                  \
     }                                                                                              \
     static inline __attribute__((always_inline)) void shade_jobs(                                  \
-        queued_ctx *p, const sg_tri *t, const int bilinear, const int repeat) {                    \
-        if (t->flat == SG_FLAT_WHITE)                                                              \
-            shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_WHITE);                                \
-        else if (t->flat == SG_FLAT_COLOR)                                                         \
-            shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_COLOR);                                \
+        sg_blend_pending *w, const sg_vis_ctx *v, const int bilinear, const int repeat) {          \
+        if (w->flat == SG_FLAT_WHITE)                                                              \
+            shade_jobs_flat(w, v, bilinear, repeat, SG_FLAT_WHITE);                                \
+        else if (w->flat == SG_FLAT_COLOR)                                                         \
+            shade_jobs_flat(w, v, bilinear, repeat, SG_FLAT_COLOR);                                \
         else                                                                                       \
-            shade_jobs_flat(p, t, bilinear, repeat, SG_FLAT_NONE);                                 \
+            shade_jobs_flat(w, v, bilinear, repeat, SG_FLAT_NONE);                                 \
     }                                                                                              \
-    static inline __attribute__((always_inline)) void submit(queued_ctx *p, const sg_tri *t,       \
-                                                             const job *j) {                       \
-        p->jobs[p->njobs++] = *j;                                                                  \
-        if (p->njobs == JOBS) p->flush(p, t);                                                      \
+    static inline __attribute__((always_inline)) void submit(queued_ctx *p, const job *j) {        \
+        sg_blend_pending *w = p->jobs;                                                             \
+        ((job *)(void *)w->jobs)[w->n++] = *j;                                                     \
+        if (w->n == JOBS) w->flush(w, p->v);                                                       \
+    }                                                                                              \
+    /* A triangle's jobs join those waiting when its flat mode is theirs (same draw: same          \
+     * texture and variant), else those go first. */                                               \
+    static inline __attribute__((always_inline)) void start_jobs(                                  \
+        queued_ctx *p, const sg_tri *t, void (*flush)(sg_blend_pending *, const sg_vis_ctx *)) {   \
+        sg_blend_pending *w = p->jobs;                                                             \
+        if (w->n && w->flat != (int)t->flat) w->flush(w, p->v);                                    \
+        w->flush = flush;                                                                          \
+        w->draw = t->draw;                                                                         \
+        w->flat = (int)t->flat;                                                                    \
     }                                                                                              \
     SG_BLEND_JOBS(0, 0)                                                                            \
     SG_BLEND_JOBS(0, 1)                                                                            \
     SG_BLEND_JOBS(1, 0)                                                                            \
-    SG_BLEND_JOBS(1, 1)
+    SG_BLEND_JOBS(1, 1)                                                                            \
+    _Static_assert(sizeof(job) * JOBS <= SG_PENDING_BYTES, "the bin's job buffer holds JOBS");
 #define SG_BLEND_JOBS(bil, rep)                                                                    \
-    static __attribute__((noinline)) void blend_jobs_##bil##rep(queued_ctx *p, const sg_tri *t) {  \
-        shade_jobs(p, t, bil, rep);                                                                \
+    static __attribute__((noinline)) void blend_jobs_##bil##rep(sg_blend_pending *w,               \
+                                                                const sg_vis_ctx *v) {             \
+        shade_jobs(w, v, bil, rep);                                                                \
     }
 
 #endif

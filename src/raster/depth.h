@@ -16,6 +16,22 @@
 #include "raster/shade.h"
 #include "sgapi/sgapi.h"
 
+struct sg_vis_ctx;
+
+/* Work the vector blend functions leave for later in a bin (blend_avx2.c, blend_avx512.c): the
+ * shading jobs of a textured blended draw's triangles, batched across its triangles (the pixels
+ * of one job are shaded and blended in the order the jobs came, so a pixel still sees the
+ * triangles in order). The bin runs them (flush) before anything else touches its colour: a
+ * triangle of another draw, the opaque ids' shading, the bin's end. */
+enum { SG_PENDING_BYTES = 8192 };
+typedef struct sg_blend_pending {
+    void (*flush)(struct sg_blend_pending *p, const struct sg_vis_ctx *v);
+    int n;         /* jobs waiting */
+    uint32_t draw; /* their draw */
+    int flat;      /* their triangles' sg_tri.flat, all the same */
+    _Alignas(64) unsigned char jobs[SG_PENDING_BYTES];
+} sg_blend_pending;
+
 /* The bin being rasterised: both buffers hold 64 x 64 pixels as 16 x 16 tiles of 4 x 4. */
 typedef struct sg_vis_ctx {
     float *depth;      /* NULL when the pass has no depth target */
@@ -28,6 +44,7 @@ typedef struct sg_vis_ctx {
     uint32_t *color;
     sg_shade_fn shade;
     const sg_shade_ctx *shade_ctx;
+    sg_blend_pending *pending;
 } sg_vis_ctx;
 
 /* Rasterises a triangle's part in the rectangle [x0, x1) x [y0, y1) into the bin's buffers (ctx:

@@ -284,8 +284,10 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     const sg_binner *b = p->binner;
     int x0 = v->x0, y0 = v->y0;
-    sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   touched, x0,  y0, 0,
-                      SG_COMPARE_ALWAYS,       color, NULL,    NULL};
+    sg_blend_pending waiting; /* its jobs are written before they are read */
+    waiting.n = 0;
+    sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   touched, x0,   y0,      0,
+                      SG_COMPARE_ALWAYS,       color, NULL,    NULL, &waiting};
     bool pending = false; /* ids hold opaque triangles not shaded yet */
     /* The ids are cleared when the first triangle that writes them comes: a bin of lines and
      * blends alone never reads them (16 KB a bin not cleared). */
@@ -301,6 +303,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
         const sg_tri *t = &b->tris[ti];
         prefetch_tri(b, bin, i + PREFETCH_AHEAD);
         const sg_draw_state *d = &p->draws[t->draw];
+        if (waiting.n && waiting.draw != t->draw) waiting.flush(&waiting, &vis);
         vis.id = ti + 1;
         vis.compare = d->compare;
         sg_raster_fn fn = d->raster_fn;
@@ -319,6 +322,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
         fn(t, x0, y0, x0 + SG_BIN_SIZE, y0 + SG_BIN_SIZE, &vis);
         if (d->writes_depth && range.valid) range.known = false;
     }
+    if (waiting.n) waiting.flush(&waiting, &vis);
     if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
     write_bin(p, v, color, depth);
@@ -354,7 +358,7 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
     start_depth(p, v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     int x0 = v->x0, y0 = v->y0;
-    sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, NULL, NULL, NULL};
+    sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, NULL, NULL, NULL, NULL};
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
     if (p->store_depth) sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
@@ -402,8 +406,8 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     memset(ids, 0, sizeof ids);
     start_depth(p, &v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
-    sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  touched, x0,  y0, 0,
-                      SG_COMPARE_ALWAYS,      NULL, NULL,    NULL};
+    sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  touched, x0,   y0,  0,
+                      SG_COMPARE_ALWAYS,      NULL, NULL,    NULL, NULL};
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
 

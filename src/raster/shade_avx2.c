@@ -150,7 +150,7 @@ INLINE void shade_pair(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
         sg_rows_dxdy8(t, x1, y1, h, &dx[2 + h], &dy[2 + h]);
     }
     __m256i v[4];
-    shade8_sets(c, t, ext, 4, dx, dy, v, textured, bilinear, repeat, flat, sec);
+    shade8_sets(c, t, NULL, ext, 4, dx, dy, v, textured, bilinear, repeat, flat, sec);
     _mm256_storeu_si256((__m256i *)(void *)dst0, v[0]);
     _mm256_storeu_si256((__m256i *)(void *)(dst0 + 8), v[1]);
     _mm256_storeu_si256((__m256i *)(void *)dst1, v[2]);
@@ -192,7 +192,7 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                 continue;
             const __m256 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
             __m256i v[2];
-            shade8_sets(c, t, ext, 2, fdx, fdy, v, textured, bilinear, repeat, flat, sec);
+            shade8_sets(c, t, NULL, ext, 2, fdx, fdy, v, textured, bilinear, repeat, flat, sec);
             sg_scatter8(color, full[0].off, v[0], 255u);
             sg_scatter8(color, full[1].off, v[1], 255u);
             nfull = 0;
@@ -200,13 +200,13 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     }
     if (nfull) {
         __m256i v;
-        shade8_sets(c, t, ext, 1, &full[0].dx, &full[0].dy, &v, textured, bilinear, repeat, flat,
-                    sec);
+        shade8_sets(c, t, NULL, ext, 1, &full[0].dx, &full[0].dy, &v, textured, bilinear, repeat,
+                    flat, sec);
         sg_scatter8(color, full[0].off, v, 255u);
     }
     if (q.n) {
         __m256i v;
-        shade8_sets(c, t, ext, 1, &q.dx, &q.dy, &v, textured, bilinear, repeat, flat, sec);
+        shade8_sets(c, t, NULL, ext, 1, &q.dx, &q.dy, &v, textured, bilinear, repeat, flat, sec);
         sg_scatter8(color, q.off, v, (1u << q.n) - 1u);
     }
 }

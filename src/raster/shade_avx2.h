@@ -326,34 +326,43 @@ INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
  * side by side (as shade16_tiles in shade_avx512.h): two, or four for two whole tiles. Lanes need
  * not be neighbours: each computes what the reference computes for its pixel, wherever that is, so
  * the blend can shade pixels of several tiles together. Every lane's fetch stays in the texture
- * whatever its coordinates. shade_rows (shade_avx2.c) is the same body for the two row pairs of one
- * tile, with the terms both pairs share computed once (keep the two in step). */
-INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, const int n,
-                        const __m256 dx[], const __m256 dy[], __m256i out[], const int textured,
-                        const int bilinear, const int repeat, const int flat, const int sec) {
+ * whatever its coordinates. With ts, set i is triangle ts[i]'s (the blend's jobs of several
+ * triangles), else every set is t's. shade_rows (shade_avx2.c) is the same body for the two row
+ * pairs of one tile, with the terms both pairs share computed once (keep the two in step). */
+INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *const ts[],
+                        const sg_tri_ext *ext, const int n, const __m256 dx[], const __m256 dy[],
+                        __m256i out[], const int textured, const int bilinear, const int repeat,
+                        const int flat, const int sec) {
     const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
         uint32_t px = sg_flat_pixel(t, ext, sec);
         for (int i = 0; i < n; i++) out[i] = _mm256_set1_epi32((int)px);
         return;
     }
+/* Set i's triangle: ts[i] when given (the blend's jobs of several triangles), else t. */
+#define SG_T(i) (ts ? ts[i] : t)
 #define SG_PLANE(a, adx, ady, i)                                                                   \
     _mm256_add_ps(_mm256_add_ps(_mm256_set1_ps(a), _mm256_mul_ps(_mm256_set1_ps(adx), dx[i])),     \
                   _mm256_mul_ps(_mm256_set1_ps(ady), dy[i]))
     __m256 w[4], col[4][4];
     for (int i = 0; i < n; i++)
-        w[i] = _mm256_div_ps(_mm256_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy, i));
+        w[i] = _mm256_div_ps(_mm256_set1_ps(1.0f),
+                             SG_PLANE(SG_T(i)->q, SG_T(i)->q_dx, SG_T(i)->q_dy, i));
     for (int i = 0; i < n; i++)
         for (int k = 0; k < 4; k++)
-            col[i][k] = flat != SG_FLAT_NONE
-                            ? _mm256_set1_ps(t->color[k])
-                            : _mm256_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k], i), w[i]);
+            col[i][k] =
+                flat != SG_FLAT_NONE
+                    ? _mm256_set1_ps(SG_T(i)->color[k])
+                    : _mm256_mul_ps(SG_PLANE(SG_T(i)->a[k], SG_T(i)->a_dx[k], SG_T(i)->a_dy[k], i),
+                                    w[i]);
     if (textured) {
         const tex8 tx = tex8_of(&c->tex, bilinear);
         __m256 s[4], u[4];
         for (int i = 0; i < n; i++) {
-            s[i] = _mm256_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4], i), w[i]);
-            u[i] = _mm256_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5], i), w[i]);
+            s[i] =
+                _mm256_mul_ps(SG_PLANE(SG_T(i)->a[4], SG_T(i)->a_dx[4], SG_T(i)->a_dy[4], i), w[i]);
+            u[i] =
+                _mm256_mul_ps(SG_PLANE(SG_T(i)->a[5], SG_T(i)->a_dx[5], SG_T(i)->a_dy[5], i), w[i]);
         }
         __m256i tc[4][4];
         if (bilinear) {
@@ -392,6 +401,7 @@ INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext
                     ? _mm256_set1_ps(ext->a[e + k])
                     : _mm256_mul_ps(SG_PLANE(ext->a[e + k], ext->a_dx[e + k], ext->a_dy[e + k], i),
                                     w[i]));
+#undef SG_T
 #undef SG_PLANE
     for (int i = 0; i < n; i++) out[i] = pack_unorm8(col[i]);
 }

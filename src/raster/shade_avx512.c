@@ -30,7 +30,7 @@ INLINE void shade_pair(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     sg_tile_dxdy16(t, x1, y1, &dx[1], &dy[1]);
     const uint32_t mask[2] = {0xffffu, 0xffffu};
     __m512i v[2];
-    shade16_tiles(c, t, ext, 2, dx, dy, mask, v, textured, bilinear, repeat, flat, sec);
+    shade16_tiles(c, t, NULL, ext, 2, dx, dy, mask, v, textured, bilinear, repeat, flat, sec);
     _mm512_storeu_si512(dst0, v[0]);
     _mm512_storeu_si512(dst1, v[1]);
 }
@@ -70,7 +70,7 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
         const __m512 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
         const uint32_t all[2] = {0xffffu, 0xffffu};
         __m512i v[2];
-        shade16_tiles(c, t, ext, 2, fdx, fdy, all, v, textured, bilinear, repeat, flat, sec);
+        shade16_tiles(c, t, NULL, ext, 2, fdx, fdy, all, v, textured, bilinear, repeat, flat, sec);
         _mm512_i32scatter_epi32(color, full[0].off, v[0], 4);
         _mm512_i32scatter_epi32(color, full[1].off, v[1], 4);
         nfull = 0;

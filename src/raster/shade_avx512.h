@@ -267,11 +267,12 @@ INLINE __m512i pack_unorm8(const __m512 col[4]) {
  * step together (planes, then texel coordinates, then fetches, then filters): a tile's steps
  * form one long chain of dependent operations, and two chains side by side keep the vector
  * units busy where one waits (a floor shades a sixth faster two tiles at a time; the blend's
- * jobs go four at a time). */
-INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext,
-                          const int n, const __m512 dx[], const __m512 dy[], const uint32_t mask[],
-                          __m512i out[], const int textured, const int bilinear, const int repeat,
-                          const int flat, const int sec) {
+ * jobs go four at a time). With ts, tile i is triangle ts[i]'s (the blend's jobs of several
+ * triangles), else every tile is t's. */
+INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *const ts[],
+                          const sg_tri_ext *ext, const int n, const __m512 dx[], const __m512 dy[],
+                          const uint32_t mask[], __m512i out[], const int textured,
+                          const int bilinear, const int repeat, const int flat, const int sec) {
     const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) {
         float f[4] = {t->color[0], t->color[1], t->color[2], t->color[3]};
@@ -282,23 +283,30 @@ INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_e
         for (int i = 0; i < n; i++) out[i] = _mm512_set1_epi32((int)px);
         return;
     }
+/* Set i's triangle: ts[i] when given (the blend's jobs of several triangles), else t. */
+#define SG_T(i) (ts ? ts[i] : t)
 #define SG_PLANE(a, adx, ady, i)                                                                   \
     _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(a), _mm512_mul_ps(_mm512_set1_ps(adx), dx[i])),     \
                   _mm512_mul_ps(_mm512_set1_ps(ady), dy[i]))
     __m512 w[4], col[4][4];
     for (int i = 0; i < n; i++)
-        w[i] = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_PLANE(t->q, t->q_dx, t->q_dy, i));
+        w[i] = _mm512_div_ps(_mm512_set1_ps(1.0f),
+                             SG_PLANE(SG_T(i)->q, SG_T(i)->q_dx, SG_T(i)->q_dy, i));
     for (int i = 0; i < n; i++)
         for (int k = 0; k < 4; k++)
-            col[i][k] = flat != SG_FLAT_NONE
-                            ? _mm512_set1_ps(t->color[k])
-                            : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k], i), w[i]);
+            col[i][k] =
+                flat != SG_FLAT_NONE
+                    ? _mm512_set1_ps(SG_T(i)->color[k])
+                    : _mm512_mul_ps(SG_PLANE(SG_T(i)->a[k], SG_T(i)->a_dx[k], SG_T(i)->a_dy[k], i),
+                                    w[i]);
     if (textured) {
         const tex16 tx = tex16_of(&c->tex, bilinear);
         __m512 s[4], u[4];
         for (int i = 0; i < n; i++) {
-            s[i] = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4], i), w[i]);
-            u[i] = _mm512_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5], i), w[i]);
+            s[i] =
+                _mm512_mul_ps(SG_PLANE(SG_T(i)->a[4], SG_T(i)->a_dx[4], SG_T(i)->a_dy[4], i), w[i]);
+            u[i] =
+                _mm512_mul_ps(SG_PLANE(SG_T(i)->a[5], SG_T(i)->a_dx[5], SG_T(i)->a_dy[5], i), w[i]);
         }
         __m512i tc[4][4];
         if (bilinear) {
@@ -339,6 +347,7 @@ INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_e
                     ? _mm512_set1_ps(ext->a[e + k])
                     : _mm512_mul_ps(SG_PLANE(ext->a[e + k], ext->a_dx[e + k], ext->a_dy[e + k], i),
                                     w[i]));
+#undef SG_T
 #undef SG_PLANE
     for (int i = 0; i < n; i++) out[i] = pack_unorm8(col[i]);
 }
@@ -349,7 +358,7 @@ INLINE __m512i sg_shade16_at(const sg_shade_ctx *c, const sg_tri *t, const sg_tr
                              __m512 dx, __m512 dy, uint32_t mask, const int textured,
                              const int bilinear, const int repeat, const int flat, const int sec) {
     __m512i out;
-    shade16_tiles(c, t, ext, 1, &dx, &dy, &mask, &out, textured, bilinear, repeat, flat, sec);
+    shade16_tiles(c, t, NULL, ext, 1, &dx, &dy, &mask, &out, textured, bilinear, repeat, flat, sec);
     return out;
 }
 
