@@ -1,3 +1,6 @@
+#if defined(__linux__)
+#define _GNU_SOURCE /* sched_getcpu, sched_setaffinity */
+#endif
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 /* workers.c - a small fork-join pool: a batch of jobs is handed out one index at a time under a
  * lock (jobs are whole screen bins or front-end chunks, so the lock is taken a few hundred times a
@@ -7,7 +10,13 @@
  * millisecond apart; a thread woken from a condition variable takes tens of microseconds to start,
  * which would leave the caller to do most of a short batch alone. So a worker that finishes a batch
  * watches for the next one for a while (SPIN_NS) before it sleeps, and the caller watches for the
- * end of its batch the same way. */
+ * end of its batch the same way.
+ *
+ * On Linux a woken worker may be put on its waker's CPU while another CPU is idle, and then the
+ * two share one CPU, each running while the other waits, for tens of milliseconds (the balancer
+ * does not move a thread that ran a moment ago): the pool then runs no faster than one thread. A
+ * worker woken on the caller's CPU moves off it (leave_cpu; docs/performance.md, "Two threads on
+ * one CPU"). */
 #include "core/workers.h"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -19,6 +28,10 @@
 
 #include <stdint.h>
 #include <time.h>
+
+#if defined(__linux__)
+#include <sched.h>
+#endif
 
 /* How long a worker watches for the next batch, and the caller for the end of its own, before
  * sleeping: 1 ms, by the clock (a pause instruction takes from a few to about 150 cycles,
@@ -39,6 +52,31 @@ static uint64_t now_ns(void) {
 static inline bool spin_on(uint64_t start, unsigned *polls) {
     SG_SPIN_PAUSE();
     return (++*polls & 63u) != 0 || now_ns() - start < SPIN_NS;
+}
+
+/* The CPU the calling thread runs on, or -1. */
+static int current_cpu(void) {
+#if defined(__linux__)
+    return sched_getcpu();
+#else
+    return -1;
+#endif
+}
+
+/* Moves the calling thread off CPU `cpu`, the one it is on, when it may run on another: its
+ * affinity without that CPU moves it at once, and the affinity it had is then given back (the
+ * thread stays where it went). */
+static void leave_cpu(int cpu) {
+#if defined(__linux__)
+    cpu_set_t mine, other;
+    if (sched_getaffinity(0, sizeof mine, &mine) != 0) return;
+    other = mine;
+    CPU_CLR(cpu, &other);
+    if (CPU_COUNT(&other) > 0 && sched_setaffinity(0, sizeof other, &other) == 0)
+        sched_setaffinity(0, sizeof mine, &mine);
+#else
+    (void)cpu;
+#endif
 }
 
 /* Takes job indices until the batch is exhausted; returns with the lock held. */
@@ -66,9 +104,20 @@ static void *worker_main(void *arg) {
                spin_on(start, &polls)) {
         }
         pthread_mutex_lock(&w->lock);
-        while (!w->quit && w->generation == seen) pthread_cond_wait(&w->start, &w->lock);
+        bool slept = false;
+        while (!w->quit && w->generation == seen) {
+            pthread_cond_wait(&w->start, &w->lock);
+            slept = true;
+        }
         if (w->quit) break;
         seen = w->generation;
+        /* A wake-up places a thread; a spinning one stays where it is. */
+        const int caller = atomic_load_explicit(&w->caller_cpu, memory_order_relaxed);
+        if (slept && caller >= 0 && current_cpu() == caller) {
+            pthread_mutex_unlock(&w->lock);
+            leave_cpu(caller);
+            pthread_mutex_lock(&w->lock);
+        }
         w->busy++;
         drain(w);
         w->busy--;
@@ -85,6 +134,7 @@ bool sg_workers_start(sg_workers *w, int count, pthread_t *threads) {
     atomic_init(&w->finished, 0);
     atomic_init(&w->generation, 0);
     atomic_init(&w->busy, 0);
+    atomic_init(&w->caller_cpu, -1);
     atomic_init(&w->quit, false);
     if (pthread_mutex_init(&w->lock, NULL) != 0) return false;
     pthread_cond_init(&w->start, NULL);
@@ -102,6 +152,10 @@ void sg_workers_run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx) {
         for (int i = 0; i < jobs; i++) fn(ctx, i);
         return;
     }
+    /* Written only when it changes: the line is the one the spinning workers read. */
+    const int cpu = current_cpu();
+    if (cpu != atomic_load_explicit(&w->caller_cpu, memory_order_relaxed))
+        atomic_store_explicit(&w->caller_cpu, cpu, memory_order_relaxed);
     pthread_mutex_lock(&w->lock);
     w->fn = fn;
     w->ctx = ctx;

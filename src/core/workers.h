@@ -19,7 +19,8 @@ typedef struct sg_workers {
     int jobs, next;
     /* Written under the lock; read without it by threads that spin briefly before sleeping. */
     atomic_int finished, generation;
-    atomic_int busy; /* workers still inside the current batch */
+    atomic_int busy;       /* workers still inside the current batch */
+    atomic_int caller_cpu; /* the CPU the caller started the batch on (-1: unknown) */
     atomic_bool quit;
 } sg_workers;
 
