@@ -267,7 +267,6 @@ static void orient_outward(sc_mesh *m) {
 /* Adds a mesh and its draw; the mesh is taken over. */
 static bool add_part(sc_file *f, sc_scene *sc, sc_mesh *mesh, const char *source,
                      const sc_draw *proto, char *err, size_t errlen) {
-    if (proto->lighting == SC_LIGHTING_FLAT) orient_outward(mesh);
     if (!add_normals(mesh)) {
         sc_mesh_free(mesh);
         snprintf(err, errlen, "%s: out of memory", source);
@@ -421,6 +420,7 @@ static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
                     d.depth_write = false;
                     d.sort = SC_SORT_BACK_TO_FRONT;
                 }
+                if (d.lighting == SC_LIGHTING_FLAT) orient_outward(&part);
                 ok = add_part(f, sc, &part, source, &d, err, errlen);
             }
         }
@@ -435,12 +435,68 @@ static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
     return ok;
 }
 
+static bool opaque_triangle(const sc_mesh *m, const uint32_t *t) {
+    for (int c = 0; c < 3; c++)
+        if (m->colors[(size_t)t[c] * 4 + 3] < 1.0f) return false;
+    return true;
+}
+
+/* Puts the triangles whose vertices are all opaque (alpha 1) before the others, each group in
+ * file order; *opaque gets the number of indices the opaque ones take. False when out of memory. */
+static bool opaque_first(sc_mesh *m, uint32_t *opaque) {
+    uint32_t n = m->index_count, solid = 0;
+    for (uint32_t i = 0; i < n; i += 3) solid += opaque_triangle(m, m->indices + i) ? 3 : 0;
+    *opaque = solid;
+    if (solid == n || solid == 0) return true;
+    uint32_t *sorted = malloc((size_t)n * sizeof *sorted);
+    if (!sorted) return false;
+    uint32_t front = 0, back = solid;
+    for (uint32_t i = 0; i < n; i += 3) {
+        uint32_t *at = opaque_triangle(m, m->indices + i) ? &front : &back;
+        memcpy(sorted + *at, m->indices + i, 3 * sizeof *sorted);
+        *at += 3;
+    }
+    free(m->indices);
+    m->indices = sorted;
+    return true;
+}
+
 static bool load_off(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w, char *err,
                      size_t errlen) {
     sc_mesh mesh;
     if (!sc_off_load(path, &mesh, w, err, errlen)) return false;
     sc_draw d = model_draw(0, mesh.normals != NULL);
-    return add_part(f, sc, &mesh, path, &d, err, errlen);
+    /* Oriented whole: a part alone (the translucent faces of a cube) has no inside. */
+    if (d.lighting == SC_LIGHTING_FLAT) orient_outward(&mesh);
+    uint32_t opaque;
+    if (!opaque_first(&mesh, &opaque)) {
+        sc_mesh_free(&mesh);
+        snprintf(err, errlen, "%s: out of memory", path);
+        return false;
+    }
+    if (opaque == mesh.index_count) return add_part(f, sc, &mesh, path, &d, err, errlen);
+    /* Colours with alpha below 1 are drawn as an MTL 'd' below 1 is: after the opaque faces,
+     * blended, sorted back to front, without depth writes. */
+    uint32_t ranges[4] = {0, opaque, opaque, mesh.index_count - opaque};
+    bool ok = true;
+    for (int k = 0; ok && k < 2; k++) {
+        if (!ranges[k * 2 + 1]) continue;
+        sc_mesh part;
+        if (!sub_mesh(&mesh, ranges + k * 2, 1, &part)) {
+            snprintf(err, errlen, "%s: out of memory", path);
+            ok = false;
+            break;
+        }
+        sc_draw pd = d;
+        if (k == 1) {
+            pd.blend = SC_BLEND_ALPHA;
+            pd.depth_write = false;
+            pd.sort = SC_SORT_BACK_TO_FRONT;
+        }
+        ok = add_part(f, sc, &part, path, &pd, err, errlen);
+    }
+    sc_mesh_free(&mesh);
+    return ok;
 }
 
 bool sc_scene_bounds(const sc_file *file, const sc_scene *scene, double centre[3], double *radius) {
