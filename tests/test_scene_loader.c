@@ -1263,13 +1263,6 @@ static void scene_errors(void **state) {
          "scenes[0] ('a'), draws[0]: ", "'receives_shadow' must be true or false"},
         {SHADOW_SCENE(SUN, "null", "\"receives_shadow\": 0, "),
          "draws[0]: ", "'receives_shadow' must be true or false"},
-        {SHADOW_SCENE(SUN, "{\"light\": 0}", "\"lighting\": \"flat\", "),
-         "scenes[0] ('a'), draws[0]: ",
-         "a draw lit 'flat' cannot receive the scene's shadow: shadows fall on 'phong' and unlit "
-         "draws only (set \"receives_shadow\": false)"},
-        {SHADOW_SCENE(SUN, "{\"light\": 0}",
-                      "\"lighting\": \"gouraud\", \"casts_shadow\": false, "),
-         "scenes[0] ('a'), draws[0]: ", "a draw lit 'gouraud' cannot receive the scene's shadow"},
         {"{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"a\", \"lights\": [" SUN "],"
          " \"shadow\": {\"light\": 0}, \"draws\": [{\"mesh\": \"dot.obj\", " MATRICES "}]}]}",
          "scenes[0] ('a'), shadow: ", "the light cannot be fitted to the casters"},

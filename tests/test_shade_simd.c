@@ -275,7 +275,7 @@ static int same_as_reference(sg_shade_fn fn, const char *isa, const sg_shade_ctx
 /* The lit part of a case: a secondary colour's planes (kind SECONDARY), or a view position and
  * normal and the draw's lights (kind PHONG: positions around the eye, normals of any length or
  * none, one to eight lights of both kinds, specular colours and shininess from 0 to 128). */
-enum { UNLIT, SECONDARY, PHONG, PHONG_SHADOW, UNLIT_SHADOW };
+enum { UNLIT, SECONDARY, PHONG, PHONG_SHADOW, UNLIT_SHADOW, SPLIT_SHADOW };
 
 static void random_plane(rng *g, float value, float spread, float q, int x0, int y0,
                          const sg_tri *t, float *a, float *adx, float *ady) {
@@ -310,6 +310,14 @@ static void random_lit(rng *g, int kind, int flat, const sg_tri *t, int x0, int 
                      &ext->a_dx[en + k], &ext->a_dy[en + k]);
         if (chance(g, 1)) ext->a[en + k] = wild(g);
     }
+    if (kind == SPLIT_SHADOW) /* flat and Gouraud receivers: the split colours (light.h) */
+        for (int k = SG_LIT_SPLIT_D - SG_TRI_ATTRS; k < SG_LIT_SPLIT_END - SG_TRI_ATTRS; k++) {
+            float v = chance(g, 5) ? wild(g) : frange(g, -0.2f, 1.4f);
+            if (flat)
+                ext->a[k] = v; /* constant on a flat triangle, kept as it is */
+            else
+                random_plane(g, v, 0.05f, q, x0, y0, t, &ext->a[k], &ext->a_dx[k], &ext->a_dy[k]);
+        }
     sgLighting l;
     memset(&l, 0, sizeof l);
     l.light_count = irange(g, 0, SG_MAX_LIGHTS);
@@ -408,7 +416,7 @@ static void compare_variant(int variant, int kind) {
     enum { NMAPS = sizeof map_sizes / sizeof *map_sizes };
     texture maps[NMAPS];
     for (int i = 0; i < NMAPS; i++) texture_make(&maps[i], &g, map_sizes[i][0], map_sizes[i][1], 1);
-    const int shadow = kind == PHONG_SHADOW || kind == UNLIT_SHADOW;
+    const int shadow = kind == PHONG_SHADOW || kind == UNLIT_SHADOW || kind == SPLIT_SHADOW;
     const int textured = variant != 0;
     /* NEON is not "above" the x86 sets: each set is asked for by whether this CPU runs it. */
     const bool has_avx2 = sg_isa_runs(SG_ISA_AVX2), has_avx512 = sg_isa_runs(SG_ISA_AVX512),
@@ -423,6 +431,7 @@ static void compare_variant(int variant, int kind) {
     if (kind >= PHONG) {
         const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
                            : kind == PHONG_SHADOW ? SG_PIXEL_PHONG_SHADOW
+                           : kind == SPLIT_SHADOW ? SG_PIXEL_SPLIT_SHADOW
                                                   : SG_PIXEL_SHADOW) +
                           variant;
         scalar = sg_shade_phong_scalar(pixel);
@@ -471,7 +480,8 @@ static void compare_variant(int variant, int kind) {
             int x0, y0;
             random_tri(&g, &t, flat, tx->w, tx->h, &x0, &y0);
             if (kind != UNLIT)
-                random_lit(&g, kind == SECONDARY ? SECONDARY : PHONG, flat, &t, x0, y0, &ext, &ctx);
+                random_lit(&g, kind == SECONDARY || kind == SPLIT_SHADOW ? kind : PHONG, flat, &t,
+                           x0, y0, &ext, &ctx);
             if (shadow) {
                 random_shadow(&g, maps, NMAPS, &ctx);
                 seen[shadow_kind(&ctx, &t, &ext, x0, y0)]++;
@@ -678,6 +688,31 @@ static void bilinear_clamp_unlit_shadow(void **state) {
     compare_variant(4, UNLIT_SHADOW);
 }
 
+static void vertex_colour_split_shadow(void **state) {
+    (void)state;
+    compare_variant(0, SPLIT_SHADOW);
+}
+
+static void nearest_repeat_split_shadow(void **state) {
+    (void)state;
+    compare_variant(1, SPLIT_SHADOW);
+}
+
+static void nearest_clamp_split_shadow(void **state) {
+    (void)state;
+    compare_variant(2, SPLIT_SHADOW);
+}
+
+static void bilinear_repeat_split_shadow(void **state) {
+    (void)state;
+    compare_variant(3, SPLIT_SHADOW);
+}
+
+static void bilinear_clamp_split_shadow(void **state) {
+    (void)state;
+    compare_variant(4, SPLIT_SHADOW);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(vertex_colour),
@@ -705,6 +740,11 @@ int main(void) {
         cmocka_unit_test(bilinear_repeat_unlit_shadow),
         cmocka_unit_test(bilinear_clamp_phong_shadow),
         cmocka_unit_test(bilinear_clamp_unlit_shadow),
+        cmocka_unit_test(vertex_colour_split_shadow),
+        cmocka_unit_test(nearest_repeat_split_shadow),
+        cmocka_unit_test(nearest_clamp_split_shadow),
+        cmocka_unit_test(bilinear_repeat_split_shadow),
+        cmocka_unit_test(bilinear_clamp_split_shadow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,7 +2,8 @@
  * depth-only pass writes the depth an ordinary pass writes, bit for bit (blended draws included,
  * at 1 and 2 threads); bias moves depth by its constant and slope terms, clamped to [0, 1];
  * shadowed unlit pixels are half their colour, exactly, with PCF's quarter steps on an edge; a
- * hidden light removes exactly that light's share of Phong lighting; points behind the light or
+ * hidden light removes exactly that light's share of Phong, flat and Gouraud lighting (flat and
+ * Gouraud seen: the unshadowed image, within a step); points behind the light or
  * off the map are lit; and every bad input is refused with its code, nothing drawn.
  */
 #include "test_common.h"
@@ -339,6 +340,67 @@ static void hidden_light_is_removed_from_phong(void **state) {
     sgDestroyDevice(a.dev);
 }
 
+/* Whether two images differ by at most one step in every channel. */
+static bool within_one(const uint8_t *a, const uint8_t *b, size_t n) {
+    for (size_t i = 0; i < n; i++)
+        if (a[i] > b[i] + 1 || b[i] > a[i] + 1) return false;
+    return true;
+}
+
+/* Flat and Gouraud draws keep the hidden light's part of their colours apart (light.h, split):
+ * where it is hidden, exactly the image without that light (no vertex saturates here, so clamping
+ * after interpolation is clamping before); where it is seen, the unshadowed image, exactly when
+ * it is the only light, within one step with another light (the sums are grouped otherwise). */
+static void hidden_light_is_removed_from_flat_and_gouraud(void **state) {
+    (void)state;
+    api a;
+    api_open(&a, 1);
+    sgLighting two;
+    memset(&two, 0, sizeof two);
+    two.ambient[0] = two.ambient[1] = two.ambient[2] = 0.15f;
+    two.light_count = 2;
+    two.lights[0] = (sgLight){
+        .type = SG_LIGHT_DIRECTIONAL, .direction = {0.3f, -0.2f, -1}, .color = {0.4f, 0.4f, 0.4f}};
+    two.lights[1] = (sgLight){
+        .type = SG_LIGHT_POINT, .position = {0.2f, 0.4f, -1.0f}, .color = {0.6f, 0.5f, 0.3f}};
+    sgLighting first = two, second = two;
+    first.light_count = 1;
+    second.light_count = 1;
+    second.lights[0] = two.lights[1];
+    const sgLightingMode modes[2] = {SG_LIGHTING_GOURAUD, SG_LIGHTING_FLAT};
+    for (int m = 0; m < 2; m++) {
+        uint8_t img[S * S * 4], lit[S * S * 4], without[S * S * 4], alone[S * S * 4];
+        assert_int_equal(draw_receiver(&a, modes[m], &two, NULL, lit), SG_OK);
+        assert_int_equal(draw_receiver(&a, modes[m], &first, NULL, without), SG_OK);
+        assert_int_equal(draw_receiver(&a, modes[m], &second, NULL, alone), SG_OK);
+        assert_memory_not_equal(lit, without, sizeof lit);
+        sgShadow sh = shadow_of(&a, false);
+        sh.light = 1;
+        upload_map(&a, S); /* all hidden: exactly the image without light 1 */
+        assert_int_equal(draw_receiver(&a, modes[m], &two, &sh, img), SG_OK);
+        assert_memory_equal(img, without, sizeof img);
+        upload_map(&a, 0); /* nothing hidden: the unshadowed image */
+        assert_int_equal(draw_receiver(&a, modes[m], &two, &sh, img), SG_OK);
+        assert_true(within_one(img, lit, sizeof img));
+        upload_map(&a, 16); /* half: each side as its whole image */
+        assert_int_equal(draw_receiver(&a, modes[m], &two, &sh, img), SG_OK);
+        for (int y = 0; y < S; y++)
+            for (int x = 0; x < S; x++) {
+                size_t o = (size_t)(y * S + x) * 4;
+                if (x < 16)
+                    assert_memory_equal(img + o, without + o, 4);
+                else
+                    assert_true(within_one(img + o, lit + o, 4));
+            }
+        /* The shadowed light alone (and ambient): seen, exactly the unshadowed image. */
+        sh.light = 0;
+        upload_map(&a, 0);
+        assert_int_equal(draw_receiver(&a, modes[m], &second, &sh, img), SG_OK);
+        assert_memory_equal(img, alone, sizeof img);
+    }
+    sgDestroyDevice(a.dev);
+}
+
 /* Every bad shadow input: its code, a message naming the field, and nothing drawn. */
 static void bad_shadow_input_is_refused(void **state) {
     (void)state;
@@ -366,9 +428,13 @@ static void bad_shadow_input_is_refused(void **state) {
     assert_non_null(strstr(sgGetLastError(a.dev), "shadow->light"));
     sh.light = -1;
     assert_int_equal(draw_receiver(&a, SG_LIGHTING_PHONG, &one, &sh, img), SG_ERROR_INVALID_VALUE);
-    sh.light = 0;
-    assert_int_equal(draw_receiver(&a, SG_LIGHTING_GOURAUD, &one, &sh, img), SG_ERROR_UNSUPPORTED);
-    assert_int_equal(draw_receiver(&a, SG_LIGHTING_FLAT, &one, &sh, img), SG_ERROR_UNSUPPORTED);
+    /* The light must be one of the draw's in every lit mode. */
+    for (int mode = SG_LIGHTING_FLAT; mode <= SG_LIGHTING_GOURAUD; mode++) {
+        sh.light = 1;
+        assert_int_equal(draw_receiver(&a, (sgLightingMode)mode, &one, &sh, img),
+                         SG_ERROR_INVALID_VALUE);
+        assert_non_null(strstr(sgGetLastError(a.dev), "shadow->light"));
+    }
     /* Every failed draw left the clear colour. */
     for (int i = 0; i < S * S * 4; i++) assert_int_equal(img[i], 0);
 
@@ -424,6 +490,7 @@ int main(void) {
         cmocka_unit_test(depth_bias_moves_depth),
         cmocka_unit_test(unlit_shadow_halves_the_colour),
         cmocka_unit_test(hidden_light_is_removed_from_phong),
+        cmocka_unit_test(hidden_light_is_removed_from_flat_and_gouraud),
         cmocka_unit_test(bad_shadow_input_is_refused),
         cmocka_unit_test(visibility_by_hand),
     };

@@ -1903,6 +1903,56 @@ static void scene_shadow_grazing(scene *s, mat4 proj, const mesh *teapot) {
     set_lit(d, "phong", 0.3, 20);
 }
 
+/* Gouraud draws receiving the sun's shadow: a brick floor and two teapots lit per vertex, under a
+ * sun (shadowed) and a cool point light to the right (unshadowed). Where the map hides the sun, a
+ * pixel keeps the ambient and the point light's pool, and the teapots' highlights of the sun go
+ * while the point light's stay. */
+static void scene_shadow_gouraud(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "shadow_gouraud";
+    s->view = mat_look_at(v3(0.2, 2.6, 4.6), v3(0, 0.4, -0.3), v3(0, 1, 0));
+    s->ambient = v3(0.12, 0.12, 0.14);
+    s->lights[s->light_count++] = dir_light(v3(0.8, -0.7, -0.35), v3(0.95, 0.88, 0.75));
+    s->lights[s->light_count++] =
+        point_light(v3(1.8, 1.6, 0.9), v3(0.35, 0.5, 0.75), 0.5, 0.1, 0.15);
+    s->shadow_light = 1;
+    draw *d = add_floor(s, proj, s->view, A_BRICK, 4);
+    set_lit(d, "gouraud", 0, 0);
+    d = teapot_at(s, proj, teapot, -1.0, -0.4, 160, 0.7);
+    set_color(d, 0.85, 0.5, 0.3, 1);
+    set_lit(d, "gouraud", 0.7, 30);
+    d = teapot_at(s, proj, teapot, 0.55, -0.2, -30, 0.55);
+    set_color(d, 0.4, 0.65, 0.85, 1);
+    set_lit(d, "gouraud", 0.7, 30);
+}
+
+/* Flat draws receiving the sun's shadow: a checker floor, a teapot and cubes lit once per
+ * triangle, under a sun (shadowed) and a dim fill light from the front (unshadowed). The shadow's
+ * edge runs through the facets per pixel; a shadowed facet keeps its ambient and fill. */
+static void scene_shadow_flat(scene *s, mat4 proj, const mesh *teapot) {
+    s->name = "shadow_flat";
+    s->view = mat_look_at(v3(-0.3, 2.8, 4.8), v3(0, 0.35, -0.2), v3(0, 1, 0));
+    s->ambient = v3(0.14, 0.14, 0.16);
+    s->lights[s->light_count++] = dir_light(v3(-0.9, -0.75, -0.25), v3(0.95, 0.9, 0.8));
+    s->lights[s->light_count++] = dir_light(v3(0.3, -0.5, -1.0), v3(0.25, 0.22, 0.3));
+    s->shadow_light = 1;
+    draw *d = add_floor(s, proj, s->view, A_CHECKER, 4);
+    set_lit(d, "flat", 0, 0);
+    d = teapot_at(s, proj, teapot, 0.6, -0.3, 20, 0.65);
+    set_color(d, 0.9, 0.8, 0.55, 1);
+    set_lit(d, "flat", 0.6, 25);
+    for (int i = 0; i < 3; i++) {
+        double size = 0.2 + 0.05 * i;
+        d = scene_add(s);
+        d->mesh = A_CUBE;
+        d->proj = proj;
+        d->world_view = mat_mul(
+            s->view, model(v3(1.6 - 0.2 * i, size, 0.9 - 0.8 * i), 25.0 * i + 10, 0, 0, size));
+        vec3 col = hsv(i / 3.0 + 0.3, 0.55, 0.85);
+        set_color(d, col.x, col.y, col.z, 1);
+        set_lit(d, "flat", 0, 0);
+    }
+}
+
 /* ---------------------------------------------------------------------------------------------
  * Line scenes (lines.json) and their line meshes.
  */
@@ -2168,6 +2218,8 @@ enum {
     S_SHADOW_TEAPOTS,
     S_SHADOW_POINT,
     S_SHADOW_GRAZING,
+    S_SHADOW_GOURAUD,
+    S_SHADOW_FLAT,
     S_WIRE_TEAPOT,
     S_LINE_FAN,
     S_LINE_CLIP,
@@ -2179,7 +2231,8 @@ static const int TRANSPARENCY_SCENES[] = {S_ALPHA_CUBES,           S_ALPHA_TEAPO
                                           S_ALPHA_STACK,           S_END};
 static const int LIGHTING_SCENES[] = {S_LIT_MODES,  S_LIT_TEXTURED, S_LIT_POINT,
                                       S_LIT_BEHIND, S_LIT_MANY,     S_END};
-static const int SHADOW_SCENES[] = {S_SHADOW_TEAPOTS, S_SHADOW_POINT, S_SHADOW_GRAZING, S_END};
+static const int SHADOW_SCENES[] = {S_SHADOW_TEAPOTS, S_SHADOW_POINT, S_SHADOW_GRAZING,
+                                    S_SHADOW_GOURAUD, S_SHADOW_FLAT,  S_END};
 static const int LINE_SCENES[] = {S_WIRE_TEAPOT, S_LINE_FAN, S_LINE_CLIP, S_END};
 
 static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
@@ -2243,6 +2296,12 @@ static void build_scene(scene *s, int which, mat4 proj, const mesh *teapot) {
         break;
     case S_SHADOW_POINT:
         scene_shadow_point(s, proj, teapot);
+        break;
+    case S_SHADOW_GOURAUD:
+        scene_shadow_gouraud(s, proj, teapot);
+        break;
+    case S_SHADOW_FLAT:
+        scene_shadow_flat(s, proj, teapot);
         break;
     case S_WIRE_TEAPOT:
         scene_wire_teapot(s, proj, teapot);

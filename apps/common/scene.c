@@ -604,8 +604,7 @@ static bool check_lines(ctx *c, const loc *l, const sc_draw *d) {
     return true;
 }
 
-/* has_shadow: the scene has a shadow, which flat and Gouraud draws cannot receive. */
-static bool parse_draw(ctx *c, const loc *l, const cJSON *v, bool has_shadow, sc_draw *d) {
+static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     if (!cJSON_IsObject(v)) return fail(c, l, "a draw must be an object");
     if (!get_mesh(c, l, v, &d->mesh)) return false;
     if (!get_texture(c, l, v, &d->texture)) return false;
@@ -645,15 +644,6 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, bool has_shadow, sc
     if (!get_bool(c, l, v, "casts_shadow", &d->casts_shadow) ||
         !get_bool(c, l, v, "receives_shadow", &d->receives_shadow))
         return false;
-    /* sgapi shadows only per-pixel lit and unlit draws: a flat or Gouraud colour is lit before
-     * the pixel whose visibility it would need is known. */
-    if (has_shadow && d->receives_shadow &&
-        (d->lighting == SC_LIGHTING_FLAT || d->lighting == SC_LIGHTING_GOURAUD))
-        return fail(c, l,
-                    "a draw lit '%s' cannot receive the scene's shadow: shadows fall on 'phong' "
-                    "and unlit draws only (set \"receives_shadow\": false)",
-                    d->lighting == SC_LIGHTING_FLAT ? "flat" : "gouraud");
-
     bool present;
     for (int i = 0; i < 4; i++) d->color[i] = 1.0f;
     if (!get_floats(c, l, v, "color", 4, 0.0, 1.0, d->color, &present)) return false;
@@ -822,7 +812,7 @@ static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, 
     const cJSON *d;
     cJSON_ArrayForEach(d, draws) {
         l.draw = (int)s->draw_count;
-        if (!parse_draw(c, &l, d, s->has_shadow, &s->draws[s->draw_count])) return false;
+        if (!parse_draw(c, &l, d, &s->draws[s->draw_count])) return false;
         s->draw_count++;
     }
     if (!s->has_shadow) return true;

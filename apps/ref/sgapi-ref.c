@@ -50,6 +50,12 @@
 #include "spv_lit_gouraud_texture_frag.h"
 #include "spv_lit_gouraud_vert.h"
 #include "spv_lit_phong_frag.h"
+#include "spv_flat_shadow_geom.h"
+#include "spv_lit_flat_shadow_frag.h"
+#include "spv_lit_flat_shadow_texture_frag.h"
+#include "spv_lit_gouraud_shadow_frag.h"
+#include "spv_lit_gouraud_shadow_texture_frag.h"
+#include "spv_lit_gouraud_shadow_vert.h"
 #include "spv_lit_phong_shadow_frag.h"
 #include "spv_lit_phong_shadow_texture_frag.h"
 #include "spv_lit_phong_texture_frag.h"
@@ -77,7 +83,12 @@ enum {
     SH_TEXTURE_SHADOW_VERT,
     SH_TEXTURE_SHADOW_FRAG,
     SH_PHONG_SHADOW_FRAG, /* untextured, textured */
-    SH_DEPTH_VERT = SH_PHONG_SHADOW_FRAG + 2,
+    /* Flat and Gouraud receivers: the Gouraud vertex stage, the flat geometry stage, and the
+     * fragment stages by (mode - 1) * 2 + textured. */
+    SH_GOURAUD_SHADOW_VERT = SH_PHONG_SHADOW_FRAG + 2,
+    SH_FLAT_SHADOW_GEOM,
+    SH_SPLIT_SHADOW_FRAG,
+    SH_DEPTH_VERT = SH_SPLIT_SHADOW_FRAG + 4,
     SH_DEPTH_FRAG,
     SH_COUNT
 };
@@ -306,12 +317,22 @@ static bool create_shaders_and_layouts(ref *r) {
         [SH_PHONG_SHADOW_FRAG + 0] = {spv_lit_phong_shadow_frag, sizeof spv_lit_phong_shadow_frag},
         [SH_PHONG_SHADOW_FRAG + 1] = {spv_lit_phong_shadow_texture_frag,
                                       sizeof spv_lit_phong_shadow_texture_frag},
+        [SH_GOURAUD_SHADOW_VERT] = {spv_lit_gouraud_shadow_vert,
+                                    sizeof spv_lit_gouraud_shadow_vert},
+        [SH_FLAT_SHADOW_GEOM] = {spv_flat_shadow_geom, sizeof spv_flat_shadow_geom},
+        [SH_SPLIT_SHADOW_FRAG + 0] = {spv_lit_flat_shadow_frag, sizeof spv_lit_flat_shadow_frag},
+        [SH_SPLIT_SHADOW_FRAG + 1] = {spv_lit_flat_shadow_texture_frag,
+                                      sizeof spv_lit_flat_shadow_texture_frag},
+        [SH_SPLIT_SHADOW_FRAG + 2] = {spv_lit_gouraud_shadow_frag,
+                                      sizeof spv_lit_gouraud_shadow_frag},
+        [SH_SPLIT_SHADOW_FRAG + 3] = {spv_lit_gouraud_shadow_texture_frag,
+                                      sizeof spv_lit_gouraud_shadow_texture_frag},
         [SH_DEPTH_VERT] = {spv_depth_vert, sizeof spv_depth_vert},
         [SH_DEPTH_FRAG] = {spv_depth_frag, sizeof spv_depth_frag},
     };
     for (int i = 0; i < SH_COUNT; i++) {
         /* A module with the Geometry capability needs the feature enabled. */
-        if (i == SH_FLAT_GEOM && !r->has_geometry) continue;
+        if ((i == SH_FLAT_GEOM || i == SH_FLAT_SHADOW_GEOM) && !r->has_geometry) continue;
         VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                         .codeSize = spv[i].size,
                                         .pCode = spv[i].code};
@@ -505,11 +526,18 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
         stages[0].module = r->modules[SH_DEPTH_VERT];
         stages[1].module = r->modules[SH_DEPTH_FRAG];
     } else if (lit) {
-        /* The loader lets only Phong-lit draws receive a shadow. */
         int mode = (int)d->lighting - 1;
         stages[0].module = r->modules[SH_LIT_VERT + mode];
-        stages[1].module = kind == DRAW_RECEIVER ? r->modules[SH_PHONG_SHADOW_FRAG + textured]
-                                                 : r->modules[SH_LIT_FRAG + mode * 2 + textured];
+        stages[1].module = r->modules[SH_LIT_FRAG + mode * 2 + textured];
+        if (kind == DRAW_RECEIVER && d->lighting == SC_LIGHTING_PHONG) {
+            stages[1].module = r->modules[SH_PHONG_SHADOW_FRAG + textured];
+        } else if (kind == DRAW_RECEIVER) { /* flat or Gouraud: the split equation */
+            if (d->lighting == SC_LIGHTING_GOURAUD)
+                stages[0].module = r->modules[SH_GOURAUD_SHADOW_VERT];
+            else
+                stages[2].module = r->modules[SH_FLAT_SHADOW_GEOM];
+            stages[1].module = r->modules[SH_SPLIT_SHADOW_FRAG + mode * 2 + textured];
+        }
     } else if (kind == DRAW_RECEIVER) {
         stages[0].module = r->modules[textured ? SH_TEXTURE_SHADOW_VERT : SH_COLOR_SHADOW_VERT];
         stages[1].module = r->modules[textured ? SH_TEXTURE_SHADOW_FRAG : SH_COLOR_SHADOW_FRAG];

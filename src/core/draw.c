@@ -374,12 +374,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                 return sg_error(dev, SG_ERROR_INVALID_VALUE,
                                 "sgDraw: params->shadow->matrix[%d] = %g is not finite", k,
                                 (double)sh->matrix[k]);
-        if (lighting == SG_LIGHTING_FLAT || lighting == SG_LIGHTING_GOURAUD)
-            return sg_error(dev, SG_ERROR_UNSUPPORTED,
-                            "sgDraw: a draw lit per %s cannot receive a shadow map (the light it "
-                            "hides must be removed per pixel): use SG_LIGHTING_PHONG",
-                            lighting == SG_LIGHTING_FLAT ? "triangle" : "vertex");
-        if (lighting == SG_LIGHTING_PHONG && (sh->light < 0 || sh->light >= ctx.lights.count))
+        if (lighting != SG_LIGHTING_NONE && (sh->light < 0 || sh->light >= ctx.lights.count))
             return sg_error(dev, SG_ERROR_INVALID_VALUE,
                             "sgDraw: params->shadow->light = %d, but the draw has %d light%s",
                             sh->light, ctx.lights.count, ctx.lights.count == 1 ? "" : "s");
@@ -387,7 +382,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         ctx.shadow.width = smap->width;
         ctx.shadow.height = smap->height;
         memcpy(ctx.shadow.m, sh->matrix, sizeof ctx.shadow.m);
-        ctx.shadow.light = lighting == SG_LIGHTING_PHONG ? sh->light : -1;
+        ctx.shadow.light = lighting != SG_LIGHTING_NONE ? sh->light : -1;
         ctx.shadow.pcf = sh->pcf;
     }
     if (!grow_vertex_arenas(dev, (size_t)geom->vertex_count))
@@ -402,11 +397,16 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
      * texcoords and view position, lit per triangle at assembly; Gouraud, the lit colours
      * (primary, texcoords, secondary when the material has a specular colour); Phong, base colour,
      * texcoords, position and normal, lit per pixel. An unlit draw that receives a shadow map
-     * carries base colour, texcoords and position. A depth-only pass reads no attribute. */
+     * carries base colour, texcoords and position; a flat or Gouraud one the split colours of
+     * light.h (SG_LIT_SPLIT_*: the hidden light's part apart) and position, Gouraud's made per
+     * vertex, flat's per triangle from base colour, texcoords and position. A depth-only pass
+     * reads no attribute. */
     const bool depth_only = dev->pass.color == NULL;
     const bool shadowed = smap && !depth_only;
     const bool textured = pso->desc.shade == SG_SHADE_TEXTURE_MODULATE;
     const bool spec = lighting != SG_LIGHTING_NONE && ctx.lights.has_specular;
+    const bool split =
+        shadowed && (lighting == SG_LIGHTING_FLAT || lighting == SG_LIGHTING_GOURAUD);
     int nattr = depth_only ? 0 : pso->nattr, sec = 0, vstride = 0;
     float normal_matrix[9];
     sg_vertex_lit lit = {0};
@@ -421,6 +421,11 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                 : spec                         ? SG_LIT_SEC + 3
                                                : (textured ? 6 : 4);
         sec = spec && lighting != SG_LIGHTING_PHONG ? SG_LIT_SEC : 0;
+        if (split) {
+            nattr = spec ? SG_LIT_SPLIT_END : SG_LIT_SPLIT_SEC;
+            vstride = lighting == SG_LIGHTING_GOURAUD ? nattr : vstride;
+            sec = SG_LIT_SPLIT_D;
+        }
         if (!grow_lit(dev, (size_t)geom->vertex_count * (size_t)vstride))
             return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                             "sgDraw: out of memory for the %s attributes of %d vertices",
@@ -440,6 +445,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         lit.tint = tinted ? tint : NULL;
         lit.lights = &ctx.lights;
         lit.stride = vstride;
+        lit.split = split ? params->shadow->light + 1 : 0;
     }
 
     float mvp[16];
@@ -468,12 +474,14 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.setup.front_face = pso->desc.front_face;
     a.setup.nattr = nattr;
     a.setup.sec = sec;
+    a.setup.sec_end = split ? nattr : 0;
     a.setup.bias_constant = pso->desc.depth.bias_constant;
     a.setup.bias_slope = pso->desc.depth.bias_slope;
     if (vattr) {
         a.vattr = dev->lit;
         a.vstride = vstride;
         if (lighting == SG_LIGHTING_FLAT) a.flat = &ctx.lights;
+        if (lighting == SG_LIGHTING_FLAT && split) a.flat_split = params->shadow->light + 1;
     }
     if (params->sort == SG_SORT_BACK_TO_FRONT &&
         !sort_primitives(dev, geom, params->world_view, &a))

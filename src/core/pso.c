@@ -69,11 +69,13 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     p.runs_fn =
         d->lighting == SG_LIGHTING_PHONG ? NULL : sg_shade_runs_select_variant(variant, dev->isa);
     p.runs_sec = sg_shade_runs_select_variant(variant + SG_SHADE_SECONDARY, dev->isa);
-    /* Draws that receive a shadow map shade from each pixel's view position (shade_phong.c);
+    /* Draws that receive a shadow map shade from each pixel's view position (shade_phong.c; flat
+     * and Gouraud ones with their split colours);
      * blended ones then call that shading from the blend (its unlit shading is not inlined). */
-    if (d->lighting == SG_LIGHTING_PHONG || !lit)
-        p.shade_shadow = sg_shade_phong_select(
-            (lit ? SG_PIXEL_PHONG_SHADOW : SG_PIXEL_SHADOW) + variant, dev->isa);
+    const int shadow_kind = d->lighting == SG_LIGHTING_PHONG ? SG_PIXEL_PHONG_SHADOW
+                            : lit                            ? SG_PIXEL_SPLIT_SHADOW
+                                                             : SG_PIXEL_SHADOW;
+    p.shade_shadow = sg_shade_phong_select(shadow_kind + variant, dev->isa);
     p.raster_shadow = d->blend == SG_BLEND_ALPHA
                           ? sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa)
                           : p.depth_fn;

@@ -42,7 +42,7 @@ SG_ASM_INLINE bool attributes_finite(const sg_assembly *a, uint32_t idx, const i
 /* Flat lighting: the equation once for the triangle, at the centroid of its view-space positions
  * with its face normal (P1 - P0) x (P2 - P0) and the base colour of its first vertex; every
  * vertex then carries the same primary and secondary colours (setup finds the triangle flat). */
-static void light_flat(const sg_lights *ls, float *const attr[3]) {
+static void light_flat(const sg_lights *ls, int split, int nattr, float *const attr[3]) {
     const float *p0 = attr[0] + SG_LIT_POS, *p1 = attr[1] + SG_LIT_POS, *p2 = attr[2] + SG_LIT_POS;
     float e1[3], e2[3], c[3];
     for (int k = 0; k < 3; k++) {
@@ -53,6 +53,17 @@ static void light_flat(const sg_lights *ls, float *const attr[3]) {
     float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                   e1[0] * e2[1] - e1[1] * e2[0]};
     float prim[4], sec[3];
+    if (split) { /* the view position stays for the shadow map; the colours split (light.h) */
+        float rest[4], part[9];
+        sg_light_eval_split(ls, c, n, attr[0] + SG_LIT_COLOR, split - 1, rest, part, part + 3,
+                            part + 6);
+        for (int i = 0; i < 3; i++) {
+            memcpy(attr[i] + SG_LIT_COLOR, rest, sizeof rest);
+            memcpy(attr[i] + SG_LIT_SPLIT_D, part,
+                   (size_t)(nattr - SG_LIT_SPLIT_D) * sizeof(float));
+        }
+        return;
+    }
     sg_light_eval(ls, c, n, attr[0] + SG_LIT_COLOR, prim, sec);
     for (int i = 0; i < 3; i++) {
         memcpy(attr[i] + SG_LIT_COLOR, prim, sizeof prim);
@@ -98,7 +109,9 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
     }
     if (a->rebase_texcoords)
         rebase_texcoords((float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr}, 3);
-    if (a->flat) light_flat(a->flat, (float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
+    if (a->flat)
+        light_flat(a->flat, a->flat_split, a->setup.nattr,
+                   (float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
     int n = sg_clip_polygon(poly, 3, planes, a->setup.nattr, &a->guard);
     /* Each vertex is projected once, though the fan uses poly[0] in every triangle. */
     sg_svert s[SG_CLIP_MAX_VERTS];
@@ -142,7 +155,9 @@ SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint
     fetch_attributes(a, i1, attr[1], lit);
     fetch_attributes(a, i2, attr[2], lit);
     if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]}, 3);
-    if (lit && a->flat) light_flat(a->flat, (float *const[3]){attr[0], attr[1], attr[2]});
+    if (lit && a->flat)
+        light_flat(a->flat, a->flat_split, a->setup.nattr,
+                   (float *const[3]){attr[0], attr[1], attr[2]});
     sg_setup_planes(&a->setup, s, order, tri);
     if (lit && ext) sg_setup_planes_ext(&a->setup, s, order, tri, ext);
     a->emit(a->user);
@@ -220,7 +235,9 @@ SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], un
         fetch_attributes(a, idx[i], attr[i], lit);
     }
     if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]}, 3);
-    if (lit && a->flat) light_flat(a->flat, (float *const[3]){attr[0], attr[1], attr[2]});
+    if (lit && a->flat)
+        light_flat(a->flat, a->flat_split, a->setup.nattr,
+                   (float *const[3]){attr[0], attr[1], attr[2]});
     if (!(c[0] | c[1] | c[2])) {
         sg_svert s[3];
         for (int i = 0; i < 3; i++)

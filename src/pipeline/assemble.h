@@ -27,6 +27,9 @@ typedef struct sg_assembly {
     /* Flat lighting: the lights, evaluated once per triangle before clipping (vattr then holds
      * base colour, texcoords, view position: SG_LIT_*). */
     const sg_lights *flat;
+    /* Flat lighting receiving a shadow map: 1 + the light it hides, whose part of the colours is
+     * kept apart (light.h: SG_LIT_SPLIT_*, the view position stays); 0: none. */
+    int flat_split;
     int rebase_texcoords; /* repeat wrapping: move each triangle's texcoords next to 0 */
     sg_guard guard;
     sg_setup_params setup;

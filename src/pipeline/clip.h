@@ -11,9 +11,10 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-/* Attributes a vertex may carry through clipping and setup: r g b a, s t, then up to ten more
- * for lit draws (secondary colour; or view position and normal). */
-#define SG_MAX_ATTRS 16
+/* Attributes a vertex may carry through clipping and setup: r g b a, s t, then up to twelve more
+ * for lit draws (secondary colour; or view position and normal; or, receiving a shadow map, view
+ * position and the split colours of light.h). */
+#define SG_MAX_ATTRS 18
 
 /* Smallest w a clipped vertex keeps; far below any near plane a scene uses. */
 #define SG_CLIP_W_MIN 1e-9f

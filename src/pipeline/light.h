@@ -12,6 +12,11 @@
  *   primary = clamp(base ambient + base diffuse, 0, 1) per r, g, b; alpha = base alpha
  *   secondary = specular x material specular
  *
+ * Flat and Gouraud draws that receive a shadow map evaluate it split (sg_light_eval_split): the
+ * shadowed light's diffuse and specular terms apart from the rest, unclamped, so that each
+ * pixel scales the light's part by its own visibility (sg_light_split_combine):
+ *   primary = clamp(rest + vis x light, 0, 1), secondary = rest secondary + vis x light's.
+ *
  * A zero-length vector normalises to 0 (so a zero normal, or a light at the surface point,
  * contributes nothing), never to NaN; pow(x, 0) = 1, as in OpenGL. Sums run left to right:
  * (x x' + y y') + z z'.
@@ -35,6 +40,12 @@ enum {
     SG_LIT_SEC = 6,   /* 3: secondary colour (flat and Gouraud with a specular material) */
     SG_LIT_POS = 6,   /* 3: view-space position (Phong; flat before lighting) */
     SG_LIT_NRM = 9,   /* 3: normal, not normalised (Phong) */
+    /* Flat and Gouraud draws receiving a shadow map (split): SG_LIT_COLOR holds the unclamped
+     * rest of the primary colour (and alpha), SG_LIT_POS the view position, then: */
+    SG_LIT_SPLIT_D = 9,    /* 3: the shadowed light's diffuse part of the primary colour */
+    SG_LIT_SPLIT_SEC = 12, /* 3: the rest of the secondary colour (with a specular material) */
+    SG_LIT_SPLIT_S = 15,   /* 3: the shadowed light's secondary colour (same) */
+    SG_LIT_SPLIT_END = 18
 };
 
 /* The lights and material of a draw, prepared once per draw (sg_light_prepare). */
@@ -174,6 +185,82 @@ sg_light_eval_shadowed(const sg_lights *ls, const float P[3], const float n[3], 
         sec[k] = spec[k] * ls->specular[k];
     }
     prim[3] = base[3];
+}
+
+/* A split part beyond this magnitude is held to it: far past saturation, and its interpolation
+ * stays finite. */
+#define SG_LIT_SPLIT_MAX 65536.0f
+
+static inline float sg_split_bound(float v) {
+    v = v < SG_LIT_SPLIT_MAX ? v : SG_LIT_SPLIT_MAX;
+    return v > -SG_LIT_SPLIT_MAX ? v : -SG_LIT_SPLIT_MAX;
+}
+
+/** The equation at one point, split for a shadow map (flat and Gouraud lighting): rest = base
+ *  ambient + base diffuse of every light but `shadowed`, unclamped, and base alpha; light = base
+ *  diffuse of light `shadowed`; rest_sec and light_sec the same split of the secondary colour.
+ *  sg_light_split_combine with visibility 0 is the equation without that light. */
+static inline __attribute__((always_inline)) void
+sg_light_eval_split(const sg_lights *ls, const float P[3], const float n[3], const float base[4],
+                    int shadowed, float rest[4], float light[3], float rest_sec[3],
+                    float light_sec[3]) {
+    float N[3], V[3], mp[3] = {-P[0], -P[1], -P[2]};
+    sg_normalize3(n, N);
+    sg_normalize3(mp, V);
+    float diff[2][3] = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+    float spec[2][3] = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+    for (int i = 0; i < ls->count; i++) {
+        float L[3], att = 1.0f;
+        const float *c = ls->light[i].color;
+        if (ls->light[i].point) {
+            const float *lp = ls->light[i].v, *k = ls->light[i].att;
+            float v[3] = {lp[0] - P[0], lp[1] - P[1], lp[2] - P[2]};
+            float d2 = sg_dot3(v, v), d = sqrtf(d2);
+            float inv = d > 0.0f && d <= FLT_MAX ? 1.0f / d : 0.0f;
+            L[0] = v[0] * inv;
+            L[1] = v[1] * inv;
+            L[2] = v[2] * inv;
+            float den = (k[0] + k[1] * d) + k[2] * d2;
+            att = 1.0f / (den > FLT_MIN ? den : FLT_MIN);
+        } else {
+            memcpy(L, ls->light[i].v, sizeof L);
+        }
+        float ndotl = sg_dot3(N, L);
+        if (!(ndotl > 0.0f)) continue;
+        const int j = i == shadowed;
+        float f = att * ndotl;
+        for (int k = 0; k < 3; k++) diff[j][k] = diff[j][k] + f * c[k];
+        if (ls->has_specular) {
+            float h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]}, H[3];
+            sg_normalize3(h, H);
+            float ndoth = sg_dot3(N, H);
+            float g = att * sg_pow_unit(ndoth > 0.0f ? ndoth : 0.0f, ls->shininess);
+            for (int k = 0; k < 3; k++) spec[j][k] = spec[j][k] + g * c[k];
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        for (int j = 0; j < 2; j++) { /* as in sg_light_eval_shadowed */
+            diff[j][k] = diff[j][k] < FLT_MAX ? diff[j][k] : FLT_MAX;
+            spec[j][k] = spec[j][k] < FLT_MAX ? spec[j][k] : FLT_MAX;
+        }
+        rest[k] = sg_split_bound(base[k] * ls->ambient[k] + base[k] * diff[0][k]);
+        light[k] = sg_split_bound(base[k] * diff[1][k]);
+        rest_sec[k] = sg_split_bound(spec[0][k] * ls->specular[k]);
+        light_sec[k] = sg_split_bound(spec[1][k] * ls->specular[k]);
+    }
+    rest[3] = base[3];
+}
+
+/** The colours of a split evaluation at a point the shadowed light reaches by the fraction vis:
+ *  prim = clamp(rest + vis x light, 0, 1) (alpha: rest's); with sec (a specular material), sec =
+ *  rest_sec + vis x light_sec. */
+static inline __attribute__((always_inline)) void
+sg_light_split_combine(const float rest[4], const float light[3], float vis, float prim[4]) {
+    for (int k = 0; k < 3; k++) {
+        float v = rest[k] + vis * light[k];
+        prim[k] = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+    }
+    prim[3] = rest[3];
 }
 
 /** The equation at one point, every light seen (sg_light_eval_shadowed). */

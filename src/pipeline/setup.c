@@ -156,10 +156,16 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
                      sg_tri *out) {
     out->nattr = p->nattr;
     out->flat = SG_FLAT_NONE;
-    /* A secondary colour must be constant too for the triangle to be flat. */
+    /* A secondary colour (and the split colours of a shadow receiver) must be constant too for
+     * the triangle to be flat. */
     const int sec = p->sec;
-    if (p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2]) &&
-        (!sec || (same3(attr[0] + sec, attr[1] + sec) && same3(attr[0] + sec, attr[2] + sec)))) {
+    bool flat = p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2]);
+    if (flat && sec) {
+        const int end = p->sec_end ? p->sec_end : sec + 3;
+        for (int k = sec; k < end && flat; k += 3)
+            flat = same3(attr[0] + k, attr[1] + k) && same3(attr[0] + k, attr[2] + k);
+    }
+    if (flat) {
         memcpy(out->color, attr[0], sizeof out->color);
         /* == 1.0f as bits: 1.0f has no other encoding. */
         uint64_t c[2], white;
@@ -191,10 +197,10 @@ void sg_setup_planes_ext(const sg_setup_params *p, const sg_svert s[3], const fl
                          const sg_tri *t, sg_tri_ext *ext) {
     memset(ext, 0, sizeof *ext);
     const plane_basis b = basis_of(s, t);
-    const int sec = p->sec;
+    const int sec = p->sec, sec_end = p->sec_end ? p->sec_end : sec + 3;
     for (int k = SG_TRI_ATTRS; k < p->nattr; k++) {
         int e = k - SG_TRI_ATTRS;
-        if (t->flat != SG_FLAT_NONE && sec && k >= sec && k < sec + 3)
+        if (t->flat != SG_FLAT_NONE && sec && k >= sec && k < sec_end)
             ext->a[e] = attr[0][k]; /* the flat secondary colour, as it is */
         else
             plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,

@@ -25,6 +25,9 @@ typedef struct sg_setup_params {
     sgFrontFace front_face; /* resolved: CCW or CW */
     int nattr;              /* attributes to interpolate (0 .. SG_MAX_ATTRS) */
     int sec;                /* lit draws: index of a secondary colour (3 attributes), else 0 */
+    /* End of the attributes from `sec` that are constant on a flat triangle and kept as they
+     * are (0: sec + 3; the split colours of a shadow receiver, light.h, reach further). */
+    int sec_end;
     /* Depth bias: every pixel's window depth moves by bias_constant + bias_slope * max(|dz/dx|,
      * |dz/dy|), before the clamp to [0, 1] (finite; 0: none). */
     float bias_constant, bias_slope;
@@ -62,8 +65,8 @@ typedef struct sg_tri {
 enum { SG_FLAT_NONE, SG_FLAT_COLOR, SG_FLAT_WHITE };
 
 /* Attributes SG_TRI_ATTRS.. of a triangle, as sg_tri's (attribute / w, at the origin, steps). A
- * flat triangle with a secondary colour keeps that colour as it is in a[sec - SG_TRI_ATTRS ..]
- * (steps zero). */
+ * flat triangle with a secondary colour keeps that colour (attributes sec .. sec_end - 1) as it is
+ * in a[sec - SG_TRI_ATTRS ..] (steps zero). */
 typedef struct sg_tri_ext {
     float a[SG_MAX_ATTRS - SG_TRI_ATTRS];
     float a_dx[SG_MAX_ATTRS - SG_TRI_ATTRS], a_dy[SG_MAX_ATTRS - SG_TRI_ATTRS];

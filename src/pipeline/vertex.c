@@ -151,7 +151,14 @@ void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, floa
             for (int r = 0; r < 3; r++)
                 n[r] = (nm[r * 3] * src[0] + nm[r * 3 + 1] * src[1]) + nm[r * 3 + 2] * src[2];
         }
-        if (l->mode == SG_LIGHTING_GOURAUD) {
+        if (l->mode == SG_LIGHTING_GOURAUD && l->split) {
+            float rest[4], part[9];
+            sg_light_eval_split(l->lights, P, n, base, l->split - 1, rest, part, part + 3,
+                                part + 6);
+            memcpy(o + SG_LIT_COLOR, rest, sizeof rest);
+            memcpy(o + SG_LIT_POS, P, sizeof P);
+            memcpy(o + SG_LIT_SPLIT_D, part, (size_t)(l->stride - SG_LIT_SPLIT_D) * sizeof(float));
+        } else if (l->mode == SG_LIGHTING_GOURAUD) {
             float prim[4], sec[3];
             sg_light_eval(l->lights, P, n, base, prim, sec);
             memcpy(o + SG_LIT_COLOR, prim, sizeof prim);

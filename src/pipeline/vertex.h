@@ -40,11 +40,14 @@ typedef struct sg_vertex_lit {
                                                                      positions */
     const sg_lights *lights;                                      /* GOURAUD */
     int stride;                                                   /* floats a vertex */
+    /* GOURAUD receiving a shadow map: 1 + the light it hides, whose part of the colours is kept
+     * apart (the split colours of light.h, SG_LIT_SPLIT_*); 0: none. */
+    int split;
 } sg_vertex_lit;
 
 /** The lit attributes of vertices [first, first + count) into out (stride floats each): base
  *  colour, texcoords, view position (FLAT, NONE); and normal (PHONG); or the lit colours
- *  (GOURAUD). A
+ *  (GOURAUD; split, with the view position, when it receives a shadow map). A
  *  vertex any of whose attributes is NaN or infinite gets ok[i] = 0. */
 void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, float *out,
                               uint8_t *ok);

@@ -169,5 +169,15 @@ LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], 
     prim[3] = base[3];
 }
 
+/* sg_light_split_combine */
+LS_INLINE void lv_split_combine(const LV rest[4], const LV light[3], LV vis, LV prim[4]) {
+    const LV zero = lv_set1(0.0f), one = lv_set1(1.0f);
+    for (int k = 0; k < 3; k++) {
+        LV v = lv_add(rest[k], lv_mul(vis, light[k]));
+        prim[k] = lv_sel(lm_gt(v, zero), lv_sel(lm_gt(one, v), v, one), zero);
+    }
+    prim[3] = rest[3];
+}
+
 #undef LS_INLINE
 #endif

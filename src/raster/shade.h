@@ -81,14 +81,16 @@ enum { SG_SHADE_VARIANTS = 5, SG_SHADE_SECONDARY = 5 };
 /** The shading function of a table index (variant, + SG_SHADE_SECONDARY) and instruction set. */
 sg_shade_fn sg_shade_select_variant(int index, sg_isa isa);
 /* The shading that works from the view-space position of each pixel (shade_phong*.c): per-pixel
- * lighting (SG_LIGHTING_PHONG), the same receiving a shadow map, and unlit shading receiving a
- * shadow map (darkened to half where the light is hidden). Their tables hold the five variants
- * of each, in that order. */
+ * lighting (SG_LIGHTING_PHONG), the same receiving a shadow map, unlit shading receiving a
+ * shadow map (darkened to half where the light is hidden), and flat and Gouraud lighting
+ * receiving one (the split colours of light.h, the light's part scaled by the visibility). Their
+ * tables hold the five variants of each, in that order. */
 enum {
     SG_PIXEL_PHONG = 0,
     SG_PIXEL_PHONG_SHADOW = 5,
     SG_PIXEL_SHADOW = 10,
-    SG_PIXEL_VARIANTS = 15
+    SG_PIXEL_SPLIT_SHADOW = 15,
+    SG_PIXEL_VARIANTS = 20
 };
 /** The function of a table index (one of the three bases + variant) and instruction set. */
 sg_shade_fn sg_shade_phong_select(int index, sg_isa isa);

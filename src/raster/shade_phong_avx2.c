@@ -41,6 +41,8 @@ INLINE void phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                        int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
                        const int repeat, const int flat, const int lit, const int shadow) {
     const int ep = SG_LIT_POS - SG_TRI_ATTRS, en = SG_LIT_NRM - SG_TRI_ATTRS;
+    const int ed = SG_LIT_SPLIT_D - SG_TRI_ATTRS;
+    const int split_spec = lit == 2 && c->lights.has_specular;
     const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
     const __m256 dx = _mm256_add_ps(_mm256_set1_ps(ox),
                                     _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
@@ -62,7 +64,7 @@ INLINE void phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                            : _mm256_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
         for (int k = 0; k < 3; k++) {
             P[k] = _mm256_mul_ps(SG_PLANE(ext->a[ep + k], ext->a_dx[ep + k], ext->a_dy[ep + k]), w);
-            if (lit)
+            if (lit == 1)
                 n[k] = _mm256_mul_ps(SG_PLANE(ext->a[en + k], ext->a_dx[en + k], ext->a_dy[en + k]),
                                      w);
         }
@@ -73,10 +75,22 @@ INLINE void phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                 _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)m), bits), bits));
             vis = lv_shadow_visibility(&c->shadow, P, live);
         }
-        if (lit)
+        if (lit == 1) {
             lv_light_eval(&c->lights, P, n, base, shadow ? c->shadow.light : -1, vis, prim, sec);
-        else
+        } else if (lit == 2) { /* split: base is the rest of the primary colour */
+            __m256 part[9];
+            for (int k = 0; k < (split_spec ? 9 : 3); k++)
+                part[k] =
+                    flat ? _mm256_set1_ps(ext->a[ed + k])
+                         : _mm256_mul_ps(
+                               SG_PLANE(ext->a[ed + k], ext->a_dx[ed + k], ext->a_dy[ed + k]), w);
+            lv_split_combine(base, part, vis, prim);
+            if (split_spec)
+                for (int k = 0; k < 3; k++)
+                    sec[k] = _mm256_add_ps(part[3 + k], _mm256_mul_ps(vis, part[6 + k]));
+        } else {
             for (int k = 0; k < 4; k++) prim[k] = base[k];
+        }
         if (textured) {
             __m256 s = _mm256_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
             __m256 u = _mm256_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
@@ -93,9 +107,9 @@ INLINE void phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                                                                _mm256_set1_ps(1.0f / 255.0f)));
         }
 #undef SG_PLANE
-        if (lit) {
+        if (lit == 1 || split_spec) {
             for (int k = 0; k < 3; k++) prim[k] = _mm256_add_ps(prim[k], sec[k]);
-        } else {
+        } else if (!lit) {
             const __m256 dim =
                 _mm256_add_ps(_mm256_set1_ps(0.5f), _mm256_mul_ps(_mm256_set1_ps(0.5f), vis));
             for (int k = 0; k < 3; k++) prim[k] = _mm256_mul_ps(prim[k], dim);

@@ -41,6 +41,8 @@ INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                        int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
                        const int repeat, const int flat, const int lit, const int shadow) {
     const int ep = SG_LIT_POS - SG_TRI_ATTRS, en = SG_LIT_NRM - SG_TRI_ATTRS;
+    const int ed = SG_LIT_SPLIT_D - SG_TRI_ATTRS;
+    const int split_spec = lit == 2 && c->lights.has_specular;
     __m512 dx, dy;
     sg_tile_dxdy16(t, x0, y0, &dx, &dy);
 #define SG_PLANE(a, adx, ady)                                                                      \
@@ -53,15 +55,26 @@ INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                        : _mm512_mul_ps(SG_PLANE(t->a[k], t->a_dx[k], t->a_dy[k]), w);
     for (int k = 0; k < 3; k++) {
         P[k] = _mm512_mul_ps(SG_PLANE(ext->a[ep + k], ext->a_dx[ep + k], ext->a_dy[ep + k]), w);
-        if (lit)
+        if (lit == 1)
             n[k] = _mm512_mul_ps(SG_PLANE(ext->a[en + k], ext->a_dx[en + k], ext->a_dy[en + k]), w);
     }
     const __m512 vis =
         shadow ? lv_shadow_visibility(&c->shadow, P, (__mmask16)mask) : _mm512_set1_ps(1.0f);
-    if (lit)
+    if (lit == 1) {
         lv_light_eval(&c->lights, P, n, base, shadow ? c->shadow.light : -1, vis, prim, sec);
-    else
+    } else if (lit == 2) { /* split: base is the rest of the primary colour */
+        __m512 part[9];
+        for (int k = 0; k < (split_spec ? 9 : 3); k++)
+            part[k] = flat ? _mm512_set1_ps(ext->a[ed + k])
+                           : _mm512_mul_ps(
+                                 SG_PLANE(ext->a[ed + k], ext->a_dx[ed + k], ext->a_dy[ed + k]), w);
+        lv_split_combine(base, part, vis, prim);
+        if (split_spec)
+            for (int k = 0; k < 3; k++)
+                sec[k] = _mm512_add_ps(part[3 + k], _mm512_mul_ps(vis, part[6 + k]));
+    } else {
         for (int k = 0; k < 4; k++) prim[k] = base[k];
+    }
     if (textured) {
         const tex16 tx = tex16_of(&c->tex, bilinear);
         __m512 s = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
@@ -79,9 +92,9 @@ INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                 prim[k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[k]), _mm512_set1_ps(1.0f / 255.0f)));
     }
 #undef SG_PLANE
-    if (lit) {
+    if (lit == 1 || split_spec) {
         for (int k = 0; k < 3; k++) prim[k] = _mm512_add_ps(prim[k], sec[k]);
-    } else {
+    } else if (!lit) {
         const __m512 dim =
             _mm512_add_ps(_mm512_set1_ps(0.5f), _mm512_mul_ps(_mm512_set1_ps(0.5f), vis));
         for (int k = 0; k < 3; k++) prim[k] = _mm512_mul_ps(prim[k], dim);

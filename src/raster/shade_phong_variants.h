@@ -1,10 +1,10 @@
 /* shade_phong_variants.h - the shading functions from the view position of one instruction set
- * (per-pixel lighting, the same with a shadow map, unlit with a shadow map; five texture variants
- * each), made from its body function, and their table in the order of shade.h (SG_PIXEL_*).
+ * (per-pixel lighting, the same with a shadow map, unlit with a shadow map, flat and Gouraud with
+ * a shadow map; five texture variants each), made from its body function, and their table in the order of shade.h (SG_PIXEL_*).
  *
  * Included by shade_phong.c, shade_phong_avx2.c and shade_phong_avx512.c after each defines
  *   SG_PHONG_BODY(ctx, tri, ext, x0, y0, mask, dst, textured, bilinear, repeat, flat, lit, shadow)
- * (always inlined, its last six arguments constants) and SG_PHONG_TABLE, the name of its
+ * (always inlined, its last six arguments constants; lit: 0 unlit, 1 Phong, 2 split colours) and SG_PHONG_TABLE, the name of its
  * sg_shade_fn (int index) lookup. The per-triangle `flat` is split off once per tile.
  */
 #if !defined(SG_PHONG_TABLE) || !defined(SG_PHONG_BODY)
@@ -29,6 +29,7 @@
 SG_PHONG_KIND(phong, 1, 0)
 SG_PHONG_KIND(phong_shadow, 1, 1)
 SG_PHONG_KIND(unlit_shadow, 0, 1)
+SG_PHONG_KIND(split_shadow, 2, 1)
 #undef SG_PHONG_KIND
 #undef SG_PHONG_VARIANT
 
@@ -37,7 +38,8 @@ SG_PHONG_KIND(unlit_shadow, 0, 1)
 
 sg_shade_fn SG_PHONG_TABLE(int index) {
     static const sg_shade_fn table[SG_PIXEL_VARIANTS] = {
-        SG_PHONG_ROW(phong), SG_PHONG_ROW(phong_shadow), SG_PHONG_ROW(unlit_shadow)};
+        SG_PHONG_ROW(phong), SG_PHONG_ROW(phong_shadow), SG_PHONG_ROW(unlit_shadow),
+        SG_PHONG_ROW(split_shadow)};
     return table[index];
 }
 

@@ -5,6 +5,8 @@
 //   PHONG:   what the fragment stage lights with: base colour, view position and NM * n;
 //   FLAT:    base colour and view position, for the geometry stage that lights the triangle.
 // The texture coordinate always passes (the vertex buffer holds zeros when the mesh has none).
+// GOURAUD with SHADOW (a draw that receives the scene's shadow): the equation split, the shadowed
+// light's parts apart (lighting.glsl, shade_split), and the view position for the shadow test.
 #extension GL_GOOGLE_include_directive : require
 #include "lighting.glsl"
 
@@ -20,7 +22,13 @@ layout(push_constant, row_major) uniform Transform {
     mat4 proj;
 } pc;
 
-#if defined(GOURAUD)
+#if defined(GOURAUD) && defined(SHADOW)
+layout(location = 0) out vec4 v_rest;
+layout(location = 1) out vec3 v_rest_sec;
+layout(location = 3) out vec3 v_view;
+layout(location = 4) out vec3 v_light;
+layout(location = 5) out vec3 v_light_sec;
+#elif defined(GOURAUD)
 layout(location = 0) out vec4 v_primary;
 layout(location = 1) out vec3 v_secondary;
 #else
@@ -38,7 +46,11 @@ void main() {
     gl_Position = vec4(clip.x, -clip.y, 0.5 * (clip.z + clip.w), clip.w);
     vec4 base = a_color * u.color;
     vec3 P = view_position(pc.world_view, a_position);
-#if defined(GOURAUD)
+#if defined(GOURAUD) && defined(SHADOW)
+    shade_split(base, P, safe_normalize(normal_matrix_times(a_normal)), v_rest, v_light,
+                v_rest_sec, v_light_sec);
+    v_view = P;
+#elif defined(GOURAUD)
     shade(base, P, safe_normalize(normal_matrix_times(a_normal)), v_primary, v_secondary);
 #else
     v_base = base;
