@@ -100,10 +100,16 @@ check_warns no_tex.obj "missing.png' not found"
 
 files=$(find "$assimp/OBJ" "$assimp/OFF" "$assimp/invalid" "$geomview" \
     \( -name '*.obj' -o -name '*.off' \) -type f | sort)
-files="$files $src/scenes/assets/dodecahedron.off"
+files="$files
+$src/scenes/assets/dodecahedron.off"
 status=0
 n=0
 rendered=0
+# One file a line: the checkout's path may hold blanks.
+newline='
+'
+IFS=$newline
+set -f
 for f in $files; do
     n=$((n + 1))
     out="$work/$n"
@@ -139,5 +145,7 @@ $f
         status=1
     fi
 done
+unset IFS
+set +f
 echo "$n files: $rendered rendered, $((n - rendered)) refused with a message"
 exit $status
