@@ -105,12 +105,15 @@ $src/scenes/assets/dodecahedron.off"
 status=0
 n=0
 rendered=0
-# One file a line: the checkout's path may hold blanks.
+# One file a line: the checkout's path may hold blanks. The list is split once, as the loop
+# starts; its body runs with the usual splitting and globbing.
 newline='
 '
 IFS=$newline
 set -f
 for f in $files; do
+    unset IFS
+    set +f
     n=$((n + 1))
     out="$work/$n"
     mkdir -p "$out"
@@ -145,7 +148,5 @@ $f
         status=1
     fi
 done
-unset IFS
-set +f
 echo "$n files: $rendered rendered, $((n - rendered)) refused with a message"
 exit $status
