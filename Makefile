@@ -11,8 +11,8 @@ deps:
 	@sh tools/install-deps.sh
 
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
-	cmake --build $(BUILD) -j $(JOBS)
+	cmake -S . -B "$(BUILD)" -DCMAKE_BUILD_TYPE=Release
+	cmake --build "$(BUILD)" -j $(JOBS)
 
 # The project's scene files: the eight default scenes, then one file per feature.
 SCENES = scenes/default.json scenes/transparency.json scenes/lighting.json scenes/shadows.json \
@@ -26,10 +26,10 @@ SCENES = scenes/default.json scenes/transparency.json scenes/lighting.json scene
 # the scenes (scenes/shapes.json); last, that OFF file rendered as a model on its own, framed and
 # lit by default, as $(OUT)/models/dodecahedron.png.
 demo: build
-	$(BUILD)/apps/sgapi-render $(SCENES) -o $(OUT) --frames 5 --compare golden \
-		--thresholds golden/thresholds.csv --report $(OUT)/report
-	$(BUILD)/apps/sgapi-render scenes/assets/dodecahedron.off -o $(OUT)/models
-	$(BUILD)/apps/sgapi-render scenes/shadows.json --scene shadow_teapots -o $(OUT)/turntable \
+	"$(BUILD)/apps/sgapi-render" $(SCENES) -o "$(OUT)" --frames 5 --compare golden \
+		--thresholds golden/thresholds.csv --report "$(OUT)/report"
+	"$(BUILD)/apps/sgapi-render" scenes/assets/dodecahedron.off -o "$(OUT)/models"
+	"$(BUILD)/apps/sgapi-render" scenes/shadows.json --scene shadow_teapots -o "$(OUT)/turntable" \
 		--turntable 60 --up 0 --video gif --video-width 360 --fps 20
 
 # Every test (the allocation-failure injection and the API-sequence corpus among them); then the
@@ -39,11 +39,11 @@ demo: build
 # emulation (test-arm64, below) when its packages are installed. Any sanitizer or memcheck report
 # fails.
 test: build
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	cd "$(BUILD)" && ctest --output-on-failure -j $(JOBS)
 	sh tools/sanitize.sh build-asan $(JOBS)
 	sh tools/tsan.sh build-tsan $(JOBS)
-	sh tools/memcheck.sh $(BUILD)
-	@if sh tools/test-arm64.sh --available; then sh tools/test-arm64.sh $(BUILD) build-arm64 $(JOBS); \
+	sh tools/memcheck.sh "$(BUILD)"
+	@if sh tools/test-arm64.sh --available; then sh tools/test-arm64.sh "$(BUILD)" build-arm64 $(JOBS); \
 	else echo "test-arm64: skipped (no gcc-aarch64-linux-gnu or qemu-user-static)"; fi
 
 # The AArch64 build (NEON) under emulation: cross-built with Debian's gcc-aarch64-linux-gnu into
@@ -51,10 +51,10 @@ test: build
 # NEON code compared byte for byte with this machine's images (tools/test-arm64.sh).
 .PHONY: test-arm64
 test-arm64: build
-	sh tools/test-arm64.sh $(BUILD) build-arm64 $(JOBS)
+	sh tools/test-arm64.sh "$(BUILD)" build-arm64 $(JOBS)
 
 clean:
-	rm -rf $(BUILD) $(OUT) build-arm64
+	rm -rf "$(BUILD)" "$(OUT)" build-arm64
 
 # Fuzzes the file loaders (OBJ, scene JSON, images) and sequences of API calls with libFuzzer in
 # build-fuzz/ (clang, ASan + UBSan), FUZZ_SECONDS seconds per target; fails on any crash, found

@@ -11,8 +11,15 @@ cmake -S "$src/tests/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/pr
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer_static"
 LD_LIBRARY_PATH="$work/prefix/lib" "$work/consumer/consumer_shared"
-sed -i "s|^prefix=.*|prefix=$work/prefix|" "$work/prefix/lib/pkgconfig/sgapi.pc"
+# The scratch prefix as the .pc file's prefix, its blanks and backslashes escaped (pkg-config
+# splits values at blanks); pkg-config's output is then shell words, read back with eval.
+pc="$work/prefix/lib/pkgconfig/sgapi.pc"
+{
+    printf 'prefix=%s\n' "$(printf '%s' "$work/prefix" | sed 's/[\\ ]/\\&/g')"
+    grep -v '^prefix=' "$pc"
+} >"$pc.new"
+mv "$pc.new" "$pc"
 flags=$(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags --libs --static sgapi)
-# shellcheck disable=SC2086
-cc -std=c11 "$src/tests/consumer/main.c" -o "$work/consumer_pc" $flags
+eval "set -- $flags"
+cc -std=c11 "$src/tests/consumer/main.c" -o "$work/consumer_pc" "$@"
 LD_LIBRARY_PATH="$work/prefix/lib" "$work/consumer_pc"

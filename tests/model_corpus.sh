@@ -100,11 +100,20 @@ check_warns no_tex.obj "missing.png' not found"
 
 files=$(find "$assimp/OBJ" "$assimp/OFF" "$assimp/invalid" "$geomview" \
     \( -name '*.obj' -o -name '*.off' \) -type f | sort)
-files="$files $src/scenes/assets/dodecahedron.off"
+files="$files
+$src/scenes/assets/dodecahedron.off"
 status=0
 n=0
 rendered=0
+# One file a line: the checkout's path may hold blanks. The list is split once, as the loop
+# starts; its body runs with the usual splitting and globbing.
+newline='
+'
+IFS=$newline
+set -f
 for f in $files; do
+    unset IFS
+    set +f
     n=$((n + 1))
     out="$work/$n"
     mkdir -p "$out"

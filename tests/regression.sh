@@ -25,7 +25,9 @@ fail() {
     echo "FAIL: $*"
     exit 1
 }
-files="$work/tiny.json $src/scenes/default.json"
+# sgapi-render on the two scene files, with the arguments given (the paths quoted: the checkout's
+# may hold blanks).
+render_files() { "$render" "$work/tiny.json" "$src/scenes/default.json" "$@"; }
 # Per-scene targets: a row of suite "tiny", a row for any suite with an empty and a missing
 # trailing column (both keep the default).
 cat >"$work/thresholds.csv" <<'EOF'
@@ -39,7 +41,7 @@ EOF
 # ---- new scenes: goldens added, the others left alone ----
 set +e
 # shellcheck disable=SC2086
-"$render" $files -o "$work/out0" --compare "$work/golden" --update-golden >"$work/bless.out" \
+render_files -o "$work/out0" --compare "$work/golden" --update-golden >"$work/bless.out" \
     2>"$work/bless.err"
 rc=$?
 set -e
@@ -59,7 +61,7 @@ rm "$work/golden/empty.png"                                        # missing
 cp -r "$work/golden" "$work/golden.before"
 set +e
 # shellcheck disable=SC2086
-"$render" $files -o "$work/out" --compare "$work/golden" --thresholds "$work/thresholds.csv" \
+render_files -o "$work/out" --compare "$work/golden" --thresholds "$work/thresholds.csv" \
     --junit "$work/junit.xml" --report "$work/report" >"$work/run.out" 2>"$work/run.err"
 rc=$?
 set -e
@@ -121,7 +123,7 @@ cmp -s "$work/out/06_teapot.png" "$work/report/img/06_teapot.actual.png" || fail
 # ---- --update-golden: only the failing scenes, then the same run passes ----
 set +e
 # shellcheck disable=SC2086
-"$render" $files -o "$work/out2" --compare "$work/golden" --thresholds "$work/thresholds.csv" \
+render_files -o "$work/out2" --compare "$work/golden" --thresholds "$work/thresholds.csv" \
     --update-golden >"$work/update.out" 2>"$work/update.err"
 rc=$?
 set -e
@@ -135,7 +137,7 @@ for f in "$work"/golden.before/*.png; do
     cmp -s "$f" "$work/golden/$(basename "$f")" || fail "a passing golden changed: $f"
 done
 # shellcheck disable=SC2086
-"$render" $files -o "$work/out3" --compare "$work/golden" --thresholds "$work/thresholds.csv" \
+render_files -o "$work/out3" --compare "$work/golden" --thresholds "$work/thresholds.csv" \
     >"$work/again.out" 2>&1 || fail "the run after --update-golden: $(cat "$work/again.out")"
 
 # ---- an unreadable golden (not a PNG) fails its scene, with the reason ----

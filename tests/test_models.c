@@ -19,6 +19,7 @@
 #include "obj.h"
 #include "off.h"
 #include "scene.h"
+#include "test_msg.h"
 
 /* Every shape: indices in range, unit normals, texcoords in [0, 1], and each triangle wound
  * counter-clockwise seen from outside (its face normal agrees with its vertices' normals). */
@@ -82,8 +83,8 @@ static void shape_bad_descriptions(void **state) {
     assert_int_equal(sgu_shape_from_name("spheres", &s), -1);
 }
 
-static bool off(const char *text, sc_mesh *m, sc_warnings *w, char *err) {
-    return sc_off_parse("t.off", text, strlen(text), m, w, err, 256);
+static bool off(const char *text, sc_mesh *m, sc_warnings *w, sc_msg *err) {
+    return sc_off_parse("t.off", text, strlen(text), m, w, err);
 }
 
 /* Face colours as integers are 0..255, as floats 0..1; each coloured face has its own vertices;
@@ -91,17 +92,17 @@ static bool off(const char *text, sc_mesh *m, sc_warnings *w, char *err) {
 static void off_face_colours(void **state) {
     (void)state;
     sc_mesh m;
-    char err[256];
+    TEST_MSG(err);
     assert_true(off("OFF\n# c\n\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
                     "3 0 1 2 255 0 51\n3 0 2 3 0.5 1 0 0.25\n",
-                    &m, NULL, err));
+                    &m, NULL, &err));
     assert_int_equal(m.vertex_count, 6);
     assert_int_equal(m.index_count, 6);
     assert_true(fabsf(m.colors[0] - 1) < 1e-6f && fabsf(m.colors[2] - 0.2f) < 1e-6f);
     assert_true(fabsf(m.colors[3] - 1) < 1e-6f);
     assert_true(fabsf(m.colors[12] - 0.5f) < 1e-6f && fabsf(m.colors[15] - 0.25f) < 1e-6f);
     sc_mesh_free(&m);
-    assert_true(off("OFF 4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n", &m, NULL, err));
+    assert_true(off("OFF 4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n", &m, NULL, &err));
     assert_int_equal(m.vertex_count, 4); /* shared: no face colour */
     assert_int_equal(m.index_count, 6);
     uint32_t want[6] = {0, 1, 2, 0, 2, 3};
@@ -113,15 +114,15 @@ static void off_face_colours(void **state) {
 static void off_variants(void **state) {
     (void)state;
     sc_mesh m;
-    char err[256];
+    TEST_MSG(err);
     assert_true(off("\xEF\xBB\xBF"
                     "CNOFF\r\n3\t1 0\r\n0 0 0 0 0 1 255 0 0 255\r\n1 0 0 0 0 1 0 255 0 255\r\n"
                     "0 1 0  0 0 1  0 0 255 128\r\n3 0 1 2\r\n",
-                    &m, NULL, err));
+                    &m, NULL, &err));
     assert_non_null(m.normals);
     assert_true(m.colors[0] == 1 && m.colors[5] == 1 && fabsf(m.colors[11] - 128 / 255.0f) < 1e-6f);
     sc_mesh_free(&m);
-    assert_true(off("STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n", &m, NULL, err));
+    assert_true(off("STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n", &m, NULL, &err));
     assert_non_null(m.texcoords);
     assert_true(m.texcoords[2] == 1 && m.texcoords[5] == 1);
     sc_mesh_free(&m);
@@ -132,24 +133,25 @@ static void off_variants(void **state) {
 static void off_errors(void **state) {
     (void)state;
     sc_mesh m;
-    char err[256];
+    TEST_MSG(err);
     sc_warnings w = {0};
-    assert_false(off("OFF\n4000000000 1 0\n0 0 0\n", &m, NULL, err));
-    assert_non_null(strstr(err, "t.off:2:"));
-    assert_false(off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", &m, NULL, err));
-    assert_non_null(strstr(err, "t.off:6:"));
-    assert_non_null(strstr(err, "out of range"));
-    assert_false(off("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", &m, NULL, err));
-    assert_non_null(strstr(err, "ends after 1 of its 2 faces"));
-    assert_false(off("OFF\n3 1 0\n0 0\n1 0 0\n0 1 0\n3 0 1 2\n", &m, NULL, err));
-    assert_false(off("4OFF\n", &m, NULL, err));
-    assert_false(off("", &m, NULL, err));
+    assert_false(off("OFF\n4000000000 1 0\n0 0 0\n", &m, NULL, &err));
+    assert_non_null(strstr(MSG(err), "t.off:2:"));
+    assert_false(off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", &m, NULL, &err));
+    assert_non_null(strstr(MSG(err), "t.off:6:"));
+    assert_non_null(strstr(MSG(err), "out of range"));
+    assert_false(off("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", &m, NULL, &err));
+    assert_non_null(strstr(MSG(err), "ends after 1 of its 2 faces"));
+    assert_false(off("OFF\n3 1 0\n0 0\n1 0 0\n0 1 0\n3 0 1 2\n", &m, NULL, &err));
+    assert_false(off("4OFF\n", &m, NULL, &err));
+    assert_false(off("", &m, NULL, &err));
     /* Small faces and colour-map indices: skipped with one warning per kind. */
     assert_true(
-        off("OFF\n3 4 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n1 2\n3 0 1 2 4\n3 0 2 1 5\n", &m, &w, err));
+        off("OFF\n3 4 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n1 2\n3 0 1 2 4\n3 0 2 1 5\n", &m, &w, &err));
     assert_int_equal(w.count, 2);
     assert_int_equal(m.index_count, 6);
     sc_mesh_free(&m);
+    sc_warnings_free(&w);
 }
 
 static void mtl_materials(void **state) {
@@ -159,8 +161,8 @@ static void mtl_materials(void **state) {
                     "newmtl glass\nTr 0.75\nKa 1 1 1\nillum 2\n";
     sc_mtl lib;
     sc_warnings w = {0};
-    char err[256];
-    assert_true(sc_mtl_parse("t.mtl", t, strlen(t), &lib, &w, err, sizeof err));
+    TEST_MSG(err);
+    assert_true(sc_mtl_parse("t.mtl", t, strlen(t), &lib, &w, &err));
     assert_int_equal(lib.count, 2);
     const sc_material *r = sc_mtl_find(&lib, "red paint");
     assert_non_null(r);
@@ -170,13 +172,14 @@ static void mtl_materials(void **state) {
     const sc_material *g = sc_mtl_find(&lib, "glass");
     assert_true(fabsf(g->alpha - 0.25f) < 1e-6f);
     assert_int_equal(w.count, 1); /* Ka and illum: one warning */
+    sc_warnings_free(&w);
     sc_mtl_free(&lib);
     const char *bad = "newmtl a\nKd 1 x 0\n";
-    assert_false(sc_mtl_parse("b.mtl", bad, strlen(bad), &lib, NULL, err, sizeof err));
-    assert_non_null(strstr(err, "b.mtl:2:"));
+    assert_false(sc_mtl_parse("b.mtl", bad, strlen(bad), &lib, NULL, &err));
+    assert_non_null(strstr(MSG(err), "b.mtl:2:"));
     const char *early = "d 0.5\n";
-    assert_false(sc_mtl_parse("c.mtl", early, strlen(early), &lib, NULL, err, sizeof err));
-    assert_non_null(strstr(err, "c.mtl:1:"));
+    assert_false(sc_mtl_parse("c.mtl", early, strlen(early), &lib, NULL, &err));
+    assert_non_null(strstr(MSG(err), "c.mtl:1:"));
 }
 
 /* usemtl ranges of triangles, mtllib names with spaces; a BOM and CRLF in OBJ text. */
@@ -188,8 +191,8 @@ static void obj_groups(void **state) {
     sc_mesh m;
     sc_obj_extra x;
     sc_warnings w = {0};
-    char err[256];
-    assert_true(sc_obj_parse_ex("t.obj", t, strlen(t), &m, &x, &w, err, sizeof err));
+    TEST_MSG(err);
+    assert_true(sc_obj_parse_ex("t.obj", t, strlen(t), &m, &x, &w, &err));
     assert_int_equal(x.mtllib_count, 1);
     assert_string_equal(x.mtllibs[0], "my lib.mtl");
     assert_int_equal(x.group_count, 2); /* "b c" holds no triangle */
@@ -199,6 +202,7 @@ static void obj_groups(void **state) {
     assert_int_equal(x.groups[1].first_index, 9);
     assert_int_equal(x.groups[1].index_count, 3);
     assert_int_equal(w.count, 1); /* points */
+    sc_warnings_free(&w);
     sc_obj_extra_free(&x);
     sc_mesh_free(&m);
 }
@@ -218,8 +222,8 @@ static void off_model_alpha(void **state) {
     fclose(fp);
     sc_file f;
     sc_warnings w = {0};
-    char err[512];
-    assert_true(sc_model_scene(&path, 1, "m", 64, 48, &f, &w, err, sizeof err));
+    sc_msg err = {0};
+    assert_true(sc_model_scene(&path, 1, "m", 64, 48, &f, &w, &err));
     const sc_scene *sc = &f.scenes[0];
     assert_int_equal(sc->draw_count, 2);
     const sc_draw *solid = &sc->draws[0], *glass = &sc->draws[1];
@@ -239,10 +243,12 @@ static void off_model_alpha(void **state) {
     assert_non_null(fp);
     fputs("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.9 0.1 0.1 1.0\n", fp);
     fclose(fp);
-    assert_true(sc_model_scene(&path, 1, "m", 64, 48, &f, &w, err, sizeof err));
+    assert_true(sc_model_scene(&path, 1, "m", 64, 48, &f, &w, &err));
     assert_int_equal(f.scenes[0].draw_count, 1);
     assert_int_equal(f.scenes[0].draws[0].blend, SC_BLEND_OPAQUE);
     sc_free(&f);
+    sc_warnings_free(&w);
+    sc_msg_free(&err);
     remove(path);
 }
 
@@ -252,7 +258,8 @@ static void scene_shapes(void **state) {
     (void)state;
     const char *mats = "\"worldView\": [1,0,0,0, 0,1,0,0, 0,0,1,-3, 0,0,0,1], "
                        "\"proj\": [1,0,0,0, 0,1,0,0, 0,0,-1,-0.2, 0,0,-1,0]";
-    char json[2048], err[512];
+    char json[2048];
+    TEST_MSG(err);
     snprintf(json, sizeof json,
              "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"s\", \"draws\": ["
              "{\"mesh\": {\"shape\": \"torus\", \"rings\": 8}, %s},"
@@ -260,7 +267,7 @@ static void scene_shapes(void **state) {
              "{\"mesh\": {\"shape\": \"cube\", \"size\": 2}, %s}]}]}",
              mats, mats, mats);
     sc_file f;
-    assert_true(sc_parse("/nonexistent/s.json", json, strlen(json), &f, err, sizeof err));
+    assert_true(sc_parse("/nonexistent/s.json", json, strlen(json), &f, &err));
     assert_int_equal(f.mesh_count, 2);
     assert_int_equal(f.scenes[0].draws[0].mesh, f.scenes[0].draws[1].mesh);
     assert_int_equal(f.meshes[1].vertex_count, 24);
@@ -271,15 +278,15 @@ static void scene_shapes(void **state) {
              "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"s\", \"draws\": ["
              "{\"mesh\": {\"shape\": \"sphere\", \"segments\": 2}, %s}]}]}",
              mats);
-    assert_false(sc_parse("/nonexistent/s.json", json, strlen(json), &f, err, sizeof err));
-    assert_non_null(strstr(err, "draws[0]"));
-    assert_non_null(strstr(err, "segments"));
+    assert_false(sc_parse("/nonexistent/s.json", json, strlen(json), &f, &err));
+    assert_non_null(strstr(MSG(err), "draws[0]"));
+    assert_non_null(strstr(MSG(err), "segments"));
     snprintf(json, sizeof json,
              "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"s\", \"draws\": ["
              "{\"mesh\": {\"shape\": \"blob\"}, %s}]}]}",
              mats);
-    assert_false(sc_parse("/nonexistent/s.json", json, strlen(json), &f, err, sizeof err));
-    assert_non_null(strstr(err, "'shape' must be one of"));
+    assert_false(sc_parse("/nonexistent/s.json", json, strlen(json), &f, &err));
+    assert_non_null(strstr(MSG(err), "'shape' must be one of"));
 }
 
 int main(void) {

@@ -16,6 +16,7 @@
 
 #include "image_io.h"
 #include "png_store.h"
+#include "test_msg.h"
 
 static uint32_t get_u32(const unsigned char *p) {
     return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
@@ -224,13 +225,13 @@ static void test_file_reads_back(void **state) {
     int fd = mkstemp(path);
     assert_true(fd >= 0);
     close(fd);
-    char err[256];
+    TEST_MSG(err);
     sc_png_writer *writer = sc_png_writer_create(0);
     assert_non_null(writer);
-    assert_true(sc_png_writer_write(writer, path, w, h, img, err, sizeof err));
+    assert_true(sc_png_writer_write(writer, path, w, h, img, &err));
     sc_png_writer_destroy(writer);
     sc_image back;
-    assert_true(sc_image_load(path, &back, err, sizeof err));
+    assert_true(sc_image_load(path, &back, &err));
     assert_int_equal(back.width, w);
     assert_int_equal(back.height, h);
     assert_memory_equal(back.pixels, img, (size_t)w * h * 4);

@@ -19,6 +19,7 @@
 #include "scene.h"
 #include "scene_keys.h"
 #include "shadow.h"
+#include "test_msg.h"
 
 /* ---- helpers --------------------------------------------------------------------------------- */
 
@@ -81,8 +82,8 @@ static const char *write_file(tmp_dir *t, const char *name, const char *text) {
     return path;
 }
 
-static bool parse_obj(const char *text, sc_mesh *m, char *err, size_t errlen) {
-    return sc_obj_parse("test.obj", text, strlen(text), m, err, errlen);
+static bool parse_obj(const char *text, sc_mesh *m, sc_msg *err) {
+    return sc_obj_parse("test.obj", text, strlen(text), m, err);
 }
 
 static void assert_floats(const float *got, const float *want, int n) {
@@ -98,11 +99,11 @@ static void assert_indices(const sc_mesh *m, const uint32_t *want, uint32_t n) {
 
 static void obj_colour_extension(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     assert_true(parse_obj("# comment\n\no thing\ng group\ns 1\nusemtl red\nmtllib x.mtl\n"
                           "v 0 0 0 1 0 0\nv 1 0 0 0 0.5 0\nv 0 1 0\nf 1 2 3\n",
-                          &m, err, sizeof err));
+                          &m, &err));
     assert_int_equal(m.vertex_count, 3);
     assert_null(m.texcoords);
     assert_null(m.normals);
@@ -118,10 +119,10 @@ static void obj_colour_extension(void **state) {
 /* "v x y z r g b a": the colour's alpha reaches the mesh; lines without one keep alpha 1. */
 static void obj_colour_with_alpha(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
-    if (!parse_obj("v 0 0 0 1 0 0 0.25\nv 1 0 0 0 1 0\nv 0 1 0 2\nf 1 2 3\n", &m, err, sizeof err))
-        fail_msg("%s", err);
+    if (!parse_obj("v 0 0 0 1 0 0 0.25\nv 1 0 0 0 1 0\nv 0 1 0 2\nf 1 2 3\n", &m, &err))
+        fail_msg("%s", MSG(err));
     assert_int_equal(m.vertex_count, 3);
     const float pos[12] = {0, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1}; /* the weight 2 is ignored */
     const float col[12] = {1, 0, 0, 0.25f, 0, 1, 0, 1, 1, 1, 1, 1};
@@ -134,7 +135,7 @@ static void obj_colour_with_alpha(void **state) {
  * line. */
 static void obj_bad_position_count(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     static const struct {
         const char *text, *want1, *want2;
@@ -144,30 +145,31 @@ static void obj_bad_position_count(void **state) {
         {"v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "test.obj:1:", "got 2 numbers"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        memset(err, 0, sizeof err);
-        assert_false(parse_obj(cases[i].text, &m, err, sizeof err));
-        if (!strstr(err, cases[i].want1) || !strstr(err, cases[i].want2))
-            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, err, cases[i].want1, cases[i].want2);
+        sc_msg_free(&err);
+        assert_false(parse_obj(cases[i].text, &m, &err));
+        if (!strstr(MSG(err), cases[i].want1) || !strstr(MSG(err), cases[i].want2))
+            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, MSG(err), cases[i].want1,
+                     cases[i].want2);
         assert_null(m.positions);
     }
 }
 
 static void obj_fan_split(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     const char *verts = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0.5 0\n";
     char text[256];
 
     snprintf(text, sizeof text, "%sf 1 2 3 4\n", verts);
-    assert_true(parse_obj(text, &m, err, sizeof err));
+    assert_true(parse_obj(text, &m, &err));
     const uint32_t quad[6] = {0, 1, 2, 0, 2, 3};
     assert_indices(&m, quad, 6);
     assert_int_equal(m.vertex_count, 4);
     sc_mesh_free(&m);
 
     snprintf(text, sizeof text, "%sf 1 2 3 4 5\n", verts);
-    assert_true(parse_obj(text, &m, err, sizeof err));
+    assert_true(parse_obj(text, &m, &err));
     const uint32_t penta[9] = {0, 1, 2, 0, 2, 3, 0, 3, 4};
     assert_indices(&m, penta, 9);
     sc_mesh_free(&m);
@@ -175,14 +177,14 @@ static void obj_fan_split(void **state) {
 
 static void obj_negative_indices(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     /* -1 is the latest element defined before the face, so the second face reaches v 4..6. */
     assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
                           "f -3/-3 -2/-2 -1/-1\n"
                           "v 5 0 0\nv 6 0 0\nv 7 0 0\n"
                           "f -3/1 -2/2 -1/3\n",
-                          &m, err, sizeof err));
+                          &m, &err));
     assert_int_equal(m.vertex_count, 6);
     const uint32_t idx[6] = {0, 1, 2, 3, 4, 5};
     assert_indices(&m, idx, 6);
@@ -195,11 +197,11 @@ static void obj_negative_indices(void **state) {
 
 static void obj_position_and_normal(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 1 0\n"
                           "f 1//1 2//1 3//2\r\n",
-                          &m, err, sizeof err));
+                          &m, &err));
     assert_null(m.texcoords);
     assert_non_null(m.normals);
     const float n[9] = {0, 0, 1, 0, 0, 1, 0, 1, 0};
@@ -209,7 +211,7 @@ static void obj_position_and_normal(void **state) {
     /* a/b/c: all three attributes. */
     assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.75\nvn 1 0 0\n"
                           "f 1/1/1 2/1/1 3/1/1\n",
-                          &m, err, sizeof err));
+                          &m, &err));
     assert_non_null(m.texcoords);
     assert_non_null(m.normals);
     assert_float_equal(m.texcoords[4], 0.25f, 0);
@@ -219,7 +221,7 @@ static void obj_position_and_normal(void **state) {
 
 static void obj_bad_index_is_an_error(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     static const struct {
         const char *text, *want;
@@ -235,10 +237,10 @@ static void obj_bad_index_is_an_error(void **state) {
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n", "out of range"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        memset(err, 0, sizeof err);
-        assert_false(parse_obj(cases[i].text, &m, err, sizeof err));
-        if (!strstr(err, cases[i].want))
-            fail_msg("case %zu: '%s' lacks '%s'", i, err, cases[i].want);
+        sc_msg_free(&err);
+        assert_false(parse_obj(cases[i].text, &m, &err));
+        if (!strstr(MSG(err), cases[i].want))
+            fail_msg("case %zu: '%s' lacks '%s'", i, MSG(err), cases[i].want);
         assert_null(m.positions);
         assert_int_equal(m.vertex_count, 0);
     }
@@ -246,7 +248,7 @@ static void obj_bad_index_is_an_error(void **state) {
 
 static void obj_garbage_is_an_error(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     static const char *const cases[] = {
         "",
@@ -268,14 +270,14 @@ static void obj_garbage_is_an_error(void **state) {
         "\xff\xfe\x01\x02 v f / //\n",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        err[0] = '\0';
-        assert_false(parse_obj(cases[i], &m, err, sizeof err));
-        if (err[0] == '\0') fail_msg("case %zu: no error message", i);
+        sc_msg_free(&err);
+        assert_false(parse_obj(cases[i], &m, &err));
+        if (MSG(err)[0] == '\0') fail_msg("case %zu: no error message", i);
     }
     /* A NUL byte in the middle of a line. */
     static const char nul[] = "v 0 0 0\nv 1 0\0 0\nv 0 1 0\nf 1 2 3\n";
-    assert_false(sc_obj_parse("nul.obj", nul, sizeof nul - 1, &m, err, sizeof err));
-    assert_non_null(strstr(err, "nul.obj:2:"));
+    assert_false(sc_obj_parse("nul.obj", nul, sizeof nul - 1, &m, &err));
+    assert_non_null(strstr(MSG(err), "nul.obj:2:"));
 
     /* Random lines of OBJ-like tokens: any result is fine as long as it is a clean one. */
     static const char *const tokens[] = {"v", "vt", "vn",  "f",  " ", "1",    "2",  "-1", "-3",
@@ -295,27 +297,27 @@ static void obj_garbage_is_an_error(void **state) {
             memcpy(text + len, tok, n + 1);
             len += n;
         }
-        if (parse_obj(text, &m, err, sizeof err)) {
+        if (parse_obj(text, &m, &err)) {
             for (uint32_t k = 0; k < m.index_count; k++) assert_true(m.indices[k] < m.vertex_count);
             for (uint32_t k = 0; k < m.line_index_count; k++)
                 assert_true(m.line_indices[k] < m.vertex_count);
             assert_int_equal(m.line_index_count % 2, 0);
             sc_mesh_free(&m);
         } else {
-            assert_true(err[0] != '\0');
+            assert_true(MSG(err)[0] != '\0');
         }
     }
 }
 
 static void obj_shares_equal_tuples(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     /* Two triangles of a quad, position and texcoord indices equal: 4 vertices, not 6. */
     assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
                           "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
                           "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
-                          &m, err, sizeof err));
+                          &m, &err));
     assert_int_equal(m.vertex_count, 4);
     const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
     assert_indices(&m, idx, 6);
@@ -324,7 +326,7 @@ static void obj_shares_equal_tuples(void **state) {
     /* The same position with other texcoords, or without one, is another vertex. */
     assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\n"
                           "f 1/1 2/1 3/1\nf 1/2 2/1 3\n",
-                          &m, err, sizeof err));
+                          &m, &err));
     assert_int_equal(m.vertex_count, 5);
     const uint32_t idx2[6] = {0, 1, 2, 3, 1, 4};
     assert_indices(&m, idx2, 6);
@@ -342,14 +344,14 @@ static void assert_line_indices(const sc_mesh *m, const uint32_t *want, uint32_t
  * name the same position and texcoord. */
 static void obj_polylines(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     if (!parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 1 0 0\nvt 0.5 0.25\n"
                    "f 1 2 3\n"
                    "l 1 2 3 4 1\n"
                    "l -1/1 2\t# a comment\n",
-                   &m, err, sizeof err))
-        fail_msg("%s", err);
+                   &m, &err))
+        fail_msg("%s", MSG(err));
     const uint32_t tri[3] = {0, 1, 2};
     assert_indices(&m, tri, 3);
     /* 4/1 is a new vertex (the texcoord makes it one); 1 2 3 are the face's. */
@@ -364,8 +366,7 @@ static void obj_polylines(void **state) {
     sc_mesh_free(&m);
 
     /* Lines only: no triangles at all. */
-    if (!parse_obj("v 0 0 0\nv 2 0 0\nv 0 3 0\nl 1 2\nl 3 1\n", &m, err, sizeof err))
-        fail_msg("%s", err);
+    if (!parse_obj("v 0 0 0\nv 2 0 0\nv 0 3 0\nl 1 2\nl 3 1\n", &m, &err)) fail_msg("%s", MSG(err));
     assert_int_equal(m.index_count, 0);
     assert_null(m.indices);
     const uint32_t segs[4] = {0, 1, 2, 0};
@@ -375,7 +376,7 @@ static void obj_polylines(void **state) {
     sc_mesh_free(&m);
 
     /* Faces only: no line list. */
-    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &m, err, sizeof err));
+    assert_true(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &m, &err));
     assert_int_equal(m.line_index_count, 0);
     assert_null(m.line_indices);
     sc_mesh_free(&m);
@@ -384,7 +385,7 @@ static void obj_polylines(void **state) {
 /* Bad lines name the file and line: too few vertices, an index out of range, a normal, garbage. */
 static void obj_bad_lines(void **state) {
     (void)state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     static const struct {
         const char *text, *want1, *want2;
@@ -406,10 +407,11 @@ static void obj_bad_lines(void **state) {
         {"v 0 0 0\nv 1 0 0\n", "test.obj: ", "no faces or lines"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        memset(err, 0, sizeof err);
-        assert_false(parse_obj(cases[i].text, &m, err, sizeof err));
-        if (!strstr(err, cases[i].want1) || !strstr(err, cases[i].want2))
-            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, err, cases[i].want1, cases[i].want2);
+        sc_msg_free(&err);
+        assert_false(parse_obj(cases[i].text, &m, &err));
+        if (!strstr(MSG(err), cases[i].want1) || !strstr(MSG(err), cases[i].want2))
+            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, MSG(err), cases[i].want1,
+                     cases[i].want2);
         assert_null(m.positions);
         assert_null(m.line_indices);
     }
@@ -417,28 +419,28 @@ static void obj_bad_lines(void **state) {
 
 static void obj_load_from_file(void **state) {
     tmp_dir *t = *state;
-    char err[256];
+    TEST_MSG(err);
     sc_mesh m;
     const char *path = write_file(t, "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3");
-    assert_true(sc_obj_load(path, &m, err, sizeof err));
+    assert_true(sc_obj_load(path, &m, &err));
     assert_int_equal(m.index_count, 3);
     sc_mesh_free(&m);
-    assert_false(sc_obj_load(tmp_path(t, "missing.obj"), &m, err, sizeof err));
-    assert_non_null(strstr(err, "missing.obj"));
+    assert_false(sc_obj_load(tmp_path(t, "missing.obj"), &m, &err));
+    assert_non_null(strstr(MSG(err), "missing.obj"));
 }
 
 /* ---- heightmap ------------------------------------------------------------------------------- */
 
 static void heightmap_mesh(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     /* 3x2 pixels, stored top row first; grid rows count from the bottom, so the stored second
      * row is grid row y = 0. Pixel (2, 1) has R+G+B = 255. */
     const unsigned char px[3 * 2 * 4] = {
         100, 100, 100, 255, 50,  50,  50,  255, 85, 85, 85, 255, /* y = 1 */
         0,   0,   0,   255, 255, 255, 255, 255, 10, 20, 30, 255, /* y = 0 */
     };
-    assert_true(sc_image_write_png(tmp_path(t, "height.png"), 3, 2, px, err, sizeof err));
+    assert_true(sc_image_write_png(tmp_path(t, "height.png"), 3, 2, px, &err));
     const char *path =
         write_file(t, "hm.json",
                    "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"hm\", \"draws\": ["
@@ -446,7 +448,7 @@ static void heightmap_mesh(void **state) {
                    " \"worldView\": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1],"
                    " \"proj\": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]}]}");
     sc_file f;
-    if (!sc_load(path, &f, err, sizeof err)) fail_msg("%s", err);
+    if (!sc_load(path, &f, &err)) fail_msg("%s", MSG(err));
     assert_int_equal(f.mesh_count, 1);
     const sc_mesh *m = &f.meshes[0];
     assert_int_equal(m->vertex_count, 6);
@@ -473,7 +475,7 @@ static void heightmap_mesh(void **state) {
     /* A heightmap needs two rows and two columns. */
     sc_image thin = {1, 2, (unsigned char *)px};
     sc_mesh none;
-    assert_false(sc_heightmap_mesh(&thin, 1.0f, &none, err, sizeof err));
+    assert_false(sc_heightmap_mesh(&thin, 1.0f, &none, &err));
 }
 
 /* ---- scene files ----------------------------------------------------------------------------- */
@@ -490,15 +492,14 @@ static void write_assets(tmp_dir *t) {
     write_file(t, "lines.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nl 1 2 3\n");
     write_file(t, "stray.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nl 1 4\n");
     const unsigned char px[4] = {255, 0, 0, 255};
-    char err[256];
-    assert_true(sc_image_write_png(tmp_path(t, "red.png"), 1, 1, px, err, sizeof err));
+    TEST_MSG(err);
+    assert_true(sc_image_write_png(tmp_path(t, "red.png"), 1, 1, px, &err));
 }
 
 /* Loads scene text written to name; on failure returns false with the message in err. */
-static bool load_scene(tmp_dir *t, const char *name, const char *json, sc_file *f, char *err,
-                       size_t errlen) {
+static bool load_scene(tmp_dir *t, const char *name, const char *json, sc_file *f, sc_msg *err) {
     write_assets(t);
-    return sc_load(write_file(t, name, json), f, err, errlen);
+    return sc_load(write_file(t, name, json), f, err);
 }
 
 /* Unknown keys load with a warning each, naming the file, the key's line (a CR LF ends one line)
@@ -506,7 +507,7 @@ static bool load_scene(tmp_dir *t, const char *name, const char *json, sc_file *
  * deletion, substitution, swap). */
 static void scene_unknown_keys(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     if (!load_scene(t, "keys.json",
                     "{\"width\": 8, \"height\": 8, \"matrices\": \"a note\", \"hieght\": 3,\n"
@@ -517,8 +518,8 @@ static void scene_unknown_keys(void **state) {
                     "{\"mesh\": \"tri.obj\", " MATRICES "},\n"
                     "{\"mesh\": \"tri.obj\", \"lightning\": \"phong\",\n"
                     "\r\n \"cul\": \"back\", " MATRICES "}]}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     const char *want[] = {
         "keys.json:1: unknown key 'matrices'",
         "keys.json:1: unknown key 'hieght' (did you mean 'height'?)",
@@ -538,8 +539,8 @@ static void scene_unknown_keys(void **state) {
     /* A file without unknown keys has no warnings, and strict passes it. */
     if (!load_scene(t, "clean.json",
                     "{\"width\": 8, \"height\": 8, \"scenes\": [{\"name\": \"a\", \"draws\": []}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     assert_int_equal(f.warning_count, 0);
     assert_true(sc_report_warnings(&f, "test", true));
     sc_free(&f);
@@ -547,13 +548,13 @@ static void scene_unknown_keys(void **state) {
 
 static void scene_defaults(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     if (!load_scene(t, "defaults.json",
                     "{\"width\": 64, \"height\": 32, \"matrices\": \"a note\", \"scenes\": ["
                     "{\"name\": \"a\", \"draws\": [{\"mesh\": \"tri.obj\", " MATRICES "}]}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     assert_int_equal(f.scene_count, 1);
     const sc_scene *s = &f.scenes[0];
     assert_string_equal(s->name, "a");
@@ -590,7 +591,7 @@ static void scene_defaults(void **state) {
 
 static void scene_overrides(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     if (!load_scene(
             t, "overrides.json",
@@ -604,8 +605,8 @@ static void scene_overrides(void **state) {
             "   \"worldView\": [2,0,0,0, 0,2,0,0, 0,0,2,0, 0,0,0,1], \"proj\": " IDENTITY "},"
             "  {\"mesh\": \"tri.obj\", \"mode\": \"vertex_color\", \"texture\": \"red.png\","
             "   \"cull\": \"front\", \"depth_compare\": \"always\", " MATRICES "}]}]}",
-            &f, err, sizeof err))
-        fail_msg("%s", err);
+            &f, &err))
+        fail_msg("%s", MSG(err));
     assert_int_equal(f.scene_count, 2);
     assert_int_equal(f.scenes[0].width, 64);
     assert_int_equal(f.scenes[0].draw_count, 0);
@@ -644,14 +645,14 @@ static void scene_overrides(void **state) {
 
 static void scene_texture_null(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     if (!load_scene(t, "null.json",
                     "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"n\", \"draws\": ["
                     "{\"mesh\": \"tri.obj\", \"mode\": \"texture\", \"texture\": null, " MATRICES
                     "}]}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     assert_int_equal(f.scenes[0].draws[0].mode, SC_MODE_TEXTURE);
     assert_int_equal(f.scenes[0].draws[0].texture, -1);
     assert_int_equal(f.texture_count, 0);
@@ -661,7 +662,7 @@ static void scene_texture_null(void **state) {
 /* The transparency keys: blend, a constant colour and the triangle order. */
 static void scene_transparency(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     if (!load_scene(t, "transparency.json",
                     "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"t\", \"draws\": ["
@@ -669,8 +670,8 @@ static void scene_transparency(void **state) {
                     " \"sort\": \"back_to_front\", \"depth_write\": false, " MATRICES "},"
                     "{\"mesh\": \"tri.obj\", \"blend\": \"opaque\", \"color\": [1, 1, 1, 1],"
                     " \"sort\": \"none\", " MATRICES "}]}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     const sc_draw *d = &f.scenes[0].draws[0];
     assert_int_equal(d->blend, SC_BLEND_ALPHA);
     const float color[4] = {0.5f, 0.25f, 0.0f, 0.75f};
@@ -687,7 +688,7 @@ static void scene_transparency(void **state) {
 /* The lighting keys: per draw mode and material, per scene (or file) ambient and lights. */
 static void scene_lighting(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     if (!load_scene(
             t, "lighting.json",
@@ -709,8 +710,8 @@ static void scene_lighting(void **state) {
             "  {\"mesh\": \"tri.obj\", \"lighting\": \"none\", " MATRICES "}]},"
             "{\"name\": \"inherits\", \"draws\": []},"
             "{\"name\": \"dark\", \"lights\": [], \"draws\": []}]}",
-            &f, err, sizeof err))
-        fail_msg("%s", err);
+            &f, &err))
+        fail_msg("%s", MSG(err));
     assert_int_equal(f.scene_count, 3);
 
     const sc_scene *s = &f.scenes[0];
@@ -764,15 +765,15 @@ static void scene_lighting(void **state) {
 /* Every loaded mesh has normals: its own, or smooth ones computed from its triangles. */
 static void scene_mesh_normals(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     write_file(t, "tri_n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0.6 0 0.8\nf 1//1 2//1 3//1\n");
     if (!load_scene(t, "normals.json",
                     "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"n\", \"draws\": ["
                     "{\"mesh\": \"tri.obj\", " MATRICES "},"
                     "{\"mesh\": \"tri_n.obj\", " MATRICES "}]}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     assert_int_equal(f.mesh_count, 2);
     const float up[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1},
                 own[9] = {0.6f, 0, 0.8f, 0.6f, 0, 0.8f, 0.6f, 0, 0.8f};
@@ -786,7 +787,7 @@ static void scene_mesh_normals(void **state) {
  * every line vertex a normal, unlit always. */
 static void scene_lines(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     /* The outline of the triangle, vertex for vertex: its smooth normals reach the lines. */
     write_file(t, "outlined.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2 3 1\n");
@@ -801,8 +802,8 @@ static void scene_lines(void **state) {
             "\"line\", " MATRICES "},"
             "{\"mesh\": \"stray.obj\", \"blend\": \"alpha\", " MATRICES "},"
             "{\"mesh\": \"lines.obj\", \"texture\": \"red.png\", " MATRICES "}]}]}",
-            &f, err, sizeof err))
-        fail_msg("%s", err);
+            &f, &err))
+        fail_msg("%s", MSG(err));
     const sc_scene *s = &f.scenes[0];
     assert_int_equal(s->draws[0].polygon_mode, SC_POLYGON_MODE_LINE);
     assert_int_equal(s->draws[0].cull, SC_CULL_BACK);
@@ -828,8 +829,8 @@ static void scene_lines(void **state) {
                     "{\"type\": \"point\", \"position\": [0.5, 0.5, 2], \"color\": [1, 1, 1]}],"
                     " \"shadow\": {\"light\": 0}, \"draws\": ["
                     "{\"mesh\": \"lines.obj\", " MATRICES "}]}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     double view[16], proj[16];
     assert_true(f.scenes[0].has_shadow);
     assert_true(sc_shadow_light(&f, &f.scenes[0], view, proj));
@@ -844,7 +845,7 @@ static void scene_lines(void **state) {
  * "casts_shadow" and "receives_shadow". */
 static void scene_shadow(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     if (!load_scene(
             t, "shadow.json",
@@ -872,8 +873,8 @@ static void scene_shadow(void **state) {
             "{\"name\": \"no_casters\", \"draws\": ["
             "  {\"mesh\": \"tri.obj\", \"casts_shadow\": false, " MATRICES "}]},"
             "{\"name\": \"empty\", \"draws\": []}]}",
-            &f, err, sizeof err))
-        fail_msg("%s", err);
+            &f, &err))
+        fail_msg("%s", MSG(err));
     assert_int_equal(f.scene_count, 5);
 
     /* The file's shadow, with every default. */
@@ -940,7 +941,7 @@ static void light_clip(const double view[16], const double proj[16], const doubl
  * cube onto [-1, 1] in x and y exactly, with its depth inside (-1, 1), the top nearest. */
 static void shadow_light_directional(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     write_file(t, "cube.obj", CUBE_OBJ);
     if (!load_scene(t, "sun.json",
@@ -949,8 +950,8 @@ static void shadow_light_directional(void **state) {
                     " \"color\": [1, 1, 1]}], \"shadow\": {\"light\": 0},"
                     " \"draws\": [{\"mesh\": \"cube.obj\", \"worldView\": " CUBE_WORLD_VIEW
                     ", \"proj\": " IDENTITY "}]}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     double view[16], proj[16];
     assert_true(sc_shadow_light(&f, &f.scenes[0], view, proj));
     /* Orthographic: the last row is (0, 0, 0, 1). */
@@ -996,7 +997,7 @@ static void shadow_light_directional(void **state) {
  * frustum; the second still fitted, with its widest cone, near and far fitted to what it sees. */
 static void shadow_light_point(void **state) {
     tmp_dir *t = *state;
-    char err[512];
+    TEST_MSG(err);
     sc_file f;
     write_file(t, "cube.obj", CUBE_OBJ);
     if (!load_scene(t, "lamp.json",
@@ -1011,8 +1012,8 @@ static void shadow_light_point(void **state) {
                     " \"shadow\": {\"light\": 0},"
                     " \"draws\": [{\"mesh\": \"cube.obj\", \"worldView\": " CUBE_WORLD_VIEW
                     ", \"proj\": " IDENTITY "}]}]}",
-                    &f, err, sizeof err))
-        fail_msg("%s", err);
+                    &f, &err))
+        fail_msg("%s", MSG(err));
     double view[16], proj[16];
     assert_true(sc_shadow_light(&f, &f.scenes[0], view, proj));
     assert_true(proj[14] == -1.0); /* perspective: w is the distance in front of the light */
@@ -1292,14 +1293,15 @@ static void scene_errors(void **state) {
         {"[1, 2]", "errors.json", "top level"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        char err[512] = "";
+        TEST_MSG(err);
         sc_file f;
-        if (load_scene(t, "errors.json", cases[i].json, &f, err, sizeof err)) {
+        if (load_scene(t, "errors.json", cases[i].json, &f, &err)) {
             sc_free(&f);
             fail_msg("case %zu loaded", i);
         }
-        if (!strstr(err, cases[i].want1) || !strstr(err, cases[i].want2))
-            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, err, cases[i].want1, cases[i].want2);
+        if (!strstr(MSG(err), cases[i].want1) || !strstr(MSG(err), cases[i].want2))
+            fail_msg("case %zu: '%s' lacks '%s' or '%s'", i, MSG(err), cases[i].want1,
+                     cases[i].want2);
         assert_null(f.scenes);
         assert_int_equal(f.mesh_count, 0);
     }

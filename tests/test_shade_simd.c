@@ -336,9 +336,7 @@ static void random_lit(rng *g, int kind, int flat, const sg_tri *t, int x0, int 
     float spec[3] = {chance(g, 30) ? 0.0f : frange(g, 0.0f, 1.0f), frange(g, 0.0f, 1.0f),
                      frange(g, 0.0f, 1.0f)};
     float shine = chance(g, 10) ? 0.0f : chance(g, 10) ? 128.0f : frange(g, 0.0f, 128.0f);
-    char why[160];
-    int code;
-    assert_true(sg_light_prepare(&l, spec, shine, &ctx->lights, why, sizeof why, &code));
+    assert_true(sg_light_prepare(&l, spec, shine, &ctx->lights, NULL, NULL));
 }
 
 /* The shadow map of a case (kinds PHONG_SHADOW, UNLIT_SHADOW): one of the maps, a light's

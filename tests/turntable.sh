@@ -78,7 +78,7 @@ check_shards() { # N UNSHARDED_DIR [options]
         total=$((total + 1))
     done
     written=$(find "$work/shards$n" -name '*.png' | wc -l)
-    [ "$written" -eq $total ] || fail "N=$n: the shards wrote $written files, the whole run $total"
+    [ "$written" -eq "$total" ] || fail "N=$n: the shards wrote $written files, the whole run $total"
     rm -rf "$work/shards$n"
 }
 for n in 1 2 3 7; do

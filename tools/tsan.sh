@@ -24,7 +24,8 @@ cmake --build "$build" -j "$jobs" --target sgapi-render test_alloc_fail test_api
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 # halt_on_error: the first report ends the program with exitcode, which fails this script.
-TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 suppressions=$src/tools/tsan.supp"
+# The suppression file's path quoted: the checkout's may hold blanks.
+TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 suppressions='$src/tools/tsan.supp'"
 export TSAN_OPTIONS
 
 for t in 1 2 3 5; do

@@ -27,8 +27,6 @@
 
 #include "teapot_patches.h"
 
-#define PATH_CAP 4096
-
 static const double PI = 3.14159265358979323846;
 
 /* Height of the terrain's brightest height-map pixel in height-map pixels (the terrain is 256
@@ -2190,9 +2188,17 @@ static bool make_dir(const char *path) {
     return false;
 }
 
-static const char *join(char *buf, const char *dir, const char *rel) {
-    snprintf(buf, PATH_CAP, "%s/%s", dir, rel);
-    return buf;
+/* dir/rel in *buf, grown to its length (one path is in use at a time). Exits when out of
+ * memory. */
+static const char *join(char **buf, const char *dir, const char *rel) {
+    size_t n = strlen(dir) + strlen(rel) + 2;
+    char *b = realloc(*buf, n);
+    if (!b) {
+        fprintf(stderr, "sgapi-assets: out of memory\n");
+        exit(1);
+    }
+    snprintf(b, n, "%s/%s", dir, rel);
+    return *buf = b;
 }
 
 /* The scenes of each file, in order. */
@@ -2482,15 +2488,8 @@ static void build_cube_wide(mesh *m) {
     build_cube(m, CUBE_WHITE, -0.0625, 1.0625);
 }
 
-int main(int argc, char **argv) {
-    if (argc != 2 || argv[1][0] == '-') {
-        fprintf(stderr, "usage: sgapi-assets OUTDIR\n"
-                        "Writes OUTDIR/default.json and the meshes and textures in "
-                        "OUTDIR/assets/.\n");
-        return 2;
-    }
-    const char *out = argv[1];
-    char path[PATH_CAP];
+/* Writes every asset and scene file into out; the exit status. */
+static int write_assets(const char *out, char **path) {
     if (!make_dir(out) || !make_dir(join(path, out, "assets"))) return 1;
 
     /* Meshes, each checked before it is written. `facing` is the side a flat mesh must face;
@@ -2591,4 +2590,17 @@ int main(int argc, char **argv) {
          write_shapes_file(join(path, out, "shapes.json"));
     mesh_free(&teapot);
     return ok ? 0 : 1;
+}
+
+int main(int argc, char **argv) {
+    if (argc != 2 || argv[1][0] == '-') {
+        fprintf(stderr, "usage: sgapi-assets OUTDIR\n"
+                        "Writes OUTDIR/default.json and the meshes and textures in "
+                        "OUTDIR/assets/.\n");
+        return 2;
+    }
+    char *path = NULL; /* every file's, in turn (join) */
+    int status = write_assets(argv[1], &path);
+    free(path);
+    return status;
 }

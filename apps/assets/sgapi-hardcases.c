@@ -47,6 +47,15 @@ static void die(const char *fmt, ...) {
     exit(1);
 }
 
+/* dir + middle + name as a new string of its length; exits when out of memory. */
+static char *path_of(const char *dir, const char *middle, const char *name) {
+    size_t n = strlen(dir) + strlen(middle) + strlen(name) + 1;
+    char *p = malloc(n);
+    if (!p) die("out of memory");
+    snprintf(p, n, "%s%s%s", dir, middle, name);
+    return p;
+}
+
 /* A mesh being written: OBJ text with positions, colours, texcoords, triangle faces. */
 typedef struct mesh {
     FILE *f;
@@ -55,10 +64,10 @@ typedef struct mesh {
 } mesh;
 
 static mesh mesh_open(const char *dir, const char *name, int textured) {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/assets/%s", dir, name);
+    char *path = path_of(dir, "/assets/", name);
     mesh m = {fopen(path, "w"), 0, textured};
     if (!m.f) die("cannot write %s", path);
+    free(path);
     fprintf(m.f, "# %s, made by sgapi-hardcases\n", name);
     return m;
 }
@@ -133,10 +142,12 @@ typedef struct scene_file {
 /* Opens OUTDIR/<name>.json; the scene is called `name` up to its first dot, so that a reference
  * twin (<scene>.reference.json) renders under the scene's own name. */
 static scene_file scene_open(const char *dir, const char *name, int w, int h, const char *clear) {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s.json", dir, name);
-    scene_file s = {fopen(path, "w"), 0};
-    if (!s.f) die("cannot write %s", path);
+    char *path = path_of(dir, "/", name);
+    char *file = path_of(path, "", ".json");
+    free(path);
+    scene_file s = {fopen(file, "w"), 0};
+    if (!s.f) die("cannot write %s", file);
+    free(file);
     fprintf(s.f,
             "{\n \"width\": %d, \"height\": %d, \"clear_color\": %s,\n \"scenes\": [{\n"
             "  \"name\": \"%.*s\",\n  \"draws\": [\n",
@@ -445,9 +456,9 @@ static void case_depth(const char *dir) {
 }
 
 static void write_png(const char *dir, const char *name, int w, int h, const unsigned char *px) {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/assets/%s", dir, name);
+    char *path = path_of(dir, "/assets/", name);
     if (!stbi_write_png(path, w, h, 4, px, w * 4)) die("cannot write %s", path);
+    free(path);
 }
 
 /* A textured quad in pixels with the given texcoords at its corners. */
@@ -562,10 +573,10 @@ static void case_textures(const char *dir) {
  * frame of valid triangles may be drawn. */
 static void case_degenerate(const char *dir) {
     px_space p = {256, 256};
-    char path[1024];
-    snprintf(path, sizeof path, "%s/assets/degenerate.obj", dir);
+    char *path = path_of(dir, "/assets/", "degenerate.obj");
     FILE *f = fopen(path, "w");
     if (!f) die("cannot write %s", path);
+    free(path);
     fprintf(f, "# degenerate.obj, made by sgapi-hardcases\n");
     /* 1-3: a valid triangle; 4: a point on its edge; 5-7: NaN / inf vertices. */
     fprintf(f, "v %.9g %.9g 0 0.2 0.6 0.9\n", ndc_x(p, 20), ndc_y(p, 20));
@@ -592,10 +603,10 @@ int main(int argc, char **argv) {
         return 2;
     }
     const char *dir = argv[1];
-    char assets[1024];
-    snprintf(assets, sizeof assets, "%s/assets", dir);
+    char *assets = path_of(dir, "/assets", "");
     mkdir(dir, 0777);
     mkdir(assets, 0777);
+    free(assets);
     case_slivers(dir);
     case_grid(dir);
     case_sphere(dir);

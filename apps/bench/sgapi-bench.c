@@ -277,19 +277,19 @@ static char *dir_of(const char *path) {
  * (NUL-terminated; free() it). Its stderr is ours, so its own messages reach the user.
  * Returns 0 when it ran, with *status its exit status (-1: killed by a signal); otherwise the
  * errno of the failure (ENOENT: no such program), with err saying what failed. */
-static int run_child(char *const argv[], char **out, int *status, char *err, size_t errlen) {
+static int run_child(char *const argv[], char **out, int *status, sc_msg *err) {
     int out_pipe[2], exec_pipe[2];
     *out = NULL;
     if (pipe(out_pipe) != 0) {
         int e = errno;
-        snprintf(err, errlen, "cannot run %s: pipe: %s", argv[0], strerror(e));
+        sc_msg_set(err, "cannot run %s: pipe: %s", argv[0], strerror(e));
         return e;
     }
     /* Closed by a successful exec: the parent then reads nothing from it, and otherwise the
      * errno of the failed exec. */
     if (pipe(exec_pipe) != 0 || fcntl(exec_pipe[1], F_SETFD, FD_CLOEXEC) != 0) {
         int e = errno;
-        snprintf(err, errlen, "cannot run %s: pipe: %s", argv[0], strerror(e));
+        sc_msg_set(err, "cannot run %s: pipe: %s", argv[0], strerror(e));
         close(out_pipe[0]);
         close(out_pipe[1]);
         return e;
@@ -299,7 +299,7 @@ static int run_child(char *const argv[], char **out, int *status, char *err, siz
     pid_t pid = fork();
     if (pid < 0) {
         int e = errno;
-        snprintf(err, errlen, "cannot run %s: fork: %s", argv[0], strerror(e));
+        sc_msg_set(err, "cannot run %s: fork: %s", argv[0], strerror(e));
         close(out_pipe[0]);
         close(out_pipe[1]);
         close(exec_pipe[0]);
@@ -356,12 +356,12 @@ static int run_child(char *const argv[], char **out, int *status, char *err, siz
     while (waitpid(pid, &ws, 0) < 0 && errno == EINTR) {
     }
     if (got == (ssize_t)sizeof exec_errno) {
-        snprintf(err, errlen, "cannot run %s: %s", argv[0], strerror(exec_errno));
+        sc_msg_set(err, "cannot run %s: %s", argv[0], strerror(exec_errno));
         free(buf);
         return exec_errno ? exec_errno : EINVAL;
     }
     if (!ok) {
-        snprintf(err, errlen, "out of memory reading the output of %s", argv[0]);
+        sc_msg_set(err, "out of memory reading the output of %s", argv[0]);
         free(buf);
         return ENOMEM;
     }
@@ -373,16 +373,27 @@ static int run_child(char *const argv[], char **out, int *status, char *err, siz
 
 /* sgapi-ref beside this program: the two are built into, and installed to, the same folder. */
 static char *find_ref(const char *argv0) {
-    char self[4096];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n > 0 && n < (ssize_t)sizeof self - 1) {
-        self[n] = '\0';
-    } else if (strchr(argv0, '/')) {
-        snprintf(self, sizeof self, "%s", argv0);
-    } else {
-        return concat3("sgapi-ref", "", ""); /* found through PATH, as this program was */
+    /* This program's path, in a buffer grown until it holds it whole. */
+    char *self = NULL;
+    for (size_t cap = 256; cap <= ((size_t)1 << 20); cap *= 2) {
+        char *grown = realloc(self, cap);
+        if (!grown) break;
+        self = grown;
+        ssize_t n = readlink("/proc/self/exe", self, cap);
+        if (n < 0) break;
+        if ((size_t)n < cap) {
+            self[n] = '\0';
+            char *dir = dir_of(self);
+            char *ref = dir ? concat3(dir, "/", "sgapi-ref") : NULL;
+            free(dir);
+            free(self);
+            return ref;
+        }
     }
-    char *dir = dir_of(self);
+    free(self);
+    if (!strchr(argv0, '/'))
+        return concat3("sgapi-ref", "", ""); /* found through PATH, as this program was */
+    char *dir = dir_of(argv0);
     char *ref = dir ? concat3(dir, "/", "sgapi-ref") : NULL;
     free(dir);
     return ref;
@@ -392,15 +403,17 @@ static char *find_ref(const char *argv0) {
  * "NAME  X ms/frame ..." that sgapi-ref prints; its image is left in tmpdir/NAME.png. */
 static bool run_lavapipe(const options *o, const char *ref, const char *file, const char *scene,
                          int threads, const char *tmpdir, double *ms) {
-    char frames_s[16], threads_s[16], err[1024];
+    char frames_s[16], threads_s[16];
+    sc_msg err = {0};
     snprintf(frames_s, sizeof frames_s, "%d", o->frames);
     snprintf(threads_s, sizeof threads_s, "%d", threads);
     char *argv[] = {(char *)ref, (char *)file, "--frames", frames_s,       "--scene", (char *)scene,
                     "--threads", threads_s,    "-o",       (char *)tmpdir, NULL};
     char *out;
     int status;
-    if (run_child(argv, &out, &status, err, sizeof err) != 0) {
-        fprintf(stderr, "sgapi-bench: %s\n", err);
+    if (run_child(argv, &out, &status, &err) != 0) {
+        fprintf(stderr, "sgapi-bench: %s\n", err.text);
+        sc_msg_free(&err);
         fprintf(stderr, "sgapi-bench: the lavapipe reference could not run; build sgapi-ref "
                         "(it needs the Vulkan loader and glslang) or name it with --ref PATH\n");
         return false;
@@ -524,11 +537,12 @@ static bool measure_lavapipe(const options *o, const char *ref, const char *tmpd
         x->lp_ms[1] = x->lp_ms[0];
     else if (ok)
         ok = run_lavapipe(o, ref, x->file, s->name, o->threads, tmpdir, &x->lp_ms[1]);
-    char err[1024];
-    if (ok && load_image && !sc_image_load(path, &x->lp_image, err, sizeof err)) {
-        fprintf(stderr, "sgapi-bench: lavapipe's image of '%s': %s\n", s->name, err);
+    sc_msg err = {0};
+    if (ok && load_image && !sc_image_load(path, &x->lp_image, &err)) {
+        fprintf(stderr, "sgapi-bench: lavapipe's image of '%s': %s\n", s->name, err.text);
         ok = false;
     }
+    sc_msg_free(&err);
     remove(path); /* so the temporary folder is empty at the end, whatever happened */
     free(path);
     if (!ok) return false;
@@ -836,14 +850,15 @@ static bool plot_pareto(const options *o, const result *res, size_t count, const
         return false;
     }
     char *argv[] = {"gnuplot", script, NULL};
-    char *gp_out = NULL, err[1024];
+    char *gp_out = NULL;
+    sc_msg err = {0};
     int status = 0;
-    int e = run_child(argv, &gp_out, &status, err, sizeof err);
+    int e = run_child(argv, &gp_out, &status, &err);
     if (e == ENOENT) {
         fprintf(stderr, "sgapi-bench: gnuplot is not installed: no plot (the figures are in "
                         "pareto.csv)\n");
     } else if (e != 0) {
-        fprintf(stderr, "sgapi-bench: %s\n", err);
+        fprintf(stderr, "sgapi-bench: %s\n", err.text);
         ok = false;
     } else if (status != 0) {
         fprintf(stderr, "sgapi-bench: gnuplot failed (exit status %d) drawing %s\n", status, out);
@@ -851,6 +866,7 @@ static bool plot_pareto(const options *o, const result *res, size_t count, const
     } else {
         fprintf(stderr, "sgapi-bench: wrote %s\n", out);
     }
+    sc_msg_free(&err);
     free(gp_out);
     remove(script);
     free(script);
@@ -932,9 +948,10 @@ int main(int argc, char **argv) {
         goto done;
     }
     for (; loaded < o.file_count; loaded++) {
-        char err[1024];
-        if (!sc_load(o.files[loaded], &files[loaded], err, sizeof err)) {
-            fprintf(stderr, "sgapi-bench: %s\n", err);
+        sc_msg err = {0};
+        if (!sc_load(o.files[loaded], &files[loaded], &err)) {
+            fprintf(stderr, "sgapi-bench: %s\n", err.text);
+            sc_msg_free(&err);
             goto done;
         }
         count += files[loaded].scene_count;

@@ -87,62 +87,60 @@ static bool png_chunks_ok(const unsigned char *d, size_t len) {
 /* The decoder's reason for a failure; false. For an unknown PNG chunk the reason starts with the
  * chunk type, raw bytes of the file: empty when the first is 0 (as in a truncated file, read on as
  * zeros), control characters otherwise. Such a reason is replaced rather than printed. */
-static bool decoder_error(char *err, size_t errlen) {
+static bool decoder_error(sc_msg *err) {
     const char *why = stbi_failure_reason();
     bool printable = why && why[0];
     for (const char *q = why; printable && *q; q++) printable = *q >= 0x20 && *q < 0x7f;
-    snprintf(err, errlen, "%s",
-             !printable                 ? "corrupt or unsupported image"
-             : !strcmp(why, "outofmem") ? "out of memory"
-                                        : why);
+    sc_msg_set(err, "%s",
+               !printable                 ? "corrupt or unsupported image"
+               : !strcmp(why, "outofmem") ? "out of memory"
+                                          : why);
     return false;
 }
 
-bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, char *err,
-                          size_t errlen) {
+bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, sc_msg *err) {
     memset(out, 0, sizeof *out);
     /* The decoder takes the length as an int. */
     if (!data || len == 0 || len > INT_MAX) {
-        snprintf(err, errlen, "%s", len > INT_MAX ? "image data too large" : "no image data");
+        sc_msg_set(err, "%s", len > INT_MAX ? "image data too large" : "no image data");
         return false;
     }
     if (is_jpeg(data, len) && !jpeg_huffman_tables_ok(data, len)) {
-        snprintf(err, errlen, "corrupt JPEG: bad Huffman table");
+        sc_msg_set(err, "corrupt JPEG: bad Huffman table");
         return false;
     }
     if (!png_chunks_ok(data, len)) {
-        snprintf(err, errlen, "corrupt PNG: a chunk runs past the end of the file");
+        sc_msg_set(err, "corrupt PNG: a chunk runs past the end of the file");
         return false;
     }
     /* The header is read first: the checks below depend on it. Reading it allocates, so its
      * failure may be the allocator's: then the decoding must not go ahead unchecked (an
      * allocation-failure test found it going ahead without the size check). */
     int w, h, channels;
-    if (!stbi_info_from_memory(data, (int)len, &w, &h, &channels))
-        return decoder_error(err, errlen);
+    if (!stbi_info_from_memory(data, (int)len, &w, &h, &channels)) return decoder_error(err);
     /* For a PNM of 16 bits per sample (maximum value over 255), the stb_image of Debian 12 converts
      * the samples to RGBA as if they were 8-bit, then reads twice the bytes of that buffer as
      * 16-bit ones: a heap over-read of the image's size (found by fuzzing). Such files are refused.
      * "P5" and "P6" start no other format the decoder reads. */
     if (len >= 2 && data[0] == 'P' && (data[1] == '5' || data[1] == '6') &&
         stbi_is_16_bit_from_memory(data, (int)len)) {
-        snprintf(err, errlen, "16-bit PNM images are not supported");
+        sc_msg_set(err, "16-bit PNM images are not supported");
         return false;
     }
     /* A file of a few bytes can declare a size whose decoding takes gigabytes (a 44-byte GIF of
      * 16163x17746 took 2.6 GB) only to be refused by the caller: the size is checked first. */
     if (w > SC_IMAGE_MAX_SIDE || h > SC_IMAGE_MAX_SIDE) {
-        snprintf(err, errlen, "image is %dx%d, larger than %d on a side", w, h, SC_IMAGE_MAX_SIDE);
+        sc_msg_set(err, "image is %dx%d, larger than %d on a side", w, h, SC_IMAGE_MAX_SIDE);
         return false;
     }
     /* No vertical flip: the decoder's natural order is already top row first. */
     unsigned char *px = stbi_load_from_memory(data, (int)len, &w, &h, &channels, 4);
-    if (!px) return decoder_error(err, errlen);
+    if (!px) return decoder_error(err);
     /* The PNM decoder takes a header without a size, as short as "P5", or with a size of 0 for
      * an image of no pixels: an image has at least one. */
     if (w <= 0 || h <= 0) {
         stbi_image_free(px);
-        snprintf(err, errlen, "image has no pixels (%dx%d)", w, h);
+        sc_msg_set(err, "image has no pixels (%dx%d)", w, h);
         return false;
     }
     out->width = w;
@@ -152,15 +150,14 @@ bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, 
 }
 
 /* Reads the whole file and decodes it from memory, so files and the fuzz target share one path. */
-bool sc_image_load(const char *path, sc_image *out, char *err, size_t errlen) {
+bool sc_image_load(const char *path, sc_image *out, sc_msg *err) {
     char *data;
     size_t len;
     memset(out, 0, sizeof *out);
-    if (!sc_read_file(path, &data, &len, err, errlen)) return false;
-    char why[256];
-    bool ok = sc_image_load_memory((const unsigned char *)data, len, out, why, sizeof why);
+    if (!sc_read_file(path, &data, &len, err)) return false;
+    bool ok = sc_image_load_memory((const unsigned char *)data, len, out, err);
     free(data);
-    if (!ok) snprintf(err, errlen, "cannot load image '%s': %s", path, why);
+    if (!ok) sc_msg_set(err, "cannot load image '%s': %s", path, sc_msg_text(err));
     return ok;
 }
 
@@ -326,29 +323,27 @@ static bool write_stored(sc_png_writer *w, int fd, int width, int height,
 }
 
 bool sc_png_writer_write(sc_png_writer *w, const char *path, int width, int height,
-                         const unsigned char *rgba, char *err, size_t errlen) {
+                         const unsigned char *rgba, sc_msg *err) {
     if (width <= 0 || height <= 0 || width > SC_IMAGE_MAX_SIDE || height > SC_IMAGE_MAX_SIDE ||
         !rgba) {
-        snprintf(err, errlen, "cannot write '%s': invalid image (%dx%d)", path, width, height);
+        sc_msg_set(err, "cannot write '%s': invalid image (%dx%d)", path, width, height);
         return false;
     }
     size_t len = w->level == 0 ? 0 : encode_png(w, width, height, rgba);
     if (w->level != 0 && len == 0) {
-        snprintf(err, errlen, "cannot write '%s': PNG encoding failed (out of memory)", path);
+        sc_msg_set(err, "cannot write '%s': PNG encoding failed (out of memory)", path);
         return false;
     }
     /* Written beside, then renamed over the name: a file of that name is always a whole image,
      * even when the writer is stopped half-way (a job array's shard killed by its scheduler). */
-    size_t n = strlen(path) + 8;
-    char *part = malloc(n);
+    char *part = sc_format("%s.part", path);
     if (!part) {
-        snprintf(err, errlen, "cannot write '%s': out of memory", path);
+        sc_msg_set(err, "cannot write '%s': out of memory", path);
         return false;
     }
-    snprintf(part, n, "%s.part", path);
     int fd = open(part, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
     if (fd < 0) {
-        snprintf(err, errlen, "cannot write '%s': %s", part, strerror(errno));
+        sc_msg_set(err, "cannot write '%s': %s", part, strerror(errno));
         free(part);
         return false;
     }
@@ -360,7 +355,7 @@ bool sc_png_writer_write(sc_png_writer *w, const char *path, int width, int heig
     bool renamed = written && closed && rename(part, path) == 0;
     if (written && closed && !renamed) saved = errno;
     if (!renamed) {
-        snprintf(err, errlen, "cannot write '%s': %s", path, strerror(saved));
+        sc_msg_set(err, "cannot write '%s': %s", path, strerror(saved));
         remove(part);
     }
     free(part);
@@ -368,13 +363,13 @@ bool sc_png_writer_write(sc_png_writer *w, const char *path, int width, int heig
 }
 
 bool sc_image_write_png(const char *path, int width, int height, const unsigned char *rgba,
-                        char *err, size_t errlen) {
+                        sc_msg *err) {
     sc_png_writer *w = sc_png_writer_create(SC_PNG_LEVEL_DEFAULT);
     if (!w) {
-        snprintf(err, errlen, "cannot write '%s': out of memory", path);
+        sc_msg_set(err, "cannot write '%s': out of memory", path);
         return false;
     }
-    bool ok = sc_png_writer_write(w, path, width, height, rgba, err, errlen);
+    bool ok = sc_png_writer_write(w, path, width, height, rgba, err);
     sc_png_writer_destroy(w);
     return ok;
 }

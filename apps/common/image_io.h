@@ -8,6 +8,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "msg.h"
+
 /* An RGBA8 image, top row first, rows tightly packed (width * 4 bytes). */
 typedef struct sc_image {
     int width, height;
@@ -15,11 +17,10 @@ typedef struct sc_image {
 } sc_image;
 
 /** Loads a PNG, BMP, JPEG, TGA, ... file as RGBA8; on failure *out is zeroed and err says why. */
-bool sc_image_load(const char *path, sc_image *out, char *err, size_t errlen);
+bool sc_image_load(const char *path, sc_image *out, sc_msg *err);
 /** Decodes the bytes of such a file, held in memory, as sc_image_load does (it reads the file and
  * calls this); on failure *out is zeroed and err says why. */
-bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, char *err,
-                          size_t errlen);
+bool sc_image_load_memory(const unsigned char *data, size_t len, sc_image *out, sc_msg *err);
 /** Frees an image loaded by sc_image_load(_memory) and zeroes it; a zeroed image is fine. */
 void sc_image_free(sc_image *image);
 /* Compression levels of written PNG files: 0, no search (pixels stored as they are, repeated rows
@@ -40,9 +41,9 @@ void sc_png_writer_destroy(sc_png_writer *writer);
  *  level give the same bytes. The file is written as PATH.part and renamed to PATH, so PATH is
  *  never a partial image. On failure no file is left and err says why. */
 bool sc_png_writer_write(sc_png_writer *writer, const char *path, int width, int height,
-                         const unsigned char *rgba, char *err, size_t errlen);
+                         const unsigned char *rgba, sc_msg *err);
 /** Writes RGBA8 pixels as a PNG file at SC_PNG_LEVEL_DEFAULT. */
 bool sc_image_write_png(const char *path, int width, int height, const unsigned char *rgba,
-                        char *err, size_t errlen);
+                        sc_msg *err);
 
 #endif

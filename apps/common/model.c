@@ -25,11 +25,11 @@ static const float AMBIENT[3] = {0.3f, 0.3f, 0.3f};
 #define FOVY_DEGREES 40.0
 static const double VIEW_DIRECTION[3] = {0.45, 0.35, 1.0};
 
-bool sc_shape_mesh(const sguShapeDesc *desc, sc_mesh *out, char *err, size_t errlen) {
+bool sc_shape_mesh(const sguShapeDesc *desc, sc_mesh *out, sc_msg *err) {
     int nv, ni;
     memset(out, 0, sizeof *out);
     if (sgu_shape_counts(desc, &nv, &ni) != 0) {
-        snprintf(err, errlen, "bad shape parameters");
+        sc_msg_set(err, "bad shape parameters");
         return false;
     }
     sc_mesh m = {0};
@@ -42,7 +42,7 @@ bool sc_shape_mesh(const sguShapeDesc *desc, sc_mesh *out, char *err, size_t err
     m.indices = malloc((size_t)ni * sizeof(uint32_t));
     if (!m.positions || !m.colors || !m.normals || !m.texcoords || !m.indices) {
         sc_mesh_free(&m);
-        snprintf(err, errlen, "out of memory for a shape");
+        sc_msg_set(err, "out of memory for a shape");
         return false;
     }
     sgu_shape_build(desc, m.positions, m.normals, m.texcoords, m.indices);
@@ -117,16 +117,17 @@ bool sc_scene_add_draw(sc_scene *scene, const sc_draw *draw) {
 static int get_texture(sc_file *f, const char *path, const char *who, sc_warnings *w) {
     for (size_t i = 0; i < f->texture_count; i++)
         if (strcmp(f->texture_sources[i], path) == 0) return (int)i;
-    char why[512];
     sc_image img;
     if (!is_regular(path)) {
         sc_warn(w, SC_WARN_TEXTURE_MISSING, "%s: texture '%s' not found: drawn without it", who,
                 path);
         return -1;
     }
-    if (!sc_image_load(path, &img, why, sizeof why)) {
+    sc_msg why = {0};
+    if (!sc_image_load(path, &img, &why)) {
         sc_warn(w, SC_WARN_TEXTURE_MISSING,
-                "%s: texture '%s' cannot be read (%s): drawn without it", who, path, why);
+                "%s: texture '%s' cannot be read (%s): drawn without it", who, path, why.text);
+        sc_msg_free(&why);
         return -1;
     }
     if (img.width > SC_MAX_IMAGE_SIZE || img.height > SC_MAX_IMAGE_SIZE) {
@@ -266,15 +267,15 @@ static void orient_outward(sc_mesh *m) {
 
 /* Adds a mesh and its draw; the mesh is taken over. */
 static bool add_part(sc_file *f, sc_scene *sc, sc_mesh *mesh, const char *source,
-                     const sc_draw *proto, char *err, size_t errlen) {
+                     const sc_draw *proto, sc_msg *err) {
     if (!add_normals(mesh)) {
         sc_mesh_free(mesh);
-        snprintf(err, errlen, "%s: out of memory", source);
+        sc_msg_set(err, "%s: out of memory", source);
         return false;
     }
     sc_draw d = *proto;
     if (!sc_file_add_mesh(f, mesh, source, &d.mesh) || !sc_scene_add_draw(sc, &d)) {
-        snprintf(err, errlen, "%s: out of memory", source);
+        sc_msg_set(err, "%s: out of memory", source);
         return false;
     }
     return true;
@@ -282,7 +283,7 @@ static bool add_part(sc_file *f, sc_scene *sc, sc_mesh *mesh, const char *source
 
 /* The material libraries of an OBJ file, merged into one (later definitions win). */
 static void load_mtllibs(const char *obj_path, const sc_obj_extra *x, sc_mtl *all, char ***dirs,
-                         sc_warnings *w, bool *ok, char *err, size_t errlen) {
+                         sc_warnings *w, bool *ok, sc_msg *err) {
     *ok = true;
     for (size_t i = 0; i < x->mtllib_count; i++) {
         char *path = join_dir(obj_path, x->mtllibs[i]);
@@ -298,7 +299,7 @@ static void load_mtllibs(const char *obj_path, const sc_obj_extra *x, sc_mtl *al
             continue;
         }
         sc_mtl lib;
-        if (!sc_mtl_load(path, &lib, w, err, errlen)) {
+        if (!sc_mtl_load(path, &lib, w, err)) {
             free(path);
             *ok = false;
             return;
@@ -312,7 +313,7 @@ static void load_mtllibs(const char *obj_path, const sc_obj_extra *x, sc_mtl *al
         if (!m || !d) {
             sc_mtl_free(&lib);
             free(path);
-            snprintf(err, errlen, "%s: out of memory", obj_path);
+            sc_msg_set(err, "%s: out of memory", obj_path);
             *ok = false;
             return;
         }
@@ -326,27 +327,26 @@ static void load_mtllibs(const char *obj_path, const sc_obj_extra *x, sc_mtl *al
     }
 }
 
-static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w, char *err,
-                     size_t errlen) {
+static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w, sc_msg *err) {
     char *text;
     size_t len;
-    if (!sc_read_file(path, &text, &len, err, errlen)) return false;
+    if (!sc_read_file(path, &text, &len, err)) return false;
     sc_mesh mesh;
     sc_obj_extra x;
-    bool ok = sc_obj_parse_ex(path, text, len, &mesh, &x, w, err, errlen);
+    bool ok = sc_obj_parse_ex(path, text, len, &mesh, &x, w, err);
     free(text);
     if (!ok) return false;
     bool file_normals = mesh.normals != NULL;
     sc_mtl mtl = {0};
     char **dirs = NULL;
-    load_mtllibs(path, &x, &mtl, &dirs, w, &ok, err, errlen);
+    load_mtllibs(path, &x, &mtl, &dirs, w, &ok, err);
     if (ok && mesh.line_index_count) {
         sc_mesh lm;
         sc_draw d = model_draw(0, false);
         d.lighting = SC_LIGHTING_NONE;
         ok = line_mesh(&mesh, &lm);
-        if (!ok) snprintf(err, errlen, "%s: out of memory", path);
-        if (ok) ok = add_part(f, sc, &lm, path, &d, err, errlen);
+        if (!ok) sc_msg_set(err, "%s: out of memory", path);
+        if (ok) ok = add_part(f, sc, &lm, path, &d, err);
     }
     if (ok && mesh.index_count) {
         /* Ranges of triangles per material: index 0 for no material (or an unknown one). */
@@ -354,7 +354,7 @@ static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
         int *mat_of = calloc(ng + 1, sizeof *mat_of);
         uint32_t *ranges = malloc((ng + 1) * 2 * sizeof *ranges);
         if (!mat_of || !ranges) {
-            snprintf(err, errlen, "%s: out of memory", path);
+            sc_msg_set(err, "%s: out of memory", path);
             ok = false;
         }
         for (size_t g = 0; ok && g < ng; g++) {
@@ -392,13 +392,23 @@ static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
                 if (nr == 0) continue;
                 sc_mesh part;
                 if (!sub_mesh(&mesh, ranges, nr, &part)) {
-                    snprintf(err, errlen, "%s: out of memory", path);
+                    sc_msg_set(err, "%s: out of memory", path);
                     ok = false;
                     break;
                 }
                 sc_draw d = model_draw(0, file_normals);
-                char source[600];
-                snprintf(source, sizeof source, "%s (material %s)", path, m ? m->name : "default");
+                char *source = sc_format("%s (material %s)", path, m ? m->name : "default");
+                char *who = m && m->diffuse_map && part.texcoords
+                                ? sc_format("%s, material '%s' (%s)", path, m->name, dirs[mi])
+                                : NULL;
+                if (!source || (m && m->diffuse_map && part.texcoords && !who)) {
+                    free(source);
+                    free(who);
+                    sc_mesh_free(&part);
+                    sc_msg_set(err, "%s: out of memory", path);
+                    ok = false;
+                    break;
+                }
                 if (m) {
                     memcpy(d.color, m->diffuse, 12);
                     for (int c = 0; c < 3; c++) d.color[c] = d.color[c] > 1 ? 1 : d.color[c];
@@ -407,9 +417,6 @@ static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
                     d.shininess = m->shininess;
                     if (m->diffuse_map && part.texcoords) {
                         char *tp = join_dir(dirs[mi], m->diffuse_map);
-                        char who[600];
-                        snprintf(who, sizeof who, "%s, material '%s' (%s)", path, m->name,
-                                 dirs[mi]);
                         if (tp) d.texture = get_texture(f, tp, who, w);
                         free(tp);
                         if (d.texture >= 0) d.mode = SC_MODE_TEXTURE;
@@ -421,7 +428,9 @@ static bool load_obj(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
                     d.sort = SC_SORT_BACK_TO_FRONT;
                 }
                 if (d.lighting == SC_LIGHTING_FLAT) orient_outward(&part);
-                ok = add_part(f, sc, &part, source, &d, err, errlen);
+                ok = add_part(f, sc, &part, source, &d, err);
+                free(source);
+                free(who);
             }
         }
         free(mat_of);
@@ -461,20 +470,19 @@ static bool opaque_first(sc_mesh *m, uint32_t *opaque) {
     return true;
 }
 
-static bool load_off(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w, char *err,
-                     size_t errlen) {
+static bool load_off(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w, sc_msg *err) {
     sc_mesh mesh;
-    if (!sc_off_load(path, &mesh, w, err, errlen)) return false;
+    if (!sc_off_load(path, &mesh, w, err)) return false;
     sc_draw d = model_draw(0, mesh.normals != NULL);
     /* Oriented whole: a part alone (the translucent faces of a cube) has no inside. */
     if (d.lighting == SC_LIGHTING_FLAT) orient_outward(&mesh);
     uint32_t opaque;
     if (!opaque_first(&mesh, &opaque)) {
         sc_mesh_free(&mesh);
-        snprintf(err, errlen, "%s: out of memory", path);
+        sc_msg_set(err, "%s: out of memory", path);
         return false;
     }
-    if (opaque == mesh.index_count) return add_part(f, sc, &mesh, path, &d, err, errlen);
+    if (opaque == mesh.index_count) return add_part(f, sc, &mesh, path, &d, err);
     /* Colours with alpha below 1 are drawn as an MTL 'd' below 1 is: after the opaque faces,
      * blended, sorted back to front, without depth writes. */
     uint32_t ranges[4] = {0, opaque, opaque, mesh.index_count - opaque};
@@ -483,7 +491,7 @@ static bool load_off(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
         if (!ranges[k * 2 + 1]) continue;
         sc_mesh part;
         if (!sub_mesh(&mesh, ranges + k * 2, 1, &part)) {
-            snprintf(err, errlen, "%s: out of memory", path);
+            sc_msg_set(err, "%s: out of memory", path);
             ok = false;
             break;
         }
@@ -493,7 +501,7 @@ static bool load_off(sc_file *f, sc_scene *sc, const char *path, sc_warnings *w,
             pd.depth_write = false;
             pd.sort = SC_SORT_BACK_TO_FRONT;
         }
-        ok = add_part(f, sc, &part, path, &pd, err, errlen);
+        ok = add_part(f, sc, &part, path, &pd, err);
     }
     sc_mesh_free(&mesh);
     return ok;
@@ -572,14 +580,14 @@ void sc_perspective(double fovy, double aspect, double n, double f, float out[16
 }
 
 bool sc_model_scene(const char *const *paths, int count, const char *name, int width, int height,
-                    sc_file *out, sc_warnings *warnings, char *err, size_t errlen) {
+                    sc_file *out, sc_warnings *warnings, sc_msg *err) {
     memset(out, 0, sizeof *out);
     sc_file f = {0};
     f.path = dup_str(count > 0 ? paths[0] : "(models)");
     f.scenes = calloc(1, sizeof *f.scenes);
     if (!f.path || !f.scenes) {
         sc_free(&f);
-        snprintf(err, errlen, "out of memory");
+        sc_msg_set(err, "out of memory");
         return false;
     }
     f.scene_count = 1;
@@ -597,21 +605,21 @@ bool sc_model_scene(const char *const *paths, int count, const char *name, int w
     sc->lights[0].attenuation[0] = 1;
     if (!sc->name) {
         sc_free(&f);
-        snprintf(err, errlen, "out of memory");
+        sc_msg_set(err, "out of memory");
         return false;
     }
     for (int i = 0; i < count; i++) {
         const char *p = paths[i];
         bool ok;
         if (!is_regular(p)) {
-            snprintf(err, errlen, "%s: not a readable file", p);
+            sc_msg_set(err, "%s: not a readable file", p);
             ok = false;
         } else if (has_suffix(p, ".off")) {
-            ok = load_off(&f, sc, p, warnings, err, errlen);
+            ok = load_off(&f, sc, p, warnings, err);
         } else if (has_suffix(p, ".obj")) {
-            ok = load_obj(&f, sc, p, warnings, err, errlen);
+            ok = load_obj(&f, sc, p, warnings, err);
         } else {
-            snprintf(err, errlen, "%s: not a model file (.obj or .off)", p);
+            sc_msg_set(err, "%s: not a model file (.obj or .off)", p);
             ok = false;
         }
         if (!ok) {

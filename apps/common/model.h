@@ -15,7 +15,7 @@
 #include "warn.h"
 
 /** A standard shape (sgapi_util) as a mesh: white, with normals and texture coordinates. */
-bool sc_shape_mesh(const sguShapeDesc *desc, sc_mesh *out, char *err, size_t errlen);
+bool sc_shape_mesh(const sguShapeDesc *desc, sc_mesh *out, sc_msg *err);
 
 /** True when a path names a model file this module reads (.obj or .off, any case). */
 bool sc_is_model_path(const char *path);
@@ -27,7 +27,7 @@ bool sc_is_model_path(const char *path);
  *  over the camera's shoulder and an ambient light. What is missing (a material library, a
  *  texture) is warned of and left out; a file that cannot be read is an error. */
 bool sc_model_scene(const char *const *paths, int count, const char *name, int width, int height,
-                    sc_file *out, sc_warnings *warnings, char *err, size_t errlen);
+                    sc_file *out, sc_warnings *warnings, sc_msg *err);
 
 /** Appends a mesh (taken over, even on failure) and its source text (copied) to a file; *index
  *  gets its index. */

@@ -179,12 +179,10 @@ static bool parse_line(parser *p, const char *s, const char *e) {
 }
 
 bool sc_mtl_parse(const char *name, const char *text, size_t len, sc_mtl *out,
-                  sc_warnings *warnings, char *err, size_t errlen) {
-    parser p = {.src = {.name = name ? name : "(mtl)", .err = err, .errlen = errlen},
-                .warnings = warnings,
-                .out = out};
+                  sc_warnings *warnings, sc_msg *err) {
+    parser p = {
+        .src = {.name = name ? name : "(mtl)", .err = err}, .warnings = warnings, .out = out};
     memset(out, 0, sizeof *out);
-    if (err && errlen) err[0] = '\0';
     const char *s = text, *end = text ? text + len : text;
     s += ts_bom_length(text, len);
     bool ok = true;
@@ -199,12 +197,12 @@ bool sc_mtl_parse(const char *name, const char *text, size_t len, sc_mtl *out,
     return ok;
 }
 
-bool sc_mtl_load(const char *path, sc_mtl *out, sc_warnings *warnings, char *err, size_t errlen) {
+bool sc_mtl_load(const char *path, sc_mtl *out, sc_warnings *warnings, sc_msg *err) {
     char *text;
     size_t len;
     memset(out, 0, sizeof *out);
-    if (!sc_read_file(path, &text, &len, err, errlen)) return false;
-    bool ok = sc_mtl_parse(path, text, len, out, warnings, err, errlen);
+    if (!sc_read_file(path, &text, &len, err)) return false;
+    bool ok = sc_mtl_parse(path, text, len, out, warnings, err);
     free(text);
     return ok;
 }

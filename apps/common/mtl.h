@@ -9,6 +9,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "msg.h"
 #include "warn.h"
 
 /* One material (newmtl). */
@@ -29,9 +30,9 @@ typedef struct sc_mtl {
 /** Parses MTL text; name is used in messages. A malformed value is an error naming the line;
  *  statements that are not used are ignored with one warning per file. */
 bool sc_mtl_parse(const char *name, const char *text, size_t len, sc_mtl *out,
-                  sc_warnings *warnings, char *err, size_t errlen);
+                  sc_warnings *warnings, sc_msg *err);
 /** Reads and parses an MTL file (see sc_mtl_parse). */
-bool sc_mtl_load(const char *path, sc_mtl *out, sc_warnings *warnings, char *err, size_t errlen);
+bool sc_mtl_load(const char *path, sc_mtl *out, sc_warnings *warnings, sc_msg *err);
 /** The material of that name, or NULL. */
 const sc_material *sc_mtl_find(const sc_mtl *mtl, const char *name);
 /** Frees a library and zeroes it; a zeroed one is fine. */

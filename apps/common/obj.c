@@ -412,19 +412,16 @@ static bool finish(parser *p, sc_mesh *out) {
     return true;
 }
 
-bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, char *err,
-                  size_t errlen) {
-    return sc_obj_parse_ex(name, text, len, out, NULL, NULL, err, errlen);
+bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, sc_msg *err) {
+    return sc_obj_parse_ex(name, text, len, out, NULL, NULL, err);
 }
 
 bool sc_obj_parse_ex(const char *name, const char *text, size_t len, sc_mesh *out,
-                     sc_obj_extra *extra, sc_warnings *warnings, char *err, size_t errlen) {
-    parser p = {.src = {.name = name ? name : "(obj)", .err = err, .errlen = errlen},
-                .extra = extra,
-                .warnings = warnings};
+                     sc_obj_extra *extra, sc_warnings *warnings, sc_msg *err) {
+    parser p = {
+        .src = {.name = name ? name : "(obj)", .err = err}, .extra = extra, .warnings = warnings};
     memset(out, 0, sizeof *out);
     if (extra) memset(extra, 0, sizeof *extra);
-    if (err && errlen) err[0] = '\0';
     bool ok = true;
     const char *s = text, *end = text ? text + len : text;
     s += ts_bom_length(text, len);
@@ -456,12 +453,12 @@ void sc_obj_extra_free(sc_obj_extra *extra) {
     memset(extra, 0, sizeof *extra);
 }
 
-bool sc_read_file(const char *path, char **out_data, size_t *out_len, char *err, size_t errlen) {
+bool sc_read_file(const char *path, char **out_data, size_t *out_len, sc_msg *err) {
     *out_data = NULL;
     *out_len = 0;
     FILE *f = fopen(path, "rb");
     if (!f) {
-        snprintf(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+        sc_msg_set(err, "cannot open '%s': %s", path, strerror(errno));
         return false;
     }
     char *buf = NULL;
@@ -469,7 +466,7 @@ bool sc_read_file(const char *path, char **out_data, size_t *out_len, char *err,
     for (;;) {
         /* Keep one spare byte for the terminating NUL. */
         if (!grow((void **)&buf, &cap, len + 65536 + 1, 1)) {
-            snprintf(err, errlen, "cannot read '%s': out of memory", path);
+            sc_msg_set(err, "cannot read '%s': out of memory", path);
             goto error;
         }
         size_t got = fread(buf + len, 1, cap - len - 1, f);
@@ -477,7 +474,7 @@ bool sc_read_file(const char *path, char **out_data, size_t *out_len, char *err,
         if (got == 0) break;
     }
     if (ferror(f)) {
-        snprintf(err, errlen, "cannot read '%s': %s", path, strerror(errno));
+        sc_msg_set(err, "cannot read '%s': %s", path, strerror(errno));
         goto error;
     }
     fclose(f);
@@ -491,12 +488,12 @@ error:
     return false;
 }
 
-bool sc_obj_load(const char *path, sc_mesh *out, char *err, size_t errlen) {
+bool sc_obj_load(const char *path, sc_mesh *out, sc_msg *err) {
     char *text;
     size_t len;
     memset(out, 0, sizeof *out);
-    if (!sc_read_file(path, &text, &len, err, errlen)) return false;
-    bool ok = sc_obj_parse(path, text, len, out, err, errlen);
+    if (!sc_read_file(path, &text, &len, err)) return false;
+    bool ok = sc_obj_parse(path, text, len, out, err);
     free(text);
     return ok;
 }

@@ -10,6 +10,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "msg.h"
 #include "warn.h"
 
 /* Upper bound of vertex_count, index_count and line_index_count: small enough for a signed 32-bit
@@ -32,8 +33,7 @@ typedef struct sc_mesh {
 } sc_mesh;
 
 /** Parses OBJ text of len bytes (NUL bytes are an error); name is used in error messages only. */
-bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, char *err,
-                  size_t errlen);
+bool sc_obj_parse(const char *name, const char *text, size_t len, sc_mesh *out, sc_msg *err);
 /* The triangles [first_index, first_index + index_count) of a mesh take one material. */
 typedef struct sc_obj_group {
     char *material; /* the usemtl name as written */
@@ -52,15 +52,15 @@ typedef struct sc_obj_extra {
 /** sc_obj_parse that also returns the materials (extra, may be NULL) and warns once per kind of
  *  statement it ignores (warnings, may be NULL). */
 bool sc_obj_parse_ex(const char *name, const char *text, size_t len, sc_mesh *out,
-                     sc_obj_extra *extra, sc_warnings *warnings, char *err, size_t errlen);
+                     sc_obj_extra *extra, sc_warnings *warnings, sc_msg *err);
 /** Frees what sc_obj_parse_ex put in extra and zeroes it. */
 void sc_obj_extra_free(sc_obj_extra *extra);
 /** Reads and parses an OBJ file. On failure *out is zeroed and err says why (with the line). */
-bool sc_obj_load(const char *path, sc_mesh *out, char *err, size_t errlen);
+bool sc_obj_load(const char *path, sc_mesh *out, sc_msg *err);
 /** Frees a mesh's arrays and zeroes it; a zeroed mesh is fine. */
 void sc_mesh_free(sc_mesh *mesh);
 
 /** Reads a whole file into a NUL-terminated buffer (for the loaders). Free with free(). */
-bool sc_read_file(const char *path, char **out_data, size_t *out_len, char *err, size_t errlen);
+bool sc_read_file(const char *path, char **out_data, size_t *out_len, sc_msg *err);
 
 #endif

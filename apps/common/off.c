@@ -128,12 +128,9 @@ static bool grow(void **p, size_t *cap, size_t need, size_t elem) {
 }
 
 bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
-                  sc_warnings *warnings, char *err, size_t errlen) {
-    reader r = {.src = {.name = name ? name : "(off)", .err = err, .errlen = errlen},
-                .s = text,
-                .end = text + len};
+                  sc_warnings *warnings, sc_msg *err) {
+    reader r = {.src = {.name = name ? name : "(off)", .err = err}, .s = text, .end = text + len};
     memset(out, 0, sizeof *out);
-    if (err && errlen) err[0] = '\0';
     if (!text) return ts_fail(&r.src, "empty file");
     if (memchr(text, '\0', len))
         return ts_fail(&r.src, "NUL byte in the file (binary OFF is not supported)");
@@ -345,12 +342,12 @@ done:
     return ok;
 }
 
-bool sc_off_load(const char *path, sc_mesh *out, sc_warnings *warnings, char *err, size_t errlen) {
+bool sc_off_load(const char *path, sc_mesh *out, sc_warnings *warnings, sc_msg *err) {
     char *text;
     size_t len;
     memset(out, 0, sizeof *out);
-    if (!sc_read_file(path, &text, &len, err, errlen)) return false;
-    bool ok = sc_off_parse(path, text, len, out, warnings, err, errlen);
+    if (!sc_read_file(path, &text, &len, err)) return false;
+    bool ok = sc_off_parse(path, text, len, out, warnings, err);
     free(text);
     return ok;
 }

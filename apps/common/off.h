@@ -10,13 +10,14 @@
 #include <stddef.h>
 
 #include "obj.h"
+#include "msg.h"
 #include "warn.h"
 
 /** Parses OFF text of len bytes; name is used in messages; warnings (may be NULL) collects what
  *  was ignored, once per kind. On failure *out is zeroed and err names the line. */
 bool sc_off_parse(const char *name, const char *text, size_t len, sc_mesh *out,
-                  sc_warnings *warnings, char *err, size_t errlen);
+                  sc_warnings *warnings, sc_msg *err);
 /** Reads and parses an OFF file (see sc_off_parse). */
-bool sc_off_load(const char *path, sc_mesh *out, sc_warnings *warnings, char *err, size_t errlen);
+bool sc_off_load(const char *path, sc_mesh *out, sc_warnings *warnings, sc_msg *err);
 
 #endif

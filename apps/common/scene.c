@@ -39,50 +39,35 @@ enum { MESH_OBJ, MESH_HEIGHTMAP, MESH_SHAPE };
 typedef struct ctx {
     const char *path;
     char *dir; /* folder of the scene file with its trailing '/', or "" */
-    char *err;
-    size_t errlen;
+    sc_msg *err;
     sc_file *f;
     unsigned char *mesh_kinds; /* MESH_OBJ or MESH_HEIGHTMAP per mesh, to tell sources apart */
     size_t cap_meshes, cap_textures;
 } ctx;
 
-/* Lets the compiler check the format arguments of the error helpers. */
-#if defined(__GNUC__)
-#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
-#else
-#define PRINTF_LIKE(fmt, args)
-#endif
-
-static bool fail(ctx *c, const loc *l, const char *fmt, ...) PRINTF_LIKE(3, 4);
+static bool fail(ctx *c, const loc *l, const char *fmt, ...) SC_PRINTF_LIKE(3, 4);
 
 /* Formats "file: scenes[i] ('name'), draws[j]: message" (or ", lights[k]" for a light of the
  * scene, or "lights[k]" for one of the top level, and likewise ", shadow"); always returns
  * false. */
 static bool fail(ctx *c, const loc *l, const char *fmt, ...) {
-    if (!c->err || c->errlen == 0) return false;
-    int n = snprintf(c->err, c->errlen, "%s: ", c->path);
-    bool where = l && (l->scene >= 0 || l->light >= 0 || l->object);
-    if (n >= 0 && (size_t)n < c->errlen && l && l->scene >= 0) {
-        n += snprintf(c->err + n, c->errlen - (size_t)n, "scenes[%d]", l->scene);
-        if ((size_t)n < c->errlen && l->scene_name)
-            n += snprintf(c->err + n, c->errlen - (size_t)n, " ('%s')", l->scene_name);
-        if ((size_t)n < c->errlen && l->draw >= 0)
-            n += snprintf(c->err + n, c->errlen - (size_t)n, ", draws[%d]", l->draw);
+    if (!c->err) return false;
+    /* The arguments never point into the message: it is replaced below. */
+    sc_msg_set(c->err, "%s: ", c->path);
+    if (l && l->scene >= 0) {
+        sc_msg_append(c->err, "scenes[%d]", l->scene);
+        if (l->scene_name) sc_msg_append(c->err, " ('%s')", l->scene_name);
+        if (l->draw >= 0) sc_msg_append(c->err, ", draws[%d]", l->draw);
     }
-    if (n >= 0 && (size_t)n < c->errlen && l && l->light >= 0)
-        n += snprintf(c->err + n, c->errlen - (size_t)n, "%slights[%d]", l->scene >= 0 ? ", " : "",
-                      l->light);
-    if (n >= 0 && (size_t)n < c->errlen && l && l->object)
-        n += snprintf(c->err + n, c->errlen - (size_t)n, "%s%s",
-                      l->scene >= 0 || l->light >= 0 ? ", " : "", l->object);
-    if (n >= 0 && (size_t)n < c->errlen && where)
-        n += snprintf(c->err + n, c->errlen - (size_t)n, ": ");
-    if (n >= 0 && (size_t)n < c->errlen) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(c->err + n, c->errlen - (size_t)n, fmt, ap);
-        va_end(ap);
-    }
+    if (l && l->light >= 0)
+        sc_msg_append(c->err, "%slights[%d]", l->scene >= 0 ? ", " : "", l->light);
+    if (l && l->object)
+        sc_msg_append(c->err, "%s%s", l->scene >= 0 || l->light >= 0 ? ", " : "", l->object);
+    if (l && (l->scene >= 0 || l->light >= 0 || l->object)) sc_msg_append(c->err, ": ");
+    va_list ap;
+    va_start(ap, fmt);
+    sc_msg_vappend(c->err, fmt, ap);
+    va_end(ap);
     return false;
 }
 
@@ -281,22 +266,21 @@ static bool valid_name(const char *s) {
 
 /* ---- meshes and textures --------------------------------------------------------------------- */
 
-bool sc_heightmap_mesh(const sc_image *image, float height_scale, sc_mesh *out, char *err,
-                       size_t errlen) {
+bool sc_heightmap_mesh(const sc_image *image, float height_scale, sc_mesh *out, sc_msg *err) {
     memset(out, 0, sizeof *out);
     const int w = image->width, h = image->height;
     if (w < 2 || h < 2 || !image->pixels) {
-        snprintf(err, errlen, "a heightmap needs at least 2x2 pixels (got %dx%d)", w, h);
+        sc_msg_set(err, "a heightmap needs at least 2x2 pixels (got %dx%d)", w, h);
         return false;
     }
     if (!isfinite(height_scale)) {
-        snprintf(err, errlen, "height_scale is not finite");
+        sc_msg_set(err, "height_scale is not finite");
         return false;
     }
     uint64_t nv = (uint64_t)w * (uint64_t)h, ni = 6 * (uint64_t)(w - 1) * (uint64_t)(h - 1);
     if (nv > SC_MESH_MAX_COUNT || ni > SC_MESH_MAX_COUNT || nv > SIZE_MAX / (4 * sizeof(float)) ||
         ni > SIZE_MAX / sizeof(uint32_t)) {
-        snprintf(err, errlen, "heightmap of %dx%d pixels is too large", w, h);
+        sc_msg_set(err, "heightmap of %dx%d pixels is too large", w, h);
         return false;
     }
     sc_mesh m = {0};
@@ -306,7 +290,7 @@ bool sc_heightmap_mesh(const sc_image *image, float height_scale, sc_mesh *out, 
     m.indices = malloc((size_t)ni * sizeof(uint32_t));
     if (!m.positions || !m.colors || !m.texcoords || !m.indices) {
         sc_mesh_free(&m);
-        snprintf(err, errlen, "out of memory for a heightmap of %dx%d pixels", w, h);
+        sc_msg_set(err, "out of memory for a heightmap of %dx%d pixels", w, h);
         return false;
     }
     for (int y = 0; y < h; y++) {
@@ -404,27 +388,28 @@ static bool get_shape(ctx *c, const loc *l, const cJSON *v, int *out) {
             return fail(c, l, "'%s' must be a number in (0, 1e6]", sizes[i]);
         *fields[i] = x;
     }
-    char source[256];
-    snprintf(source, sizeof source,
-             "shape %s (segments %d, rings %d, subdivisions %d, size %.9g, radius %.9g, height "
-             "%.9g, tube_radius %.9g)",
-             name->valuestring, d.segments, d.rings, d.subdivisions, d.size, d.radius, d.height,
-             d.tube_radius);
+    char *source = sc_format(
+        "shape %s (segments %d, rings %d, subdivisions %d, size %.9g, radius %.9g, height "
+        "%.9g, tube_radius %.9g)",
+        name->valuestring, d.segments, d.rings, d.subdivisions, d.size, d.radius, d.height,
+        d.tube_radius);
+    if (!source) return fail(c, l, "out of memory");
     for (size_t i = 0; i < c->f->mesh_count; i++) {
         if (c->mesh_kinds[i] == MESH_SHAPE && strcmp(c->f->mesh_sources[i], source) == 0) {
+            free(source);
             *out = (int)i;
             return true;
         }
     }
     sc_mesh mesh;
-    char why[256];
-    if (!sc_shape_mesh(&d, &mesh, why, sizeof why)) return fail(c, l, "mesh: %s", why);
-    char *src = dup_str(source);
-    if (!src) {
-        sc_mesh_free(&mesh);
-        return fail(c, l, "out of memory");
+    sc_msg why = {0};
+    if (!sc_shape_mesh(&d, &mesh, &why)) {
+        free(source);
+        fail(c, l, "mesh: %s", why.text);
+        sc_msg_free(&why);
+        return false;
     }
-    return add_mesh(c, l, src, MESH_SHAPE, &mesh, out);
+    return add_mesh(c, l, source, MESH_SHAPE, &mesh, out);
 }
 
 /* The draw's "mesh": an OBJ or OFF path, {"heightmap": path, "height_scale": number} or
@@ -460,11 +445,7 @@ static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
     if (!path) return fail(c, l, "out of memory");
     char *source = path;
     if (kind == MESH_HEIGHTMAP) {
-        int n = snprintf(NULL, 0, "%s (heightmap, height_scale %.9g)", path, (float)scale);
-        source = n > 0 ? malloc((size_t)n + 1) : NULL;
-        if (source)
-            snprintf(source, (size_t)n + 1, "%s (heightmap, height_scale %.9g)", path,
-                     (float)scale);
+        source = sc_format("%s (heightmap, height_scale %.9g)", path, (float)scale);
         if (!source) {
             free(path);
             return fail(c, l, "out of memory");
@@ -485,32 +466,34 @@ static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
         free(path);
         return false;
     }
-    char why[512];
+    sc_msg why = {0};
     sc_mesh mesh;
     bool ok;
     if (kind == MESH_OBJ) {
         /* OFF files by their extension, anything else as OBJ (as before OFF was read). */
         size_t pl = strlen(path);
         if (pl >= 4 && strcasecmp(path + pl - 4, ".off") == 0)
-            ok = sc_off_load(path, &mesh, NULL, why, sizeof why);
+            ok = sc_off_load(path, &mesh, NULL, &why);
         else
-            ok = sc_obj_load(path, &mesh, why, sizeof why);
+            ok = sc_obj_load(path, &mesh, &why);
     } else {
         sc_image img;
-        ok = sc_image_load(path, &img, why, sizeof why);
+        ok = sc_image_load(path, &img, &why);
         if (ok && !check_image_size(c, l, path, &img)) {
             sc_image_free(&img);
             if (source != path) free(source);
             free(path);
             return false;
         }
-        if (ok) ok = sc_heightmap_mesh(&img, (float)scale, &mesh, why, sizeof why);
+        if (ok) ok = sc_heightmap_mesh(&img, (float)scale, &mesh, &why);
         sc_image_free(&img);
     }
     if (source != path) free(path);
     if (!ok) {
         free(source);
-        return fail(c, l, "mesh: %s", why);
+        fail(c, l, "mesh: %s", why.text);
+        sc_msg_free(&why);
+        return false;
     }
     if (!add_normals(&mesh)) {
         fail(c, l, "mesh '%s': out of memory for its normals", source);
@@ -542,11 +525,13 @@ static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
         free(path);
         return false;
     }
-    char why[512];
+    sc_msg why = {0};
     sc_image img;
-    if (!sc_image_load(path, &img, why, sizeof why)) {
+    if (!sc_image_load(path, &img, &why)) {
         free(path);
-        return fail(c, l, "texture: %s", why);
+        fail(c, l, "texture: %s", why.text);
+        sc_msg_free(&why);
+        return false;
     }
     if (!check_image_size(c, l, path, &img)) {
         sc_image_free(&img);
@@ -863,11 +848,9 @@ static bool parse_root(ctx *c, const cJSON *root) {
     return true;
 }
 
-bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, char *err,
-              size_t errlen) {
+bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, sc_msg *err) {
     memset(out, 0, sizeof *out);
-    if (err && errlen) err[0] = '\0';
-    ctx c = {.path = path, .err = err, .errlen = errlen, .f = out};
+    ctx c = {.path = path, .err = err, .f = out};
     loc none = NOWHERE;
     bool ok = false;
     cJSON *root = NULL;
@@ -902,12 +885,12 @@ done:
     return ok;
 }
 
-bool sc_load(const char *path, sc_file *out, char *err, size_t errlen) {
+bool sc_load(const char *path, sc_file *out, sc_msg *err) {
     char *text;
     size_t len;
     memset(out, 0, sizeof *out);
-    if (!sc_read_file(path, &text, &len, err, errlen)) return false;
-    bool ok = sc_parse(path, text, len, out, err, errlen);
+    if (!sc_read_file(path, &text, &len, err)) return false;
+    bool ok = sc_parse(path, text, len, out, err);
     free(text);
     return ok;
 }

@@ -157,15 +157,13 @@ typedef struct sc_file {
 
 /** Loads a scene file and every mesh and texture it names; on failure *out is zeroed. Every
  *  mesh has normals: a mesh without them gets smooth ones (sgu_compute_normals). */
-bool sc_load(const char *path, sc_file *out, char *err, size_t errlen);
+bool sc_load(const char *path, sc_file *out, sc_msg *err);
 /** Parses scene JSON text; path names it in messages and relative paths start at its folder. */
-bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, char *err,
-              size_t errlen);
+bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, sc_msg *err);
 /** Frees everything a loaded file holds and zeroes it; a zeroed file is fine. */
 void sc_free(sc_file *file);
 
 /** Builds the heightmap grid mesh of an image (see docs/scene-format.md); needs 2x2 pixels. */
-bool sc_heightmap_mesh(const sc_image *image, float height_scale, sc_mesh *out, char *err,
-                       size_t errlen);
+bool sc_heightmap_mesh(const sc_image *image, float height_scale, sc_mesh *out, sc_msg *err);
 
 #endif

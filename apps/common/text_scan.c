@@ -8,15 +8,15 @@
 #include <string.h>
 
 bool ts_fail(ts_source *src, const char *fmt, ...) {
-    if (!src->err || src->errlen == 0) return false;
-    int n = src->line ? snprintf(src->err, src->errlen, "%s:%zu: ", src->name, src->line)
-                      : snprintf(src->err, src->errlen, "%s: ", src->name);
-    if (n >= 0 && (size_t)n < src->errlen) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(src->err + n, src->errlen - (size_t)n, fmt, ap);
-        va_end(ap);
-    }
+    if (!src->err) return false;
+    if (src->line)
+        sc_msg_set(src->err, "%s:%zu: ", src->name, src->line);
+    else
+        sc_msg_set(src->err, "%s: ", src->name);
+    va_list ap;
+    va_start(ap, fmt);
+    sc_msg_vappend(src->err, fmt, ap);
+    va_end(ap);
     return false;
 }
 

@@ -7,19 +7,13 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-/* Lets the compiler check the format arguments of the error helpers. */
-#if defined(__GNUC__)
-#define SC_PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
-#else
-#define SC_PRINTF_LIKE(fmt, args)
-#endif
+#include "msg.h"
 
 /* Where a loader is in its file, and where its error message goes; each parser embeds one. */
 typedef struct ts_source {
     const char *name; /* the file as messages name it */
     size_t line;      /* 1-based; 0 for what concerns the whole file */
-    char *err;        /* the caller's buffer; may be NULL */
-    size_t errlen;
+    sc_msg *err;      /* the caller's message; may be NULL */
 } ts_source;
 
 /** Formats "name:line: message" (or "name: message" when line is 0) into src->err; always

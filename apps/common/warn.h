@@ -7,8 +7,9 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#define SC_MAX_WARNINGS   16
-#define SC_WARNING_LENGTH 320
+#include "msg.h"
+
+#define SC_MAX_WARNINGS 16
 
 /* Kinds of warning, one bit each. */
 enum {
@@ -23,18 +24,17 @@ enum {
     SC_WARN_MTL_BAD_VALUE = 1u << 8,   /* a malformed value in a material library */
 };
 
-/* Warnings so far: the kinds seen and the first message of each. */
+/* Warnings so far: the kinds seen and the first message of each, whole (text[i].text). Zero-
+ * initialise it; free it with sc_warnings_free. */
 typedef struct sc_warnings {
     unsigned kinds;
     int count;
-    char text[SC_MAX_WARNINGS][SC_WARNING_LENGTH];
+    sc_msg text[SC_MAX_WARNINGS];
 } sc_warnings;
 
 /** Records a warning of one kind unless that kind was recorded before; w may be NULL. */
-void sc_warn(sc_warnings *w, unsigned kind, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
+void sc_warn(sc_warnings *w, unsigned kind, const char *fmt, ...) SC_PRINTF_LIKE(3, 4);
+/** Frees the warnings' texts and zeroes them; NULL and a zeroed value are fine. */
+void sc_warnings_free(sc_warnings *w);
 
 #endif

@@ -158,13 +158,15 @@ typedef struct ref {
     VkRenderPass depth_pass; /* the shadow map's: depth only, left ready for sampling */
     pipeline_entry pipelines[MAX_PIPELINES];
     int pipeline_count;
-    char err[1024];
+    sc_msg err; /* the last failure */
 } ref;
 
+/* Records a failure; the arguments may name the last one (r->err.text). Returns false. */
+static bool fail(ref *r, const char *fmt, ...) SC_PRINTF_LIKE(2, 3);
 static bool fail(ref *r, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(r->err, sizeof r->err, fmt, ap);
+    sc_msg_vset(&r->err, fmt, ap);
     va_end(ap);
     return false;
 }
@@ -763,7 +765,7 @@ static bool upload_texture(ref *r, const sc_image *img, texture *t) {
         ok = vkEndCommandBuffer(r->cmd) == VK_SUCCESS && submit_and_wait(r);
     }
     destroy_buffer(r, &staging);
-    return ok || fail(r, "texture upload failed: %s", r->err);
+    return ok || fail(r, "texture upload failed: %s", sc_msg_text(&r->err));
 }
 
 /* GPU copies of one scene file's meshes and textures. */
@@ -1235,15 +1237,11 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         qsort(times, (size_t)frames, sizeof *times, cmp_double);
         double median =
             frames % 2 ? times[frames / 2] : 0.5 * (times[frames / 2 - 1] + times[frames / 2]);
-        size_t len = strlen(out_dir) + strlen(s->name) + 8;
-        char *path = malloc(len);
-        char err[512];
+        char *path = sc_format("%s/%s.png", out_dir, s->name);
         if (!path) {
             ok = fail(r, "out of memory");
         } else {
-            snprintf(path, len, "%s/%s.png", out_dir, s->name);
-            ok = sc_image_write_png(path, s->width, s->height, readback.mapped, err, sizeof err) ||
-                 fail(r, "%s", err);
+            ok = sc_image_write_png(path, s->width, s->height, readback.mapped, &r->err);
             free(path);
         }
         if (ok) {
@@ -1289,6 +1287,7 @@ static void destroy_ref(ref *r) {
         vkDestroyDevice(r->device, NULL);
     }
     if (r->instance) vkDestroyInstance(r->instance, NULL);
+    sc_msg_free(&r->err);
 }
 
 static void usage(FILE *f) {
@@ -1305,19 +1304,20 @@ static void usage(FILE *f) {
 }
 
 static bool make_dir(const char *path) {
-    char buf[4096];
     size_t n = strlen(path);
-    if (n == 0 || n >= sizeof buf) return false;
-    memcpy(buf, path, n + 1);
-    for (size_t i = 1; i <= n; i++)
+    char *buf = n ? sc_format("%s", path) : NULL;
+    if (!buf) return false;
+    bool ok = true;
+    for (size_t i = 1; i <= n && ok; i++)
         if (buf[i] == '/' || buf[i] == '\0') {
             char c = buf[i];
             buf[i] = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return false;
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) ok = false;
             buf[i] = c;
         }
+    free(buf);
     struct stat st;
-    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+    return ok && stat(path, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
 int main(int argc, char **argv) {
@@ -1368,9 +1368,10 @@ int main(int argc, char **argv) {
      * first, so that a warning in the last stops the run before the first is rendered. */
     for (int fi = 0; fi < nfiles && strict; fi++) {
         sc_file f;
-        char err[1024];
-        if (!sc_load(files[fi], &f, err, sizeof err)) {
-            fprintf(stderr, "sgapi-ref: %s\n", err);
+        sc_msg err = {0};
+        if (!sc_load(files[fi], &f, &err)) {
+            fprintf(stderr, "sgapi-ref: %s\n", err.text);
+            sc_msg_free(&err);
             return 1;
         }
         bool clean = sc_report_warnings(&f, "sgapi-ref", true);
@@ -1386,23 +1387,24 @@ int main(int argc, char **argv) {
     if (!r) return 1;
     int status = 0;
     if (!create_instance(r) || !create_device(r) || !create_shaders_and_layouts(r)) {
-        fprintf(stderr, "sgapi-ref: %s\n", r->err);
+        fprintf(stderr, "sgapi-ref: %s\n", sc_msg_text(&r->err));
         destroy_ref(r);
         free(r);
         return 1;
     }
     for (int fi = 0; fi < nfiles && !status; fi++) {
         sc_file f;
-        char err[1024];
-        if (!sc_load(files[fi], &f, err, sizeof err)) {
-            fprintf(stderr, "sgapi-ref: %s\n", err);
+        sc_msg err = {0};
+        if (!sc_load(files[fi], &f, &err)) {
+            fprintf(stderr, "sgapi-ref: %s\n", err.text);
+            sc_msg_free(&err);
             status = 1;
             break;
         }
         if (!strict) sc_report_warnings(&f, "sgapi-ref", false);
         uploads u = {0};
         if (!upload_file(r, &f, &u)) {
-            fprintf(stderr, "sgapi-ref: %s: %s\n", files[fi], r->err);
+            fprintf(stderr, "sgapi-ref: %s: %s\n", files[fi], sc_msg_text(&r->err));
             status = 1;
         }
         for (size_t si = 0; !status && si < f.scene_count; si++) {
@@ -1411,7 +1413,8 @@ int main(int argc, char **argv) {
             for (int k = 0; k < nonly; k++) want |= strcmp(only[k], s->name) == 0;
             if (!want) continue;
             if (!render_scene(r, &f, s, &u, out_dir, frames)) {
-                fprintf(stderr, "sgapi-ref: %s: scene %s: %s\n", files[fi], s->name, r->err);
+                fprintf(stderr, "sgapi-ref: %s: scene %s: %s\n", files[fi], s->name,
+                        sc_msg_text(&r->err));
                 status = 1;
             }
         }

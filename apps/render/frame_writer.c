@@ -35,12 +35,12 @@ struct frame_writer {
     int *queue, queue_head, queue_count;
     int busy; /* frames being written right now */
     bool stopping, failed;
-    char error[1100];
+    sc_msg error; /* the first failure */
 };
 
 static void *writer_main(void *arg) {
     frame_writer *w = arg;
-    char err[1024];
+    sc_msg err = {0};
     /* The renderer first: writing takes the cores it leaves idle (between frames, and while it
      * waits for a free slot) instead of taking turns with its workers, which would hold up
      * every frame's last bins. The lowest priority that still runs the thread; per thread on
@@ -52,7 +52,7 @@ static void *writer_main(void *arg) {
     pthread_mutex_lock(&w->lock);
     if (!png && !w->failed) {
         w->failed = true;
-        snprintf(w->error, sizeof w->error, "out of memory for a PNG writer");
+        sc_msg_set(&w->error, "out of memory for a PNG writer");
     }
     for (;;) {
         while (w->queue_count == 0 && !w->stopping) pthread_cond_wait(&w->changed, &w->lock);
@@ -65,12 +65,12 @@ static void *writer_main(void *arg) {
         /* After a failure the rest are dropped: the run ends with an error anyway. */
         bool skip = w->failed || !png;
         pthread_mutex_unlock(&w->lock);
-        bool ok = skip || sc_png_writer_write(png, s->path, s->width, s->height, s->pixels, err,
-                                              sizeof err);
+        bool ok = skip || sc_png_writer_write(png, s->path, s->width, s->height, s->pixels, &err);
         pthread_mutex_lock(&w->lock);
         if (!ok && !w->failed) {
             w->failed = true;
-            snprintf(w->error, sizeof w->error, "%s", err);
+            w->error = err; /* handed over whole */
+            err = (sc_msg){0};
         }
         free(s->path);
         s->path = NULL;
@@ -79,6 +79,7 @@ static void *writer_main(void *arg) {
         pthread_cond_broadcast(&w->changed);
     }
     pthread_mutex_unlock(&w->lock);
+    sc_msg_free(&err);
     sc_png_writer_destroy(png);
     return NULL;
 }
@@ -92,6 +93,7 @@ static void free_writer(frame_writer *w) {
     free(w->free_list);
     free(w->queue);
     free(w->threads);
+    sc_msg_free(&w->error);
     pthread_cond_destroy(&w->changed);
     pthread_mutex_destroy(&w->lock);
     free(w);
@@ -144,7 +146,7 @@ unsigned char *fw_acquire(frame_writer *w, size_t bytes) {
             out = s->pixels;
         } else {
             w->failed = true;
-            snprintf(w->error, sizeof w->error, "out of memory for a frame");
+            sc_msg_set(&w->error, "out of memory for a frame");
         }
     }
     pthread_mutex_unlock(&w->lock);
@@ -161,7 +163,7 @@ bool fw_submit(frame_writer *w, unsigned char *pixels, int width, int height, co
     s->path = strdup(path);
     if (!s->path && !w->failed) {
         w->failed = true;
-        snprintf(w->error, sizeof w->error, "out of memory");
+        sc_msg_set(&w->error, "out of memory");
     }
     if (w->failed) {
         free(s->path);
@@ -186,7 +188,7 @@ bool fw_drain(frame_writer *w) {
 }
 
 const char *fw_error(const frame_writer *w) {
-    return w->error;
+    return sc_msg_text(&w->error);
 }
 
 void fw_stop(frame_writer *w) {

@@ -17,11 +17,13 @@ static void put_attachment(FILE *f, const rg_scene *s, const char *report_dir, c
     if (!path) return;
     fputs("[[ATTACHMENT|", f);
     if (report_dir) {
-        char rel[600];
-        rg_report_image_name(s->name, kind, rel, sizeof rel);
+        /* The report's name of it (rg_report_image_name), written in its parts. */
         rg_put_markup(f, report_dir, RG_MARKUP_XML);
-        fputc('/', f);
-        rg_put_markup(f, rel, RG_MARKUP_XML);
+        fputs("/img/", f);
+        rg_put_markup(f, s->name, RG_MARKUP_XML);
+        fputc('.', f);
+        rg_put_markup(f, kind, RG_MARKUP_XML);
+        fputs(".png", f);
     } else {
         rg_put_markup(f, path, RG_MARKUP_XML);
     }
@@ -29,17 +31,15 @@ static void put_attachment(FILE *f, const rg_scene *s, const char *report_dir, c
 }
 
 bool rg_write_junit(const char *path, const rg_scene *scenes, size_t n, const char *report_dir,
-                    char *err, size_t errlen) {
-    size_t len = strlen(path) + 6;
-    char *part = malloc(len);
+                    sc_msg *err) {
+    char *part = sc_format("%s.part", path);
     if (!part) {
-        snprintf(err, errlen, "out of memory");
+        sc_msg_set(err, "out of memory");
         return false;
     }
-    snprintf(part, len, "%s.part", path);
     FILE *f = fopen(part, "w");
     if (!f) {
-        snprintf(err, errlen, "%s: %s", part, strerror(errno));
+        sc_msg_set(err, "%s: %s", part, strerror(errno));
         free(part);
         return false;
     }
@@ -89,11 +89,11 @@ bool rg_write_junit(const char *path, const rg_scene *scenes, size_t n, const ch
             fprintf(f, "\" time=\"%.6f\">\n", s->time_s);
             if (!s->passed) {
                 fputs("      <failure type=\"image regression\" message=\"", f);
-                rg_put_markup(f, s->reason, RG_MARKUP_XML);
+                rg_put_markup(f, sc_msg_text(&s->reason), RG_MARKUP_XML);
                 fputs("\">", f);
                 rg_put_markup(f, s->name, RG_MARKUP_XML);
                 fputs(": ", f);
-                rg_put_markup(f, s->reason, RG_MARKUP_XML);
+                rg_put_markup(f, sc_msg_text(&s->reason), RG_MARKUP_XML);
                 if (s->golden_updated) fputs(" (golden image updated from this run)", f);
                 fputs("</failure>\n", f);
             }
@@ -110,9 +110,9 @@ bool rg_write_junit(const char *path, const rg_scene *scenes, size_t n, const ch
     fputs("</testsuites>\n", f);
     bool ok = !ferror(f);
     if (fclose(f) != 0) ok = false;
-    if (!ok) snprintf(err, errlen, "%s: write error", part);
+    if (!ok) sc_msg_set(err, "%s: write error", part);
     if (ok && rename(part, path) != 0) {
-        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        sc_msg_set(err, "%s: %s", path, strerror(errno));
         ok = false;
     }
     if (!ok) remove(part);

@@ -14,6 +14,6 @@
  *  image and heat map as [[ATTACHMENT|path]] lines in <system-out> (the report's copies when
  *  report_dir is not NULL). On failure err says why. */
 bool rg_write_junit(const char *path, const rg_scene *scenes, size_t n, const char *report_dir,
-                    char *err, size_t errlen);
+                    sc_msg *err);
 
 #endif

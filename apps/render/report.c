@@ -30,8 +30,8 @@ static int mkdir_p_one(const char *path) {
     return -1;
 }
 
-void rg_report_image_name(const char *scene, const char *kind, char *out, size_t len) {
-    snprintf(out, len, "img/%s.%s.png", scene, kind);
+char *rg_report_image_name(const char *scene, const char *kind) {
+    return sc_format("img/%s.%s.png", scene, kind);
 }
 
 /* A relative URL: every byte but the unreserved ones and '/' percent-encoded. */
@@ -44,6 +44,15 @@ static void put_url(FILE *f, const char *s) {
         else
             fprintf(f, "%%%02X", c);
     }
+}
+
+/* The URL of a scene's image in the report (rg_report_image_name), written in its parts. */
+static void put_image_url(FILE *f, const char *scene, const char *kind) {
+    put_url(f, "img/");
+    put_url(f, scene);
+    fputc('.', f);
+    put_url(f, kind);
+    fputs(".png", f);
 }
 
 static const char STYLE[] =
@@ -219,10 +228,8 @@ static void put_image(FILE *f, const rg_scene *s, const char *kind, const char *
                       const char *src, int w, int h) {
     fputs("<figure>", f);
     if (src) {
-        char rel[600];
-        rg_report_image_name(s->name, kind, rel, sizeof rel);
         fputs("<img loading=\"lazy\" src=\"", f);
-        put_url(f, rel);
+        put_image_url(f, s->name, kind);
         fprintf(f, "\" width=\"%d\" height=\"%d\" alt=\"%s\">", w, h, caption);
     } else {
         fprintf(f, "<div class=\"missing\">no %s image</div>", caption);
@@ -231,7 +238,6 @@ static void put_image(FILE *f, const rg_scene *s, const char *kind, const char *
 }
 
 static void put_scene(FILE *f, const rg_scene *s, const int expected_size[2]) {
-    char rel[600];
     fprintf(f, "<article class=\"scene %s\" id=\"scene-", s->passed ? "pass" : "fail");
     rg_put_markup(f, s->name, RG_MARKUP_HTML);
     fprintf(f, "\" data-width=\"%d\" data-height=\"%d\" data-key=\"", s->width, s->height);
@@ -243,12 +249,10 @@ static void put_scene(FILE *f, const rg_scene *s, const int expected_size[2]) {
     bool overlay =
         s->expected && s->actual && expected_size[0] == s->width && expected_size[1] == s->height;
     if (overlay) {
-        rg_report_image_name(s->name, "expected", rel, sizeof rel);
         fputs(" data-expected=\"", f);
-        put_url(f, rel);
-        rg_report_image_name(s->name, "actual", rel, sizeof rel);
+        put_image_url(f, s->name, "expected");
         fputs("\" data-actual=\"", f);
-        put_url(f, rel);
+        put_image_url(f, s->name, "actual");
         fputc('"', f);
     }
     fputs(">\n<h3>", f);
@@ -258,7 +262,7 @@ static void put_scene(FILE *f, const rg_scene *s, const int expected_size[2]) {
     fprintf(f, " &middot; %d &times; %d</small></h3>\n", s->width, s->height);
     if (!s->passed) {
         fputs("<p class=\"reason\">", f);
-        rg_put_markup(f, s->reason, RG_MARKUP_HTML);
+        rg_put_markup(f, sc_msg_text(&s->reason), RG_MARKUP_HTML);
         fputs("</p>\n", f);
     }
     if (s->golden_updated)
@@ -395,8 +399,8 @@ static bool write_json(const char *path, const rg_scene *scenes, size_t n, const
     cJSON_AddNumberToObject(root, "passed", (double)(n - failed));
     cJSON_AddNumberToObject(root, "failed", (double)failed);
     cJSON *list = cJSON_AddArrayToObject(root, "results");
-    char rel[600];
-    for (size_t k = 0; list && k < n; k++) {
+    bool named = true; /* every image's name was made */
+    for (size_t k = 0; list && named && k < n; k++) {
         const rg_scene *s = &scenes[order[k]];
         cJSON *o = cJSON_CreateObject();
         if (!o) break;
@@ -404,7 +408,7 @@ static bool write_json(const char *path, const rg_scene *scenes, size_t n, const
         cJSON_AddStringToObject(o, "suite", s->suite);
         cJSON_AddStringToObject(o, "scene", s->name);
         cJSON_AddStringToObject(o, "status", s->passed ? "passed" : "failed");
-        if (!s->passed) cJSON_AddStringToObject(o, "reason", s->reason);
+        if (!s->passed) cJSON_AddStringToObject(o, "reason", sc_msg_text(&s->reason));
         cJSON_AddBoolToObject(o, "golden_updated", s->golden_updated);
         cJSON_AddNumberToObject(o, "time_s", s->time_s);
         cJSON_AddNumberToObject(o, "width", s->width);
@@ -434,14 +438,16 @@ static bool write_json(const char *path, const rg_scene *scenes, size_t n, const
         const char *have[3] = {s->expected, s->actual, s->heat};
         for (int i = 0; img && i < 3; i++) {
             if (have[i]) {
-                rg_report_image_name(s->name, kinds[i], rel, sizeof rel);
-                cJSON_AddStringToObject(img, kinds[i], rel);
+                char *rel = rg_report_image_name(s->name, kinds[i]);
+                named = rel != NULL;
+                if (rel) cJSON_AddStringToObject(img, kinds[i], rel);
+                free(rel);
             } else {
                 cJSON_AddNullToObject(img, kinds[i]);
             }
         }
     }
-    char *text = cJSON_Print(root);
+    char *text = named ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
     if (!text) return false;
     FILE *f = fopen(path, "w");
@@ -452,19 +458,15 @@ static bool write_json(const char *path, const rg_scene *scenes, size_t n, const
 }
 
 bool rg_write_report(const char *dir, const rg_scene *scenes, size_t n, const char *command,
-                     const char *golden, char *err, size_t errlen) {
-    size_t cap = strlen(dir) + 700;
-    char *path = malloc(cap);
+                     const char *golden, sc_msg *err) {
+    char *path = sc_format("%s/img", dir);
     size_t *order = malloc((n ? n : 1) * sizeof *order);
     int(*sizes)[2] = calloc(n ? n : 1, sizeof *sizes);
     bool ok = path && order && sizes;
-    if (!ok) snprintf(err, errlen, "out of memory");
-    if (ok) {
-        snprintf(path, cap, "%s/img", dir);
-        if (mkdir_p_one(path) != 0) {
-            snprintf(err, errlen, "cannot create folder '%s': %s", path, strerror(errno));
-            ok = false;
-        }
+    if (!ok) sc_msg_set(err, "out of memory");
+    if (ok && mkdir_p_one(path) != 0) {
+        sc_msg_set(err, "cannot create folder '%s': %s", path, strerror(errno));
+        ok = false;
     }
     /* The images first: the page refers to them. */
     for (size_t i = 0; ok && i < n; i++) {
@@ -473,23 +475,25 @@ bool rg_write_report(const char *dir, const rg_scene *scenes, size_t n, const ch
         const char *src[3] = {s->expected, s->actual, s->heat};
         for (int k = 0; ok && k < 3; k++) {
             if (!src[k]) continue;
-            char rel[600];
-            rg_report_image_name(s->name, kinds[k], rel, sizeof rel);
-            snprintf(path, cap, "%s/%s", dir, rel);
-            ok = rg_copy_file(src[k], path, err, errlen);
+            free(path);
+            path = sc_format("%s/img/%s.%s.png", dir, s->name, kinds[k]);
+            ok = path && rg_copy_file(src[k], path, err);
+            if (!path) sc_msg_set(err, "out of memory");
         }
         png_size(s->expected, sizes[i]);
     }
     if (ok) {
         rg_sort(scenes, n, order);
-        snprintf(path, cap, "%s/index.html", dir);
-        ok = write_html(path, scenes, n, order, (const int(*)[2])sizes, command, golden);
-        if (!ok) snprintf(err, errlen, "%s: write error", path);
+        free(path);
+        path = sc_format("%s/index.html", dir);
+        ok = path && write_html(path, scenes, n, order, (const int(*)[2])sizes, command, golden);
+        if (!ok) sc_msg_set(err, "%s: write error", path ? path : dir);
     }
     if (ok) {
-        snprintf(path, cap, "%s/results.json", dir);
-        ok = write_json(path, scenes, n, order, command, golden);
-        if (!ok) snprintf(err, errlen, "%s: write error", path);
+        free(path);
+        path = sc_format("%s/results.json", dir);
+        ok = path && write_json(path, scenes, n, order, command, golden);
+        if (!ok) sc_msg_set(err, "%s: write error", path ? path : dir);
     }
     free(path);
     free(order);

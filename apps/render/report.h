@@ -10,8 +10,8 @@
 #include "regression.h"
 
 /** The path of a scene's image inside the report folder, "img/<scene>.<kind>.png" (kind:
- *  expected, actual or heat), into out. */
-void rg_report_image_name(const char *scene, const char *kind, char *out, size_t len);
+ *  expected, actual or heat), as a new string; NULL when out of memory. */
+char *rg_report_image_name(const char *scene, const char *kind);
 /** The command line as a shell would take it back (arguments quoted where needed), for the
  *  report to show; NULL when out of memory. */
 char *rg_command_line(int argc, char **argv);
@@ -19,6 +19,6 @@ char *rg_command_line(int argc, char **argv);
  *  copies the images, then index.html and results.json. `command` is the command line shown,
  *  `golden` the golden folder. On failure err says why. */
 bool rg_write_report(const char *dir, const rg_scene *scenes, size_t n, const char *command,
-                     const char *golden, char *err, size_t errlen);
+                     const char *golden, sc_msg *err);
 
 #endif

@@ -291,12 +291,13 @@ static int parse_args(int argc, char **argv, options *o) {
                 return 2;
             }
         } else if (!strcmp(a, "--video")) {
-            char bad[64];
-            if (!vd_parse_formats(value, &o->video, bad, sizeof bad)) {
+            const char *bad;
+            int bad_len;
+            if (!vd_parse_formats(value, &o->video, &bad, &bad_len)) {
                 fprintf(stderr,
-                        "sgapi-render: --video takes gif, mp4 or both (gif,mp4), not '%s' in "
+                        "sgapi-render: --video takes gif, mp4 or both (gif,mp4), not '%.*s' in "
                         "'%s'\n",
-                        bad, value);
+                        bad_len, bad, value);
                 return 2;
             }
         } else if (!strcmp(a, "--fps")) {
@@ -473,8 +474,12 @@ typedef struct run {
 static bool compare_scene(run *rn, const options *o, const sc_file *f, const sc_scene *s,
                           const unsigned char *pixels, const char *png, double ms) {
     rg_scene *rec = &rn->results[rn->result_count++];
-    rg_file_stem(f->path, rec->suite, sizeof rec->suite);
-    snprintf(rec->name, sizeof rec->name, "%s", s->name);
+    rec->suite = rg_file_stem(f->path);
+    rec->name = sc_format("%s", s->name);
+    if (!rec->suite || !rec->name) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        return false;
+    }
     rec->width = s->width;
     rec->height = s->height;
     rec->time_s = ms / 1e3;
@@ -482,9 +487,8 @@ static bool compare_scene(run *rn, const options *o, const sc_file *f, const sc_
     /* Background, for the coverage figure, is the scene's clear colour as stored. */
     unsigned char bg[4];
     for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
-    char err[1024];
-    bool ok =
-        rg_compare(rec, pixels, bg, o->compare_dir, png, o->out_dir, rn->png, err, sizeof err);
+    sc_msg err = {0};
+    bool ok = rg_compare(rec, pixels, bg, o->compare_dir, png, o->out_dir, rn->png, &err);
     if (ok && rec->compared) {
         const sc_diff *d = &rec->diff;
         printf("  psnr %6.2f dB  >2/255 %7.4f %%  >8/255 %7.4f %%  max %3d  coverage %7.4f %%",
@@ -493,9 +497,11 @@ static bool compare_scene(run *rn, const options *o, const sc_file *f, const sc_
     printf("%s\n", ok && !rec->passed ? "  FAIL" : "");
     fflush(stdout);
     if (!ok)
-        fprintf(stderr, "sgapi-render: %s\n", err);
+        fprintf(stderr, "sgapi-render: %s\n", err.text);
     else if (!rec->passed)
-        fprintf(stderr, "sgapi-render: FAIL %s/%s: %s\n", rec->suite, rec->name, rec->reason);
+        fprintf(stderr, "sgapi-render: FAIL %s/%s: %s\n", rec->suite, rec->name,
+                sc_msg_text(&rec->reason));
+    sc_msg_free(&err);
     return ok;
 }
 
@@ -510,7 +516,7 @@ static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_s
     sgPipelineStateObject *psos = calloc(s->draw_count ? s->draw_count : 1, sizeof *psos);
     double *times = calloc((size_t)o->frames, sizeof *times);
     unsigned char *pixels = malloc((size_t)s->width * (size_t)s->height * 4);
-    char *png = malloc(strlen(o->out_dir) + strlen(s->name) + 6);
+    char *png = sc_format("%s/%s.png", o->out_dir, s->name);
     if (!psos || !times || !pixels || !png) {
         fprintf(stderr, "sgapi-render: out of memory\n");
         goto done;
@@ -545,12 +551,11 @@ static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_s
         sg_fail(dev, r, "scene '%s': sgReadImage2D", s->name);
         goto done;
     }
-    sprintf(png, "%s/%s.png", o->out_dir, s->name);
-    char err[1024];
-    if (!o->no_write &&
-        !sc_png_writer_write(rn->png, png, s->width, s->height, pixels, err, sizeof err)) {
+    sc_msg err = {0};
+    if (!o->no_write && !sc_png_writer_write(rn->png, png, s->width, s->height, pixels, &err)) {
         pg_hide(&rn->bar);
-        fprintf(stderr, "sgapi-render: %s\n", err);
+        fprintf(stderr, "sgapi-render: %s\n", err.text);
+        sc_msg_free(&err);
         goto done;
     }
     double median = ss_median(times, o->frames);
@@ -652,14 +657,15 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
         }
         snprintf(path + strlen(path) - (size_t)rn->digits - 4, (size_t)rn->digits + 5, "%0*d.png",
                  rn->digits, k);
-        char err[1024];
+        sc_msg err = {0};
         bool written = rn->frames ? fw_submit(rn->frames, pixels, s->width, s->height, path)
-                       : rn->png  ? sc_png_writer_write(rn->png, path, s->width, s->height, pixels,
-                                                        err, sizeof err)
-                                  : true;
+                       : rn->png
+                           ? sc_png_writer_write(rn->png, path, s->width, s->height, pixels, &err)
+                           : true;
         if (!written) {
             pg_hide(&rn->bar);
-            fprintf(stderr, "sgapi-render: %s\n", rn->frames ? fw_error(rn->frames) : err);
+            fprintf(stderr, "sgapi-render: %s\n", rn->frames ? fw_error(rn->frames) : err.text);
+            sc_msg_free(&err);
             goto done;
         }
         pg_step(&rn->bar, 1);
@@ -694,9 +700,8 @@ done:
  */
 static bool make_videos(const options *o, const run *rn, const sc_scene *s, bool check) {
     char *dir = frame_path(o, rn, s, -1), *frame = frame_path(o, rn, s, o->turntable - 1);
-    size_t len = strlen(o->out_dir) + strlen(s->name) + 8;
-    char *out = malloc(len);
-    bool ok = dir && frame && out;
+    char *out = NULL;
+    bool ok = dir && frame;
     if (!ok) fprintf(stderr, "sgapi-render: out of memory\n");
     for (int k = 0; ok && check && k < o->turntable; k++) {
         struct stat st;
@@ -711,7 +716,13 @@ static bool make_videos(const options *o, const run *rn, const sc_scene *s, bool
     }
     for (unsigned fmt = VIDEO_GIF; ok && fmt <= VIDEO_MP4; fmt <<= 1) {
         if (!(o->video & fmt)) continue;
-        snprintf(out, len, "%s/%s.%s", o->out_dir, s->name, vd_extension(fmt));
+        free(out);
+        out = sc_format("%s/%s.%s", o->out_dir, s->name, vd_extension(fmt));
+        if (!out) {
+            fprintf(stderr, "sgapi-render: out of memory\n");
+            ok = false;
+            break;
+        }
         ok = vd_make(PROG, dir, rn->digits, o->turntable, o->fps, o->video_width, fmt, out);
         if (ok) printf("%-32s %s\n", s->name, out);
     }
@@ -725,10 +736,8 @@ static bool make_videos(const options *o, const run *rn, const sc_scene *s, bool
 /* Whether a file can be created in a folder: tried, since permissions alone do not tell (root
  * writes anywhere but on a read-only file system). */
 static bool writable_dir(const char *dir) {
-    size_t len = strlen(dir) + 32;
-    char *probe = malloc(len);
+    char *probe = sc_format("%s/.sgapi-render-XXXXXX", dir);
     if (!probe) return false;
-    snprintf(probe, len, "%s/.sgapi-render-XXXXXX", dir);
     int fd = mkstemp(probe);
     int saved = errno;
     if (fd >= 0) {
@@ -751,10 +760,10 @@ static bool regression_setup(const options *o, run *rn) {
     if (o->min_psnr >= 0) ov->min_psnr = o->min_psnr;
     if (o->max_over2 >= 0) ov->max_over2 = o->max_over2;
     if (o->max_coverage >= 0) ov->max_coverage = o->max_coverage;
-    char err[1024];
-    if (o->thresholds_path &&
-        !rg_thresholds_load(&rn->thresholds, o->thresholds_path, err, sizeof err)) {
-        fprintf(stderr, "sgapi-render: --thresholds: %s\n", err);
+    sc_msg err = {0};
+    if (o->thresholds_path && !rg_thresholds_load(&rn->thresholds, o->thresholds_path, &err)) {
+        fprintf(stderr, "sgapi-render: --thresholds: %s\n", err.text);
+        sc_msg_free(&err);
         return false;
     }
     struct stat st;
@@ -795,7 +804,7 @@ static bool regression_setup(const options *o, run *rn) {
 /* After the run: the report, the JUnit file, the golden updates and the summary line. Returns the
  * exit status: 0 when every scene passed (or every failing one was blessed), else 1. */
 static int regression_finish(const options *o, run *rn, int argc, char **argv) {
-    char err[1024];
+    sc_msg err = {0};
     size_t failed = 0;
     for (size_t i = 0; i < rn->result_count; i++) failed += !rn->results[i].passed;
     bool ok = true;
@@ -807,17 +816,17 @@ static int regression_finish(const options *o, run *rn, int argc, char **argv) {
     if (o->report_dir) {
         char *cmd = rg_command_line(argc, argv);
         ok = cmd && rg_write_report(o->report_dir, rn->results, rn->result_count, cmd,
-                                    o->compare_dir, err, sizeof err);
-        if (!ok) fprintf(stderr, "sgapi-render: --report: %s\n", cmd ? err : "out of memory");
+                                    o->compare_dir, &err);
+        if (!ok) fprintf(stderr, "sgapi-render: --report: %s\n", cmd ? err.text : "out of memory");
         free(cmd);
     }
     if (ok && o->update_golden && failed)
         ok = rg_update_golden(rn->results, rn->result_count, o->compare_dir);
     if (ok && o->junit_path) {
-        ok = rg_write_junit(o->junit_path, rn->results, rn->result_count, o->report_dir, err,
-                            sizeof err);
-        if (!ok) fprintf(stderr, "sgapi-render: --junit: %s\n", err);
+        ok = rg_write_junit(o->junit_path, rn->results, rn->result_count, o->report_dir, &err);
+        if (!ok) fprintf(stderr, "sgapi-render: --junit: %s\n", err.text);
     }
+    sc_msg_free(&err);
     printf("%zu of %zu scenes passed, %zu failed%s\n", rn->result_count - failed, rn->result_count,
            failed, failed && o->update_golden ? " (golden images updated)" : "");
     if (o->report_dir) printf("report: %s/index.html\n", o->report_dir);
@@ -877,25 +886,28 @@ int main(int argc, char **argv) {
         goto done;
     }
     for (; loaded < o.file_count; loaded++) {
-        char err[1024];
+        sc_msg err = {0};
         if (sc_is_model_path(o.files[loaded])) {
             /* A model is a scene named after its file. */
             char name[SC_MAX_NAME_LENGTH + 1];
             model_name(o.files[loaded], name, sizeof name);
             sc_warnings w = {0};
-            bool ok = sc_model_scene(
-                &o.files[loaded], 1, name, o.model_width ? o.model_width : 1024,
-                o.model_height ? o.model_height : 768, &files[loaded], &w, err, sizeof err);
+            bool ok =
+                sc_model_scene(&o.files[loaded], 1, name, o.model_width ? o.model_width : 1024,
+                               o.model_height ? o.model_height : 768, &files[loaded], &w, &err);
             for (int k = 0; k < w.count; k++)
-                fprintf(stderr, "sgapi-render: warning: %s\n", w.text[k]);
+                fprintf(stderr, "sgapi-render: warning: %s\n", w.text[k].text);
+            sc_warnings_free(&w);
             if (!ok) {
-                fprintf(stderr, "sgapi-render: %s\n", err);
+                fprintf(stderr, "sgapi-render: %s\n", err.text);
+                sc_msg_free(&err);
                 goto done;
             }
             continue;
         }
-        if (!sc_load(o.files[loaded], &files[loaded], err, sizeof err)) {
-            fprintf(stderr, "sgapi-render: %s\n", err);
+        if (!sc_load(o.files[loaded], &files[loaded], &err)) {
+            fprintf(stderr, "sgapi-render: %s\n", err.text);
+            sc_msg_free(&err);
             goto done;
         }
     }

@@ -68,10 +68,10 @@ static int split(char *line, char *fields[6]) {
     }
 }
 
-bool rg_thresholds_load(rg_thresholds *t, const char *path, char *err, size_t errlen) {
+bool rg_thresholds_load(rg_thresholds *t, const char *path, sc_msg *err) {
     FILE *f = fopen(path, "r");
     if (!f) {
-        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        sc_msg_set(err, "%s: %s", path, strerror(errno));
         return false;
     }
     char line[4096];
@@ -81,8 +81,8 @@ bool rg_thresholds_load(rg_thresholds *t, const char *path, char *err, size_t er
         lineno++;
         size_t len = strlen(line);
         if (len == sizeof line - 1 && line[len - 1] != '\n') {
-            snprintf(err, errlen, "%s:%d: line longer than %zu characters", path, lineno,
-                     sizeof line - 2);
+            sc_msg_set(err, "%s:%d: line longer than %zu characters", path, lineno,
+                       sizeof line - 2);
             ok = false;
             break;
         }
@@ -95,34 +95,34 @@ bool rg_thresholds_load(rg_thresholds *t, const char *path, char *err, size_t er
         if (header) {
             for (int i = 0; i < n && ok; i++) {
                 if (i >= 5 || strcmp(fields[i], COLUMNS[i])) {
-                    snprintf(err, errlen,
-                             "%s:%d: the header's columns are "
-                             "suite,scene,min_psnr_db,max_pct_over_2,max_coverage_pct",
-                             path, lineno);
+                    sc_msg_set(err,
+                               "%s:%d: the header's columns are "
+                               "suite,scene,min_psnr_db,max_pct_over_2,max_coverage_pct",
+                               path, lineno);
                     ok = false;
                 }
             }
             continue;
         }
         if (n < 2 || n > 5) {
-            snprintf(err, errlen,
-                     "%s:%d: %d fields; a row is suite,scene[,min_psnr_db[,max_pct_over_2[,"
-                     "max_coverage_pct]]]",
-                     path, lineno, n > 5 ? 6 : n);
+            sc_msg_set(err,
+                       "%s:%d: %d fields; a row is suite,scene[,min_psnr_db[,max_pct_over_2[,"
+                       "max_coverage_pct]]]",
+                       path, lineno, n > 5 ? 6 : n);
             ok = false;
             break;
         }
         if (*fields[0] == '\0' || *fields[1] == '\0') {
-            snprintf(err, errlen, "%s:%d: empty %s name", path, lineno,
-                     *fields[0] == '\0' ? "suite" : "scene");
+            sc_msg_set(err, "%s:%d: empty %s name", path, lineno,
+                       *fields[0] == '\0' ? "suite" : "scene");
             ok = false;
             break;
         }
         double v[3] = {NAN, NAN, NAN};
         for (int i = 2; i < n; i++) {
             if (!parse_figure(fields[i], &v[i - 2])) {
-                snprintf(err, errlen, "%s:%d: %s is '%s', not a number >= 0", path, lineno,
-                         COLUMNS[i], fields[i]);
+                sc_msg_set(err, "%s:%d: %s is '%s', not a number >= 0", path, lineno, COLUMNS[i],
+                           fields[i]);
                 ok = false;
                 break;
             }
@@ -130,8 +130,8 @@ bool rg_thresholds_load(rg_thresholds *t, const char *path, char *err, size_t er
         if (!ok) break;
         for (size_t i = 0; i < t->count; i++) {
             if (!strcmp(t->rows[i].suite, fields[0]) && !strcmp(t->rows[i].scene, fields[1])) {
-                snprintf(err, errlen, "%s:%d: a second row for suite '%s', scene '%s'", path,
-                         lineno, fields[0], fields[1]);
+                sc_msg_set(err, "%s:%d: a second row for suite '%s', scene '%s'", path, lineno,
+                           fields[0], fields[1]);
                 ok = false;
                 break;
             }
@@ -139,7 +139,7 @@ bool rg_thresholds_load(rg_thresholds *t, const char *path, char *err, size_t er
         if (!ok) break;
         rg_row *rows = realloc(t->rows, (t->count + 1) * sizeof *rows);
         if (!rows) {
-            snprintf(err, errlen, "%s:%d: out of memory", path, lineno);
+            sc_msg_set(err, "%s:%d: out of memory", path, lineno);
             ok = false;
             break;
         }
@@ -150,44 +150,50 @@ bool rg_thresholds_load(rg_thresholds *t, const char *path, char *err, size_t er
         r->limits = (rg_limits){v[0], v[1], v[2]};
         t->count++;
         if (!r->suite || !r->scene) {
-            snprintf(err, errlen, "%s:%d: out of memory", path, lineno);
+            sc_msg_set(err, "%s:%d: out of memory", path, lineno);
             ok = false;
         }
     }
     if (ok && ferror(f)) {
-        snprintf(err, errlen, "%s: read error", path);
+        sc_msg_set(err, "%s: read error", path);
         ok = false;
     }
     fclose(f);
     return ok;
 }
 
-void rg_file_stem(const char *path, char *out, size_t outlen) {
+/* The stem of a file path as a span of it: [*start, *start + return value). */
+static size_t stem_span(const char *path, const char **start) {
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
     const char *dot = strrchr(base, '.');
-    size_t n = dot && dot != base ? (size_t)(dot - base) : strlen(base);
-    if (n >= outlen) n = outlen - 1;
-    memcpy(out, base, n);
-    out[n] = '\0';
+    *start = base;
+    return dot && dot != base ? (size_t)(dot - base) : strlen(base);
 }
 
-/* The name of the folder holding a file ("scenes/hard/x.json" -> "hard"); "" when none. */
-static void folder_name(const char *path, char *out, size_t outlen) {
-    out[0] = '\0';
+char *rg_file_stem(const char *path) {
+    const char *start;
+    size_t n = stem_span(path, &start);
+    return sc_format("%.*s", (int)n, start);
+}
+
+/* The name of the folder holding a file as a span of it ("scenes/hard/x.json" -> "hard"); 0 when
+ * none. */
+static size_t folder_span(const char *path, const char **start) {
     const char *slash = strrchr(path, '/');
-    if (!slash) return;
-    const char *start = slash;
-    while (start > path && start[-1] != '/') start--;
-    size_t n = (size_t)(slash - start);
-    if (n >= outlen) n = outlen - 1;
-    memcpy(out, start, n);
-    out[n] = '\0';
+    *start = path;
+    if (!slash) return 0;
+    const char *s = slash;
+    while (s > path && s[-1] != '/') s--;
+    *start = s;
+    return (size_t)(slash - s);
 }
 
-static const rg_row *find(const rg_thresholds *t, const char *suite, const char *scene) {
+/* The row of a suite, given as the n bytes at suite, and a scene. */
+static const rg_row *find(const rg_thresholds *t, const char *suite, size_t n, const char *scene) {
     for (size_t i = 0; i < t->count; i++)
-        if (!strcmp(t->rows[i].suite, suite) && !strcmp(t->rows[i].scene, scene))
+        if (strlen(t->rows[i].suite) == n && !memcmp(t->rows[i].suite, suite, n) &&
+            !strcmp(t->rows[i].scene, scene))
             return &t->rows[i];
     return NULL;
 }
@@ -197,12 +203,11 @@ static double pick(double override, double row, double dflt) {
 }
 
 rg_limits rg_thresholds_for(const rg_thresholds *t, const char *file_path, const char *scene) {
-    char stem[256], folder[256];
-    rg_file_stem(file_path, stem, sizeof stem);
-    folder_name(file_path, folder, sizeof folder);
-    const rg_row *r = find(t, stem, scene);
-    if (!r && folder[0]) r = find(t, folder, scene);
-    if (!r) r = find(t, "*", scene);
+    const char *stem, *folder;
+    size_t stem_len = stem_span(file_path, &stem), folder_len = folder_span(file_path, &folder);
+    const rg_row *r = find(t, stem, stem_len, scene);
+    if (!r && folder_len) r = find(t, folder, folder_len, scene);
+    if (!r) r = find(t, "*", 1, scene);
     rg_limits none = {NAN, NAN, NAN};
     const rg_limits *l = r ? &r->limits : &none;
     return (rg_limits){pick(t->overrides.min_psnr, l->min_psnr, RG_DEFAULT_MIN_PSNR),

@@ -7,6 +7,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "msg.h"
+
 /* The targets of one scene. */
 typedef struct rg_limits {
     double min_psnr;     /* dB over RGB, at least */
@@ -37,12 +39,13 @@ void rg_thresholds_init(rg_thresholds *t);
 /** Reads the rows of a CSV file into t (lines starting with '#' and blank lines are skipped; a
  *  first line "suite,scene,..." is a header). On a malformed row returns false and err names the
  *  file and the line. */
-bool rg_thresholds_load(rg_thresholds *t, const char *path, char *err, size_t errlen);
+bool rg_thresholds_load(rg_thresholds *t, const char *path, sc_msg *err);
 /** The targets of a scene of a file: the row of its suite (the file's stem), else of the file's
  *  folder name, else of suite "*"; figures no row gives are the defaults; the overrides win. */
 rg_limits rg_thresholds_for(const rg_thresholds *t, const char *file_path, const char *scene);
-/** The stem of a file path ("scenes/default.json" -> "default"), written into out. */
-void rg_file_stem(const char *path, char *out, size_t outlen);
+/** The stem of a file path ("scenes/default.json" -> "default") as a new string; NULL when out of
+ *  memory. */
+char *rg_file_stem(const char *path);
 /** Frees the rows. */
 void rg_thresholds_free(rg_thresholds *t);
 

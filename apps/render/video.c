@@ -10,9 +10,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "msg.h"
+
 extern char **environ;
 
-bool vd_parse_formats(const char *list, unsigned *formats, char *bad, int badlen) {
+bool vd_parse_formats(const char *list, unsigned *formats, const char **bad, int *bad_len) {
     *formats = 0;
     const char *p = list;
     for (;;) {
@@ -22,7 +24,8 @@ bool vd_parse_formats(const char *list, unsigned *formats, char *bad, int badlen
         } else if (n == 3 && !strncmp(p, "mp4", 3)) {
             *formats |= VIDEO_MP4;
         } else {
-            snprintf(bad, (size_t)badlen, "%.*s", (int)n, p);
+            *bad = p;
+            *bad_len = (int)n;
             return false;
         }
         if (p[n] == '\0') return true;
@@ -39,12 +42,11 @@ bool vd_have_ffmpeg(void) {
     if (!path) return false;
     for (const char *p = path;;) {
         size_t n = strcspn(p, ":");
-        char file[4096];
         /* An empty entry is the current folder, as the shell takes it. */
-        if (snprintf(file, sizeof file, "%.*s%sffmpeg", (int)n, n ? p : "", n ? "/" : "") <
-                (int)sizeof file &&
-            access(file, X_OK) == 0)
-            return true;
+        char *file = sc_format("%.*s%sffmpeg", (int)n, n ? p : "", n ? "/" : "");
+        bool found = file && access(file, X_OK) == 0;
+        free(file);
+        if (found) return true;
         if (p[n] == '\0') return false;
         p += n + 1;
     }

@@ -10,8 +10,8 @@
 enum { VIDEO_GIF = 1, VIDEO_MP4 = 2 };
 
 /** Parses a comma-separated list of formats ("gif", "mp4", "gif,mp4") into a set; false (and
- *  the offending name in bad, of badlen bytes) for an unknown or empty name. */
-bool vd_parse_formats(const char *list, unsigned *formats, char *bad, int badlen);
+ *  the offending name as the bad_len bytes at *bad, inside list) for an unknown or empty name. */
+bool vd_parse_formats(const char *list, unsigned *formats, const char **bad, int *bad_len);
 /** Whether an executable ffmpeg is on PATH. */
 bool vd_have_ffmpeg(void);
 /** The file name extension of one format: "gif" or "mp4". */

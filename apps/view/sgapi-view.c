@@ -285,9 +285,11 @@ static bool add_shape(viewer *v) {
     int k = v->next_shape++ % 8;
     sguShapeDesc d = {.shape = shapes[k], .subdivisions = 2};
     sc_mesh mesh;
-    char err[256], source[64];
-    if (!sc_shape_mesh(&d, &mesh, err, sizeof err)) {
-        fprintf(stderr, PROG ": %s\n", err);
+    char source[64]; /* "shape NAME (added)": the names above fit */
+    sc_msg err = {0};
+    if (!sc_shape_mesh(&d, &mesh, &err)) {
+        fprintf(stderr, PROG ": %s\n", err.text);
+        sc_msg_free(&err);
         return false;
     }
     snprintf(source, sizeof source, "shape %s (added)", names[k]);
@@ -364,13 +366,17 @@ typedef struct frame {
 
 /* Writes a frame to save_dir/frame-NNNN.png. */
 static void save_frame(viewer *v, const frame *f) {
-    char path[4096], err[1024];
-    snprintf(path, sizeof path, "%s/frame-%04d.png", v->save_dir, ++v->saved);
-    if (!sc_png_writer_write(v->png, path, f->width, f->height, f->pixels, err, sizeof err))
-        fprintf(stderr, PROG ": %s\n", err);
+    char *path = sc_format("%s/frame-%04d.png", v->save_dir, ++v->saved);
+    sc_msg err = {0};
+    if (!path)
+        fprintf(stderr, PROG ": out of memory for the path of frame %d\n", v->saved);
+    else if (!sc_png_writer_write(v->png, path, f->width, f->height, f->pixels, &err))
+        fprintf(stderr, PROG ": %s\n", err.text);
     else
         printf("saved %s\n", path);
     fflush(stdout);
+    sc_msg_free(&err);
+    free(path);
 }
 
 /* One frame, read back into f. */
@@ -606,18 +612,21 @@ static int parse_args(int argc, char **argv, options *o) {
 
 /* Loads the file(s) into v->file with the shown scene first. */
 static bool load(viewer *v, const options *o) {
-    char err[1024];
+    sc_msg err = {0};
     if (sc_is_model_path(o->files[0])) {
         sc_warnings w = {0};
         bool ok = sc_model_scene(o->files, o->file_count, "models", o->width, o->height, &v->file,
-                                 &w, err, sizeof err);
-        for (int k = 0; k < w.count; k++) fprintf(stderr, PROG ": warning: %s\n", w.text[k]);
+                                 &w, &err);
+        for (int k = 0; k < w.count; k++) fprintf(stderr, PROG ": warning: %s\n", w.text[k].text);
+        sc_warnings_free(&w);
         if (!ok) {
-            fprintf(stderr, PROG ": %s\n", err);
+            fprintf(stderr, PROG ": %s\n", err.text);
+            sc_msg_free(&err);
             return false;
         }
-    } else if (!sc_load(o->files[0], &v->file, err, sizeof err)) {
-        fprintf(stderr, PROG ": %s\n", err);
+    } else if (!sc_load(o->files[0], &v->file, &err)) {
+        fprintf(stderr, PROG ": %s\n", err.text);
+        sc_msg_free(&err);
         return false;
     } else if (!sc_report_warnings(&v->file, PROG, o->strict)) {
         sc_free(&v->file);
@@ -805,17 +814,20 @@ int main(int argc, char **argv) {
         if (now - t_count >= 1000) {
             double fps = frames_since * 1000.0 / (now - t_count);
             /* The selection has no mark in the image: the title names it. */
-            char title[512], sel[160] = "none";
+            char *sel = NULL;
             SDL_LockMutex(pl.state);
             if (v.selected >= 0 && (size_t)v.selected < v.scene->draw_count) {
                 const char *src = v.file.mesh_sources[v.scene->draws[v.selected].mesh];
                 const char *base = strrchr(src, '/');
-                snprintf(sel, sizeof sel, "%d: %s", v.selected, base ? base + 1 : src);
+                sel = sc_format("%d: %s", v.selected, base ? base + 1 : src);
             }
             SDL_UnlockMutex(pl.state);
-            snprintf(title, sizeof title, "sgapi-view - %s - %.1f fps - selected %s", o.files[0],
-                     fps, sel);
-            SDL_SetWindowTitle(win, title);
+            char *title = sc_format("sgapi-view - %s - %.1f fps - selected %s", o.files[0], fps,
+                                    sel ? sel : "none");
+            /* Out of memory: the title stays as it was until the next second. */
+            if (title) SDL_SetWindowTitle(win, title);
+            free(title);
+            free(sel);
             if (o.print_fps) {
                 printf("%.1f fps\n", fps);
                 fflush(stdout);

@@ -33,12 +33,46 @@ void sg_free(sgDevice *dev, void *ptr) {
     if (ptr) dev->allocator.free(ptr, dev->allocator.user_data);
 }
 
+sgResult sg_verror(sgDevice *dev, sgResult result, const char *prefix, const char *fmt,
+                   va_list ap) {
+    va_list measure;
+    va_copy(measure, ap);
+    int n = vsnprintf(NULL, 0, fmt, measure);
+    va_end(measure);
+    size_t plen = strlen(prefix);
+    size_t need = plen + (n > 0 ? (size_t)n : 0) + 1;
+    char *to = dev->error_short;
+    size_t size = sizeof dev->error_short;
+    if (need > size) {
+        /* Grown only, so a long message allocates once. sgCreateDevice's stand-in device has no
+         * allocator: its messages hold numbers and names alone and fit error_short. */
+        if (need > dev->error_long_size && dev->allocator.alloc) {
+            char *grown = sg_alloc(dev, need);
+            if (grown) {
+                sg_free(dev, dev->error_long);
+                dev->error_long = grown;
+                dev->error_long_size = need;
+            }
+        }
+        if (need <= dev->error_long_size) {
+            to = dev->error_long;
+            size = dev->error_long_size;
+        }
+    }
+    size_t at = plen < size ? plen : size - 1;
+    memcpy(to, prefix, at);
+    to[at] = '\0';
+    vsnprintf(to + at, size - at, fmt, ap);
+    dev->error = to;
+    if (dev->log) dev->log(result, to, dev->log_user_data);
+    return result;
+}
+
 sgResult sg_error(sgDevice *dev, sgResult result, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(dev->error, sizeof dev->error, fmt, ap);
+    sg_verror(dev, result, "", fmt, ap);
     va_end(ap);
-    if (dev->log) dev->log(result, dev->error, dev->log_user_data);
     return result;
 }
 
@@ -70,7 +104,8 @@ const char *sgResultName(sgResult result) {
 }
 
 const char *sgGetLastError(const sgDevice *device) {
-    return device ? device->error : "no device (the device pointer is NULL)";
+    if (!device) return "no device (the device pointer is NULL)";
+    return device->error ? device->error : "";
 }
 
 /* Pool arrays are carved from one block per pool: generations, live flags, free stack, objects. */
@@ -203,6 +238,7 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->outcodes);
     sg_free(dev, dev->screen);
     sg_free(dev, dev->screen_ok);
+    sg_free(dev, dev->error_long);
     dev->allocator.free(dev, dev->allocator.user_data);
 }
 

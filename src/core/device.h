@@ -2,6 +2,7 @@
 #ifndef SG_DEVICE_H
 #define SG_DEVICE_H
 
+#include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -58,7 +59,14 @@ struct sgDevice {
     void *log_user_data;
     int thread_count;
     sg_isa isa; /* instruction set of the raster */
-    char error[512];
+    /* The last failed call's message (sgGetLastError): NULL (none yet), error_short, or
+     * error_long. A message that fits error_short takes no allocation, so a failed call leaves the
+     * allocator's counts as they were; a longer one grows error_long to its size (kept until
+     * sgDestroyDevice). Only when that allocation fails is the message cut, in error_short. */
+    const char *error;
+    char *error_long;
+    size_t error_long_size;
+    char error_short[512];
 
     sg_pool image_pool, geom_pool, pso_pool;
     sg_image *images;
@@ -98,9 +106,14 @@ struct sgDevice {
 #endif
 };
 
-/** Records an error message for sgGetLastError, passes it to the log callback, returns `result`. */
+/** Records an error message for sgGetLastError, passes it to the log callback, returns `result`.
+ *  The message is never cut unless memory for it runs out; the arguments must not point at the
+ *  device's previous message. */
 sgResult sg_error(sgDevice *dev, sgResult result, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+/** sg_error with `prefix` put before the formatted message, and a va_list. */
+sgResult sg_verror(sgDevice *dev, sgResult result, const char *prefix, const char *fmt, va_list ap)
+    __attribute__((format(printf, 4, 0)));
 /** Allocates through the device's allocator (NULL on failure or size 0). */
 void *sg_alloc(sgDevice *dev, size_t size);
 /** Frees through the device's allocator; NULL is a no-op. */

@@ -274,6 +274,17 @@ static bool unit_range(float v) {
     return v >= 0.0f && v <= 1.0f; /* false for NaN */
 }
 
+/* sg_light_prepare's refusal of a draw's lighting, recorded as the draw's error. */
+typedef struct light_refusal {
+    sgDevice *dev;
+    sgResult result;
+} light_refusal;
+
+static void refuse_lighting(void *user, int code, const char *fmt, va_list ap) {
+    light_refusal *r = user;
+    r->result = sg_verror(r->dev, (sgResult)code, "sgDraw: ", fmt, ap);
+}
+
 sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                 const sgDrawParams *params) {
     if (!dev) return SG_ERROR_NULL_POINTER;
@@ -313,11 +324,10 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     sg_shade_ctx ctx = {0};
     const sgLightingMode lighting = pso->desc.lighting;
     if (lighting != SG_LIGHTING_NONE) {
-        char why[160];
-        int code = SG_OK;
+        light_refusal refusal = {dev, SG_OK};
         if (!sg_light_prepare(params->lighting, params->specular, params->shininess, &ctx.lights,
-                              why, sizeof why, &code))
-            return sg_error(dev, (sgResult)code, "sgDraw: %s", why);
+                              refuse_lighting, &refusal))
+            return refusal.result;
         if (lighting == SG_LIGHTING_FLAT && geom->primitive == SG_PRIMITIVE_LINES)
             return sg_error(dev, SG_ERROR_UNSUPPORTED,
                             "sgDraw: flat lighting needs a face normal, and the geom holds lines: "

@@ -2,7 +2,7 @@
  * matrix (see light.h). */
 #include "pipeline/light.h"
 
-#include <stdio.h>
+#include <stdarg.h>
 
 static bool finite_nonneg(const float *v, int n) {
     for (int i = 0; i < n; i++)
@@ -16,15 +16,22 @@ static bool finite3(const float *v) {
     return true;
 }
 
-#define FAIL(c, ...)                                                                               \
-    do {                                                                                           \
-        snprintf(why, why_size, __VA_ARGS__);                                                      \
-        *code = (c);                                                                               \
-        return false;                                                                              \
-    } while (0)
+/* Tells fail why, when there is one to tell; false. */
+static bool refuse(sg_light_fail_fn fail, void *user, int code, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static bool refuse(sg_light_fail_fn fail, void *user, int code, const char *fmt, ...) {
+    if (!fail) return false;
+    va_list ap;
+    va_start(ap, fmt);
+    fail(user, code, fmt, ap);
+    va_end(ap);
+    return false;
+}
+
+#define FAIL(c, ...) return refuse(fail, user, (c), __VA_ARGS__)
 
 bool sg_light_prepare(const sgLighting *in, const float specular[3], float shininess,
-                      sg_lights *out, char *why, size_t why_size, int *code) {
+                      sg_lights *out, sg_light_fail_fn fail, void *user) {
     memset(out, 0, sizeof *out);
     if (!finite_nonneg(specular, 3))
         FAIL(SG_ERROR_INVALID_VALUE, "params->specular must be 3 finite values >= 0");

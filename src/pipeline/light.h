@@ -24,6 +24,7 @@
 #ifndef SG_LIGHT_H
 #define SG_LIGHT_H
 
+#include <stdarg.h>
 #include <float.h>
 #include <math.h>
 #include <stdbool.h>
@@ -63,10 +64,14 @@ typedef struct sg_lights {
     bool has_specular; /* some specular channel > 0: the secondary colour is not always 0 */
 } sg_lights;
 
-/** Checks and prepares a draw's lighting (NULL: none); false, with a message in `why`, when a
- *  value is out of range (the message names the field). */
+/* Told why a draw's lighting is refused: an sgResult code and a printf message naming the field
+ * (the device's error, in the library). */
+typedef void (*sg_light_fail_fn)(void *user, int code, const char *fmt, va_list ap);
+
+/** Checks and prepares a draw's lighting (NULL: none); false, after calling fail (when not NULL)
+ *  with user, when a value is out of range. */
 bool sg_light_prepare(const sgLighting *in, const float specular[3], float shininess,
-                      sg_lights *out, char *why, size_t why_size, int *code);
+                      sg_lights *out, sg_light_fail_fn fail, void *user);
 
 /** The normal matrix: the inverse transpose of worldView's upper-left 3x3, row-major 3x3,
  *  computed in double. A singular matrix gives zeros (every normal becomes 0). */

@@ -1,15 +1,16 @@
 /* fuzz_image.c - libFuzzer target: image file bytes through sc_image_load_memory. */
 #include "fuzz.h"
+#include "../test_msg.h"
 
 #include <limits.h>
 
 #include "image_io.h"
 
 int fuzz_image(const uint8_t *data, size_t size) {
-    char err[256] = "";
+    TEST_MSG(err);
     sc_image img;
-    if (!sc_image_load_memory(data, size, &img, err, sizeof err)) {
-        FUZZ_CHECK(err[0] != '\0');
+    if (!sc_image_load_memory(data, size, &img, &err)) {
+        FUZZ_CHECK(MSG(err)[0] != '\0');
         FUZZ_CHECK(!img.pixels && img.width == 0 && img.height == 0);
         return 0;
     }

@@ -1,6 +1,7 @@
 /* fuzz_mtl.c - libFuzzer target: MTL text through sc_mtl_parse, and the materials it promises;
  * then OBJ text with materials (usemtl groups) through sc_obj_parse_ex. */
 #include "fuzz.h"
+#include "../test_msg.h"
 
 #include <math.h>
 #include <string.h>
@@ -9,11 +10,11 @@
 #include "obj.h"
 
 int fuzz_mtl(const uint8_t *data, size_t size) {
-    char err[256] = "";
+    TEST_MSG(err);
     sc_mtl lib;
     sc_warnings w = {0};
-    if (!sc_mtl_parse("fuzz.mtl", (const char *)data, size, &lib, &w, err, sizeof err)) {
-        FUZZ_CHECK(err[0] != '\0');
+    if (!sc_mtl_parse("fuzz.mtl", (const char *)data, size, &lib, &w, &err)) {
+        FUZZ_CHECK(MSG(err)[0] != '\0');
         FUZZ_CHECK(!lib.materials && lib.count == 0);
     } else {
         for (size_t i = 0; i < lib.count; i++) {
@@ -33,7 +34,7 @@ int fuzz_mtl(const uint8_t *data, size_t size) {
     /* The same bytes as an OBJ file with materials: its groups cover its triangles in order. */
     sc_mesh mesh;
     sc_obj_extra x;
-    if (sc_obj_parse_ex("fuzz.obj", (const char *)data, size, &mesh, &x, &w, err, sizeof err)) {
+    if (sc_obj_parse_ex("fuzz.obj", (const char *)data, size, &mesh, &x, &w, &err)) {
         uint32_t at = x.group_count ? x.groups[0].first_index : 0;
         for (size_t g = 0; g < x.group_count; g++) {
             FUZZ_CHECK(x.groups[g].first_index == at && x.groups[g].index_count > 0);
@@ -48,6 +49,7 @@ int fuzz_mtl(const uint8_t *data, size_t size) {
     } else {
         FUZZ_CHECK(!x.groups && !x.mtllibs && x.group_count == 0 && x.mtllib_count == 0);
     }
+    sc_warnings_free(&w);
     return 0;
 }
 

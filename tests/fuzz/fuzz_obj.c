@@ -1,14 +1,15 @@
 /* fuzz_obj.c - libFuzzer target: OBJ text through sc_obj_parse, and the mesh it promises. */
 #include "fuzz.h"
+#include "../test_msg.h"
 
 #include "obj.h"
 
 int fuzz_obj(const uint8_t *data, size_t size) {
-    char err[256] = "";
+    TEST_MSG(err);
     sc_mesh m;
-    if (!sc_obj_parse("fuzz.obj", (const char *)data, size, &m, err, sizeof err)) {
+    if (!sc_obj_parse("fuzz.obj", (const char *)data, size, &m, &err)) {
         /* A failure says why and leaves nothing to free. */
-        FUZZ_CHECK(err[0] != '\0');
+        FUZZ_CHECK(MSG(err)[0] != '\0');
         FUZZ_CHECK(!m.positions && !m.colors && !m.indices && !m.line_indices &&
                    m.vertex_count == 0);
         return 0;

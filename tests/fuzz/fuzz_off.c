@@ -1,15 +1,17 @@
 /* fuzz_off.c - libFuzzer target: OFF text through sc_off_parse, and the mesh it promises. */
 #include "fuzz.h"
+#include "../test_msg.h"
 
 #include "off.h"
 
 int fuzz_off(const uint8_t *data, size_t size) {
-    char err[256] = "";
+    TEST_MSG(err);
     sc_mesh m;
     sc_warnings w = {0};
-    if (!sc_off_parse("fuzz.off", (const char *)data, size, &m, &w, err, sizeof err)) {
-        FUZZ_CHECK(err[0] != '\0');
+    if (!sc_off_parse("fuzz.off", (const char *)data, size, &m, &w, &err)) {
+        FUZZ_CHECK(MSG(err)[0] != '\0');
         FUZZ_CHECK(!m.positions && !m.colors && !m.indices && m.vertex_count == 0);
+        sc_warnings_free(&w);
         return 0;
     }
     FUZZ_CHECK(m.index_count % 3 == 0 && m.index_count > 0 && m.vertex_count >= 1);
@@ -24,6 +26,7 @@ int fuzz_off(const uint8_t *data, size_t size) {
     if (m.texcoords) fuzz_touch(m.texcoords, n * 2 * sizeof(float));
     if (m.normals) fuzz_touch(m.normals, n * 3 * sizeof(float));
     FUZZ_CHECK(w.count >= 0 && w.count <= SC_MAX_WARNINGS);
+    sc_warnings_free(&w);
     sc_mesh_free(&m);
     return 0;
 }

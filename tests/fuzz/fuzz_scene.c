@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L /* mkdtemp, rmdir */
 
 #include "fuzz.h"
+#include "../test_msg.h"
 
 #include <stdbool.h>
 #include <string.h>
@@ -40,7 +41,8 @@ static void make_scratch(void) {
         abort();
     }
     atexit(remove_scratch);
-    char path[sizeof scratch + 16], err[512];
+    char path[sizeof scratch + 16];
+    TEST_MSG(err);
     FILE *f = scratch_file("tri.obj", path, sizeof path) ? fopen(path, "wb") : NULL;
     bool ok = f && fwrite(tri_obj, 1, sizeof tri_obj - 1, f) == sizeof tri_obj - 1;
     if (f && fclose(f) != 0) ok = false;
@@ -48,7 +50,7 @@ static void make_scratch(void) {
     static const unsigned char px[16] = {255, 0, 0,   255, 0,   255, 0,   255,
                                          0,   0, 255, 255, 255, 255, 255, 128};
     ok = ok && scratch_file("tex.png", path, sizeof path) &&
-         sc_image_write_png(path, 2, 2, px, err, sizeof err);
+         sc_image_write_png(path, 2, 2, px, &err);
     n = snprintf(scene_path, sizeof scene_path, "%s/fuzz.json", scratch);
     if (!ok || n <= 0 || (size_t)n >= sizeof scene_path) {
         fprintf(stderr, "fuzz_scene: cannot fill the scratch folder %s\n", scratch);
@@ -68,11 +70,11 @@ static void check_mesh(const sc_mesh *m) {
 
 int fuzz_scene(const uint8_t *data, size_t size) {
     if (!scene_path[0]) make_scratch();
-    char err[1024] = "";
+    TEST_MSG(err);
     sc_file f;
-    if (!sc_parse(scene_path, (const char *)data, size, &f, err, sizeof err)) {
+    if (!sc_parse(scene_path, (const char *)data, size, &f, &err)) {
         /* A failure says why and leaves nothing to free. */
-        FUZZ_CHECK(err[0] != '\0');
+        FUZZ_CHECK(MSG(err)[0] != '\0');
         FUZZ_CHECK(!f.scenes && !f.meshes && !f.textures && !f.path);
         return 0;
     }
