@@ -141,6 +141,25 @@ static inline float sg_pow_unit(float x, float s) {
     return sg_exp2_neg(s * sg_log2_pos(x));
 }
 
+/* Light i seen from view-space point P: the unit vector L towards it (0 for a point light at P)
+ * and its attenuation (1 for a directional light). */
+static inline __attribute__((always_inline)) float sg_light_vector(const sg_lights *ls, int i,
+                                                                   const float P[3], float L[3]) {
+    if (!ls->light[i].point) {
+        memcpy(L, ls->light[i].v, 3 * sizeof *L);
+        return 1.0f;
+    }
+    const float *lp = ls->light[i].v, *k = ls->light[i].att;
+    float v[3] = {lp[0] - P[0], lp[1] - P[1], lp[2] - P[2]};
+    float d2 = sg_dot3(v, v), d = sqrtf(d2);
+    float inv = d > 0.0f && d <= FLT_MAX ? 1.0f / d : 0.0f;
+    L[0] = v[0] * inv;
+    L[1] = v[1] * inv;
+    L[2] = v[2] * inv;
+    float den = (k[0] + k[1] * d) + k[2] * d2;
+    return 1.0f / (den > FLT_MIN ? den : FLT_MIN);
+}
+
 /** The equation at one point: view-space position P, unnormalised normal n, base colour (rgba).
  *  primary rgba, secondary rgb. Light `shadowed` (-1: none) is seen by the fraction `vis` of the
  *  point (shadow maps): its attenuation is multiplied by it. */
@@ -152,21 +171,8 @@ sg_light_eval_shadowed(const sg_lights *ls, const float P[3], const float n[3], 
     sg_normalize3(mp, V);
     float diff[3] = {0.0f, 0.0f, 0.0f}, spec[3] = {0.0f, 0.0f, 0.0f};
     for (int i = 0; i < ls->count; i++) {
-        float L[3], att = 1.0f;
+        float L[3], att = sg_light_vector(ls, i, P, L);
         const float *c = ls->light[i].color;
-        if (ls->light[i].point) {
-            const float *lp = ls->light[i].v, *k = ls->light[i].att;
-            float v[3] = {lp[0] - P[0], lp[1] - P[1], lp[2] - P[2]};
-            float d2 = sg_dot3(v, v), d = sqrtf(d2);
-            float inv = d > 0.0f && d <= FLT_MAX ? 1.0f / d : 0.0f;
-            L[0] = v[0] * inv;
-            L[1] = v[1] * inv;
-            L[2] = v[2] * inv;
-            float den = (k[0] + k[1] * d) + k[2] * d2;
-            att = 1.0f / (den > FLT_MIN ? den : FLT_MIN);
-        } else {
-            memcpy(L, ls->light[i].v, sizeof L);
-        }
         if (i == shadowed) att = att * vis;
         float ndotl = sg_dot3(N, L);
         if (!(ndotl > 0.0f)) continue;
@@ -215,21 +221,8 @@ sg_light_eval_split(const sg_lights *ls, const float P[3], const float n[3], con
     float diff[2][3] = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
     float spec[2][3] = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
     for (int i = 0; i < ls->count; i++) {
-        float L[3], att = 1.0f;
+        float L[3], att = sg_light_vector(ls, i, P, L);
         const float *c = ls->light[i].color;
-        if (ls->light[i].point) {
-            const float *lp = ls->light[i].v, *k = ls->light[i].att;
-            float v[3] = {lp[0] - P[0], lp[1] - P[1], lp[2] - P[2]};
-            float d2 = sg_dot3(v, v), d = sqrtf(d2);
-            float inv = d > 0.0f && d <= FLT_MAX ? 1.0f / d : 0.0f;
-            L[0] = v[0] * inv;
-            L[1] = v[1] * inv;
-            L[2] = v[2] * inv;
-            float den = (k[0] + k[1] * d) + k[2] * d2;
-            att = 1.0f / (den > FLT_MIN ? den : FLT_MIN);
-        } else {
-            memcpy(L, ls->light[i].v, sizeof L);
-        }
         float ndotl = sg_dot3(N, L);
         if (!(ndotl > 0.0f)) continue;
         const int j = i == shadowed;

@@ -23,6 +23,22 @@ vec3 normal_matrix_times(vec3 n) {
     return vec3(dot3(u.nm[0].xyz, n), dot3(u.nm[1].xyz, n), dot3(u.nm[2].xyz, n));
 }
 
+// Light i seen from view-space point P: the unit vector L towards it and its attenuation.
+float light_vector(int i, vec3 P, out vec3 L) {
+    if (u.lights[i].vec.w == 0.0) {
+        L = u.lights[i].vec.xyz;
+        return 1.0;
+    }
+    precise vec3 v = u.lights[i].vec.xyz - P;
+    precise float d = sqrt(dot3(v, v));
+    L = d > 0.0 ? v / d : vec3(0.0);
+    vec3 k = u.lights[i].attenuation.xyz;
+    // A light at the surface: a finite att, and L = 0 makes its contribution 0.
+    precise float den = (k.x + k.y * d) + k.z * (d * d);
+    precise float att = 1.0 / max(den, SMALLEST_NORMAL);
+    return att;
+}
+
 // OpenGL 1.x lighting with a local viewer, colour material on ambient and diffuse and a separate
 // specular colour. base: vertex colour * draw colour; P: view-space position; N: unit normal, or
 // zero; with SHADOW, vis: the visibility of light u.shadow_flags.x at P, in [0, 1].
@@ -37,19 +53,7 @@ void shade(vec4 base, vec3 P, vec3 N,
     precise vec3 spec = vec3(0.0);
     for (int i = 0; i < u.light_count.x; i++) {
         vec3 L;
-        precise float att;
-        if (u.lights[i].vec.w == 0.0) {
-            L = u.lights[i].vec.xyz;
-            att = 1.0;
-        } else {
-            precise vec3 v = u.lights[i].vec.xyz - P;
-            precise float d = sqrt(dot3(v, v));
-            L = d > 0.0 ? v / d : vec3(0.0);
-            vec3 k = u.lights[i].attenuation.xyz;
-            // A light at the surface: a finite att, and L = 0 makes its contribution 0.
-            precise float den = (k.x + k.y * d) + k.z * (d * d);
-            att = 1.0 / max(den, SMALLEST_NORMAL);
-        }
+        precise float att = light_vector(i, P, L);
 #if defined(SHADOW)
         // Where the map hides the point from the shadowed light, its diffuse and specular terms
         // both go: att scales the two alike.
@@ -85,18 +89,7 @@ void shade_split(vec4 base, vec3 P, vec3 N, out vec4 rest, out vec3 light, out v
     precise vec3 spec_l = vec3(0.0);
     for (int i = 0; i < u.light_count.x; i++) {
         vec3 L;
-        precise float att;
-        if (u.lights[i].vec.w == 0.0) {
-            L = u.lights[i].vec.xyz;
-            att = 1.0;
-        } else {
-            precise vec3 v = u.lights[i].vec.xyz - P;
-            precise float d = sqrt(dot3(v, v));
-            L = d > 0.0 ? v / d : vec3(0.0);
-            vec3 k = u.lights[i].attenuation.xyz;
-            precise float den = (k.x + k.y * d) + k.z * (d * d);
-            att = 1.0 / max(den, SMALLEST_NORMAL);
-        }
+        precise float att = light_vector(i, P, L);
         precise float nl = dot3(N, L);
         precise vec3 d_term = ((att * max(nl, 0.0)) * base.rgb) * u.lights[i].color.rgb;
         precise vec3 s_term = vec3(0.0);
