@@ -1,11 +1,13 @@
 /* shade_phong_variants.h - the shading functions from the view position of one instruction set
  * (per-pixel lighting, the same with a shadow map, unlit with a shadow map, flat and Gouraud with
- * a shadow map; five texture variants each), made from its body function, and their table in the order of shade.h (SG_PIXEL_*).
+ * a shadow map; five texture variants each), made from its body function, and their table in the
+ * order of shade.h (SG_PIXEL_*).
  *
  * Included by shade_phong.c, shade_phong_avx2.c and shade_phong_avx512.c after each defines
  *   SG_PHONG_BODY(ctx, tri, ext, x0, y0, mask, dst, textured, bilinear, repeat, flat, lit, shadow)
- * (always inlined, its last six arguments constants; lit: 0 unlit, 1 Phong, 2 split colours) and SG_PHONG_TABLE, the name of its
- * sg_shade_fn (int index) lookup. The per-triangle `flat` is split off once per tile.
+ * (always inlined, its last six arguments constants; lit: 0 unlit, 1 Phong, 2 split colours) and
+ * SG_PHONG_TABLE, the name of its sg_shade_fn (int index) lookup. The per-triangle `flat` is split
+ * off once per tile.
  */
 #if !defined(SG_PHONG_TABLE) || !defined(SG_PHONG_BODY)
 #error "define SG_PHONG_TABLE and SG_PHONG_BODY before including shade_phong_variants.h"
