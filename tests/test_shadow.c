@@ -304,10 +304,8 @@ static void unlit_shadow_halves_the_colour(void **state) {
     sgDestroyDevice(a.dev);
 }
 
-static void hidden_light_is_removed_from_phong(void **state) {
-    (void)state;
-    api a;
-    api_open(&a, 1);
+/* An ambient light, a sun and a point light: the lighting of the hidden-light tests. */
+static sgLighting two_lights(void) {
     sgLighting two;
     memset(&two, 0, sizeof two);
     two.ambient[0] = two.ambient[1] = two.ambient[2] = 0.15f;
@@ -316,6 +314,14 @@ static void hidden_light_is_removed_from_phong(void **state) {
         .type = SG_LIGHT_DIRECTIONAL, .direction = {0.3f, -0.2f, -1}, .color = {0.4f, 0.4f, 0.4f}};
     two.lights[1] = (sgLight){
         .type = SG_LIGHT_POINT, .position = {0.2f, 0.4f, -1.0f}, .color = {0.6f, 0.5f, 0.3f}};
+    return two;
+}
+
+static void hidden_light_is_removed_from_phong(void **state) {
+    (void)state;
+    api a;
+    api_open(&a, 1);
+    sgLighting two = two_lights();
     sgLighting first = two;
     first.light_count = 1;
     uint8_t img[S * S * 4], lit[S * S * 4], without[S * S * 4];
@@ -355,14 +361,7 @@ static void hidden_light_is_removed_from_flat_and_gouraud(void **state) {
     (void)state;
     api a;
     api_open(&a, 1);
-    sgLighting two;
-    memset(&two, 0, sizeof two);
-    two.ambient[0] = two.ambient[1] = two.ambient[2] = 0.15f;
-    two.light_count = 2;
-    two.lights[0] = (sgLight){
-        .type = SG_LIGHT_DIRECTIONAL, .direction = {0.3f, -0.2f, -1}, .color = {0.4f, 0.4f, 0.4f}};
-    two.lights[1] = (sgLight){
-        .type = SG_LIGHT_POINT, .position = {0.2f, 0.4f, -1.0f}, .color = {0.6f, 0.5f, 0.3f}};
+    sgLighting two = two_lights();
     sgLighting first = two, second = two;
     first.light_count = 1;
     second.light_count = 1;
