@@ -38,7 +38,14 @@ for set in $sets; do
         echo "perf-tables.sh: --simd $set: $(tail -n 1 "$out/$set.err")" >&2
         continue
     fi
-    echo "### $set"
+    case $set in
+    avx512) title=AVX-512 ;;
+    avx2) title=AVX2 ;;
+    sse2) title=SSE2 ;;
+    scalar) title="Scalar (the portable reference)" ;;
+    *) title=$set ;;
+    esac
+    echo "### $title"
     echo
     echo "Made by \`$bench $files --frames $frames --rounds $rounds --simd $set\` on commit"
     echo "$commit, $day, $cores cores of $cpu:"
@@ -46,7 +53,7 @@ for set in $sets; do
     grep -v '^sgapi-bench:' "$out/$set.md"
     echo
     # The summary row: geometric means and the largest ratio at each thread count.
-    awk -v set="$set" -v day="$day" -v commit="$commit" -F'|' '
+    awk -v set="$title" -v day="$day" -v commit="$commit" -F'|' '
         /^\|/ && NF >= 9 && $2 !~ /^ *(scene|-+) *$/ {
             r1 = $7 + 0; r2 = $8 + 0; name = $2; gsub(/^ +| +$/, "", name)
             if (r1 > m1) { m1 = r1; n1 = name } if (r2 > m2) { m2 = r2; n2 = name } }
