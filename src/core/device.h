@@ -70,6 +70,15 @@ struct sgDevice {
     uint32_t pass_serial; /* counts passes, to tell which textures the open one samples */
     sgImage2D pass_color, pass_depth;
     sg_bin_pass pass;
+    bool pass_depth_store; /* the pass's depth_store is not DONT_CARE */
+    /* A draw ran out of memory after a flush had rendered part of it: the pass can only end. */
+    bool pass_failed;
+    size_t bin_memory_limit; /* bytes of binned work before a flush (sgDeviceDesc) */
+    float *flush_depth;      /* the depth between flushes of a pass that does not store it */
+    size_t flush_depth_capacity;
+    size_t draw_first; /* the open draw's first triangle in the binner */
+    bool draw_flushed; /* a flush rendered some of the open draw's triangles */
+    uint64_t flushes;  /* flushes before a pass's end, for tests and statistics */
 
     /* Arenas, grown as needed and reused. */
     float (*clip)[4];
@@ -97,6 +106,10 @@ struct sgDevice {
     sg_stage_times stage_times;
 #endif
 };
+
+/** Renders what the open pass has binned into its targets and empties the bins; the rest of the
+ *  pass loads the targets. False: out of memory for the depth it keeps (nothing rendered). */
+bool sg_pass_flush(sgDevice *dev);
 
 /** Records an error message for sgGetLastError, passes it to the log callback, returns `result`. */
 sgResult sg_error(sgDevice *dev, sgResult result, const char *fmt, ...)
