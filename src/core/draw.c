@@ -60,18 +60,25 @@ static sg_tri *bin_slot_kept(void *user, sg_tri_ext **ext) {
     return t;
 }
 
-/* The front end of a large draw runs on all threads: each chunk of its primitives is assembled
- * into its own reserved run of the pass's triangle array, and the runs are then listed in the
- * bins in chunk order, so the bins hold exactly the sequence a single thread would give. A chunk
- * gets room for twice its triangles; one that clips into more than that (rare) is redone on the
- * calling thread, appended after the others and listed at its place in the order. */
-enum { FE_MIN_TRIANGLES = 4096, FE_MAX_CHUNKS = 64 };
+/* The front end of a large draw runs on all threads, in rounds: each chunk of a round's
+ * primitives is assembled into its own reserved run of the pass's triangle array, and the runs
+ * are then listed in the bins in chunk order, so the bins hold exactly the sequence a single
+ * thread would give. A run holds its primitives' triangles unclipped and one block more; a chunk
+ * works in blocks of FE_BLOCK primitives and stops before a block its run may not hold (clipping
+ * makes more triangles), and the calling thread assembles the rest of it at its place in the
+ * order. The array ends after the last run's triangles, so what the next round reserves follows
+ * the triangles kept. (Sizing runs by the share a draw's earlier primitives kept was tried: a
+ * sphere's first rounds, its poles, keep almost none, and the chunks of the next stopped at once,
+ * their rest on one thread.) */
+enum { FE_MIN_TRIANGLES = 4096, FE_MAX_CHUNKS = 64, FE_BLOCK = 256 };
 
 typedef struct fe_chunk {
     sg_assembly a;
     sg_tri *out;
     sg_tri_ext *out_ext; /* beside out, when the draw uses extensions */
     size_t base, count, capacity;
+    int per, tris_per; /* indices a primitive, raster primitives it makes at most unclipped */
+    int done;          /* primitives assembled; the rest are the calling thread's */
     uint32_t draw;
     bool overflow;
 } fe_chunk;
@@ -97,7 +104,21 @@ static void fe_run(void *chunks, int index) {
     a.slot = fe_slot;
     a.emit = fe_emit;
     a.user = c;
-    sg_assemble(&a);
+    const int prims = c->a.index_count / c->per;
+    for (c->done = 0; c->done < prims;) {
+        int n = prims - c->done < FE_BLOCK ? prims - c->done : FE_BLOCK;
+        /* Room for the block unclipped; clipping can make more, then the block is undone. */
+        if (c->capacity - c->count < (size_t)n * (size_t)c->tris_per) return;
+        size_t before = c->count;
+        a.indices = c->a.indices + (size_t)c->done * (size_t)c->per;
+        a.index_count = n * c->per;
+        sg_assemble(&a);
+        if (c->overflow) {
+            c->count = before;
+            return;
+        }
+        c->done += n;
+    }
 }
 
 /* Lists the chunks' triangles in the bins on every thread (sg_binner_count, _make_room, _fill):
@@ -152,7 +173,10 @@ static void assemble_round(sgDevice *dev, const sg_assembly *a, int p0, int prim
         chunks[i].a.index_count = (q1 - q0) * per;
         chunks[i].base = total;
         chunks[i].count = 0;
-        chunks[i].capacity = 2 * (size_t)(q1 - q0) * (size_t)tris_per + 16;
+        chunks[i].capacity = ((size_t)(q1 - q0) + FE_BLOCK) * (size_t)tris_per;
+        chunks[i].per = per;
+        chunks[i].tris_per = tris_per;
+        chunks[i].done = 0;
         chunks[i].draw = dev->binner.draw;
         chunks[i].overflow = false;
         total += chunks[i].capacity;
@@ -167,26 +191,30 @@ static void assemble_round(sgDevice *dev, const sg_assembly *a, int p0, int prim
     }
     size_t first = b->tri_count;
     sg_workers_run(&dev->workers, n, fe_run, chunks);
-    b->tri_count += total;
-    bool overflow = false;
-    for (int i = 0; i < n; i++) overflow |= chunks[i].overflow;
-    if (!overflow && list_parallel(dev, chunks, n, first)) return;
+    /* The array ends after the last chunk's triangles: the room reserved past them is free. */
+    b->tri_count += chunks[n - 1].base + chunks[n - 1].count;
+    bool all = true;
+    for (int i = 0; i < n; i++) all &= chunks[i].done == chunks[i].a.index_count / per;
+    if (all && list_parallel(dev, chunks, n, first)) return;
     for (int i = 0; i < n && !b->out_of_memory; i++) {
-        if (chunks[i].overflow) { /* again, on this thread, appended to the array */
-            sg_assembly redo = chunks[i].a;
-            redo.slot = bin_slot_kept; /* the chunks after it are not listed yet */
-            redo.emit = bin_emit;
-            redo.user = dev;
-            sg_assemble(&redo);
-            continue;
-        }
         for (size_t k = 0; k < chunks[i].count; k++)
             sg_binner_list(b, (uint32_t)(first + chunks[i].base + k));
+        int prims_i = chunks[i].a.index_count / per;
+        if (chunks[i].done < prims_i) { /* the rest, on this thread, appended to the array */
+            sg_assembly rest = chunks[i].a;
+            rest.indices += (size_t)chunks[i].done * (size_t)per;
+            rest.index_count = (prims_i - chunks[i].done) * per;
+            rest.slot = bin_slot_kept; /* the chunks after it are not listed yet */
+            rest.emit = bin_emit;
+            rest.user = dev;
+            sg_assemble(&rest);
+        }
     }
 }
 
-/* Assembles a draw on every thread, in rounds whose reserved triangles fit the device's budget
- * (a flush may come between two); false when it is too small to be worth it. */
+/* Assembles a draw on every thread, in rounds whose reserved triangles take at most a quarter of
+ * the device's budget (a flush may come between two); false when it is too small to be worth
+ * it. */
 static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     /* Per primitive: its indices and the raster primitives it makes at most (a wireframe
      * triangle three lines, a quad four). */
@@ -196,9 +224,10 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     if (dev->thread_count < 2 || prims * tris_per < FE_MIN_TRIANGLES) return false;
     int n = 4 * dev->thread_count < FE_MAX_CHUNKS ? 4 * dev->thread_count : FE_MAX_CHUNKS;
     const sg_binner *b = &dev->binner;
-    size_t slots = dev->bin_memory_limit / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
-    size_t fit = slots > 16u * (size_t)n ? (slots - 16u * (size_t)n) / (2u * (size_t)tris_per) : 0;
+    size_t slots = dev->bin_memory_limit / 4 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
+    size_t margin = (size_t)n * FE_BLOCK * (size_t)tris_per;
     for (int p = 0; p < prims && !b->out_of_memory;) {
+        size_t fit = slots > margin ? (slots - margin) / (size_t)tris_per : 0;
         int r = (size_t)(prims - p) > fit ? (int)fit : prims - p;
         if ((size_t)r * (size_t)tris_per < FE_MIN_TRIANGLES) { /* the rest on this thread */
             sg_assembly rest = *a;
