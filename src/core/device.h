@@ -76,9 +76,10 @@ struct sgDevice {
     size_t bin_memory_limit; /* bytes of binned work before a flush (sgDeviceDesc) */
     float *flush_depth;      /* the depth between flushes of a pass that does not store it */
     size_t flush_depth_capacity;
-    size_t draw_first; /* the open draw's first triangle in the binner */
-    bool draw_flushed; /* a flush rendered some of the open draw's triangles */
-    uint64_t flushes;  /* flushes before a pass's end, for tests and statistics */
+    size_t draw_first;             /* the open draw's first triangle in the binner */
+    bool draw_flushed;             /* a flush rendered some of the open draw's triangles */
+    size_t room_tris, room_listed; /* bin_slot's next look at the budget (draw.c) */
+    uint64_t flushes;              /* flushes before a pass's end, for tests and statistics */
 
     /* Arenas, grown as needed and reused. */
     float (*clip)[4];

@@ -143,6 +143,7 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     dev->stage_times.passes++;
 #endif
     dev->draw_count = 0;
+    dev->room_tris = dev->room_listed = 0; /* bin_slot looks at the budget first */
     dev->pass_failed = false;
     dev->pass_depth_store = p->store_depth;
     dev->pass_serial++;
@@ -189,6 +190,7 @@ bool sg_pass_flush(sgDevice *dev) {
     p->load_color = p->color != NULL;
     p->load_depth = p->depth != NULL;
     sg_binner_clear(&dev->binner);
+    dev->room_tris = dev->room_listed = 0;
     dev->flushes++;
     return true;
 }

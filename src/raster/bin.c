@@ -100,6 +100,17 @@ sg_tri *sg_binner_reserve(sg_binner *b, size_t n) {
     return b->tris + b->tri_count;
 }
 
+bool sg_binner_grow(sg_binner *b, size_t capacity) {
+    if (b->out_of_memory) return false;
+    if (!grow(b, (void **)&b->tris, &b->tri_capacity, capacity, b->tri_count, sizeof *b->tris) ||
+        (b->use_ext && !grow(b, (void **)&b->ext, &b->ext_capacity, b->tri_capacity, b->tri_count,
+                             sizeof *b->ext))) {
+        b->out_of_memory = true;
+        return false;
+    }
+    return true;
+}
+
 static int64_t floor_div(int64_t a, int64_t b) { /* b > 0 */
     int64_t q = a / b;
     return q - (a % b < 0);

@@ -52,6 +52,9 @@ bool sg_binner_use_ext(sg_binner *b);
  *  the caller fills them, then moves tri_count and lists each filled one with sg_binner_list.
  *  Growing copies the tri_count triangles stored (none right after sg_binner_clear). */
 sg_tri *sg_binner_reserve(sg_binner *b, size_t n);
+/** Room for `capacity` triangles in all (doubling; copies the tri_count stored, none right after
+ *  sg_binner_clear); false, and out_of_memory, when there is none. */
+bool sg_binner_grow(sg_binner *b, size_t capacity);
 /** The triangle just built at tris + tri_count (sg_binner_reserve) is kept: stamped with
  *  b->draw and listed. */
 void sg_binner_commit(sg_binner *b);
