@@ -80,6 +80,8 @@ struct sgDevice {
     bool draw_flushed;             /* a flush rendered some of the open draw's triangles */
     size_t room_tris, room_listed; /* bin_slot's next look at the budget (draw.c) */
     uint64_t flushes;              /* flushes before a pass's end, for tests and statistics */
+    size_t pass_tris;              /* triangles the open pass's flushes rendered */
+    size_t most_tris; /* the most triangles a pass has had: empty storage grows to it (draw.c) */
 
     /* Arenas, grown as needed and reused. */
     float (*clip)[4];

@@ -20,10 +20,16 @@ enum { GROW_COPY_BYTES = 4 << 20 };
 
 /* Makes way for n more triangles: when they would take the pass's binned work past the device's
  * budget, or their storage would grow by copying much, what is binned is rendered first
- * (sg_pass_flush). False: the flush ran out of memory (out_of_memory is set). */
+ * (sg_pass_flush). Empty storage grows at once to the largest pass seen (most_tris, within the
+ * budget): a scene's second frame then needs no flush to grow. False: out of memory
+ * (out_of_memory is set). */
 static bool room_for(sgDevice *dev, size_t n) {
     sg_binner *b = &dev->binner;
-    if (!b->tri_count) return true;
+    if (!b->tri_count) {
+        size_t want = dev->most_tris, most = dev->bin_memory_limit / sg_binner_tri_bytes(b);
+        if (want > most) want = most;
+        return b->tri_capacity >= want || sg_binner_grow(b, want);
+    }
     size_t tb = sg_binner_tri_bytes(b);
     bool over = sg_binner_bytes(b) + n * (tb + sizeof(uint32_t)) > dev->bin_memory_limit;
     bool copy = b->tri_count + n > b->tri_capacity && b->tri_count * tb > GROW_COPY_BYTES;

@@ -145,6 +145,7 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     dev->draw_count = 0;
     dev->room_tris = dev->room_listed = 0; /* bin_slot looks at the budget first */
     dev->pass_failed = false;
+    dev->pass_tris = 0;
     dev->pass_depth_store = p->store_depth;
     dev->pass_serial++;
     dev->in_pass = true;
@@ -186,6 +187,7 @@ bool sg_pass_flush(sgDevice *dev) {
     }
     p->store_depth = true;
     render_bins(dev);
+    dev->pass_tris += dev->binner.tri_count;
     p->store_depth = dev->pass_depth_store;
     p->load_color = p->color != NULL;
     p->load_depth = p->depth != NULL;
@@ -209,6 +211,8 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     if (!failed) render_bins(dev);
     dev->in_pass = false;
     dev->pass_failed = false;
+    if (dev->pass_tris + dev->binner.tri_count > dev->most_tris)
+        dev->most_tris = dev->pass_tris + dev->binner.tri_count;
     dev->pass_color.id = 0;
     dev->pass_depth.id = 0;
     sg_binner_clear(&dev->binner);
