@@ -215,7 +215,6 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
         dev->most_tris = dev->pass_tris + dev->binner.tri_count;
     dev->pass_color.id = 0;
     dev->pass_depth.id = 0;
-    sg_binner_clear(&dev->binner);
     if (failed)
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                         "sgEndRenderPass: a draw of the pass ran out of memory after part of it "
