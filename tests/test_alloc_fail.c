@@ -136,6 +136,8 @@ typedef struct script {
     int absorbed;    /* calls that succeeded although an allocation failed under them */
     int stopped;     /* the script stopped at a failed call */
     sgPassDesc open; /* the pass the script has open, if any (targets 0: none) */
+    size_t limit;    /* sgDeviceDesc.bin_memory_limit: small, the passes flush (0: default) */
+    int pass_failed; /* a draw failed after a flush rendered part of it: the frame is redone */
 } script;
 
 static void check(script *s, int ok, int line, const char *call, const char *what) {
@@ -169,6 +171,10 @@ static void check(script *s, int ok, int line, const char *call, const char *wha
               "not logged once with a message");                                                   \
         if (s->in.mode != MODE_ONLY || s->failures) {                                              \
             s->stopped = 1;                                                                        \
+            return;                                                                                \
+        }                                                                                          \
+        if (s->dev && strstr(sgGetLastError(s->dev), "the pass can only end")) {                   \
+            s->pass_failed = 1; /* part of the draw is in the targets: no retry, a new frame */    \
             return;                                                                                \
         }                                                                                          \
         r_ = (call);                                                                               \
@@ -233,7 +239,12 @@ static void frame(script *s, int frame_no) {
     DO(sgEndRenderPass(s->dev, &sp));
     s->open = (sgPassDesc){0};
 
-    sgPassDesc mp = {.color = s->color, .depth = s->depth, .clear_color = {0.1f, 0.2f, 0.3f, 1}};
+    /* With a small bin_memory_limit the depth is not stored: its flushes keep it in a scratch
+     * image, one more allocation point. */
+    sgPassDesc mp = {.color = s->color,
+                     .depth = s->depth,
+                     .clear_color = {0.1f, 0.2f, 0.3f, 1},
+                     .depth_store = s->limit ? SG_STORE_DONT_CARE : SG_STORE_DEFAULT};
     DO(sgBeginRenderPass(s->dev, &mp));
     s->open = mp;
     sgDrawParams dp = {.texture = s->tex, .shadow = &shadow};
@@ -274,8 +285,23 @@ static void frame(script *s, int frame_no) {
     s->open = (sgPassDesc){0};
 }
 
+/* A frame, again after a pass failed: the pass must end with SG_ERROR_OUT_OF_MEMORY, and the
+ * device then render the frame whole. */
+static void frame_checked(script *s, int frame_no) {
+    frame(s, frame_no);
+    if (!s->pass_failed) return;
+    s->pass_failed = 0;
+    sgResult r = sgEndRenderPass(s->dev, &s->open);
+    check(s, r == SG_ERROR_OUT_OF_MEMORY, __LINE__, "sgEndRenderPass",
+          "a failed pass did not fail");
+    s->open = (sgPassDesc){0};
+    if (!s->failures) frame(s, frame_no);
+    check(s, !s->pass_failed, __LINE__, "frame", "failed again");
+}
+
 static void run(script *s) {
     sgDeviceDesc dd = {.thread_count = s->threads,
+                       .bin_memory_limit = s->limit,
                        .allocator = {inj_alloc, inj_free, &s->in},
                        .log = log_cb,
                        .log_user_data = &s->log};
@@ -384,7 +410,7 @@ static void run(script *s) {
 
     /* Two frames: the second draws into the arrays the first grew. In between, a geom and a
      * pipeline are destroyed and made again (a slot reused). */
-    frame(s, 0);
+    frame_checked(s, 0);
     if (s->stopped) return;
     DO(sgDestroyGeom(s->dev, s->tri_g));
     s->tri_g.id = 0;
@@ -393,7 +419,7 @@ static void run(script *s) {
     DO(sgCreateGeom(s->dev, &trd, &s->tri_g));
     pd = depth_on;
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->opaque));
-    frame(s, 1);
+    frame_checked(s, 1);
     if (s->stopped) return;
     DO(sgReadImage2D(s->dev, s->color, s->image, 0));
 }
@@ -403,8 +429,13 @@ static void teardown(script *s) {
     if (!s->dev) return;
     /* Targets of an open pass cannot be destroyed: the pass is ended first, which allocates
      * nothing. */
-    if ((s->open.color.id || s->open.depth.id) && sgEndRenderPass(s->dev, &s->open) != SG_OK)
-        check(s, 0, __LINE__, "sgEndRenderPass", sgGetLastError(s->dev));
+    /* A pass a draw failed after a flush ends with SG_ERROR_OUT_OF_MEMORY, closed all the same. */
+    if (s->open.color.id || s->open.depth.id) {
+        sgResult r = sgEndRenderPass(s->dev, &s->open);
+        if (r != SG_OK &&
+            !(r == SG_ERROR_OUT_OF_MEMORY && strstr(sgGetLastError(s->dev), "The pass is closed")))
+            check(s, 0, __LINE__, "sgEndRenderPass", sgGetLastError(s->dev));
+    }
     const sgImage2D im[] = {s->color, s->depth, s->tex, s->shadow_map};
     for (size_t i = 0; i < sizeof im / sizeof *im; i++)
         if (im[i].id && sgDestroyImage2D(s->dev, im[i]) != SG_OK)
@@ -423,13 +454,15 @@ static void teardown(script *s) {
 }
 
 /* One run of the script with the given failure; returns its failed checks. */
-static int attempt(const mesh *ball, const mesh *big, int threads, int mode, long fail_at,
-                   long *allocations, uint8_t *image, const uint8_t *expect, int *absorbed) {
+static int attempt(const mesh *ball, const mesh *big, int threads, size_t limit, int mode,
+                   long fail_at, long *allocations, uint8_t *image, const uint8_t *expect,
+                   int *absorbed) {
     script *s = calloc(1, sizeof *s);
     if (!s) abort();
     s->ball = ball;
     s->big = big;
     s->threads = threads;
+    s->limit = limit;
     s->in.mode = mode;
     s->in.fail_at = fail_at;
     run(s);
@@ -453,13 +486,12 @@ static int attempt(const mesh *ball, const mesh *big, int threads, int mode, lon
     return failures;
 }
 
-int main(int argc, char **argv) {
-    /* Default 3 threads: the device's worker array is one of the allocation points. */
-    int threads = argc > 1 ? atoi(argv[1]) : 3;
-    mesh ball = sphere(10, 16), big = sphere(48, 48);
+/* The whole check at one bin_memory_limit; returns non-zero on failure. */
+static int check_all(const mesh *ball, const mesh *big, int threads, size_t limit,
+                     const char *ppm) {
     static uint8_t expect[W * H * 4];
     long total = 0;
-    int failures = attempt(&ball, &big, threads, MODE_NONE, 0, &total, expect, NULL, NULL);
+    int failures = attempt(ball, big, threads, limit, MODE_NONE, 0, &total, expect, NULL, NULL);
     if (failures) {
         fprintf(stderr, "the unfailed run failed\n");
         return 1;
@@ -471,8 +503,8 @@ int main(int argc, char **argv) {
         fprintf(stderr, "the script drew almost nothing (%d pixels)\n", differ);
         return 1;
     }
-    if (argc > 2) { /* a second argument: write the image as a binary PPM, to look at */
-        FILE *f = fopen(argv[2], "wb");
+    if (ppm) { /* write the image as a binary PPM, to look at */
+        FILE *f = fopen(ppm, "wb");
         if (f) {
             fprintf(f, "P6\n%d %d\n255\n", W, H);
             for (int i = 0; i < W * H; i++) fwrite(&expect[i * 4], 1, 3, f);
@@ -481,21 +513,32 @@ int main(int argc, char **argv) {
     }
     /* Everything must be deterministic: a second unfailed run asks for the same allocations. */
     long again = 0;
-    failures += attempt(&ball, &big, threads, MODE_NONE, 0, &again, NULL, NULL, NULL);
+    failures += attempt(ball, big, threads, limit, MODE_NONE, 0, &again, NULL, NULL, NULL);
     if (again != total) {
         fprintf(stderr, "the unfailed runs made %ld and %ld allocations\n", total, again);
         return 1;
     }
     int bad_only = 0, bad_from = 0, absorbed = 0;
     for (long n = 1; n <= total; n++) {
-        bad_only += attempt(&ball, &big, threads, MODE_ONLY, n, NULL, NULL, expect, &absorbed) != 0;
-        bad_from += attempt(&ball, &big, threads, MODE_FROM, n, NULL, NULL, NULL, NULL) != 0;
+        bad_only +=
+            attempt(ball, big, threads, limit, MODE_ONLY, n, NULL, NULL, expect, &absorbed) != 0;
+        bad_from += attempt(ball, big, threads, limit, MODE_FROM, n, NULL, NULL, NULL, NULL) != 0;
     }
+    printf("bin_memory_limit %zu: %ld allocation points at %d threads; only-N failing: %ld "
+           "passed, %d failed (%d of them optional: the call succeeded on a slower path, same "
+           "image); N-onwards failing: %ld passed, %d failed\n",
+           limit, total, threads, total - bad_only, bad_only, absorbed, total - bad_from, bad_from);
+    return failures || bad_only || bad_from;
+}
+
+int main(int argc, char **argv) {
+    /* Default 3 threads: the device's worker array is one of the allocation points. */
+    int threads = argc > 1 ? atoi(argv[1]) : 3;
+    mesh ball = sphere(10, 16), big = sphere(48, 48);
+    /* The default budget, then one that flushes several times a pass (and inside draws). */
+    int bad = check_all(&ball, &big, threads, 0, argc > 2 ? argv[2] : NULL);
+    bad |= check_all(&ball, &big, threads, 24 << 10, NULL);
     mesh_free(&ball);
     mesh_free(&big);
-    printf("%ld allocation points at %d threads; only-N failing: %ld passed, %d failed (%d of "
-           "them optional: the call succeeded on a slower path, same image); N-onwards failing: "
-           "%ld passed, %d failed\n",
-           total, threads, total - bad_only, bad_only, absorbed, total - bad_from, bad_from);
-    return failures || bad_only || bad_from ? 1 : 0;
+    return bad ? 1 : 0;
 }

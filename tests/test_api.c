@@ -330,7 +330,24 @@ static void device_create_errors(void **state) {
     d = good;
     d.thread_count = -1;
     expect_create_device_fails(&d, SG_ERROR_INVALID_COUNT, &log, &mem);
+    /* A bin memory budget below one triangle's records is refused; the message gives the
+     * minimum, which is accepted, and one byte less is not. */
+    d = good;
+    d.bin_memory_limit = 1;
+    expect_create_device_fails(&d, SG_ERROR_INVALID_VALUE, &log, &mem);
+    const char *least = strstr(log.message, "at least ");
+    assert_non_null(least);
+    size_t min_limit = (size_t)strtoull(least + strlen("at least "), NULL, 10);
+    assert_true(min_limit > 1);
+    d.bin_memory_limit = min_limit - 1;
+    expect_create_device_fails(&d, SG_ERROR_INVALID_VALUE, &log, &mem);
     assert_int_equal(mem.allocs, 0); /* validation comes before any allocation */
+    d.bin_memory_limit = min_limit;
+    sgDevice *smallest = NULL;
+    assert_int_equal(sgCreateDevice(&d, &smallest), SG_OK);
+    sgDestroyDevice(smallest);
+    assert_int_equal(mem.allocs, mem.frees);
+    mem.allocs = mem.frees = 0;
 
     /* Fail the first, second, ... allocation until creation needs no more: each partial device
      * must be freed completely. */

@@ -15,7 +15,10 @@ trap 'rm -rf "$out"' EXIT
 memcheck() {
     valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect "$@"
 }
-memcheck "$build/apps/sgapi-render" "$src"/scenes/*.json -o "$out"
+# Every scene file but scale.json (millions of triangles a scene: for sgapi-bench).
+set --
+for f in "$src"/scenes/*.json; do [ "${f##*/}" = scale.json ] || set -- "$@" "$f"; done
+memcheck "$build/apps/sgapi-render" "$@" -o "$out"
 memcheck "$build/apps/sgapi-render" "$src/scenes/default.json" --scene 03_pyramid_and_cube \
     -o "$out/turntable" --turntable 3
 # A comparison with every regression output: a failing scene (another scene's golden), the

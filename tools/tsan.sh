@@ -28,9 +28,12 @@ trap 'rm -rf "$out"' EXIT
 TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 suppressions='$src/tools/tsan.supp'"
 export TSAN_OPTIONS
 
+# Every scene file but scale.json (millions of triangles a scene: for sgapi-bench).
+set --
+for f in "$src"/scenes/*.json; do [ "${f##*/}" = scale.json ] || set -- "$@" "$f"; done
 for t in 1 2 3 5; do
     echo "tsan: sgapi-render, every scene file, $t threads"
-    "$build/apps/sgapi-render" "$src"/scenes/*.json -o "$out/$t" --threads "$t" --quiet \
+    "$build/apps/sgapi-render" "$@" -o "$out/$t" --threads "$t" --quiet \
         --png-level 0 >/dev/null
 done
 for t in 2 3 5; do

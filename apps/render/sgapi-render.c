@@ -20,6 +20,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -47,7 +48,9 @@
 typedef struct options {
     const char *out_dir;
     int frames;
+    bool frame_times; /* --frame-times: each frame's time to stderr (the first frame's own cost) */
     int threads;
+    size_t bin_memory; /* --bin-memory: sgDeviceDesc.bin_memory_limit (0: the default) */
     sgSimd simd;
     const char **files;
     int file_count;
@@ -87,8 +90,13 @@ static void usage(FILE *f) {
                "  --size WxH      image size of model files (default 1024x768)\n"
                "  -o DIR          output folder, created if missing (required)\n"
                "  --frames N      render each scene N times and print the median (default 1)\n"
+               "  --frame-times   print each frame's time to stderr, first frame first (the first\n"
+               "                  grows the device's storage to the scene's size)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     worker threads for the device (default 0: all cores)\n"
+               "  --bin-memory B  bytes of binned work a pass holds before it renders them and\n"
+               "                  goes on (sgDeviceDesc.bin_memory_limit; default 0: 256 MiB;\n"
+               "                  same images)\n"
                "  --simd SET      instruction set of the raster: scalar, sse2, avx2, avx512 or\n"
                "                  neon (default: the best this CPU runs; all give the same\n"
                "                  images)\n"
@@ -228,14 +236,14 @@ static int parse_args(int argc, char **argv, options *o) {
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool threshold =
             !strcmp(a, "--min-psnr") || !strcmp(a, "--max-over2") || !strcmp(a, "--max-coverage");
-        bool takes_value = !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
-                           !strcmp(a, "--threads") || !strcmp(a, "--simd") ||
-                           !strcmp(a, "--compare") || threshold || !strcmp(a, "--turntable") ||
-                           !strcmp(a, "--spin") || !strcmp(a, "--up") || !strcmp(a, "--shard") ||
-                           !strcmp(a, "--video") || !strcmp(a, "--fps") ||
-                           !strcmp(a, "--video-width") || !strcmp(a, "--png-level") ||
-                           !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
-                           !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size");
+        bool takes_value =
+            !strcmp(a, "-o") || !strcmp(a, "--frames") || !strcmp(a, "--scene") ||
+            !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--bin-memory") ||
+            !strcmp(a, "--compare") || threshold || !strcmp(a, "--turntable") ||
+            !strcmp(a, "--spin") || !strcmp(a, "--up") || !strcmp(a, "--shard") ||
+            !strcmp(a, "--video") || !strcmp(a, "--fps") || !strcmp(a, "--video-width") ||
+            !strcmp(a, "--png-level") || !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
+            !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -344,12 +352,25 @@ static int parse_args(int argc, char **argv, options *o) {
             o->strict = true;
         } else if (!strcmp(a, "--no-write")) {
             o->no_write = true;
+        } else if (!strcmp(a, "--frame-times")) {
+            o->frame_times = true;
         } else if (!strcmp(a, "--threads")) {
             if (!sc_parse_int(value, 0, 4096, &o->threads)) {
                 fprintf(stderr, "sgapi-render: --threads needs a whole number >= 0, not '%s'\n",
                         value);
                 return 2;
             }
+        } else if (!strcmp(a, "--bin-memory")) {
+            char *end = NULL;
+            unsigned long long v =
+                value && *value >= '0' && *value <= '9' ? strtoull(value, &end, 10) : 0;
+            if (!end || *end || v > SIZE_MAX) {
+                fprintf(stderr,
+                        "sgapi-render: --bin-memory needs a whole number of bytes >= 0, not '%s'\n",
+                        value);
+                return 2;
+            }
+            o->bin_memory = (size_t)v;
         } else if (!strcmp(a, "--simd")) {
             if (!strcmp(value, "scalar")) {
                 o->simd = SG_SIMD_SCALAR;
@@ -543,6 +564,8 @@ static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_s
         double t0 = ss_now_ms();
         if (!ss_draw_frame(PROG, dev, f, s, u, psos, &pass, &shadow)) goto done;
         times[frame] = ss_now_ms() - t0;
+        if (o->frame_times)
+            fprintf(stderr, "%s frame %d: %.3f ms\n", s->name, frame + 1, times[frame]);
         pg_step(&rn->bar, 1);
     }
 
@@ -1019,6 +1042,7 @@ int main(int argc, char **argv) {
     memset(&dd, 0, sizeof dd);
     dd.thread_count = o.threads;
     dd.simd = o.simd;
+    dd.bin_memory_limit = o.bin_memory;
     if (max_images + 3 > 256) dd.image_pool_size = (int)max_images + 3;
     if (max_geoms > 1024) dd.geom_pool_size = (int)max_geoms;
     dd.pipeline_pool_size = ss_pipeline_pool_size(files, o.file_count, 1);

@@ -122,7 +122,14 @@ typedef struct sgDeviceDesc {
     /* Optional: called with every error as it happens. */
     void (*log)(sgResult result, const char *message, void *user_data);
     void *log_user_data;
+    /* Bytes of a pass's binned work (set-up triangles and their bin lists) before what is binned
+     * is rendered and the pass goes on, same image; 0: SG_DEFAULT_BIN_MEMORY_LIMIT. Less than one
+     * triangle's records is SG_ERROR_INVALID_VALUE. */
+    size_t bin_memory_limit;
 } sgDeviceDesc;
+
+/* The default sgDeviceDesc.bin_memory_limit: 256 MiB. */
+#define SG_DEFAULT_BIN_MEMORY_LIMIT ((size_t)256 << 20)
 
 /** Creates a device; desc may be NULL for all defaults. */
 SGAPI_API sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device);

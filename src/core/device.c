@@ -161,6 +161,14 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
     if ((int)d.simd < SG_SIMD_DEFAULT || d.simd > SG_SIMD_NEON)
         return sg_error(&tmp, SG_ERROR_INVALID_ENUM, "sgCreateDevice: simd %d is not an sgSimd",
                         (int)d.simd);
+    /* One triangle, its extension and a bin-list entry: the least a flush can make progress with.
+     */
+    const size_t min_limit = sizeof(sg_tri) + sizeof(sg_tri_ext) + sizeof(uint32_t);
+    if (d.bin_memory_limit && d.bin_memory_limit < min_limit)
+        return sg_error(&tmp, SG_ERROR_INVALID_VALUE,
+                        "sgCreateDevice: bin_memory_limit = %zu bytes is less than one triangle's "
+                        "records; it must be 0 (default, %zu) or at least %zu",
+                        d.bin_memory_limit, SG_DEFAULT_BIN_MEMORY_LIMIT, min_limit);
     sg_isa best = sg_isa_detect();
     sg_isa isa = d.simd == SG_SIMD_DEFAULT ? best : (sg_isa)(d.simd - SG_SIMD_SCALAR);
     if (!sg_isa_runs(isa))
@@ -192,6 +200,8 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
     dev->binner.alloc = dev->allocator.alloc;
     dev->binner.free = dev->allocator.free;
     dev->binner.user = dev->allocator.user_data;
+    dev->bin_memory_limit = d.bin_memory_limit ? d.bin_memory_limit : SG_DEFAULT_BIN_MEMORY_LIMIT;
+    dev->binner.memory_limit = dev->bin_memory_limit;
     if (dev->thread_count > 1) {
         dev->threads = sg_alloc(dev, (size_t)(dev->thread_count - 1) * sizeof *dev->threads);
         if (!dev->threads) {
@@ -223,6 +233,7 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->draws);
     sg_free(dev, dev->bin_order);
     sg_free(dev, dev->fe_counts);
+    sg_free(dev, dev->flush_depth);
     sg_free(dev, dev->sort_scratch);
     sg_free(dev, dev->lit);
     if (dev->images)

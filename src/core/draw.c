@@ -13,30 +13,90 @@
 #include "pipeline/vertex.h"
 #include "raster/shade.h"
 
-/* Setup builds each triangle in the binner's array; the bins are rendered when the pass ends. */
+/* Above this, the pass's triangles are not copied to grow their storage: what is binned is
+ * rendered first (a flush), and the storage then grows empty. Only the first frames of a large
+ * scene grow, once each size. */
+enum { GROW_COPY_BYTES = 4 << 20 };
+
+/* Makes way for n more triangles: when they would take the pass's binned work past the device's
+ * budget, or their storage would grow by copying much, what is binned is rendered first
+ * (sg_pass_flush). Empty storage grows at once to the largest pass seen (most_tris, within the
+ * budget): a scene's second frame then needs no flush to grow. False: out of memory
+ * (out_of_memory is set). */
+static bool room_for(sgDevice *dev, size_t n) {
+    sg_binner *b = &dev->binner;
+    if (!b->tri_count) {
+        size_t want = dev->most_tris, most = dev->bin_memory_limit / sg_binner_tri_bytes(b);
+        if (want > most) want = most;
+        return b->tri_capacity >= want || sg_binner_grow(b, want);
+    }
+    size_t tb = sg_binner_tri_bytes(b);
+    bool over = sg_binner_bytes(b) + n * (tb + sizeof(uint32_t)) > dev->bin_memory_limit;
+    bool copy = b->tri_count + n > b->tri_capacity && b->tri_count * tb > GROW_COPY_BYTES;
+    if (!over && !copy) return true;
+    if (!sg_pass_flush(dev)) {
+        b->out_of_memory = true;
+        return false;
+    }
+    dev->draw_first = 0; /* the draw's triangles before are in the targets now */
+    dev->draw_flushed = true;
+    /* Flushed to grow: the storage doubles now that it holds nothing to copy. */
+    return !copy || sg_binner_grow(b, 2 * b->tri_capacity);
+}
+
+/* Setup builds each triangle in the binner's array; the bins are rendered when the pass ends, or
+ * at a flush (room_for). */
 static sg_tri *bin_slot(void *user, sg_tri_ext **ext) {
-    sg_binner *b = user;
+    sgDevice *dev = user;
+    sg_binner *b = &dev->binner;
+    /* The budget is looked at only when the triangles or the list entries pass half of what was
+     * left at the last look, or the storage is full (room_tris, room_listed): two compares a
+     * triangle. */
+    if (b->tri_count >= dev->room_tris || b->listed >= dev->room_listed) {
+        if (b->out_of_memory || !room_for(dev, 1) || !sg_binner_reserve(b, 1)) return NULL;
+        size_t used = sg_binner_bytes(b);
+        size_t left = dev->bin_memory_limit > used ? dev->bin_memory_limit - used : 0;
+        size_t tris = left / 2 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
+        if (tris > b->tri_capacity - b->tri_count) tris = b->tri_capacity - b->tri_count;
+        dev->room_tris = b->tri_count + tris; /* tris 0: look again at the next triangle */
+        dev->room_listed = b->listed + left / 2 / sizeof(uint32_t);
+    }
     sg_tri *t = sg_binner_reserve(b, 1);
     if (t && b->use_ext) *ext = b->ext + b->tri_count;
     return t;
 }
 
 static void bin_emit(void *user) {
-    sg_binner_commit(user);
+    sg_binner_commit(&((sgDevice *)user)->binner);
 }
 
-/* The front end of a large draw runs on all threads: each chunk of its primitives is assembled
- * into its own reserved run of the pass's triangle array, and the runs are then listed in the
- * bins in chunk order, so the bins hold exactly the sequence a single thread would give. A chunk
- * gets room for twice its triangles; one that clips into more than that (rare) is redone on the
- * calling thread, appended after the others and listed at its place in the order. */
-enum { FE_MIN_TRIANGLES = 4096, FE_MAX_CHUNKS = 64 };
+/* bin_slot without flushes, where triangles set up but not listed yet are in the array. */
+static sg_tri *bin_slot_kept(void *user, sg_tri_ext **ext) {
+    sg_binner *b = &((sgDevice *)user)->binner;
+    sg_tri *t = sg_binner_reserve(b, 1);
+    if (t && b->use_ext) *ext = b->ext + b->tri_count;
+    return t;
+}
+
+/* The front end of a large draw runs on all threads, in rounds: each chunk of a round's
+ * primitives is assembled into its own reserved run of the pass's triangle array, and the runs
+ * are then listed in the bins in chunk order, so the bins hold exactly the sequence a single
+ * thread would give. A run holds its primitives' triangles unclipped and one block more; a chunk
+ * works in blocks of FE_BLOCK primitives and stops before a block its run may not hold (clipping
+ * makes more triangles), and the calling thread assembles the rest of it at its place in the
+ * order. The array ends after the last run's triangles, so what the next round reserves follows
+ * the triangles kept. (Sizing runs by the share a draw's earlier primitives kept was tried: a
+ * sphere's first rounds, its poles, keep almost none, and the chunks of the next stopped at once,
+ * their rest on one thread.) */
+enum { FE_MIN_TRIANGLES = 4096, FE_MAX_CHUNKS = 64, FE_BLOCK = 256 };
 
 typedef struct fe_chunk {
     sg_assembly a;
     sg_tri *out;
     sg_tri_ext *out_ext; /* beside out, when the draw uses extensions */
     size_t base, count, capacity;
+    int per, tris_per; /* indices a primitive, raster primitives it makes at most unclipped */
+    int done;          /* primitives assembled; the rest are the calling thread's */
     uint32_t draw;
     bool overflow;
 } fe_chunk;
@@ -62,7 +122,21 @@ static void fe_run(void *chunks, int index) {
     a.slot = fe_slot;
     a.emit = fe_emit;
     a.user = c;
-    sg_assemble(&a);
+    const int prims = c->a.index_count / c->per;
+    for (c->done = 0; c->done < prims;) {
+        int n = prims - c->done < FE_BLOCK ? prims - c->done : FE_BLOCK;
+        /* Room for the block unclipped; clipping can make more, then the block is undone. */
+        if (c->capacity - c->count < (size_t)n * (size_t)c->tris_per) return;
+        size_t before = c->count;
+        a.indices = c->a.indices + (size_t)c->done * (size_t)c->per;
+        a.index_count = n * c->per;
+        sg_assemble(&a);
+        if (c->overflow) {
+            c->count = before;
+            return;
+        }
+        c->done += n;
+    }
 }
 
 /* Lists the chunks' triangles in the bins on every thread (sg_binner_count, _make_room, _fill):
@@ -105,7 +179,60 @@ static bool list_parallel(sgDevice *dev, const fe_chunk *chunks, int n, size_t f
     return true;
 }
 
-/* Assembles a draw on every thread; false when it is too small to be worth it. */
+/* One round of a large draw: primitives [p0, p0 + prims) on every thread. */
+static void assemble_round(sgDevice *dev, const sg_assembly *a, int p0, int prims, int per,
+                           int tris_per, int n) {
+    fe_chunk chunks[FE_MAX_CHUNKS];
+    size_t total = 0;
+    for (int i = 0; i < n; i++) {
+        int q0 = p0 + (int)((int64_t)prims * i / n), q1 = p0 + (int)((int64_t)prims * (i + 1) / n);
+        chunks[i].a = *a;
+        chunks[i].a.indices = a->indices + (size_t)q0 * (size_t)per;
+        chunks[i].a.index_count = (q1 - q0) * per;
+        chunks[i].base = total;
+        chunks[i].count = 0;
+        chunks[i].capacity = ((size_t)(q1 - q0) + FE_BLOCK) * (size_t)tris_per;
+        chunks[i].per = per;
+        chunks[i].tris_per = tris_per;
+        chunks[i].done = 0;
+        chunks[i].draw = dev->binner.draw;
+        chunks[i].overflow = false;
+        total += chunks[i].capacity;
+    }
+    sg_binner *b = &dev->binner;
+    if (!room_for(dev, total)) return;
+    sg_tri *room = sg_binner_reserve(b, total);
+    if (!room) return; /* out_of_memory is set: the draw fails */
+    for (int i = 0; i < n; i++) {
+        chunks[i].out = room + chunks[i].base;
+        chunks[i].out_ext = b->use_ext ? b->ext + (room - b->tris) + chunks[i].base : NULL;
+    }
+    size_t first = b->tri_count;
+    sg_workers_run(&dev->workers, n, fe_run, chunks);
+    /* The array ends after the last chunk's triangles: the room reserved past them is free. */
+    b->tri_count += chunks[n - 1].base + chunks[n - 1].count;
+    bool all = true;
+    for (int i = 0; i < n; i++) all &= chunks[i].done == chunks[i].a.index_count / per;
+    if (all && list_parallel(dev, chunks, n, first)) return;
+    for (int i = 0; i < n && !b->out_of_memory; i++) {
+        for (size_t k = 0; k < chunks[i].count; k++)
+            sg_binner_list(b, (uint32_t)(first + chunks[i].base + k));
+        int prims_i = chunks[i].a.index_count / per;
+        if (chunks[i].done < prims_i) { /* the rest, on this thread, appended to the array */
+            sg_assembly rest = chunks[i].a;
+            rest.indices += (size_t)chunks[i].done * (size_t)per;
+            rest.index_count = (prims_i - chunks[i].done) * per;
+            rest.slot = bin_slot_kept; /* the chunks after it are not listed yet */
+            rest.emit = bin_emit;
+            rest.user = dev;
+            sg_assemble(&rest);
+        }
+    }
+}
+
+/* Assembles a draw on every thread, in rounds whose reserved triangles take at most a quarter of
+ * the device's budget (a flush may come between two); false when it is too small to be worth
+ * it. */
 static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     /* Per primitive: its indices and the raster primitives it makes at most (a wireframe
      * triangle three lines, a quad four). */
@@ -114,44 +241,21 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     int prims = a->index_count / per;
     if (dev->thread_count < 2 || prims * tris_per < FE_MIN_TRIANGLES) return false;
     int n = 4 * dev->thread_count < FE_MAX_CHUNKS ? 4 * dev->thread_count : FE_MAX_CHUNKS;
-    fe_chunk chunks[FE_MAX_CHUNKS];
-    size_t total = 0;
-    for (int i = 0; i < n; i++) {
-        int p0 = (int)((int64_t)prims * i / n), p1 = (int)((int64_t)prims * (i + 1) / n);
-        chunks[i].a = *a;
-        chunks[i].a.indices = a->indices + (size_t)p0 * (size_t)per;
-        chunks[i].a.index_count = (p1 - p0) * per;
-        chunks[i].base = total;
-        chunks[i].count = 0;
-        chunks[i].capacity = 2 * (size_t)(p1 - p0) * (size_t)tris_per + 16;
-        chunks[i].draw = dev->binner.draw;
-        chunks[i].overflow = false;
-        total += chunks[i].capacity;
-    }
-    sg_binner *b = &dev->binner;
-    sg_tri *room = sg_binner_reserve(b, total);
-    if (!room) return true; /* out_of_memory is set: the draw fails */
-    for (int i = 0; i < n; i++) {
-        chunks[i].out = room + chunks[i].base;
-        chunks[i].out_ext = b->use_ext ? b->ext + (room - b->tris) + chunks[i].base : NULL;
-    }
-    size_t first = b->tri_count;
-    sg_workers_run(&dev->workers, n, fe_run, chunks);
-    b->tri_count += total;
-    bool overflow = false;
-    for (int i = 0; i < n; i++) overflow |= chunks[i].overflow;
-    if (!overflow && list_parallel(dev, chunks, n, first)) return true;
-    for (int i = 0; i < n && !b->out_of_memory; i++) {
-        if (chunks[i].overflow) { /* again, on this thread, appended to the array */
-            sg_assembly redo = chunks[i].a;
-            redo.slot = bin_slot;
-            redo.emit = bin_emit;
-            redo.user = b;
-            sg_assemble(&redo);
-            continue;
+    const sg_binner *b = &dev->binner;
+    size_t slots = dev->bin_memory_limit / 4 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
+    size_t margin = (size_t)n * FE_BLOCK * (size_t)tris_per;
+    for (int p = 0; p < prims && !b->out_of_memory;) {
+        size_t fit = slots > margin ? (slots - margin) / (size_t)tris_per : 0;
+        int r = (size_t)(prims - p) > fit ? (int)fit : prims - p;
+        if ((size_t)r * (size_t)tris_per < FE_MIN_TRIANGLES) { /* the rest on this thread */
+            sg_assembly rest = *a;
+            rest.indices = a->indices + (size_t)p * (size_t)per;
+            rest.index_count = (prims - p) * per;
+            sg_assemble(&rest);
+            break;
         }
-        for (size_t k = 0; k < chunks[i].count; k++)
-            sg_binner_list(b, (uint32_t)(first + chunks[i].base + k));
+        assemble_round(dev, a, p, r, per, tris_per, n);
+        p += r;
     }
     return true;
 }
@@ -293,6 +397,10 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     if (!dev->in_pass)
         return sg_error(dev, SG_ERROR_NOT_IN_PASS,
                         "sgDraw: no render pass is open (call sgBeginRenderPass first)");
+    if (dev->pass_failed)
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgDraw: an earlier draw of this pass ran out of memory after part of it "
+                        "was rendered; end the pass");
     sg_pso *pso = sg_lookup_pso(dev, pso_h);
     if (!pso)
         return sg_error(dev, SG_ERROR_INVALID_HANDLE,
@@ -503,16 +611,8 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.screen_ok = dev->screen_ok;
     a.slot = bin_slot;
     a.emit = bin_emit;
-    a.user = &dev->binner;
-    size_t first = dev->binner.tri_count;
-    dev->binner.draw = (uint32_t)dev->draw_count;
-    if (!assemble_parallel(dev, &a)) sg_assemble(&a);
-    if (dev->binner.out_of_memory) { /* the pass goes on without this draw */
-        size_t total = dev->binner.tri_count;
-        sg_binner_truncate(&dev->binner, first);
-        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
-                        "sgDraw: out of memory for %zu triangles in the pass", total);
-    }
+    a.user = dev;
+    /* The draw's state is in place before its triangles: a flush may render some of them. */
     sg_draw_state *ds = &dev->draws[dev->draw_count++];
     const bool put_lines = a.lines && pso->raster_line && !depth_only && !shadowed && !sec;
     ds->raster_fn = depth_only  ? pso->depth_fn
@@ -532,6 +632,24 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_pair |= ds->shade2_fn != NULL;
     dev->pass.any_runs |= ds->runs_fn != NULL;
+    dev->draw_first = dev->binner.tri_count;
+    dev->draw_flushed = false;
+    dev->binner.draw = (uint32_t)(dev->draw_count - 1);
+    if (!assemble_parallel(dev, &a)) sg_assemble(&a);
+    if (dev->binner.out_of_memory) { /* the pass goes on without this draw */
+        size_t total = dev->binner.tri_count;
+        sg_binner_truncate(&dev->binner, dev->draw_first);
+        dev->draw_count--;
+        if (dev->draw_flushed) {
+            dev->pass_failed = true;
+            return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                            "sgDraw: out of memory for %zu triangles in the pass, after a flush "
+                            "(bin_memory_limit) rendered part of the draw; the pass can only end",
+                            total);
+        }
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgDraw: out of memory for %zu triangles in the pass", total);
+    }
     if (tex) tex->pass_use = dev->pass_serial;
     if (smap) smap->pass_use = dev->pass_serial;
     SG_STAGE_ADD(dev->pass.stage_times, SG_STAGE_FRONT, clock);

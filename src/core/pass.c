@@ -143,11 +143,58 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     dev->stage_times.passes++;
 #endif
     dev->draw_count = 0;
+    dev->room_tris = dev->room_listed = 0; /* bin_slot looks at the budget first */
+    dev->pass_failed = false;
+    dev->pass_tris = 0;
+    dev->pass_depth_store = p->store_depth;
     dev->pass_serial++;
     dev->in_pass = true;
     dev->pass_color = pass->color;
     dev->pass_depth = pass->depth;
     return SG_OK;
+}
+
+/* Renders every bin of the pass into its targets, on the device's threads. */
+static void render_bins(sgDevice *dev) {
+    /* Lit shading finds a triangle's extension beside it: the arrays are final now. */
+    for (size_t i = 0; i < dev->draw_count; i++) {
+        dev->draws[i].ctx.tris = dev->binner.tris;
+        dev->draws[i].ctx.ext = dev->binner.use_ext ? dev->binner.ext : NULL;
+    }
+    busiest_first(&dev->binner, dev->bin_order);
+    int nbins = dev->binner.bins_x * dev->binner.bins_y, busy = 0;
+    while (busy < nbins && dev->binner.bins[dev->bin_order[busy] & 0xffffffffu].count) busy++;
+    bin_jobs jobs = {&dev->pass, dev->bin_order, busy, nbins - busy, 0};
+    jobs.runs = jobs.empty < dev->thread_count ? jobs.empty : dev->thread_count;
+    sg_workers_run(&dev->workers, jobs.runs + busy, render_bin, &jobs);
+}
+
+bool sg_pass_flush(sgDevice *dev) {
+    sg_bin_pass *p = &dev->pass;
+    /* A bin goes on from what the flush leaves in the targets. A depth target the pass does not
+     * store keeps its contents, so the depth goes on in a scratch image of the device. */
+    if (p->depth && !dev->pass_depth_store && p->depth != dev->flush_depth) {
+        size_t n = (size_t)p->width * (size_t)p->height;
+        if (n > dev->flush_depth_capacity) {
+            float *d = sg_alloc(dev, n * sizeof *d);
+            if (!d) return false;
+            sg_free(dev, dev->flush_depth);
+            dev->flush_depth = d;
+            dev->flush_depth_capacity = n;
+        }
+        if (p->load_depth) memcpy(dev->flush_depth, p->depth, n * sizeof *p->depth);
+        p->depth = dev->flush_depth;
+    }
+    p->store_depth = true;
+    render_bins(dev);
+    dev->pass_tris += dev->binner.tri_count;
+    p->store_depth = dev->pass_depth_store;
+    p->load_color = p->color != NULL;
+    p->load_depth = p->depth != NULL;
+    sg_binner_clear(&dev->binner);
+    dev->room_tris = dev->room_listed = 0;
+    dev->flushes++;
+    return true;
 }
 
 sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
@@ -160,19 +207,18 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                         "sgEndRenderPass: targets (color 0x%08x, depth 0x%08x) differ from those "
                         "of sgBeginRenderPass (color 0x%08x, depth 0x%08x)",
                         pass->color.id, pass->depth.id, dev->pass_color.id, dev->pass_depth.id);
-    /* Lit shading finds a triangle's extension beside it: the arrays are final now. */
-    for (size_t i = 0; i < dev->draw_count; i++) {
-        dev->draws[i].ctx.tris = dev->binner.tris;
-        dev->draws[i].ctx.ext = dev->binner.use_ext ? dev->binner.ext : NULL;
-    }
-    busiest_first(&dev->binner, dev->bin_order);
-    int nbins = dev->binner.bins_x * dev->binner.bins_y, busy = 0;
-    while (busy < nbins && dev->binner.bins[dev->bin_order[busy] & 0xffffffffu].count) busy++;
-    bin_jobs jobs = {&dev->pass, dev->bin_order, busy, nbins - busy, 0};
-    jobs.runs = jobs.empty < dev->thread_count ? jobs.empty : dev->thread_count;
-    sg_workers_run(&dev->workers, jobs.runs + busy, render_bin, &jobs);
+    bool failed = dev->pass_failed;
+    if (!failed) render_bins(dev);
     dev->in_pass = false;
+    dev->pass_failed = false;
+    if (dev->pass_tris + dev->binner.tri_count > dev->most_tris)
+        dev->most_tris = dev->pass_tris + dev->binner.tri_count;
     dev->pass_color.id = 0;
     dev->pass_depth.id = 0;
+    if (failed)
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgEndRenderPass: a draw of the pass ran out of memory after part of it "
+                        "was rendered (bin_memory_limit flush); the targets hold an unfinished "
+                        "pass. The pass is closed");
     return SG_OK;
 }

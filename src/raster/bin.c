@@ -6,15 +6,22 @@
 
 #include <string.h>
 
-/* Grows an array to hold `need` elements of `size` bytes, doubling; false when out of memory. */
-static bool grow(sg_binner *b, void **ptr, size_t *capacity, size_t need, size_t size) {
+/* Grows an array to hold `need` elements of `size` bytes, doubling, keeping its first `used`;
+ * false when out of memory. */
+static bool grow(sg_binner *b, void **ptr, size_t *capacity, size_t need, size_t used,
+                 size_t size) {
     if (need <= *capacity) return true;
     size_t cap = *capacity ? *capacity : 64;
     while (cap < need) cap *= 2;
+    /* The triangles' storage stays within the pass's memory budget (bin.h, memory_limit). */
+    if (ptr == (void **)&b->tris && b->memory_limit) {
+        size_t most = b->memory_limit / sg_binner_tri_bytes(b);
+        if (cap > most) cap = most > need ? most : need;
+    }
     void *p = b->alloc(cap * size, b->user);
     if (!p) return false;
     if (*ptr) {
-        memcpy(p, *ptr, *capacity * size);
+        if (used) memcpy(p, *ptr, used * size);
         b->free(*ptr, b->user);
     }
     *ptr = p;
@@ -38,16 +45,29 @@ bool sg_binner_reset(sg_binner *b, int width, int height) {
     }
     b->bins_x = bx;
     b->bins_y = by;
-    for (int i = 0; i < bx * by; i++) b->bins[i].count = 0;
-    b->tri_count = 0;
-    b->out_of_memory = false;
     b->use_ext = false;
+    sg_binner_clear(b);
     return true;
+}
+
+void sg_binner_clear(sg_binner *b) {
+    for (int i = 0; i < b->bins_x * b->bins_y; i++) b->bins[i].count = 0;
+    b->tri_count = 0;
+    b->listed = 0;
+    b->out_of_memory = false;
+}
+
+size_t sg_binner_tri_bytes(const sg_binner *b) {
+    return sizeof(sg_tri) + (b->use_ext ? sizeof(sg_tri_ext) : 0);
+}
+
+size_t sg_binner_bytes(const sg_binner *b) {
+    return b->tri_count * sg_binner_tri_bytes(b) + b->listed * sizeof(uint32_t);
 }
 
 bool sg_binner_use_ext(sg_binner *b) {
     size_t cap = b->ext_capacity;
-    if (!grow(b, (void **)&b->ext, &cap, b->tri_capacity ? b->tri_capacity : 64, sizeof *b->ext))
+    if (!grow(b, (void **)&b->ext, &cap, b->tri_capacity ? b->tri_capacity : 64, 0, sizeof *b->ext))
         return false;
     b->ext_capacity = cap;
     b->use_ext = true;
@@ -70,13 +90,25 @@ sg_tri *sg_binner_reserve(sg_binner *b, size_t n) {
     if (b->tri_count + n <= b->tri_capacity && (!b->use_ext || b->ext_capacity >= b->tri_capacity))
         return b->tris + b->tri_count;
     /* Growing: the extensions grow with the triangles while the pass uses them. */
-    if (!grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + n, sizeof *b->tris) ||
-        (b->use_ext &&
-         !grow(b, (void **)&b->ext, &b->ext_capacity, b->tri_capacity, sizeof *b->ext))) {
+    if (!grow(b, (void **)&b->tris, &b->tri_capacity, b->tri_count + n, b->tri_count,
+              sizeof *b->tris) ||
+        (b->use_ext && !grow(b, (void **)&b->ext, &b->ext_capacity, b->tri_capacity, b->tri_count,
+                             sizeof *b->ext))) {
         b->out_of_memory = true;
         return NULL;
     }
     return b->tris + b->tri_count;
+}
+
+bool sg_binner_grow(sg_binner *b, size_t capacity) {
+    if (b->out_of_memory) return false;
+    if (!grow(b, (void **)&b->tris, &b->tri_capacity, capacity, b->tri_count, sizeof *b->tris) ||
+        (b->use_ext && !grow(b, (void **)&b->ext, &b->ext_capacity, b->tri_capacity, b->tri_count,
+                             sizeof *b->ext))) {
+        b->out_of_memory = true;
+        return false;
+    }
+    return true;
 }
 
 static int64_t floor_div(int64_t a, int64_t b) { /* b > 0 */
@@ -117,13 +149,14 @@ static bool list_in(sg_binner *b, int k, uint32_t index) {
     sg_bin *bin = &b->bins[k];
     if (bin->count == bin->capacity) {
         size_t cap = bin->capacity;
-        if (!grow(b, (void **)&bin->tris, &cap, bin->count + 1u, sizeof *bin->tris)) {
+        if (!grow(b, (void **)&bin->tris, &cap, bin->count + 1u, bin->count, sizeof *bin->tris)) {
             b->out_of_memory = true;
             return false;
         }
         bin->capacity = (uint32_t)cap;
     }
     bin->tris[bin->count++] = index;
+    b->listed++;
     return true;
 }
 
@@ -162,7 +195,7 @@ bool sg_binner_make_room(sg_binner *b, uint32_t *counts, int runs) {
         for (int r = 0; r < runs; r++) need += counts[(size_t)r * (size_t)nbins + (size_t)i];
         size_t cap = bin->capacity;
         if (need > UINT32_MAX ||
-            !grow(b, (void **)&bin->tris, &cap, (size_t)need, sizeof *bin->tris)) {
+            !grow(b, (void **)&bin->tris, &cap, (size_t)need, bin->count, sizeof *bin->tris)) {
             b->out_of_memory = true;
             return false;
         }
@@ -174,6 +207,7 @@ bool sg_binner_make_room(sg_binner *b, uint32_t *counts, int runs) {
             uint32_t *c = &counts[(size_t)r * (size_t)nbins + (size_t)i], k = *c;
             *c = bin->count;
             bin->count += k;
+            b->listed += k;
         }
     }
     return true;
@@ -198,7 +232,10 @@ void sg_binner_fill(const sg_binner *b, size_t first, size_t n, uint32_t *at) {
 void sg_binner_truncate(sg_binner *b, size_t count) {
     for (int i = 0; i < b->bins_x * b->bins_y; i++) {
         sg_bin *bin = &b->bins[i];
-        while (bin->count && bin->tris[bin->count - 1] >= count) bin->count--;
+        while (bin->count && bin->tris[bin->count - 1] >= count) {
+            bin->count--;
+            b->listed--;
+        }
     }
     b->tri_count = count;
     b->out_of_memory = false;

@@ -24,6 +24,8 @@ typedef struct sg_binner {
     void *user;
     sg_tri *tris;
     size_t tri_count, tri_capacity;
+    size_t listed;       /* entries in all bins' lists */
+    size_t memory_limit; /* the triangles' storage never grows past it (0: no limit) */
     /* Beside tris, same index: the attributes beyond SG_TRI_ATTRS of lit draws. Kept as large as
      * tris once a pass has used it (use_ext), so a triangle's extension is always at hand. */
     sg_tri_ext *ext;
@@ -37,12 +39,22 @@ typedef struct sg_binner {
 
 /** Empties every bin and sizes the grid for a width x height target. */
 bool sg_binner_reset(sg_binner *b, int width, int height);
+/** Empties every bin and forgets every triangle, keeping the grid and the storage (a flush). */
+void sg_binner_clear(sg_binner *b);
+/** Bytes a stored triangle takes: its record, and its extension while the pass uses them. */
+size_t sg_binner_tri_bytes(const sg_binner *b);
+/** Bytes of binned work: the stored triangles' records and the bins' list entries. */
+size_t sg_binner_bytes(const sg_binner *b);
 /** From now on in this pass, every triangle has room for an sg_tri_ext; false: out of memory
  *  (nothing changed). */
 bool sg_binner_use_ext(sg_binner *b);
 /** Room for n more triangles at tris + tri_count (NULL, and out_of_memory, when there is none);
- *  the caller fills them, then moves tri_count and lists each filled one with sg_binner_list. */
+ *  the caller fills them, then moves tri_count and lists each filled one with sg_binner_list.
+ *  Growing copies the tri_count triangles stored (none right after sg_binner_clear). */
 sg_tri *sg_binner_reserve(sg_binner *b, size_t n);
+/** Room for `capacity` triangles in all (doubling; copies the tri_count stored, none right after
+ *  sg_binner_clear); false, and out_of_memory, when there is none. */
+bool sg_binner_grow(sg_binner *b, size_t capacity);
 /** The triangle just built at tris + tri_count (sg_binner_reserve) is kept: stamped with
  *  b->draw and listed. */
 void sg_binner_commit(sg_binner *b);
