@@ -50,7 +50,8 @@ for set in $sets; do
     echo "Made by \`$bench $files --frames $frames --rounds $rounds --simd $set\` on commit"
     echo "$commit, $day, $cores cores of $cpu:"
     echo
-    grep -v '^sgapi-bench:' "$out/$set.md"
+    # The bench's own closing lines (the set, the rounds) are said in the line above.
+    grep -v -e '^sgapi-bench:' -e "^sgapi's instruction set:" -e '^each time:' "$out/$set.md"
     echo
     # The summary row: geometric means and the largest ratio at each thread count.
     awk -v set="$title" -v day="$day" -v commit="$commit" -F'|' '
