@@ -98,6 +98,9 @@ typedef struct sc_shadow {
     bool pcf;         /* 2 x 2 percentage-closer filtering, else the one texel under the point */
 } sc_shadow;
 
+/* Most textures a shader draw binds (sgapi's SG_MAX_DRAW_TEXTURES). */
+#define SC_MAX_DRAW_TEXTURES 8
+
 /* One draw call: the mesh's triangles, then its lines, with the same state. */
 typedef struct sc_draw {
     int mesh;    /* index into sc_file.meshes */
@@ -121,6 +124,15 @@ typedef struct sc_draw {
     sc_polygon_mode polygon_mode; /* how the mesh's triangles are drawn; its lines are lines */
     float world_view[16];         /* row-major: elements 0..3 are the first row */
     float proj[16];               /* row-major; clip = proj * world_view * position */
+    /* Programmable stages (docs/scene-format.md, "Shaders"): "shader" names a shader, built in or
+     * from a library given to the app (--shaders); the app resolves the name and checks
+     * uniform_count against it. NULL: the fixed shading above. */
+    char *shader;
+    float *uniforms; /* "uniforms": uniform_count floats (NULL when 0) */
+    int uniform_count;
+    int shader_textures[SC_MAX_DRAW_TEXTURES]; /* "textures": indices into sc_file.textures */
+    int shader_texture_count;
+    int instances; /* "instances": the mesh drawn this many times, >= 1; default 1 */
 } sc_draw;
 
 /* One image to render. */

@@ -51,6 +51,14 @@ extern "C" {
 /* Largest supported image side; the fixed-point setup is proven not to overflow up to this size. */
 #define SG_MAX_IMAGE_SIZE 16384
 
+/* Programmable stages (sgShaderDesc): lanes of a batch, varyings a vertex passes on, vertex
+ * attributes a geom may add, textures and uniform bytes a draw may bind. */
+#define SG_SHADER_LANES      16
+#define SG_MAX_VARYINGS      16
+#define SG_MAX_ATTRIBUTES    4
+#define SG_MAX_DRAW_TEXTURES 8
+#define SG_MAX_UNIFORM_SIZE  65536
+
 typedef enum sgResult {
     SG_OK = 0,
     SG_ERROR_NULL_POINTER,       /* a required pointer argument or descriptor field is NULL */
@@ -193,7 +201,10 @@ typedef struct sgGeomDesc {
     const float *texcoords; /* optional: vertex_count * 2 floats (s, t) */
     const float *normals; /* optional: vertex_count * 3 floats (x, y, z), object space; read by lit
                              pipelines (SG_LIGHTING_GOURAUD and _PHONG require them) */
-    int index_count;      /* >= 1, a multiple of 3 (triangles), 4 (quads) or 2 (lines) */
+    /* Optional: vertex_count * 4 floats each, read only by a shader's vertex stage
+     * (sgVertexBatch.attribute; 0 where NULL). */
+    const float *attributes[SG_MAX_ATTRIBUTES];
+    int index_count;         /* >= 1, a multiple of 3 (triangles), 4 (quads) or 2 (lines) */
     const uint32_t *indices; /* required: each < vertex_count */
     sgPrimitive primitive;
     sgStorage storage;
@@ -203,6 +214,63 @@ typedef struct sgGeomDesc {
 SGAPI_API sgResult sgCreateGeom(sgDevice *device, const sgGeomDesc *desc, sgGeom *out_geom);
 /** Destroys a geom (and its copies of the arrays, if it made them). */
 SGAPI_API sgResult sgDestroyGeom(sgDevice *device, sgGeom geom);
+
+/* ---- programmable stages (docs/api.md, "Shaders") -----------------------------------------------
+ *
+ * A pipeline may run C functions of its own instead of the fixed shading: a vertex stage called
+ * on batches of up to SG_SHADER_LANES vertices, and a fragment stage called on whole 4 x 4 tiles,
+ * each value an array of 16 lanes (structure of arrays: lane i of x is x[i]), so that a loop over
+ * the lanes vectorises. Shading stays visibility first: an opaque fragment stage that discards
+ * nothing runs once per visible pixel. */
+
+/* The vertex stage's batch: up to 16 vertices of a draw's geom. */
+typedef struct sgVertexBatch {
+    /* in */
+    int count;                          /* lanes in use, 1..16; lanes past it copy lane 0 */
+    int instance;                       /* 0 .. instance_count - 1 */
+    uint32_t index[SG_SHADER_LANES];    /* the vertices' indices in the geom */
+    float position[4][SG_SHADER_LANES]; /* x, y, z, w as given */
+    float color[4][SG_SHADER_LANES];    /* r, g, b, a; 1 when the geom has no colours */
+    float normal[3][SG_SHADER_LANES];   /* object space; 0 when the geom has none */
+    float texcoord[2][SG_SHADER_LANES]; /* s, t; 0 when the geom has none */
+    float attribute[SG_MAX_ATTRIBUTES][4][SG_SHADER_LANES]; /* sgGeomDesc.attributes; 0 absent */
+    const float *world_view, *proj; /* the draw's matrices, 16 floats each, row-major */
+    /* out */
+    float clip[4][SG_SHADER_LANES]; /* clip-space position, OpenGL's convention (as proj gives) */
+    float varying[SG_MAX_VARYINGS][SG_SHADER_LANES]; /* the first varying_count are interpolated */
+} sgVertexBatch;
+
+/* The fragment stage's batch: one whole 4 x 4 tile of a triangle (or line). */
+typedef struct sgFragmentBatch {
+    /* in */
+    uint32_t mask;            /* bit i: lane i is a fragment to shade */
+    int x, y;                 /* lane i is pixel (x + i % 4, y + i / 4), rows from the top */
+    float z[SG_SHADER_LANES]; /* window depth, 0 near .. 1 far */
+    bool front_facing;        /* the triangle faces the viewer (sgPipelineDesc.front_face); lines:
+                                 true */
+    int primitive;            /* index of the triangle or line in the draw */
+    int instance;             /* 0 .. instance_count - 1 */
+    /* Perspective-correct at each lane's pixel centre (+0.5), the lanes outside mask too (as a
+     * GPU's helper lanes, so that differences between neighbours are defined); flat varyings
+     * hold the triangle's first vertex's value exactly. */
+    float varying[SG_MAX_VARYINGS][SG_SHADER_LANES];
+    /* out */
+    float color[4][SG_SHADER_LANES]; /* r, g, b, a: clamped to [0, 1], NaN written as 0 */
+    uint32_t discard;                /* lanes that write nothing, depth included */
+    /* sgapi's own: what sgSample reads (the draw's textures). Not to be changed. */
+    const void *internal;
+} sgFragmentBatch;
+
+/* A pipeline's programmable stages (sgPipelineDesc.shader). Both functions or neither. */
+typedef struct sgShaderDesc {
+    /* Writes clip (and the varyings) of b->count lanes; uniforms: the draw's copy. */
+    void (*vertex)(sgVertexBatch *b, const void *uniforms);
+    /* Writes color (and discard) of the lanes in b->mask. */
+    void (*fragment)(sgFragmentBatch *b, const void *uniforms);
+    int varying_count;      /* 0 .. SG_MAX_VARYINGS */
+    uint32_t flat_varyings; /* bit k: varying k is not interpolated (the first vertex's value) */
+    int texture_count;      /* 0 .. SG_MAX_DRAW_TEXTURES: the draw binds at least that many */
+} sgShaderDesc;
 
 /* ---- pipeline state ----------------------------------------------------------------------------
  */
@@ -295,6 +363,9 @@ typedef struct sgPipelineDesc {
     sgBlend blend;
     sgLightingMode lighting;
     sgPolygonMode polygon_mode; /* how triangles and quads are drawn; lines are always lines */
+    /* Programmable stages (both NULL: the fixed shading above). With them, shade and lighting
+     * stay at their defaults; filter and wrap apply to the draw's textures. */
+    sgShaderDesc shader;
 } sgPipelineDesc;
 
 /** Creates an immutable pipeline state object and selects the code specialised for its state. */
@@ -395,6 +466,11 @@ typedef struct sgDrawParams {
      * diffuse and specular light where it is hidden (SG_LIGHTING_PHONG only); unlit draws are
      * darkened to half their colour there. */
     const sgShadow *shadow;
+    /* Shader pipelines only (sgPipelineDesc.shader): */
+    const void *uniforms; /* copied by sgDraw: the stages receive the copy; NULL when size is 0 */
+    size_t uniform_size;  /* bytes, 0 .. SG_MAX_UNIFORM_SIZE */
+    sgImage2D textures[SG_MAX_DRAW_TEXTURES]; /* sgSample's slots; the first texture_count bound */
+    int instance_count; /* the geom drawn this many times (sgVertexBatch.instance); 0: 1 */
 } sgDrawParams;
 
 /** Opens a render pass on the given targets, clearing or loading them. */
@@ -404,6 +480,12 @@ SGAPI_API sgResult sgDraw(sgDevice *device, sgPipelineStateObject pso, sgGeom ge
                           const sgDrawParams *params);
 /** Closes the pass opened with the same targets and writes the result into them. */
 SGAPI_API sgResult sgEndRenderPass(sgDevice *device, const sgPassDesc *pass);
+
+/** In a fragment stage: the draw's texture in `slot` at (u[i], v[i]) for each lane, with the
+ *  pipeline's filter and wrap (v = 0 the bottom row; a depth image gives (d, d, d, 1)); slots
+ *  past the bound textures give (0, 0, 0, 1). */
+SGAPI_API void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
+                        const float v[SG_SHADER_LANES], float rgba[4][SG_SHADER_LANES]);
 
 #ifdef __cplusplus
 }
