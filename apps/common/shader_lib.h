@@ -1,0 +1,30 @@
+/* shader_lib.h - the shaders a program knows by name: the built-in library (apps/shaders) and the
+ * shared objects given with --shaders (sgapi/sgapi_shaders.h). Scene files name shaders; they
+ * never load code themselves. */
+#ifndef SC_SHADER_LIB_H
+#define SC_SHADER_LIB_H
+
+#include <stdbool.h>
+
+#include "msg.h"
+#include "scene.h"
+#include "sgapi/sgapi_shaders.h"
+
+typedef struct sc_shaders sc_shaders;
+
+/** The built-in shaders; false (err set) when out of memory. */
+bool sc_shaders_open(sc_shaders **out, sc_msg *err);
+/** Adds the shaders of a shared object (dlopen): false, with a message naming the path, when it
+ *  is missing, not a shared object, lacks sgapi_shader_library, or is of another ABI version. A
+ *  name already known is an error too. */
+bool sc_shaders_load(sc_shaders *s, const char *path, sc_msg *err);
+/** The shader of that name, or NULL. */
+const sgShaderInfo *sc_shaders_find(const sc_shaders *s, const char *name);
+/** Checks every shader draw of a loaded scene file: a known name (the message lists the known
+ *  ones) and exactly its uniform_count uniforms; false with a message naming file, scene and
+ *  draw. Programs exit 2 on it, before rendering. */
+bool sc_shaders_check(const sc_shaders *s, const sc_file *f, sc_msg *err);
+/** Unloads the libraries and frees s (NULL: nothing). */
+void sc_shaders_close(sc_shaders *s);
+
+#endif

@@ -1,0 +1,11 @@
+/* builtin.h - the shaders every program knows (apps/shaders/<name>.c, each a C shader and its
+ * GLSL twin). */
+#ifndef SG_BUILTIN_SHADERS_H
+#define SG_BUILTIN_SHADERS_H
+
+#include "sgapi/sgapi_shaders.h"
+
+/** The built-in library. */
+const sgShaderLibrary *sg_builtin_shader_library(void);
+
+#endif
