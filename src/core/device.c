@@ -235,6 +235,7 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->fe_counts);
     sg_free(dev, dev->flush_depth);
     sg_free(dev, dev->sort_scratch);
+    sg_free(dev, dev->uniforms);
     sg_free(dev, dev->lit);
     if (dev->images)
         for (int i = 0; i < dev->image_pool.capacity; i++)

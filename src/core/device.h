@@ -29,6 +29,7 @@ typedef struct sg_image {
 typedef struct sg_geom {
     int vertex_count, index_count;
     const float *positions, *colors, *texcoords, *normals;
+    const float *attributes[SG_MAX_ATTRIBUTES]; /* read by shader pipelines only */
     const uint32_t *indices;
     sgPrimitive primitive;
     void *copy; /* the one block holding the copied arrays, or NULL when referenced */
@@ -51,6 +52,13 @@ typedef struct sg_pso {
     sg_raster_fn raster_line;        /* opaque unlit lines shaded in place (blend.h), or NULL */
     int nattr;
     bool uses_depth;
+    /* Shader pipelines (desc.shader set): the fragment stage shaded in place, its fragments put
+     * (opaque; a draw whose fragments were seen discarding) or blended, per [depth test][write]. */
+    bool shader;
+    sg_raster_fn shader_in_place;
+    /* Set when a draw of this pipeline discarded a fragment: its later draws are shaded in place
+     * from the start instead of visibility first (rast_bin.c redoes a bin that finds a discard). */
+    bool discards;
 } sg_pso;
 
 struct sgDevice {
@@ -104,7 +112,11 @@ struct sgDevice {
     uint64_t *bin_order;  /* the bins, busiest first, for sgEndRenderPass (pass.c) */
     uint32_t *fe_counts;  /* per front-end chunk and bin: triangles, then write positions */
     size_t fe_counts_capacity;
-    void *sort_scratch; /* a sorted draw's keys and its reordered indices (sort.h) */
+    unsigned char *uniforms; /* the open pass's shader draws' uniforms, copied (16-byte aligned) */
+    size_t uniforms_used, uniforms_capacity;
+    int shader_discards; /* counts discarded fragments' tiles in visibility-first bins (rast_bin.c)
+                          */
+    void *sort_scratch;  /* a sorted draw's keys and its reordered indices (sort.h) */
     size_t sort_scratch_capacity;
     int bin_order_capacity;
     size_t draw_count, draw_capacity;

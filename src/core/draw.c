@@ -11,6 +11,7 @@
 #include "pipeline/mat4.h"
 #include "pipeline/sort.h"
 #include "pipeline/vertex.h"
+#include "pipeline/vertex_shader.h"
 #include "raster/shade.h"
 
 /* Above this, the pass's triangles are not copied to grow their storage: what is binned is
@@ -129,6 +130,7 @@ static void fe_run(void *chunks, int index) {
         if (c->capacity - c->count < (size_t)n * (size_t)c->tris_per) return;
         size_t before = c->count;
         a.indices = c->a.indices + (size_t)c->done * (size_t)c->per;
+        a.prim_base = c->a.prim_base + c->done;
         a.index_count = n * c->per;
         sg_assemble(&a);
         if (c->overflow) {
@@ -188,6 +190,7 @@ static void assemble_round(sgDevice *dev, const sg_assembly *a, int p0, int prim
         int q0 = p0 + (int)((int64_t)prims * i / n), q1 = p0 + (int)((int64_t)prims * (i + 1) / n);
         chunks[i].a = *a;
         chunks[i].a.indices = a->indices + (size_t)q0 * (size_t)per;
+        chunks[i].a.prim_base = a->prim_base + q0;
         chunks[i].a.index_count = (q1 - q0) * per;
         chunks[i].base = total;
         chunks[i].count = 0;
@@ -221,6 +224,7 @@ static void assemble_round(sgDevice *dev, const sg_assembly *a, int p0, int prim
         if (chunks[i].done < prims_i) { /* the rest, on this thread, appended to the array */
             sg_assembly rest = chunks[i].a;
             rest.indices += (size_t)chunks[i].done * (size_t)per;
+            rest.prim_base += chunks[i].done;
             rest.index_count = (prims_i - chunks[i].done) * per;
             rest.slot = bin_slot_kept; /* the chunks after it are not listed yet */
             rest.emit = bin_emit;
@@ -250,6 +254,7 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
         if ((size_t)r * (size_t)tris_per < FE_MIN_TRIANGLES) { /* the rest on this thread */
             sg_assembly rest = *a;
             rest.indices = a->indices + (size_t)p * (size_t)per;
+            rest.prim_base = a->prim_base + p;
             rest.index_count = (prims - p) * per;
             sg_assemble(&rest);
             break;
@@ -374,6 +379,51 @@ static bool sort_primitives(sgDevice *dev, const sg_geom *geom, const float worl
     return true;
 }
 
+/* The shader vertex stage of one instance, in chunks of vertices on all threads. */
+typedef struct vsh_job {
+    sg_vertex_shader_run run;
+    int count, chunks;
+} vsh_job;
+
+static void vsh_run(void *vjob, int index) {
+    const vsh_job *j = vjob;
+    int v0 = (int)((int64_t)j->count * index / j->chunks);
+    int v1 = (int)((int64_t)j->count * (index + 1) / j->chunks);
+    sg_vertex_shade(&j->run, v0, v1 - v0);
+}
+
+/* Assembles the open draw (its state is dev->draws' last) into the bins: once, or each of
+ * `instances` after its vertex stage (vs: a shader draw). On running out of memory the draw's
+ * triangles are taken back, unless a flush rendered some of them (then the pass fails). */
+static sgResult run_front_end(sgDevice *dev, sg_assembly *a, vsh_job *vs, int instances) {
+    dev->draw_first = dev->binner.tri_count;
+    dev->draw_flushed = false;
+    dev->binner.draw = (uint32_t)(dev->draw_count - 1);
+    for (int i = 0; i < instances && !dev->binner.out_of_memory; i++) {
+        if (vs) {
+            vs->run.instance = i;
+            a->instance = i;
+            sg_workers_run(&dev->workers, vs->chunks, vsh_run, vs);
+        }
+        if (!assemble_parallel(dev, a)) sg_assemble(a);
+    }
+    if (dev->binner.out_of_memory) { /* the pass goes on without this draw */
+        size_t total = dev->binner.tri_count;
+        sg_binner_truncate(&dev->binner, dev->draw_first);
+        dev->draw_count--;
+        if (dev->draw_flushed) {
+            dev->pass_failed = true;
+            return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                            "sgDraw: out of memory for %zu triangles in the pass, after a flush "
+                            "(bin_memory_limit) rendered part of the draw; the pass can only end",
+                            total);
+        }
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgDraw: out of memory for %zu triangles in the pass", total);
+    }
+    return SG_OK;
+}
+
 static bool unit_range(float v) {
     return v >= 0.0f && v <= 1.0f; /* false for NaN */
 }
@@ -387,6 +437,184 @@ typedef struct light_refusal {
 static void refuse_lighting(void *user, int code, const char *fmt, va_list ap) {
     light_refusal *r = user;
     r->result = sg_verror(r->dev, (sgResult)code, "sgDraw: ", fmt, ap);
+}
+
+/* The uniforms of a shader draw copied into the pass's arena (16-byte aligned); their offset, or
+ * SIZE_MAX when out of memory. The arena is reused by the next pass. */
+static size_t copy_uniforms(sgDevice *dev, const void *src, size_t size) {
+    size_t at = (dev->uniforms_used + 15) & ~(size_t)15;
+    if (at + size > dev->uniforms_capacity) {
+        size_t cap = dev->uniforms_capacity ? dev->uniforms_capacity : 4096;
+        while (cap < at + size) cap *= 2;
+        unsigned char *p = sg_alloc(dev, cap);
+        if (!p) return SIZE_MAX;
+        if (dev->uniforms_used) memcpy(p, dev->uniforms, dev->uniforms_used);
+        sg_free(dev, dev->uniforms);
+        dev->uniforms = p;
+        dev->uniforms_capacity = cap;
+    }
+    if (size) memcpy(dev->uniforms + at, src, size);
+    dev->uniforms_used = at + size;
+    return at;
+}
+
+/* sgDraw of a shader pipeline (sgShaderDesc): checked, then the vertex stage per instance and the
+ * front end as for fixed pipelines; the fragment stage runs when the bins are rendered. */
+static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject pso_h, sg_geom *geom,
+                            const sgDrawParams *params) {
+    const sgShaderDesc *sh = &pso->desc.shader;
+    if (params->texture.id)
+        return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                        "sgDraw: params->texture is set on a shader pipeline: bind its textures "
+                        "in params->textures (sgSample's slots)");
+    if (params->shadow)
+        return sg_error(dev, SG_ERROR_UNSUPPORTED,
+                        "sgDraw: params->shadow on a shader pipeline: bind the shadow map as a "
+                        "texture (sgSample gives a depth image as (d, d, d, 1))");
+    if (params->color)
+        return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                        "sgDraw: params->color on a shader pipeline: give the colour to the "
+                        "shader as a uniform");
+    if (params->uniform_size > SG_MAX_UNIFORM_SIZE)
+        return sg_error(dev, SG_ERROR_INVALID_SIZE,
+                        "sgDraw: params->uniform_size = %zu is over SG_MAX_UNIFORM_SIZE (%d)",
+                        params->uniform_size, SG_MAX_UNIFORM_SIZE);
+    if (params->uniform_size && !params->uniforms)
+        return sg_error(dev, SG_ERROR_NULL_POINTER,
+                        "sgDraw: params->uniforms is NULL but uniform_size = %zu",
+                        params->uniform_size);
+    sg_shade_ctx ctx = {0};
+    sg_shader_state *st = &ctx.shader;
+    for (int k = 0; k < SG_MAX_DRAW_TEXTURES; k++) {
+        const sgImage2D h = params->textures[k];
+        if (!h.id) {
+            if (k < sh->texture_count)
+                return sg_error(dev, SG_ERROR_MISSING_TEXTURE,
+                                "sgDraw: the shader samples %d texture%s but params->textures[%d] "
+                                "is 0",
+                                sh->texture_count, sh->texture_count == 1 ? "" : "s", k);
+            continue;
+        }
+        sg_image *img = sg_lookup_image(dev, h);
+        if (!img)
+            return sg_error(dev, SG_ERROR_INVALID_HANDLE,
+                            "sgDraw: params->textures[%d] id 0x%08x is not a live image", k, h.id);
+        if (h.id == dev->pass_color.id || h.id == dev->pass_depth.id)
+            return sg_error(dev, SG_ERROR_IN_USE,
+                            "sgDraw: params->textures[%d] 0x%08x is a target of the open pass", k,
+                            h.id);
+        st->textures[k] =
+            (sg_shader_tex){img->data, img->width, img->height, img->format == SG_FORMAT_D32_FLOAT};
+    }
+    if (!grow_vertex_arenas(dev, (size_t)geom->vertex_count))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %d vertices",
+                        geom->vertex_count);
+    const int nv = sh->varying_count;
+    if (!grow_lit(dev, (size_t)geom->vertex_count * (size_t)(nv ? nv : 1)))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgDraw: out of memory for the varyings of %d vertices",
+                        geom->vertex_count);
+    if (nv > SG_TRI_ATTRS && !dev->binner.use_ext && !sg_binner_use_ext(&dev->binner))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgDraw: out of memory for the varyings of the pass");
+    if (!grow_draws(dev))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for the draw list");
+    size_t uoff = copy_uniforms(dev, params->uniforms, params->uniform_size);
+    if (uoff == SIZE_MAX)
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %zu uniform bytes",
+                        params->uniform_size);
+    st->fragment = sh->fragment;
+    st->uniform_offset = uoff;
+    st->varying_count = nv;
+    st->flat = sh->flat_varyings;
+    st->bilinear = pso->desc.filter == SG_FILTER_BILINEAR;
+    st->repeat = pso->desc.wrap == SG_WRAP_REPEAT;
+    st->pso = pso_h.id;
+
+    const int width = dev->pass.width, height = dev->pass.height;
+    const bool depth_only = dev->pass.color == NULL;
+    sg_assembly a = {0};
+    a.guard = sg_guard_for_viewport(width, height);
+    a.indices = geom->indices;
+    a.index_count = geom->index_count;
+    a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
+    a.lines = geom->primitive == SG_PRIMITIVE_LINES;
+    a.wire = !a.lines && pso->desc.polygon_mode == SG_POLYGON_MODE_LINE;
+    a.clip = (const float(*)[4])dev->clip;
+    a.outcodes = dev->outcodes;
+    a.screen = dev->screen;
+    a.screen_ok = dev->screen_ok;
+    a.vattr = dev->lit;
+    a.vstride = nv;
+    a.setup = (sg_setup_params){width,
+                                height,
+                                0,
+                                0,
+                                width,
+                                height,
+                                pso->desc.cull,
+                                pso->desc.front_face,
+                                depth_only ? 0 : nv,
+                                0,
+                                0,
+                                pso->desc.depth.bias_constant,
+                                pso->desc.depth.bias_slope,
+                                1,
+                                depth_only ? 0 : sh->flat_varyings};
+    a.slot = bin_slot;
+    a.emit = bin_emit;
+    a.user = dev;
+    if (params->sort == SG_SORT_BACK_TO_FRONT &&
+        !sort_primitives(dev, geom, params->world_view, &a))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
+                        "sgDraw: out of memory to sort %d indices back to front",
+                        geom->index_count);
+
+    vsh_job vs = {
+        {sh->vertex,
+         NULL,
+         geom->positions,
+         geom->colors,
+         geom->normals,
+         geom->texcoords,
+         {geom->attributes[0], geom->attributes[1], geom->attributes[2], geom->attributes[3]},
+         params->world_view,
+         params->proj,
+         0,
+         nv,
+         dev->clip,
+         dev->lit,
+         dev->outcodes,
+         dev->screen,
+         dev->screen_ok,
+         &a.guard,
+         &a.setup},
+        geom->vertex_count,
+        1};
+    vs.run.uniforms = dev->uniforms + uoff; /* the arena does not move before the draw ends */
+    if (dev->thread_count > 1 && geom->vertex_count >= FE_MIN_TRIANGLES)
+        vs.chunks = 2 * dev->thread_count;
+
+    sg_draw_state *ds = &dev->draws[dev->draw_count++];
+    memset(ds, 0, sizeof *ds);
+    ds->in_place = !depth_only && (pso->desc.blend == SG_BLEND_ALPHA || pso->discards);
+    ds->raster_fn = depth_only     ? pso->depth_fn
+                    : ds->in_place ? pso->shader_in_place
+                                   : pso->raster_fn;
+    ds->shader_in_place = pso->shader_in_place;
+    ds->writes_depth = pso->desc.depth.write;
+    ds->shade_fn = pso->shade_fn;
+    ds->ctx = ctx;
+    ds->compare = pso->desc.depth.compare;
+    dev->pass.any_in_place |= ds->in_place;
+    dev->pass.any_shader = true;
+    int instances = params->instance_count ? params->instance_count : 1;
+    sgResult r = run_front_end(dev, &a, &vs, instances);
+    if (r != SG_OK) return r;
+    for (int k = 0; k < SG_MAX_DRAW_TEXTURES; k++)
+        if (params->textures[k].id)
+            sg_lookup_image(dev, params->textures[k])->pass_use = dev->pass_serial;
+    return SG_OK;
 }
 
 sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
@@ -412,6 +640,26 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     if ((int)params->sort < SG_SORT_DEFAULT || params->sort > SG_SORT_BACK_TO_FRONT)
         return sg_error(dev, SG_ERROR_INVALID_ENUM, "sgDraw: params->sort = %d is not an sgSort",
                         (int)params->sort);
+    if (params->instance_count < 0)
+        return sg_error(dev, SG_ERROR_INVALID_COUNT,
+                        "sgDraw: params->instance_count = %d is below 0", params->instance_count);
+    if (pso->uses_depth && !dev->pass_depth.id)
+        return sg_error(
+            dev, SG_ERROR_MISSING_DEPTH,
+            "sgDraw: the pipeline tests or writes depth but the pass has no depth target");
+    if (pso->shader) {
+        sgResult r = draw_shader(dev, pso, pso_h, geom, params);
+        SG_STAGE_ADD(dev->pass.stage_times, SG_STAGE_FRONT, clock);
+        return r;
+    }
+    bool any_texture = false;
+    for (int k = 0; k < SG_MAX_DRAW_TEXTURES; k++) any_texture |= params->textures[k].id != 0;
+    if (params->uniforms || params->uniform_size || params->instance_count > 1 || any_texture)
+        return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                        "sgDraw: params->%s is for shader pipelines, and this pipeline has none",
+                        params->uniforms || params->uniform_size ? "uniforms"
+                        : params->instance_count > 1             ? "instance_count"
+                                                                 : "textures");
     float tint[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     if (params->color) {
         const sgColor *c = params->color;
@@ -425,10 +673,6 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         }
     }
     bool tinted = tint[0] != 1.0f || tint[1] != 1.0f || tint[2] != 1.0f || tint[3] != 1.0f;
-    if (pso->uses_depth && !dev->pass_depth.id)
-        return sg_error(
-            dev, SG_ERROR_MISSING_DEPTH,
-            "sgDraw: the pipeline tests or writes depth but the pass has no depth target");
     sg_shade_ctx ctx = {0};
     const sgLightingMode lighting = pso->desc.lighting;
     if (lighting != SG_LIGHTING_NONE) {
@@ -627,29 +871,14 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     ds->shade2_fn = shadowed ? NULL : sec ? pso->shade2_sec : pso->shade2_fn;
     ds->runs_fn = shadowed ? NULL : sec ? pso->runs_sec : pso->runs_fn;
     ds->ctx = ctx;
+    ds->shader_in_place = NULL;
     ds->compare = pso->desc.depth.compare;
     ds->in_place = put_lines || (!depth_only && pso->desc.blend == SG_BLEND_ALPHA);
     dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_pair |= ds->shade2_fn != NULL;
     dev->pass.any_runs |= ds->runs_fn != NULL;
-    dev->draw_first = dev->binner.tri_count;
-    dev->draw_flushed = false;
-    dev->binner.draw = (uint32_t)(dev->draw_count - 1);
-    if (!assemble_parallel(dev, &a)) sg_assemble(&a);
-    if (dev->binner.out_of_memory) { /* the pass goes on without this draw */
-        size_t total = dev->binner.tri_count;
-        sg_binner_truncate(&dev->binner, dev->draw_first);
-        dev->draw_count--;
-        if (dev->draw_flushed) {
-            dev->pass_failed = true;
-            return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
-                            "sgDraw: out of memory for %zu triangles in the pass, after a flush "
-                            "(bin_memory_limit) rendered part of the draw; the pass can only end",
-                            total);
-        }
-        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
-                        "sgDraw: out of memory for %zu triangles in the pass", total);
-    }
+    sgResult r = run_front_end(dev, &a, NULL, 1);
+    if (r != SG_OK) return r;
     if (tex) tex->pass_use = dev->pass_serial;
     if (smap) smap->pass_use = dev->pass_serial;
     SG_STAGE_ADD(dev->pass.stage_times, SG_STAGE_FRONT, clock);

@@ -61,11 +61,13 @@ sgResult sgCreateGeom(sgDevice *dev, const sgGeomDesc *desc, sgGeom *out) {
         g.colors = desc->colors;
         g.texcoords = desc->texcoords;
         g.normals = desc->normals;
+        for (int k = 0; k < SG_MAX_ATTRIBUTES; k++) g.attributes[k] = desc->attributes[k];
         g.indices = desc->indices;
     } else {
         size_t n = (size_t)desc->vertex_count;
         size_t floats = n * 4 + (desc->colors ? n * 4 : 0) + (desc->texcoords ? n * 2 : 0) +
                         (desc->normals ? n * 3 : 0);
+        for (int k = 0; k < SG_MAX_ATTRIBUTES; k++) floats += desc->attributes[k] ? n * 4 : 0;
         size_t bytes = floats * sizeof(float) + (size_t)desc->index_count * sizeof(uint32_t);
         uint8_t *block = sg_alloc(dev, bytes);
         if (!block)
@@ -76,6 +78,8 @@ sgResult sgCreateGeom(sgDevice *dev, const sgGeomDesc *desc, sgGeom *out) {
         g.colors = take(&f, desc->colors, n * 4);
         g.texcoords = take(&f, desc->texcoords, n * 2);
         g.normals = take(&f, desc->normals, n * 3);
+        for (int k = 0; k < SG_MAX_ATTRIBUTES; k++)
+            g.attributes[k] = take(&f, desc->attributes[k], n * 4);
         memcpy(f, desc->indices, (size_t)desc->index_count * sizeof(uint32_t));
         g.indices = (const uint32_t *)(void *)f;
         g.copy = block;

@@ -143,6 +143,9 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     dev->stage_times.passes++;
 #endif
     dev->draw_count = 0;
+    dev->uniforms_used = 0;
+    dev->shader_discards = 0;
+    p->shader_discards = &dev->shader_discards;
     dev->room_tris = dev->room_listed = 0; /* bin_slot looks at the budget first */
     dev->pass_failed = false;
     dev->pass_tris = 0;
@@ -158,15 +161,28 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
 static void render_bins(sgDevice *dev) {
     /* Lit shading finds a triangle's extension beside it: the arrays are final now. */
     for (size_t i = 0; i < dev->draw_count; i++) {
-        dev->draws[i].ctx.tris = dev->binner.tris;
-        dev->draws[i].ctx.ext = dev->binner.use_ext ? dev->binner.ext : NULL;
+        sg_shade_ctx *c = &dev->draws[i].ctx;
+        c->tris = dev->binner.tris;
+        c->ext = dev->binner.use_ext ? dev->binner.ext : NULL;
+        if (c->shader.fragment) { /* the uniform arena may have moved since the draw */
+            c->shader.uniforms = dev->uniforms + c->shader.uniform_offset;
+            c->shader.pass_discards = &dev->shader_discards;
+        }
     }
+    dev->pass.shader_discards = &dev->shader_discards;
     busiest_first(&dev->binner, dev->bin_order);
     int nbins = dev->binner.bins_x * dev->binner.bins_y, busy = 0;
     while (busy < nbins && dev->binner.bins[dev->bin_order[busy] & 0xffffffffu].count) busy++;
     bin_jobs jobs = {&dev->pass, dev->bin_order, busy, nbins - busy, 0};
     jobs.runs = jobs.empty < dev->thread_count ? jobs.empty : dev->thread_count;
     sg_workers_run(&dev->workers, jobs.runs + busy, render_bin, &jobs);
+    /* A pipeline whose fragments were seen discarding shades its next draws in place from the
+     * start, sparing those bins the redo (the pipeline may have been destroyed since). */
+    for (size_t i = 0; dev->pass.any_shader && i < dev->draw_count; i++) {
+        const sg_shader_state *s = &dev->draws[i].ctx.shader;
+        sg_pso *pso = s->discarded ? sg_lookup_pso(dev, (sgPipelineStateObject){s->pso}) : NULL;
+        if (pso && pso->shader) pso->discards = true;
+    }
 }
 
 bool sg_pass_flush(sgDevice *dev) {

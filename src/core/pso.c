@@ -7,6 +7,7 @@
 #include "raster/blend.h"
 #include "raster/depth.h"
 #include "raster/shade.h"
+#include "raster/shade_shader.h"
 
 #define CHECK_ENUM(field, lo, hi, type)                                                            \
     if ((int)desc->field < (int)(lo) || (int)desc->field > (int)(hi))                              \
@@ -35,6 +36,37 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
                         "sgCreatePipelineStateObject: depth.bias_constant = %g, depth.bias_slope = "
                         "%g: both must be finite",
                         (double)desc->depth.bias_constant, (double)desc->depth.bias_slope);
+
+    const sgShaderDesc *sh = &desc->shader;
+    const bool shader = sh->vertex || sh->fragment;
+    if (shader && (!sh->vertex || !sh->fragment))
+        return sg_error(dev, SG_ERROR_NULL_POINTER,
+                        "sgCreatePipelineStateObject: shader.%s is NULL but shader.%s is set: give "
+                        "both stages, or neither for the fixed shading",
+                        sh->vertex ? "fragment" : "vertex", sh->vertex ? "vertex" : "fragment");
+    if (shader && (desc->shade != SG_SHADE_DEFAULT || desc->lighting != SG_LIGHTING_DEFAULT))
+        return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                        "sgCreatePipelineStateObject: shade = %d and lighting = %d with a shader: "
+                        "the shader's stages replace the fixed shading and lighting; leave both "
+                        "at their defaults",
+                        (int)desc->shade, (int)desc->lighting);
+    if (sh->varying_count < 0 || sh->varying_count > SG_MAX_VARYINGS)
+        return sg_error(dev, SG_ERROR_INVALID_COUNT,
+                        "sgCreatePipelineStateObject: shader.varying_count = %d is outside 0..%d",
+                        sh->varying_count, SG_MAX_VARYINGS);
+    if (sh->texture_count < 0 || sh->texture_count > SG_MAX_DRAW_TEXTURES)
+        return sg_error(dev, SG_ERROR_INVALID_COUNT,
+                        "sgCreatePipelineStateObject: shader.texture_count = %d is outside 0..%d",
+                        sh->texture_count, SG_MAX_DRAW_TEXTURES);
+    if (sh->varying_count < 32 && sh->flat_varyings >> sh->varying_count)
+        return sg_error(dev, SG_ERROR_INVALID_VALUE,
+                        "sgCreatePipelineStateObject: shader.flat_varyings = 0x%x names varyings "
+                        "past varying_count = %d",
+                        sh->flat_varyings, sh->varying_count);
+    if (!shader && (sh->varying_count || sh->texture_count))
+        return sg_error(dev, SG_ERROR_NULL_POINTER,
+                        "sgCreatePipelineStateObject: shader.varying_count or texture_count is "
+                        "set but shader.vertex and shader.fragment are NULL");
 
     sg_pso p;
     memset(&p, 0, sizeof p);
@@ -93,6 +125,18 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     if (d->blend == SG_BLEND_OPAQUE && d->lighting != SG_LIGHTING_PHONG)
         p.raster_line = sg_put_select(variant, d->depth.compare, d->depth.write, dev->isa);
     p.nattr = sg_shade_attr_count(d->shade);
+    if (shader) { /* visibility first, or in place when blended (and when seen discarding) */
+        p.shader = true;
+        p.nattr = sh->varying_count;
+        p.raster_fn = p.depth_fn;
+        p.shade_fn = sg_shade_shader;
+        p.shade2_fn = p.shade2_sec = NULL;
+        p.runs_fn = p.runs_sec = NULL;
+        p.raster_line = NULL;
+        p.raster_pass = NULL;
+        p.shader_in_place =
+            sg_shader_in_place_select(d->blend == SG_BLEND_ALPHA, d->depth.compare, d->depth.write);
+    }
     p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;
 
     uint32_t id =

@@ -8,8 +8,9 @@
 #include <math.h>
 #include <string.h>
 
-/* The assembly of unlit and of lit draws (lit: vattr is set) are compiled apart, `lit` a constant
- * in each, so that the unlit path has no test of its own for lighting. */
+/* The assembly of unlit, lit and shader draws (lit 0, 1, 2: vattr is set for the last two) are
+ * compiled apart, `lit` a constant in each, so that the unlit path has no test of its own for
+ * lighting or shaders. */
 #define SG_ASM_INLINE static inline __attribute__((always_inline))
 
 SG_ASM_INLINE void fetch_attributes(const sg_assembly *a, uint32_t idx, float attr[SG_MAX_ATTRS],
@@ -93,10 +94,26 @@ static void rebase_texcoords(float *const attr[], int n) {
     }
 }
 
+/* A shader draw's flat varyings: every vertex carries the first one's (Vulkan's provoking vertex),
+ * which clipping keeps exactly (a + t (a - a) = a) and setup keeps as it is. */
+static inline void copy_flat(const sg_assembly *a, float *const attr[], int n) {
+    for (uint32_t m = a->setup.flat_mask; m; m &= m - 1) {
+        int k = __builtin_ctz(m);
+        for (int i = 1; i < n; i++) attr[i][k] = attr[0][k];
+    }
+}
+
+/* What a shader draw's fragment stage is told of a triangle or line it set up. */
+static inline void stamp(const sg_assembly *a, sg_tri *t, int prim) {
+    t->sh.primitive = prim;
+    t->sh.instance = a->instance;
+    if (t->line) t->sh.front_facing = 1;
+}
+
 /* A triangle that crosses a clip plane: clipped to a convex polygon, set up as a fan. Rare, and
  * kept out of line so that it does not weigh on the common path. */
 static void __attribute__((noinline))
-clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
+clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes, int prim) {
     sg_cvert poly[SG_CLIP_MAX_VERTS];
     const int lit = a->vattr != NULL;
     for (int i = 0; i < 3; i++) {
@@ -112,6 +129,8 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
     if (a->flat)
         light_flat(a->flat, a->flat_split, a->setup.nattr,
                    (float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr});
+    if (a->setup.shader)
+        copy_flat(a, (float *const[3]){poly[0].attr, poly[1].attr, poly[2].attr}, 3);
     int n = sg_clip_polygon(poly, 3, planes, a->setup.nattr, &a->guard);
     /* Each vertex is projected once, though the fan uses poly[0] in every triangle. */
     sg_svert s[SG_CLIP_MAX_VERTS];
@@ -127,17 +146,18 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes) {
         if (!sg_setup_coverage(&a->setup, t, attr, tri)) continue;
         sg_setup_planes(&a->setup, t, attr, tri);
         if (ext) sg_setup_planes_ext(&a->setup, t, attr, tri, ext);
+        if (a->setup.shader) stamp(a, tri, prim);
         a->emit(a->user);
     }
 }
 
-SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint32_t i2,
+SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint32_t i2, int prim,
                             const int lit) {
     uint32_t c0 = a->outcodes[i0], c1 = a->outcodes[i1], c2 = a->outcodes[i2];
     /* Wholly outside one plane, or a NaN / infinite position: nothing of it is drawn. */
     if ((c0 & c1 & c2) || ((c0 | c1 | c2) & SG_CLIP_NONFINITE)) return;
     if (c0 | c1 | c2) {
-        clipped_triangle(a, (const uint32_t[3]){i0, i1, i2}, c0 | c1 | c2);
+        clipped_triangle(a, (const uint32_t[3]){i0, i1, i2}, c0 | c1 | c2, prim);
         return;
     }
     /* Inside every plane (the common case): no clipping, and the attributes are read only when
@@ -155,24 +175,26 @@ SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint
     fetch_attributes(a, i1, attr[1], lit);
     fetch_attributes(a, i2, attr[2], lit);
     if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]}, 3);
-    if (lit && a->flat)
+    if (lit == 1 && a->flat)
         light_flat(a->flat, a->flat_split, a->setup.nattr,
                    (float *const[3]){attr[0], attr[1], attr[2]});
+    if (lit == 2) copy_flat(a, (float *const[3]){attr[0], attr[1], attr[2]}, 3);
     sg_setup_planes(&a->setup, s, order, tri);
     if (lit && ext) sg_setup_planes_ext(&a->setup, s, order, tri, ext);
+    if (lit == 2) stamp(a, tri, prim);
     a->emit(a->user);
 }
 
 SG_ASM_INLINE void assemble(const sg_assembly *a, const int lit) {
     const uint32_t *ix = a->indices;
     if (a->quads) {
-        for (int i = 0; i + 3 < a->index_count; i += 4) {
-            triangle(a, ix[i], ix[i + 1], ix[i + 2], lit);
-            triangle(a, ix[i], ix[i + 2], ix[i + 3], lit);
+        for (int i = 0, q = 2 * a->prim_base; i + 3 < a->index_count; i += 4, q += 2) {
+            triangle(a, ix[i], ix[i + 1], ix[i + 2], q, lit);
+            triangle(a, ix[i], ix[i + 2], ix[i + 3], q + 1, lit);
         }
     } else {
-        for (int i = 0; i + 2 < a->index_count; i += 3)
-            triangle(a, ix[i], ix[i + 1], ix[i + 2], lit);
+        for (int i = 0, p = a->prim_base; i + 2 < a->index_count; i += 3, p++)
+            triangle(a, ix[i], ix[i + 1], ix[i + 2], p, lit);
     }
 }
 
@@ -180,17 +202,24 @@ static void __attribute__((noinline)) assemble_lit(const sg_assembly *a) {
     assemble(a, 1);
 }
 
+static void __attribute__((noinline)) assemble_shader(const sg_assembly *a) {
+    assemble(a, 2);
+}
+
 /* ---- lines: line primitives and wireframe edges (line.h) ---- */
 
-static void emit_line(const sg_assembly *a, const sg_svert s[2], const float *const attr[2]) {
+static void emit_line(const sg_assembly *a, const sg_svert s[2], const float *const attr[2],
+                      int prim) {
     sg_tri_ext *ext = NULL;
     sg_tri *tri = a->slot(a->user, &ext);
-    if (tri && sg_setup_line(&a->setup, s, attr, tri, ext)) a->emit(a->user);
+    if (!tri || !sg_setup_line(&a->setup, s, attr, tri, ext)) return;
+    if (a->setup.shader) stamp(a, tri, prim);
+    a->emit(a->user);
 }
 
 /* A segment that crosses a clip plane: clipped, keeping its direction, then projected. */
 static void clipped_segment(const sg_assembly *a, const float *p0, const float *p1,
-                            const float *attr0, const float *attr1, uint32_t planes) {
+                            const float *attr0, const float *attr1, uint32_t planes, int prim) {
     sg_cvert v[2];
     const int n = a->setup.nattr;
     memcpy(v[0].pos, p0, sizeof v[0].pos);
@@ -202,10 +231,11 @@ static void clipped_segment(const sg_assembly *a, const float *p0, const float *
     if (!sg_setup_project(&a->setup, v[0].pos, &s[0]) ||
         !sg_setup_project(&a->setup, v[1].pos, &s[1]))
         return;
-    emit_line(a, s, (const float *const[2]){v[0].attr, v[1].attr});
+    emit_line(a, s, (const float *const[2]){v[0].attr, v[1].attr}, prim);
 }
 
-SG_ASM_INLINE void segment(const sg_assembly *a, uint32_t i0, uint32_t i1, const int lit) {
+SG_ASM_INLINE void segment(const sg_assembly *a, uint32_t i0, uint32_t i1, int prim,
+                           const int lit) {
     uint32_t c0 = a->outcodes[i0], c1 = a->outcodes[i1];
     if ((c0 & c1) || ((c0 | c1) & SG_CLIP_NONFINITE)) return;
     if (!attributes_finite(a, i0, lit) || !attributes_finite(a, i1, lit)) return;
@@ -213,11 +243,12 @@ SG_ASM_INLINE void segment(const sg_assembly *a, uint32_t i0, uint32_t i1, const
     fetch_attributes(a, i0, attr[0], lit);
     fetch_attributes(a, i1, attr[1], lit);
     if (a->rebase_texcoords) rebase_texcoords((float *const[2]){attr[0], attr[1]}, 2);
+    if (lit == 2) copy_flat(a, (float *const[2]){attr[0], attr[1]}, 2);
     sg_svert s[2];
     if (c0 | c1)
-        clipped_segment(a, a->clip[i0], a->clip[i1], attr[0], attr[1], c0 | c1);
+        clipped_segment(a, a->clip[i0], a->clip[i1], attr[0], attr[1], c0 | c1, prim);
     else if (screen_vertex(a, i0, &s[0]) && screen_vertex(a, i1, &s[1]))
-        emit_line(a, s, (const float *const[2]){attr[0], attr[1]});
+        emit_line(a, s, (const float *const[2]){attr[0], attr[1]}, prim);
 }
 
 /* A triangle's edges `edges` (bit e: v[e] -> v[e + 1]), in the order v2 -> v0, v0 -> v1, v1 -> v2
@@ -226,7 +257,7 @@ SG_ASM_INLINE void segment(const sg_assembly *a, uint32_t i0, uint32_t i1, const
  * that crosses a clip plane faces the way its clipped polygon does on screen; its edges are cut
  * at the planes, and the polygon's new edges along them are not drawn. */
 SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], unsigned edges,
-                                 const int lit) {
+                                 int prim, const int lit) {
     const uint32_t c[3] = {a->outcodes[idx[0]], a->outcodes[idx[1]], a->outcodes[idx[2]]};
     if ((c[0] & c[1] & c[2]) || ((c[0] | c[1] | c[2]) & SG_CLIP_NONFINITE)) return;
     float attr[3][SG_MAX_ATTRS];
@@ -235,9 +266,10 @@ SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], un
         fetch_attributes(a, idx[i], attr[i], lit);
     }
     if (a->rebase_texcoords) rebase_texcoords((float *const[3]){attr[0], attr[1], attr[2]}, 3);
-    if (lit && a->flat)
+    if (lit == 1 && a->flat)
         light_flat(a->flat, a->flat_split, a->setup.nattr,
                    (float *const[3]){attr[0], attr[1], attr[2]});
+    if (lit == 2) copy_flat(a, (float *const[3]){attr[0], attr[1], attr[2]}, 3);
     if (!(c[0] | c[1] | c[2])) {
         sg_svert s[3];
         for (int i = 0; i < 3; i++)
@@ -247,7 +279,7 @@ SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], un
             int e = k == 0 ? 2 : k - 1, f = e == 2 ? 0 : e + 1; /* v2 -> v0 first */
             if (edges >> e & 1)
                 emit_line(a, (const sg_svert[2]){s[e], s[f]},
-                          (const float *const[2]){attr[e], attr[f]});
+                          (const float *const[2]){attr[e], attr[f]}, prim);
         }
         return;
     }
@@ -268,29 +300,35 @@ SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], un
     for (int k = 0; k < 3; k++) {
         int e = k == 0 ? 2 : k - 1, f = e == 2 ? 0 : e + 1;
         if (edges >> e & 1)
-            clipped_segment(a, a->clip[idx[e]], a->clip[idx[f]], attr[e], attr[f], c[e] | c[f]);
+            clipped_segment(a, a->clip[idx[e]], a->clip[idx[f]], attr[e], attr[f], c[e] | c[f],
+                            prim);
     }
 }
 
 SG_ASM_INLINE void assemble_edges(const sg_assembly *a, const int lit) {
     const uint32_t *ix = a->indices;
+    const int p0 = a->prim_base;
     if (a->lines) {
-        for (int i = 0; i + 1 < a->index_count; i += 2) segment(a, ix[i], ix[i + 1], lit);
+        for (int i = 0; i + 1 < a->index_count; i += 2)
+            segment(a, ix[i], ix[i + 1], p0 + i / 2, lit);
     } else if (a->quads) { /* the four outer edges: a b c without c -> a, a c d without a -> c */
         for (int i = 0; i + 3 < a->index_count; i += 4) {
-            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 1], ix[i + 2]}, 3u, lit);
-            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 2], ix[i + 3]}, 6u, lit);
+            const int q = 2 * (p0 + i / 4);
+            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 1], ix[i + 2]}, 3u, q, lit);
+            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 2], ix[i + 3]}, 6u, q + 1, lit);
         }
     } else {
         for (int i = 0; i + 2 < a->index_count; i += 3)
-            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 1], ix[i + 2]}, 7u, lit);
+            wire_triangle(a, (const uint32_t[3]){ix[i], ix[i + 1], ix[i + 2]}, 7u, p0 + i / 3, lit);
     }
 }
 
 /* Lines and wireframes are assembled apart, so the triangle path has no test of its own for
  * them. */
 static void __attribute__((noinline)) assemble_lines(const sg_assembly *a) {
-    if (a->vattr)
+    if (a->setup.shader)
+        assemble_edges(a, 2);
+    else if (a->vattr)
         assemble_edges(a, 1);
     else
         assemble_edges(a, 0);
@@ -299,6 +337,8 @@ static void __attribute__((noinline)) assemble_lines(const sg_assembly *a) {
 void sg_assemble(const sg_assembly *a) {
     if (a->lines || a->wire)
         assemble_lines(a);
+    else if (a->setup.shader)
+        assemble_shader(a);
     else if (a->vattr)
         assemble_lit(a);
     else

@@ -31,6 +31,10 @@ typedef struct sg_assembly {
      * kept apart (light.h: SG_LIT_SPLIT_*, the view position stays); 0: none. */
     int flat_split;
     int rebase_texcoords; /* repeat wrapping: move each triangle's texcoords next to 0 */
+    /* Shader draws (setup.shader): vattr holds each vertex's varyings; each triangle is told its
+     * primitive (prim_base + its index in `indices`, a quad's two triangles 2 q and 2 q + 1) and
+     * the instance. */
+    int prim_base, instance;
     sg_guard guard;
     sg_setup_params setup;
     /* Where the next triangle (and its extension, when setup.nattr > SG_TRI_ATTRS) is set up

@@ -56,6 +56,7 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
     /* Twice the signed area in y-down pixel space: exact. Positive is clockwise on screen. */
     int64_t area = sg_setup_area(s);
     if (sg_setup_culled(p, area)) return false;
+    if (p->shader) out->sh.front_facing = (area < 0) != (p->front_face == SG_FRONT_FACE_CW);
     if (area < 0) { /* one orientation for the edge functions below */
         sg_svert t = s[1];
         s[1] = s[2];
@@ -159,7 +160,8 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     /* A secondary colour (and the split colours of a shadow receiver) must be constant too for
      * the triangle to be flat. */
     const int sec = p->sec;
-    bool flat = p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2]);
+    bool flat =
+        !p->shader && p->nattr >= 4 && same_color(attr[0], attr[1]) && same_color(attr[0], attr[2]);
     if (flat && sec) {
         const int end = p->sec_end ? p->sec_end : sec + 3;
         for (int k = sec; k < end && flat; k += 3)
@@ -189,8 +191,11 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     memset(out->a_dy, 0, sizeof out->a_dy);
     int n = p->nattr < SG_TRI_ATTRS ? p->nattr : SG_TRI_ATTRS;
     for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < n; k++)
-        plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
-              (double)attr[2][k] * s[2].q, &out->a[k], &out->a_dx[k], &out->a_dy[k]);
+        if (p->flat_mask >> k & 1)
+            out->a[k] = attr[0][k]; /* a flat varying, as it is */
+        else
+            plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
+                  (double)attr[2][k] * s[2].q, &out->a[k], &out->a_dx[k], &out->a_dy[k]);
 }
 
 void sg_setup_planes_ext(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
@@ -200,8 +205,8 @@ void sg_setup_planes_ext(const sg_setup_params *p, const sg_svert s[3], const fl
     const int sec = p->sec, sec_end = p->sec_end ? p->sec_end : sec + 3;
     for (int k = SG_TRI_ATTRS; k < p->nattr; k++) {
         int e = k - SG_TRI_ATTRS;
-        if (t->flat != SG_FLAT_NONE && sec && k >= sec && k < sec_end)
-            ext->a[e] = attr[0][k]; /* the flat secondary colour, as it is */
+        if ((t->flat != SG_FLAT_NONE && sec && k >= sec && k < sec_end) || (p->flat_mask >> k & 1))
+            ext->a[e] = attr[0][k]; /* the flat secondary colour or varying, as it is */
         else
             plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
                   (double)attr[2][k] * s[2].q, &ext->a[e], &ext->a_dx[e], &ext->a_dy[e]);

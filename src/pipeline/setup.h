@@ -31,6 +31,11 @@ typedef struct sg_setup_params {
     /* Depth bias: every pixel's window depth moves by bias_constant + bias_slope * max(|dz/dx|,
      * |dz/dy|), before the clamp to [0, 1] (finite; 0: none). */
     float bias_constant, bias_slope;
+    /* A shader pipeline's draw: its attributes are varyings (no flat colour is looked for), the
+     * triangle's facing is kept (sg_tri.sh), and the varyings of flat_mask are kept as they are
+     * (the value every vertex of the primitive carries: assembly copies the first vertex's). */
+    int shader;
+    uint32_t flat_mask;
 } sg_setup_params;
 
 /* Attributes an sg_tri holds; a draw that interpolates more keeps the rest in an sg_tri_ext (the
@@ -58,7 +63,13 @@ typedef struct sg_tri {
     /* A line (line.h): 1 x-major, 2 y-major, 0 a triangle. The raster then walks along its major
      * axis instead of over its bounds. */
     int line;
-    float color[4];
+    union {
+        float color[4]; /* the flat colour (flat) */
+        /* A shader draw's: what its fragment stage is told (sgFragmentBatch). */
+        struct {
+            int32_t primitive, instance, front_facing, unused;
+        } sh;
+    };
     uint32_t draw; /* which draw of the pass it belongs to (set by the binner) */
 } sg_tri;
 

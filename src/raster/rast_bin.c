@@ -273,12 +273,13 @@ static bool passes_bin(const sg_bin_pass *p, depth_range *r, const float *depth,
  * pixel sees the triangles in submission order. Kept out of line, with its own buffers, so that
  * the opaque path of sg_rast_bin stays as it is. */
 static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg_bin *bin,
-                                                  const bin_view *v) {
+                                                  const bin_view *v, const bool shaders_in_place) {
     _Alignas(64) uint32_t color[BIN_PIXELS];
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
     uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
     SG_STAGE_START(clock);
+    const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
     start_depth(p, v, depth);
     start_color(p, v, color);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
@@ -307,7 +308,9 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
         vis.id = ti + 1;
         vis.compare = d->compare;
         sg_raster_fn fn = d->raster_fn;
-        if (d->in_place) {
+        const bool redone = shaders_in_place && d->shader_in_place && !d->in_place;
+        if (redone) fn = d->shader_in_place;
+        if (d->in_place || redone) {
             if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
             pending = false;
             vis.shade = d->shade_fn;
@@ -325,6 +328,11 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     if (waiting.n) waiting.flush(&waiting, &vis);
     if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
+    if (!shaders_in_place && p->any_shader &&
+        __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) != discards) {
+        ordered_bin(p, bin, v, true); /* a discard: as in sg_rast_bin */
+        return;
+    }
     write_bin(p, v, color, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }
@@ -395,9 +403,10 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
         return;
     }
     if (p->any_in_place) {
-        ordered_bin(p, bin, &v);
+        ordered_bin(p, bin, &v, false);
         return;
     }
+    const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
 
     _Alignas(64) uint32_t color[BIN_PIXELS];
     _Alignas(64) float depth[BIN_PIXELS];
@@ -418,6 +427,13 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     run_set run_buf, *runs = start_runs(p, &run_buf);
     shade_reached(p, runs, ids, touched, x0, y0, color, false);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
+    /* A fragment stage discarded (here, or in a bin another thread shades now): what is behind
+     * a discarded pixel was never kept, so the bin starts again, shader draws in place. Exact
+     * either way, so the image does not depend on which bins redo. */
+    if (p->any_shader && __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) != discards) {
+        ordered_bin(p, bin, &v, true);
+        return;
+    }
     write_bin(p, &v, color, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }

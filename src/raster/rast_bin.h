@@ -33,6 +33,9 @@ typedef struct sg_draw_state {
     sg_shade_ctx ctx;
     sgCompare compare;
     bool in_place; /* raster_fn shades into the colour as it goes: blends, lines (blend.h) */
+    /* Shader draws: the raster function shading in place, for a bin redone because a fragment
+     * was discarded (ctx.shader.fragment set). */
+    sg_raster_fn shader_in_place;
 } sg_draw_state;
 
 /* Stages of a pass whose wall time a build with SGAPI_STAGE_TIMES adds up (stage_times.h). */
@@ -55,11 +58,13 @@ typedef struct sg_bin_pass {
     uint32_t clear_color;
     float clear_depth;
     bool store_depth;
-    bool any_in_place;   /* some draw is shaded in place: bins take the ordered path */
-    bool any_pair;       /* some draw shades two whole tiles at once (shade2_fn) */
-    bool any_runs;       /* some draw packs partly covered tiles (runs_fn) */
-    const sg_fb_ops *fb; /* the bin's fills, for the device's instruction set */
-    void *stage_times;   /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
+    bool any_in_place;    /* some draw is shaded in place: bins take the ordered path */
+    bool any_pair;        /* some draw shades two whole tiles at once (shade2_fn) */
+    bool any_runs;        /* some draw packs partly covered tiles (runs_fn) */
+    bool any_shader;      /* some draw has a fragment stage (sgShaderDesc) */
+    int *shader_discards; /* tiles whose fragment stage discarded (shade_shader.h), all bins */
+    const sg_fb_ops *fb;  /* the bin's fills, for the device's instruction set */
+    void *stage_times;    /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 
 /** Renders bin `index` of the pass into its target images. */

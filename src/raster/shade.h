@@ -22,6 +22,29 @@
 #include "sgapi/sgapi.h"
 #include "tex/sample.h"
 
+/* A texture a shader draw binds (sgSample): RGBA8 texels, or a depth image's floats. */
+typedef struct sg_shader_tex {
+    const uint8_t *data; /* NULL: not bound */
+    int width, height;
+    bool depth;
+} sg_shader_tex;
+
+/* What a shader draw's fragment stage needs (shade_shader.c). */
+typedef struct sg_shader_state {
+    void (*fragment)(sgFragmentBatch *b, const void *uniforms); /* NULL: not a shader draw */
+    const void *uniforms;  /* the draw's copy, set when the pass renders its bins (pass.c) */
+    size_t uniform_offset; /* where that copy is in the device's uniform arena */
+    int varying_count;
+    uint32_t flat; /* flat varyings: taken as they are, not divided by 1/w */
+    bool bilinear, repeat;
+    sg_shader_tex textures[SG_MAX_DRAW_TEXTURES];
+    uint32_t pso; /* the pipeline's handle: told when the draw discards (pass.c) */
+    /* Set, atomically, by the bins when a fragment of the draw was discarded; and the pass's
+     * count of such tiles, which tells a bin shaded visibility first that it must be redone. */
+    int discarded;
+    int *pass_discards;
+} sg_shader_state;
+
 typedef struct sg_shade_ctx {
     sg_texview tex;        /* bound texture, when the pipeline samples one */
     sg_lights lights;      /* the draw's lights and material (SG_LIGHTING_PHONG) */
@@ -30,6 +53,7 @@ typedef struct sg_shade_ctx {
      * ends: a lit triangle t's attributes beyond SG_TRI_ATTRS are at ext + (t - tris). */
     const sg_tri *tris;
     const sg_tri_ext *ext;
+    sg_shader_state shader; /* shader pipelines (sgShaderDesc) */
 } sg_shade_ctx;
 
 /** The extension of triangle t (NULL when the pass has none). */

@@ -1,0 +1,168 @@
+/* shade_shader.c - the fragment stage of shader pipelines (see shade_shader.h) and sgSample. */
+#include "raster/shade_shader.h"
+
+#include <string.h>
+
+#include "raster/blend.h"
+#include "raster/blend_walk.h"
+
+/* The batch of a tile: every lane interpolated at its pixel centre (helper lanes too), as the
+ * fixed shading does: attribute / w and 1 / w planes, then one division. */
+static void fill_batch(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                       sgFragmentBatch *b) {
+    const sg_shader_state *s = &c->shader;
+    const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
+    b->mask = mask;
+    b->x = x0;
+    b->y = y0;
+    b->front_facing = t->sh.front_facing != 0;
+    b->primitive = t->sh.primitive;
+    b->instance = t->sh.instance;
+    b->discard = 0;
+    b->internal = c;
+    const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    float w[SG_SHADER_LANES];
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        const float dx = ox + (float)(i & 3), dy = oy + (float)(i >> 2);
+        b->z[i] = sg_tri_depth(t, dx, dy);
+        w[i] = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+    }
+    for (int k = 0; k < s->varying_count; k++) {
+        const float *a, *ax, *ay;
+        if (k < SG_TRI_ATTRS) {
+            a = &t->a[k];
+            ax = &t->a_dx[k];
+            ay = &t->a_dy[k];
+        } else {
+            a = &ext->a[k - SG_TRI_ATTRS];
+            ax = &ext->a_dx[k - SG_TRI_ATTRS];
+            ay = &ext->a_dy[k - SG_TRI_ATTRS];
+        }
+        if (s->flat >> k & 1) {
+            for (int i = 0; i < SG_SHADER_LANES; i++) b->varying[k][i] = *a;
+            continue;
+        }
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            const float dx = ox + (float)(i & 3), dy = oy + (float)(i >> 2);
+            b->varying[k][i] = (*a + *ax * dx + *ay * dy) * w[i];
+        }
+    }
+    for (int k = s->varying_count; k < SG_MAX_VARYINGS; k++)
+        for (int i = 0; i < SG_SHADER_LANES; i++) b->varying[k][i] = 0.0f;
+    memset(b->color, 0, sizeof b->color);
+}
+
+uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                             uint32_t *dst) {
+    sgFragmentBatch b;
+    fill_batch(c, t, x0, y0, mask, &b);
+    c->shader.fragment(&b, c->shader.uniforms);
+    const uint32_t keep = mask & ~b.discard;
+    for (uint32_t m = keep; m; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        dst[i] = sg_to_unorm8(b.color[0][i]) | sg_to_unorm8(b.color[1][i]) << 8 |
+                 sg_to_unorm8(b.color[2][i]) << 16 | sg_to_unorm8(b.color[3][i]) << 24;
+    }
+    return keep;
+}
+
+void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                     uint32_t *dst) {
+    if (sg_shader_fragments(c, t, x0, y0, mask, dst) == mask) return;
+    /* A discard: what visibility found behind these pixels is unknown, so the bin is redone
+     * with the draw shaded in place. The state is the draw's, shared by the bins' threads. */
+    __atomic_store_n((int *)&c->shader.discarded, 1, __ATOMIC_RELAXED);
+    __atomic_fetch_add(c->shader.pass_discards, 1, __ATOMIC_RELAXED);
+}
+
+/* A tile of a shader draw shaded in place: the depth test without writing, the fragment stage,
+ * then depth (when written) and colour where no lane was discarded. */
+static inline __attribute__((always_inline)) void in_place(const void *vctx, const sg_tri *t,
+                                                           int x0, int y0, uint32_t mask,
+                                                           const int zmode, const int zwrite,
+                                                           const int put) {
+    const sg_vis_ctx *v = vctx;
+    const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
+    float *dp = v->depth ? v->depth + base : NULL;
+    const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    float z[SG_TILE_PIXELS];
+    if (zmode != Z_NONE || zwrite) {
+        uint32_t pass = 0;
+        for (uint32_t left = mask; left; left &= left - 1) {
+            const int bit = __builtin_ctz(left);
+            z[bit] = sg_tri_depth(t, ox + (float)(bit & 3), oy + (float)(bit >> 2));
+            if (zmode == Z_NONE || sg_depth_passes(v->compare, z[bit], dp[bit])) pass |= 1u << bit;
+        }
+        mask = pass;
+    }
+    if (!mask) return;
+    uint32_t src[SG_TILE_PIXELS];
+    const uint32_t keep = sg_shader_fragments(v->shade_ctx, t, x0, y0, mask, src);
+    uint32_t *dst = v->color + base;
+    for (uint32_t m = keep; m; m &= m - 1) {
+        const int bit = __builtin_ctz(m);
+        if (zwrite) dp[bit] = z[bit];
+        dst[bit] = put ? src[bit] : sg_blend_rgba8(src[bit], dst[bit]);
+    }
+}
+
+SG_IN_PLACE_BODY(shader_blend_body, in_place, 0)
+SG_IN_PLACE_BODY(shader_put_body, in_place, 1)
+SG_IN_PLACE_SET(shader_blend, shader_blend_body)
+SG_IN_PLACE_SET(shader_put, shader_put_body)
+
+sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write) {
+    static const sg_raster_fn fns[2][2][2] = {SG_IN_PLACE_TABLE(shader_put),
+                                              SG_IN_PLACE_TABLE(shader_blend)};
+    return fns[blend][compare != SG_COMPARE_ALWAYS][depth_write];
+}
+
+/* ---- sgSample ---- */
+
+/* A depth image at (s, t) with the pipeline's filter and wrap, in float. */
+static float sample_depth(const sg_shader_tex *tx, float s, float t, bool bilinear, bool repeat) {
+    const float *d = (const float *)(const void *)tx->data;
+    const int w = tx->width, h = tx->height;
+    float x = repeat ? sg_texcoord_repeat(s, (float)w) : sg_texcoord_clamp(s, (float)w);
+    float y = repeat ? sg_texcoord_repeat(t, (float)h) : sg_texcoord_clamp(t, (float)h);
+    if (!bilinear) {
+        int i = sg_wrap_index((int)floorf(x), w, repeat),
+            j = sg_wrap_index((int)floorf(y), h, repeat);
+        return d[(size_t)(h - 1 - j) * (size_t)w + (size_t)i];
+    }
+    x -= 0.5f;
+    y -= 0.5f;
+    const float fx = x - floorf(x), fy = y - floorf(y);
+    const int i0 = (int)floorf(x), j0 = (int)floorf(y);
+    float v[2][2];
+    for (int dj = 0; dj < 2; dj++)
+        for (int di = 0; di < 2; di++) {
+            int i = sg_wrap_index(i0 + di, w, repeat), j = sg_wrap_index(j0 + dj, h, repeat);
+            v[dj][di] = d[(size_t)(h - 1 - j) * (size_t)w + (size_t)i];
+        }
+    return (v[0][0] * (1.0f - fx) + v[0][1] * fx) * (1.0f - fy) +
+           (v[1][0] * (1.0f - fx) + v[1][1] * fx) * fy;
+}
+
+void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
+              const float v[SG_SHADER_LANES], float rgba[4][SG_SHADER_LANES]) {
+    const sg_shade_ctx *c = b && b->internal ? b->internal : NULL;
+    const sg_shader_tex *tx =
+        c && slot >= 0 && slot < SG_MAX_DRAW_TEXTURES && c->shader.textures[slot].data
+            ? &c->shader.textures[slot]
+            : NULL;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        if (!tx) {
+            rgba[0][i] = rgba[1][i] = rgba[2][i] = 0.0f;
+            rgba[3][i] = 1.0f;
+        } else if (tx->depth) {
+            float d = sample_depth(tx, u[i], v[i], c->shader.bilinear, c->shader.repeat);
+            rgba[0][i] = rgba[1][i] = rgba[2][i] = d;
+            rgba[3][i] = 1.0f;
+        } else {
+            const sg_texview view = {tx->data, tx->width, tx->height};
+            sg_texel e = sg_sample(&view, u[i], v[i], c->shader.bilinear, c->shader.repeat);
+            for (int k = 0; k < 4; k++) rgba[k][i] = (float)e.c[k] / 255.0f;
+        }
+    }
+}

@@ -1,0 +1,27 @@
+/* shade_shader.h - the fragment stage of shader pipelines: the varyings of a 4 x 4 tile
+ * interpolated into an sgFragmentBatch, the pipeline's fragment function called once for the
+ * tile, its colours converted to RGBA8. Visibility first, like the fixed shading (sg_shade_shader,
+ * an sg_shade_fn), or in place (sg_shader_in_place_select): blended draws, and draws whose
+ * fragments discard, test depth, shade, then write depth and colour only where nothing was
+ * discarded. One scalar C body for every instruction set: the user's function is the work. */
+#ifndef SG_SHADE_SHADER_H
+#define SG_SHADE_SHADER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "raster/depth.h"
+#include "raster/shade.h"
+
+/** Shades the lanes of `mask` of the tile at (x0, y0) into dst[lane] as RGBA8 and returns those
+ *  not discarded (dst untouched elsewhere). */
+uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                             uint32_t *dst);
+/** The sg_shade_fn of shader draws shaded visibility first: a discarded lane is recorded in the
+ *  draw and the pass (sg_shader_state), and the bin is then redone in place (rast_bin.c). */
+void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                     uint32_t *dst);
+/** The raster function shading a shader draw in place: blended, or its fragments put. */
+sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write);
+
+#endif

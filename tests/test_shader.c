@@ -1,0 +1,389 @@
+/* test_shader.c - programmable stages (sgShaderDesc): the batches the stages receive, varyings,
+ * flat varyings, primitive and instance ids, facing, discard against depth (the bin redone in
+ * place), blending, sgSample, the same bytes at every thread count and instruction set, and the
+ * refusals of bad input. */
+#include "test_objects.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+enum { W = 96, H = 80 };
+
+typedef struct shade_uniforms {
+    float offset_per_instance; /* x offset in NDC per instance */
+    float threshold;           /* dissolve: discard where the varying's fraction < threshold */
+} shade_uniforms;
+
+/* clip = position + instance offset (identity matrices); varyings: colour r g b a, then a
+ * value that is the vertex index (flat), then s. */
+static void vs_basic(sgVertexBatch *b, const void *uniforms) {
+    const shade_uniforms *u = uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        b->clip[0][i] =
+            b->position[0][i] + (u ? u->offset_per_instance * (float)b->instance : 0.0f);
+        b->clip[1][i] = b->position[1][i];
+        b->clip[2][i] = b->position[2][i];
+        b->clip[3][i] = b->position[3][i];
+        for (int k = 0; k < 4; k++) b->varying[k][i] = b->color[k][i];
+        b->varying[4][i] = (float)b->index[i];
+        b->varying[5][i] = b->texcoord[0][i];
+    }
+}
+
+static void fs_color(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++)
+        for (int k = 0; k < 4; k++) b->color[k][i] = b->varying[k][i];
+}
+
+/* Red from the primitive, green from the flat varying (vertex index of the first vertex), blue
+ * from the instance and facing. */
+static void fs_ids(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        b->color[0][i] = (float)b->primitive / 255.0f;
+        b->color[1][i] = b->varying[4][i] / 255.0f;
+        b->color[2][i] = (float)(b->instance * 2 + (b->front_facing ? 1 : 0)) / 255.0f;
+        b->color[3][i] = 1.0f;
+    }
+}
+
+/* Discards the lanes of a checkerboard (by pixel), shades the others white. */
+static void fs_checker(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        int x = b->x + i % 4, y = b->y + i / 4;
+        if ((x + y) & 1) b->discard |= 1u << i;
+        for (int k = 0; k < 4; k++) b->color[k][i] = 1.0f;
+    }
+}
+
+static void fs_sample(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    float rgba[4][SG_SHADER_LANES];
+    sgSample(b, 0, b->varying[5], b->varying[5], rgba);
+    for (int i = 0; i < SG_SHADER_LANES; i++)
+        for (int k = 0; k < 4; k++) b->color[k][i] = rgba[k][i];
+}
+
+static const float QUAD_POS[] = {-0.8f, -0.8f, 0.5f, 1, 0.8f,  -0.8f, 0.5f, 1,
+                                 0.8f,  0.8f,  0.5f, 1, -0.8f, 0.8f,  0.5f, 1};
+static const float QUAD_COL[] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 1, 0, 1};
+static const float QUAD_ST[] = {0, 0, 1, 0, 1, 1, 0, 1};
+static const uint32_t QUAD_IDX[] = {0, 1, 2, 0, 2, 3};
+
+static const float IDENTITY[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+typedef struct target {
+    sgImage2D color, depth;
+    sgPassDesc pass;
+} target;
+
+static target begin(sgDevice *dev) {
+    target t;
+    t.color = test_image(dev, W, H, SG_FORMAT_RGBA8_UNORM);
+    t.depth = test_image(dev, W, H, SG_FORMAT_D32_FLOAT);
+    t.pass = (sgPassDesc){.color = t.color, .depth = t.depth, .clear_color = {0, 0, 0, 1}};
+    assert_int_equal(sgBeginRenderPass(dev, &t.pass), SG_OK);
+    return t;
+}
+
+static void end(sgDevice *dev, target *t, uint8_t *out) {
+    assert_int_equal(sgEndRenderPass(dev, &t->pass), SG_OK);
+    assert_int_equal(sgReadImage2D(dev, t->color, out, 0), SG_OK);
+    sgDestroyImage2D(dev, t->color);
+    sgDestroyImage2D(dev, t->depth);
+}
+
+static sgGeom quad(sgDevice *dev, float z) {
+    float pos[16];
+    memcpy(pos, QUAD_POS, sizeof pos);
+    for (int i = 0; i < 4; i++) pos[i * 4 + 2] = z;
+    sgGeom g;
+    sgGeomDesc d = {.vertex_count = 4,
+                    .positions = pos,
+                    .colors = QUAD_COL,
+                    .texcoords = QUAD_ST,
+                    .index_count = 6,
+                    .indices = QUAD_IDX};
+    assert_int_equal(sgCreateGeom(dev, &d, &g), SG_OK);
+    return g;
+}
+
+static sgDrawParams params(void) {
+    sgDrawParams p = {0};
+    memcpy(p.world_view, IDENTITY, sizeof IDENTITY);
+    memcpy(p.proj, IDENTITY, sizeof IDENTITY);
+    return p;
+}
+
+/* The unlit shader gives what the fixed vertex-colour shading gives, to one unit. */
+static void test_matches_fixed(void **state) {
+    (void)state;
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(NULL, &dev), SG_OK);
+    sgGeom g = quad(dev, 0.5f);
+    sgDrawParams p = params();
+    static uint8_t a[W * H * 4], b[W * H * 4];
+    target t = begin(dev);
+    assert_int_equal(sgDraw(dev, test_pso(dev, (sgPipelineDesc){0}), g, &p), SG_OK);
+    end(dev, &t, a);
+    t = begin(dev);
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0}};
+    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
+    end(dev, &t, b);
+    int worst = 0, covered = 0;
+    for (int i = 0; i < W * H * 4; i++) {
+        int d = abs((int)a[i] - (int)b[i]);
+        if (d > worst) worst = d;
+        covered += (i % 4 == 3) && a[i - 3] + a[i - 2] + a[i - 1] > 0;
+    }
+    assert_true(covered > 1000);
+    assert_true(worst <= 1);
+    sgDestroyDevice(dev);
+}
+
+/* Primitive, flat varying (provoking vertex), instance and facing reach the fragment stage. */
+static void test_ids(void **state) {
+    (void)state;
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(NULL, &dev), SG_OK);
+    sgGeom g = quad(dev, 0.5f);
+    sgDrawParams p = params();
+    const shade_uniforms u = {0.0f, 0.0f};
+    p.uniforms = &u;
+    p.uniform_size = sizeof u;
+    p.instance_count = 2; /* the second on top of the first: it wins where LESS_EQUAL passes */
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_ids, 6, 1u << 4, 0},
+                         .depth = {SG_COMPARE_LESS_EQUAL, true}};
+    static uint8_t img[W * H * 4];
+    target t = begin(dev);
+    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
+    end(dev, &t, img);
+    /* A pixel in the lower right triangle (0 1 2: first vertex 0), one in the upper left (0 2 3:
+     * first vertex 0): counter-clockwise, front facing, instance 1. */
+    const uint8_t *lr = img + ((size_t)(H * 3 / 4) * W + W * 3 / 4) * 4;
+    const uint8_t *ul = img + ((size_t)(H / 4) * W + W / 4) * 4;
+    assert_int_equal(lr[0], 0);
+    assert_int_equal(ul[0], 1);
+    assert_int_equal(lr[1], 0);
+    assert_int_equal(ul[1], 0);
+    assert_int_equal(lr[2], 3);
+    assert_int_equal(ul[2], 3);
+    sgDestroyDevice(dev);
+}
+
+/* A discarding draw over a background: the background shows through the discarded pixels, and
+ * the discarded pixels wrote no depth (a third draw behind the first two but in front of the
+ * background's depth shows there). */
+static void render_discard(int threads, sgSimd simd, bool with_front, uint8_t *out) {
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .simd = simd}, &dev),
+                     SG_OK);
+    sgGeom back = quad(dev, 0.8f), front = quad(dev, 0.2f), middle = quad(dev, 0.5f);
+    sgDrawParams p = params();
+    sgPipelineStateObject fixed = test_pso(dev, (sgPipelineDesc){.depth = {SG_COMPARE_LESS, true}});
+    sgPipelineStateObject checker =
+        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0},
+                                       .depth = {SG_COMPARE_LESS, true}});
+    for (int frame = 0; frame < 2; frame++) { /* the second frame starts in place */
+        target t = begin(dev);
+        assert_int_equal(sgDraw(dev, fixed, back, &p), SG_OK);
+        if (with_front) assert_int_equal(sgDraw(dev, checker, front, &p), SG_OK);
+        static const sgColor grey = {0.5f, 0.5f, 0.5f, 1.0f};
+        p.color = &grey;
+        assert_int_equal(sgDraw(dev, fixed, middle, &p), SG_OK);
+        p.color = NULL;
+        end(dev, &t, out + (size_t)frame * W * H * 4);
+    }
+    sgDestroyDevice(dev);
+}
+
+static void test_discard(void **state) {
+    (void)state;
+    static uint8_t want[2 * W * H * 4], got[2 * W * H * 4], behind[2 * W * H * 4];
+    render_discard(1, SG_SIMD_SCALAR, true, want);
+    render_discard(1, SG_SIMD_SCALAR, false, behind);
+    assert_memory_equal(want, want + W * H * 4, (size_t)W * H * 4);
+    int white = 0, through = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const size_t at = ((size_t)y * W + x) * 4;
+            const uint8_t *px = want + at;
+            if (px[0] == 255 && px[1] == 255 && px[2] == 255) {
+                white++;
+                assert_int_equal((x + y) & 1, 0);
+            } else {
+                /* what the draws behind leave, the middle one in front of the back one */
+                assert_memory_equal(px, behind + at, 4);
+                through += (x + y) & 1 && (px[0] | px[1] | px[2]);
+            }
+        }
+    assert_true(white > 1000);
+    assert_true(through > 1000 && abs(through - white) < W + H);
+    for (int simd = SG_SIMD_SCALAR; simd <= SG_SIMD_NEON; simd++) {
+        if (!test_simd_runs((sgSimd)simd)) continue;
+        for (int threads = 1; threads <= 3; threads++) {
+            render_discard(threads, (sgSimd)simd, true, got);
+            if (memcmp(want, got, sizeof want) != 0)
+                fail_msg("simd %d, %d threads: differs from the scalar one-thread image", simd,
+                         threads);
+        }
+    }
+}
+
+/* sgSample reads the bound texture with the pipeline's filter; an empty slot gives (0, 0, 0, 1). */
+static void test_sample(void **state) {
+    (void)state;
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(NULL, &dev), SG_OK);
+    uint8_t texels[2 * 2 * 4] = {255, 0, 0,   255, 0,   255, 0,   255,
+                                 0,   0, 255, 255, 255, 255, 255, 255};
+    sgImage2D tex;
+    assert_int_equal(sgCreateImage2D(dev,
+                                     &(sgImage2DDesc){.width = 2,
+                                                      .height = 2,
+                                                      .format = SG_FORMAT_RGBA8_UNORM,
+                                                      .data = texels},
+                                     &tex),
+                     SG_OK);
+    sgGeom g = quad(dev, 0.5f);
+    sgDrawParams p = params();
+    p.textures[0] = tex;
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_sample, 6, 0, 1}, .wrap = SG_WRAP_CLAMP_TO_EDGE};
+    static uint8_t img[W * H * 4];
+    target t = begin(dev);
+    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
+    end(dev, &t, img);
+    /* s = t along the diagonal: the bottom-left corner is texel (0, bottom row) = blue, the top
+     * right texel (1, top row) = green. */
+    const uint8_t *bl = img + ((size_t)(H * 85 / 100) * W + W * 15 / 100) * 4;
+    const uint8_t *tr = img + ((size_t)(H * 15 / 100) * W + W * 85 / 100) * 4;
+    assert_int_equal(bl[2], 255);
+    assert_int_equal(bl[0], 0);
+    assert_int_equal(tr[1], 255);
+    assert_int_equal(tr[0], 0);
+    /* Without the texture bound, the draw is refused: the shader samples one. */
+    p.textures[0] = (sgImage2D){0};
+    t = begin(dev);
+    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_ERROR_MISSING_TEXTURE);
+    end(dev, &t, img);
+    sgDestroyDevice(dev);
+}
+
+/* Blended shader draws blend like fixed ones. */
+static void test_blend(void **state) {
+    (void)state;
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(NULL, &dev), SG_OK);
+    float col[16];
+    for (int i = 0; i < 16; i++) col[i] = (i % 4 == 3) ? 0.5f : 1.0f;
+    sgGeom g;
+    sgGeomDesc d = {.vertex_count = 4,
+                    .positions = QUAD_POS,
+                    .colors = col,
+                    .index_count = 6,
+                    .indices = QUAD_IDX};
+    assert_int_equal(sgCreateGeom(dev, &d, &g), SG_OK);
+    sgDrawParams p = params();
+    static uint8_t a[W * H * 4], b[W * H * 4];
+    target t = begin(dev);
+    assert_int_equal(sgDraw(dev, test_pso(dev, (sgPipelineDesc){.blend = SG_BLEND_ALPHA}), g, &p),
+                     SG_OK);
+    end(dev, &t, a);
+    t = begin(dev);
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0}, .blend = SG_BLEND_ALPHA};
+    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
+    end(dev, &t, b);
+    assert_memory_equal(a, b, sizeof a);
+    sgDestroyDevice(dev);
+}
+
+/* Bad input: each a specific code, nothing drawn. */
+static void test_refusals(void **state) {
+    (void)state;
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(NULL, &dev), SG_OK);
+    sgPipelineStateObject pso;
+    assert_int_equal(
+        sgCreatePipelineStateObject(dev, &(sgPipelineDesc){.shader = {.vertex = vs_basic}}, &pso),
+        SG_ERROR_NULL_POINTER);
+    assert_non_null(strstr(sgGetLastError(dev), "shader.fragment"));
+    assert_int_equal(
+        sgCreatePipelineStateObject(dev,
+                                    &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0},
+                                                      .lighting = SG_LIGHTING_PHONG},
+                                    &pso),
+        SG_ERROR_INVALID_VALUE);
+    assert_int_equal(sgCreatePipelineStateObject(
+                         dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 17, 0, 0}}, &pso),
+                     SG_ERROR_INVALID_COUNT);
+    assert_int_equal(sgCreatePipelineStateObject(
+                         dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 2, 4u, 0}}, &pso),
+                     SG_ERROR_INVALID_VALUE);
+    assert_int_equal(sgCreatePipelineStateObject(
+                         dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 9}}, &pso),
+                     SG_ERROR_INVALID_COUNT);
+    sgPipelineStateObject sh =
+        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0}});
+    sgPipelineStateObject fixed = test_pso(dev, (sgPipelineDesc){0});
+    sgGeom g = quad(dev, 0.5f);
+    target t = begin(dev);
+    sgDrawParams p = params();
+    p.uniform_size = SG_MAX_UNIFORM_SIZE + 1;
+    static float big[SG_MAX_UNIFORM_SIZE / 4 + 1];
+    p.uniforms = big;
+    assert_int_equal(sgDraw(dev, sh, g, &p), SG_ERROR_INVALID_SIZE);
+    p.uniforms = NULL;
+    p.uniform_size = 4;
+    assert_int_equal(sgDraw(dev, sh, g, &p), SG_ERROR_NULL_POINTER);
+    p = params();
+    p.texture = t.color;
+    assert_int_equal(sgDraw(dev, sh, g, &p), SG_ERROR_INVALID_VALUE);
+    p = params();
+    p.instance_count = 3;
+    assert_int_equal(sgDraw(dev, fixed, g, &p), SG_ERROR_INVALID_VALUE);
+    p.instance_count = -1;
+    assert_int_equal(sgDraw(dev, sh, g, &p), SG_ERROR_INVALID_COUNT);
+    static uint8_t img[W * H * 4];
+    end(dev, &t, img);
+    for (size_t i = 0; i < sizeof img; i += 4)
+        assert_int_equal(img[i] | img[i + 1] | img[i + 2], 0);
+    sgDestroyDevice(dev);
+}
+
+/* A non-finite clip position drops the triangle, and nothing else. */
+static void vs_nan(sgVertexBatch *b, const void *uniforms) {
+    vs_basic(b, uniforms);
+    for (int i = 0; i < SG_SHADER_LANES; i++)
+        if (b->index[i] == 3) b->clip[3][i] = NAN;
+}
+
+static void test_nan(void **state) {
+    (void)state;
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(NULL, &dev), SG_OK);
+    sgGeom g = quad(dev, 0.5f);
+    sgDrawParams p = params();
+    static uint8_t img[W * H * 4];
+    target t = begin(dev);
+    assert_int_equal(
+        sgDraw(dev, test_pso(dev, (sgPipelineDesc){.shader = {vs_nan, fs_color, 6, 0, 0}}), g, &p),
+        SG_OK);
+    end(dev, &t, img);
+    const uint8_t *lr = img + ((size_t)(H * 3 / 4) * W + W * 3 / 4) * 4;
+    const uint8_t *ul = img + ((size_t)(H / 4) * W + W / 4) * 4;
+    assert_true(lr[0] + lr[1] + lr[2] > 0);
+    assert_int_equal(ul[0] + ul[1] + ul[2], 0);
+    sgDestroyDevice(dev);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_matches_fixed), cmocka_unit_test(test_ids),
+        cmocka_unit_test(test_discard),       cmocka_unit_test(test_sample),
+        cmocka_unit_test(test_blend),         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_nan),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
