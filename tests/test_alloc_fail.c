@@ -119,6 +119,38 @@ static void mesh_free(mesh *m) {
     free(m->idx);
 }
 
+/* ---- a shader pipeline: eight varyings (the triangles' extension), a texture, uniforms,
+ * instances, and discarded fragments (bins redone in place) ---- */
+
+static void shader_vs(sgVertexBatch *b, const void *uniforms) {
+    const float *u = uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        float p[4], v[4];
+        for (int r = 0; r < 4; r++)
+            v[r] = b->world_view[r * 4] * b->position[0][i] +
+                   b->world_view[r * 4 + 1] * b->position[1][i] +
+                   b->world_view[r * 4 + 2] * b->position[2][i] + b->world_view[r * 4 + 3];
+        v[0] += u[0] * (float)b->instance;
+        for (int r = 0; r < 4; r++)
+            p[r] = b->proj[r * 4] * v[0] + b->proj[r * 4 + 1] * v[1] + b->proj[r * 4 + 2] * v[2] +
+                   b->proj[r * 4 + 3] * v[3];
+        for (int r = 0; r < 4; r++) b->clip[r][i] = p[r];
+        for (int k = 0; k < 8; k++)
+            b->varying[k][i] = k < 3 ? b->normal[k][i] : b->texcoord[k & 1][i];
+    }
+}
+
+static void shader_fs(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    float rgba[4][SG_SHADER_LANES];
+    sgSample(b, 0, b->varying[6], b->varying[7], rgba);
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        for (int k = 0; k < 3; k++) b->color[k][i] = rgba[k][i] * (0.5f + 0.5f * b->varying[k][i]);
+        b->color[3][i] = 1.0f;
+        if ((b->x + b->y + i) % 3 == 0) b->discard |= 1u << i;
+    }
+}
+
 /* ---- the script ---- */
 
 typedef struct script {
@@ -129,7 +161,7 @@ typedef struct script {
     sgDevice *dev;
     sgImage2D color, depth, tex, shadow_map;
     sgGeom ball_g, ref_g, floor_g, lines_g, tri_g, big_g;
-    sgPipelineStateObject opaque, textured, blend, flat, gouraud, phong, wire, caster, line;
+    sgPipelineStateObject opaque, textured, blend, flat, gouraud, phong, wire, caster, line, shader;
     uint8_t image[W * H * 4];
     int failures;    /* checks that failed */
     int oom_seen;    /* calls that returned SG_ERROR_OUT_OF_MEMORY */
@@ -262,6 +294,12 @@ static void frame(script *s, int frame_no) {
         lp.shadow = i % 3 == 2 ? &shadow : NULL;
         DO(sgDraw(s->dev, lit[i % 3], i % 2 ? s->ref_g : s->ball_g, &lp));
     }
+    const float su[2] = {0.8f, 0};
+    sgDrawParams shp = {.uniforms = su, .uniform_size = sizeof su, .instance_count = 2};
+    shp.textures[0] = s->tex;
+    perspective(shp.proj);
+    translate(shp.world_view, 0.4f, -2.4f, -1.6f, -5.5f);
+    DO(sgDraw(s->dev, s->shader, s->ball_g, &shp));
     sgDrawParams op = {0};
     perspective(op.proj);
     translate(op.world_view, 0.6f, 2.2f, -1.2f, -5);
@@ -407,6 +445,9 @@ static void run(script *s) {
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->caster));
     pd = (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS_EQUAL}};
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->line));
+    pd = depth_on;
+    pd.shader = (sgShaderDesc){shader_vs, shader_fs, 8, 0, 1};
+    DO(sgCreatePipelineStateObject(s->dev, &pd, &s->shader));
 
     /* Two frames: the second draws into the arrays the first grew. In between, a geom and a
      * pipeline are destroyed and made again (a slot reused). */
@@ -445,7 +486,7 @@ static void teardown(script *s) {
         if (g[i].id && sgDestroyGeom(s->dev, g[i]) != SG_OK)
             check(s, 0, __LINE__, "sgDestroyGeom", sgGetLastError(s->dev));
     const sgPipelineStateObject p[] = {s->opaque, s->textured, s->blend,  s->flat, s->gouraud,
-                                       s->phong,  s->wire,     s->caster, s->line};
+                                       s->phong,  s->wire,     s->caster, s->line, s->shader};
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         if (p[i].id && sgDestroyPipelineStateObject(s->dev, p[i]) != SG_OK)
             check(s, 0, __LINE__, "sgDestroyPipelineStateObject", sgGetLastError(s->dev));

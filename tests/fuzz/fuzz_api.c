@@ -140,7 +140,8 @@ enum {
                         BIT(SG_ERROR_OUT_OF_MEMORY) | BIT(SG_ERROR_POOL_EXHAUSTED),
     ALLOW_DESTROY = BIT(SG_ERROR_INVALID_HANDLE),
     ALLOW_CREATE_PSO = BIT(SG_ERROR_NULL_POINTER) | BIT(SG_ERROR_INVALID_ENUM) |
-                       BIT(SG_ERROR_INVALID_VALUE) | BIT(SG_ERROR_POOL_EXHAUSTED),
+                       BIT(SG_ERROR_INVALID_VALUE) | BIT(SG_ERROR_INVALID_COUNT) |
+                       BIT(SG_ERROR_POOL_EXHAUSTED),
     ALLOW_BEGIN = BIT(SG_ERROR_NULL_POINTER) | BIT(SG_ERROR_ALREADY_IN_PASS) |
                   BIT(SG_ERROR_INVALID_HANDLE) | BIT(SG_ERROR_FORMAT_MISMATCH) |
                   BIT(SG_ERROR_INVALID_SIZE) | BIT(SG_ERROR_INVALID_ENUM) |
@@ -150,10 +151,48 @@ enum {
         BIT(SG_ERROR_INVALID_ENUM) | BIT(SG_ERROR_INVALID_VALUE) | BIT(SG_ERROR_MISSING_DEPTH) |
         BIT(SG_ERROR_INVALID_COUNT) | BIT(SG_ERROR_UNSUPPORTED) | BIT(SG_ERROR_MISSING_ATTRIBUTE) |
         BIT(SG_ERROR_MISSING_TEXTURE) | BIT(SG_ERROR_NOT_SAMPLEABLE) | BIT(SG_ERROR_IN_USE) |
-        BIT(SG_ERROR_FORMAT_MISMATCH) | BIT(SG_ERROR_OUT_OF_MEMORY),
+        BIT(SG_ERROR_FORMAT_MISMATCH) | BIT(SG_ERROR_INVALID_SIZE) | BIT(SG_ERROR_OUT_OF_MEMORY),
     ALLOW_END =
         BIT(SG_ERROR_NULL_POINTER) | BIT(SG_ERROR_NOT_IN_PASS) | BIT(SG_ERROR_PASS_MISMATCH),
 };
+
+/* Shader stages (sgShaderDesc): a vertex stage from the matrices and every input, a fragment stage
+ * that samples two slots, discards by a varying and writes colours out of range. Lane by lane,
+ * so the pixels do not depend on how lanes are batched. */
+static void fuzz_vs(sgVertexBatch *b, const void *uniforms) {
+    const float *u = uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        float v[4];
+        for (int r = 0; r < 4; r++)
+            v[r] = b->world_view[r * 4] * b->position[0][i] +
+                   b->world_view[r * 4 + 1] * b->position[1][i] +
+                   b->world_view[r * 4 + 2] * b->position[2][i] +
+                   b->world_view[r * 4 + 3] * b->position[3][i];
+        v[0] += (u ? u[0] : 0.0f) * (float)b->instance;
+        for (int r = 0; r < 4; r++)
+            b->clip[r][i] = b->proj[r * 4] * v[0] + b->proj[r * 4 + 1] * v[1] +
+                            b->proj[r * 4 + 2] * v[2] + b->proj[r * 4 + 3] * v[3];
+        for (int k = 0; k < SG_MAX_VARYINGS; k++)
+            b->varying[k][i] = k < 4   ? b->color[k][i]
+                               : k < 6 ? b->texcoord[k - 4][i]
+                               : k < 9 ? b->normal[k - 6][i]
+                                       : b->attribute[k & 3][k & 3][i] + (float)b->index[i];
+    }
+}
+
+static void fuzz_fs(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    float t0[4][SG_SHADER_LANES], t1[4][SG_SHADER_LANES];
+    sgSample(b, 0, b->varying[4], b->varying[5], t0);
+    sgSample(b, 1, b->varying[5], b->varying[4], t1);
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        for (int k = 0; k < 4; k++)
+            b->color[k][i] = b->varying[k][i] * t0[k][i] + t1[k][i] * b->z[i] +
+                             (float)(b->primitive + b->instance) * 0.01f;
+        if (b->varying[6][i] > 0.5f || (b->front_facing && b->varying[7][i] < -0.5f))
+            b->discard |= 1u << i;
+    }
+}
 
 static uint64_t fnv(uint64_t h, const void *p, size_t n) {
     const uint8_t *b = p;
@@ -390,6 +429,15 @@ static void one_run(run *R, const uint8_t *data, size_t size) {
                 pd.depth.bias_constant = f32(r);
                 pd.depth.bias_slope = f32(r);
             }
+            if (a % 4 == 3) { /* an invalid shade becomes a shader pipeline, valid or not */
+                unsigned x = u8(r);
+                pd.shade = (x & 0x80) ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_DEFAULT;
+                if (!(x & 0x40)) pd.lighting = SG_LIGHTING_DEFAULT;
+                pd.shader = (sgShaderDesc){(x & 1) ? NULL : fuzz_vs, (x & 2) ? NULL : fuzz_fs,
+                                           (int)(u8(r) % 19) - 1, u8(r) & 0x3fu,
+                                           (int)((x >> 2) % 4) - ((x & 0x20) ? 2 : 0)};
+                if ((x & 3) == 3) pd.shader.varying_count = 0;
+            }
             sgPipelineStateObject h = {0x1234u};
             if (skip) break;
             res = sgCreatePipelineStateObject(D->dev, &pd, &h);
@@ -459,6 +507,16 @@ static void one_run(run *R, const uint8_t *data, size_t size) {
                 sh.light = (int)(u8(r) % 4) - 1;
                 sh.pcf = (a >> 2) & 1;
                 dp.shadow = &sh;
+            }
+            float uni[4] = {0};
+            if (m2 & 2) { /* shader draws' bindings (refused on fixed pipelines) */
+                unsigned x = u8(r);
+                uni[0] = f32(r);
+                dp.uniforms = (x & 1) ? NULL : uni;
+                dp.uniform_size = (x & 2) ? (size_t)SG_MAX_UNIFORM_SIZE + 1 : sizeof uni;
+                if (x & 4) dp.textures[0].id = pick(r, D->img, O->img, D->geom);
+                if (x & 8) dp.textures[1].id = pick(r, D->img, O->img, D->geom);
+                dp.instance_count = (int)((x >> 4) % 5) - 1;
             }
             if (skip) break;
             res = sgDraw(D->dev, p, g, (m2 & 0xF0) == 0xF0 ? NULL : &dp);
