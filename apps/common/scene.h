@@ -100,6 +100,8 @@ typedef struct sc_shadow {
 
 /* Most textures a shader draw binds (sgapi's SG_MAX_DRAW_TEXTURES). */
 #define SC_MAX_DRAW_TEXTURES 8
+/* Most uniforms a shader draw gives: sgapi's SG_MAX_UNIFORM_SIZE bytes of floats. */
+#define SC_MAX_UNIFORMS (65536 / 4)
 
 /* One draw call: the mesh's triangles, then its lines, with the same state. */
 typedef struct sc_draw {
