@@ -706,8 +706,7 @@ static bool parse_shader_keys(ctx *c, const loc *l, const cJSON *v, sc_draw *d) 
     return true;
 }
 
-/* What a draw holds on the heap; the draw is left zeroed there. */
-static void free_draw(sc_draw *d) {
+void sc_draw_free(sc_draw *d) {
     free(d->shader);
     free(d->uniforms);
     d->shader = NULL;
@@ -772,7 +771,7 @@ static bool parse_draw_fields(ctx *c, const loc *l, const cJSON *v, sc_draw *d) 
 /* One draw; on failure it holds nothing (the scene counts only the draws parsed). */
 static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     if (parse_draw_fields(c, l, v, d)) return true;
-    free_draw(d);
+    sc_draw_free(d);
     return false;
 }
 
@@ -1033,7 +1032,7 @@ void sc_free(sc_file *file) {
     for (size_t i = 0; i < file->scene_count; i++) {
         free(file->scenes[i].name);
         for (size_t j = 0; j < file->scenes[i].draw_count; j++)
-            free_draw(&file->scenes[i].draws[j]);
+            sc_draw_free(&file->scenes[i].draws[j]);
         free(file->scenes[i].draws);
     }
     free(file->scenes);

@@ -174,6 +174,9 @@ typedef struct sc_file {
 bool sc_load(const char *path, sc_file *out, sc_msg *err);
 /** Parses scene JSON text; path names it in messages and relative paths start at its folder. */
 bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, sc_msg *err);
+/** Frees what one draw holds on the heap (its shader name and uniforms), leaving those fields
+ *  zeroed; for a program that removes a draw from a scene. */
+void sc_draw_free(sc_draw *d);
 /** Frees everything a loaded file holds and zeroes it; a zeroed file is fine. */
 void sc_free(sc_file *file);
 
