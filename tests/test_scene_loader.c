@@ -1386,6 +1386,108 @@ static void sort_stable_at_scale(void **state) {
     free(key);
 }
 
+/* ---- shader draws -----------------------------------------------------------------------------
+ */
+
+/* A file of one scene with one draw of tri.obj whose other keys are `keys`. */
+static bool load_draw(tmp_dir *t, const char *keys, sc_file *f, sc_msg *err) {
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"width\": 4, \"height\": 4, \"scenes\": [{\"name\": \"s\", \"draws\": ["
+             "{\"mesh\": \"tri.obj\", %s%s" MATRICES "}]}]}",
+             keys, *keys ? ", " : "");
+    return load_scene(t, "shader.json", json, f, err);
+}
+
+/* The shader keys: a name, uniforms, textures (loaded once per file, like "texture"), instances;
+ * a shader draw neither casts nor receives the scene's shadow. */
+static void scene_shader_keys(void **state) {
+    tmp_dir *t = *state;
+    TEST_MSG(err);
+    sc_file f;
+    if (!load_draw(t,
+                   "\"shader\": \"my_shader2\", \"uniforms\": [1, -2.5, 1e30], "
+                   "\"textures\": [\"red.png\", \"red.png\"], \"instances\": 7, "
+                   "\"filter\": \"nearest\", \"wrap\": \"clamp\", \"blend\": \"alpha\"",
+                   &f, &err))
+        fail_msg("%s", MSG(err));
+    const sc_draw *d = &f.scenes[0].draws[0];
+    assert_string_equal(d->shader, "my_shader2");
+    assert_int_equal(d->uniform_count, 3);
+    const float u[3] = {1.0f, -2.5f, 1e30f};
+    assert_memory_equal(d->uniforms, u, sizeof u);
+    assert_int_equal(d->shader_texture_count, 2);
+    assert_int_equal(f.texture_count, 1);
+    assert_int_equal(d->shader_textures[0], 0);
+    assert_int_equal(d->shader_textures[1], 0);
+    assert_int_equal(d->instances, 7);
+    assert_int_equal(d->texture, -1);
+    assert_int_equal(d->filter, SC_FILTER_NEAREST);
+    assert_false(d->casts_shadow);
+    assert_false(d->receives_shadow);
+    assert_int_equal(f.warning_count, 0);
+    sc_free(&f);
+
+    /* The defaults: no uniforms, no textures, one instance; a fixed draw has no shader. */
+    if (!load_draw(t, "\"shader\": \"unlit\", \"uniforms\": []", &f, &err))
+        fail_msg("%s", MSG(err));
+    d = &f.scenes[0].draws[0];
+    assert_int_equal(d->uniform_count, 0);
+    assert_null(d->uniforms);
+    assert_int_equal(d->shader_texture_count, 0);
+    assert_int_equal(d->instances, 1);
+    sc_free(&f);
+    if (!load_draw(t, "", &f, &err)) fail_msg("%s", MSG(err));
+    assert_null(f.scenes[0].draws[0].shader);
+    assert_int_equal(f.scenes[0].draws[0].instances, 1);
+    sc_free(&f);
+}
+
+/* Bad values of the shader keys are errors naming the file, the draw and the key; so are the
+ * fixed keys a shader replaces, and the shader keys without a shader. */
+static void scene_shader_bad_values(void **state) {
+    tmp_dir *t = *state;
+    static const struct {
+        const char *keys, *want;
+    } cases[] = {
+        {"\"shader\": 3", "'shader' must be a shader's name"},
+        {"\"shader\": \"\"", "'shader' must be a shader's name"},
+        {"\"shader\": \"has space\"", "'shader' must be a shader's name"},
+        {"\"shader\": \"u\", \"uniforms\": 1", "'uniforms' must be an array of numbers"},
+        {"\"shader\": \"u\", \"uniforms\": [1, \"2\"]", "'uniforms'[1] is not a number"},
+        {"\"shader\": \"u\", \"uniforms\": [1e39]", "'uniforms'[0] = 1e+39 does not fit a float"},
+        {"\"shader\": \"u\", \"textures\": \"red.png\"", "'textures' must be an array of paths"},
+        {"\"shader\": \"u\", \"textures\": [1]", "'textures'[0] must be a path"},
+        {"\"shader\": \"u\", \"textures\": [\"red.png\", \"\"]", "'textures'[1] names an empty "
+                                                                 "path"},
+        {"\"shader\": \"u\", \"textures\": [\"red.png\", \"missing.png\"]", "'textures'[1]: "},
+        {"\"shader\": \"u\", \"textures\": [\"red.png\", \"red.png\", \"red.png\", \"red.png\", "
+         "\"red.png\", \"red.png\", \"red.png\", \"red.png\", \"red.png\"]",
+         "'textures' names 9 textures, more than the 8 a draw binds"},
+        {"\"shader\": \"u\", \"instances\": 0", "'instances' must be an integer in 1..16777216"},
+        {"\"shader\": \"u\", \"instances\": 1.5", "'instances' must be an integer"},
+        {"\"shader\": \"u\", \"instances\": \"2\"", "'instances' must be an integer"},
+        {"\"shader\": \"u\", \"texture\": \"red.png\"", "'texture' with a 'shader'"},
+        {"\"shader\": \"u\", \"mode\": \"texture\"", "'mode' 'texture' with a 'shader'"},
+        {"\"shader\": \"u\", \"lighting\": \"phong\"", "'lighting' with a 'shader'"},
+        {"\"shader\": \"u\", \"color\": [1, 0, 0, 1]", "'color' with a 'shader'"},
+        {"\"shader\": \"u\", \"shininess\": 8", "'shininess' with a 'shader'"},
+        {"\"shader\": \"u\", \"casts_shadow\": true", "'casts_shadow' true with a 'shader'"},
+        {"\"uniforms\": [1]", "'uniforms' is for shader draws"},
+        {"\"textures\": [\"red.png\"]", "'textures' is for shader draws"},
+        {"\"instances\": 2", "'instances' is for shader draws"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        TEST_MSG(err);
+        sc_file f;
+        if (load_draw(t, cases[i].keys, &f, &err)) fail_msg("'%s' loaded", cases[i].keys);
+        if (!strstr(MSG(err), "shader.json: scenes[0] ('s'), draws[0]: ") ||
+            !strstr(MSG(err), cases[i].want))
+            fail_msg("'%s': '%s' lacks '%s'", cases[i].keys, MSG(err), cases[i].want);
+        assert_int_equal(f.scene_count, 0); /* zeroed */
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(obj_colour_extension),
@@ -1409,6 +1511,8 @@ int main(void) {
         cmocka_unit_test(scene_mesh_normals),
         cmocka_unit_test(scene_lines),
         cmocka_unit_test(scene_shadow),
+        cmocka_unit_test(scene_shader_keys),
+        cmocka_unit_test(scene_shader_bad_values),
         cmocka_unit_test(shadow_light_directional),
         cmocka_unit_test(shadow_light_point),
         cmocka_unit_test(scene_errors),

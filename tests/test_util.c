@@ -1,4 +1,4 @@
-/* test_util.c - the helpers of sgapi_util: smooth vertex normals. */
+/* test_util.c - the helpers of sgapi_util: smooth vertex normals, tangents. */
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -240,6 +240,130 @@ static void bad_input_is_refused(void **state) {
     assert_float_equal(n[2], 1.0f, 0);
 }
 
+/* ---- tangents ---------------------------------------------------------------------------------
+ */
+
+/* A unit square in z = 0 as two triangles, its texture coordinates (s, t) = (su * x, tv * y). */
+static void square(float pos[16], float nrm[12], float uv[8], float su, float tv) {
+    const float xy[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int v = 0; v < 4; v++) {
+        set4(pos + v * 4, xy[v][0], xy[v][1], 0, 1);
+        nrm[v * 3] = 0, nrm[v * 3 + 1] = 0, nrm[v * 3 + 2] = 1;
+        uv[v * 2] = su * xy[v][0], uv[v * 2 + 1] = tv * xy[v][1];
+    }
+}
+
+static const uint32_t square_idx[6] = {0, 1, 2, 0, 2, 3};
+
+static void tangent_follows_s(void **state) {
+    (void)state;
+    float pos[16], nrm[12], uv[8], t[16];
+    square(pos, nrm, uv, 1, 1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, square_idx, 6, 0, t), 0);
+    for (int v = 0; v < 4; v++) {
+        assert_float_equal(t[v * 4 + 0], 1.0f, 1e-6);
+        assert_float_equal(t[v * 4 + 1], 0.0f, 1e-6);
+        assert_float_equal(t[v * 4 + 2], 0.0f, 1e-6);
+        assert_float_equal(t[v * 4 + 3], 1.0f, 0);
+    }
+    /* s mirrored: the tangent turns round and the frame is left-handed. */
+    square(pos, nrm, uv, -2, 1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, square_idx, 6, 0, t), 0);
+    for (int v = 0; v < 4; v++) {
+        assert_float_equal(t[v * 4 + 0], -1.0f, 1e-6);
+        assert_float_equal(t[v * 4 + 3], -1.0f, 0);
+    }
+    /* Quads give what their two triangles give. */
+    const uint32_t quad[4] = {0, 1, 2, 3};
+    float tq[16];
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, quad, 4, 1, tq), 0);
+    assert_memory_equal(t, tq, sizeof t);
+}
+
+static void tangent_orthogonal_to_normal(void **state) {
+    (void)state;
+    float pos[16], nrm[12], uv[8], t[16];
+    square(pos, nrm, uv, 1, 1);
+    /* Normals tilted towards +x (and not of unit length): Gram-Schmidt keeps the part of +x
+     * perpendicular to them, (1, 0, -1) / sqrt(2). */
+    for (int v = 0; v < 4; v++) nrm[v * 3] = 3, nrm[v * 3 + 2] = 3;
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, square_idx, 6, 0, t), 0);
+    for (int v = 0; v < 4; v++) {
+        assert_float_equal(t[v * 4 + 0], 0.70710678f, 1e-6);
+        assert_float_equal(t[v * 4 + 1], 0.0f, 1e-6);
+        assert_float_equal(t[v * 4 + 2], -0.70710678f, 1e-6);
+    }
+}
+
+static void tangent_sphere_is_unit_and_perpendicular(void **state) {
+    (void)state;
+    sguShapeDesc d = {.shape = SGU_SHAPE_UV_SPHERE};
+    int nv, ni;
+    assert_int_equal(sgu_shape_counts(&d, &nv, &ni), 0);
+    float *pos = malloc((size_t)nv * 16), *nrm = malloc((size_t)nv * 12);
+    float *uv = malloc((size_t)nv * 8), *t = malloc((size_t)nv * 16);
+    uint32_t *idx = malloc((size_t)ni * 4);
+    assert_non_null(pos && nrm && uv && t && idx);
+    assert_int_equal(sgu_shape_build(&d, pos, nrm, uv, idx), 0);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, nv, idx, ni, 0, t), 0);
+    assert_false(any_nan(t, nv * 4));
+    for (int v = 0; v < nv; v++) {
+        const float *a = t + v * 4, *n = nrm + v * 3;
+        assert_float_equal(a[0] * a[0] + a[1] * a[1] + a[2] * a[2], 1.0f, 1e-5);
+        assert_float_equal(a[0] * n[0] + a[1] * n[1] + a[2] * n[2], 0.0f, 1e-5);
+        assert_true(a[3] == 1.0f || a[3] == -1.0f);
+    }
+    free(pos), free(nrm), free(uv), free(t), free(idx);
+}
+
+static void tangent_degenerate_never_nan(void **state) {
+    (void)state;
+    float pos[16], nrm[12], uv[8], t[16];
+    square(pos, nrm, uv, 0, 0); /* every vertex at s = t = 0 */
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, square_idx, 6, 0, t), 0);
+    assert_false(any_nan(t, 16));
+    for (int v = 0; v < 4; v++) {
+        const float *a = t + v * 4;
+        assert_float_equal(a[0] * a[0] + a[1] * a[1] + a[2] * a[2], 1.0f, 1e-6);
+        assert_float_equal(a[2], 0.0f, 0); /* perpendicular to the normal (0, 0, 1) */
+        assert_float_equal(a[3], 1.0f, 0);
+    }
+    /* Texture coordinates along one line (no area), then a NaN one; a zero normal; an unused
+     * vertex (3): all still finite and of unit length. */
+    const uint32_t idx[3] = {0, 1, 2};
+    for (int pass = 0; pass < 2; pass++) {
+        square(pos, nrm, uv, 1, 1);
+        uv[2] = uv[3] = 0.5f; /* vertex 1 halfway between vertex 0 (0, 0) and vertex 2 (1, 1) */
+        if (pass) uv[5] = NAN;
+        nrm[6] = nrm[7] = nrm[8] = 0;
+        assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, idx, 3, 0, t), 0);
+        assert_false(any_nan(t, 16));
+        for (int v = 0; v < 4; v++) {
+            const float *a = t + v * 4;
+            assert_float_equal(a[0] * a[0] + a[1] * a[1] + a[2] * a[2], 1.0f, 1e-6);
+        }
+    }
+}
+
+static void tangent_bad_input_is_refused(void **state) {
+    (void)state;
+    float pos[16], nrm[12], uv[8], t[16];
+    square(pos, nrm, uv, 1, 1);
+    for (int i = 0; i < 16; i++) t[i] = 42.0f;
+    const uint32_t bad[3] = {0, 1, 4};
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, bad, 3, 0, t), -1);
+    assert_int_equal(sgu_compute_tangents(NULL, nrm, uv, 4, square_idx, 6, 0, t), -1);
+    assert_int_equal(sgu_compute_tangents(pos, NULL, uv, 4, square_idx, 6, 0, t), -1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, NULL, 4, square_idx, 6, 0, t), -1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, NULL, 6, 0, t), -1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, square_idx, 6, 0, NULL), -1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 0, square_idx, 6, 0, t), -1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, square_idx, 5, 0, t), -1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, square_idx, 6, 1, t), -1);
+    assert_int_equal(sgu_compute_tangents(pos, nrm, uv, 4, square_idx, 6, 2, t), -1);
+    for (int i = 0; i < 16; i++) assert_float_equal(t[i], 42.0f, 0); /* unchanged */
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(cube_unshared_gets_corner_normals),
@@ -249,6 +373,11 @@ int main(void) {
         cmocka_unit_test(shared_and_unshared_agree),
         cmocka_unit_test(degenerate_gives_zero_not_nan),
         cmocka_unit_test(bad_input_is_refused),
+        cmocka_unit_test(tangent_follows_s),
+        cmocka_unit_test(tangent_orthogonal_to_normal),
+        cmocka_unit_test(tangent_sphere_is_unit_and_perpendicular),
+        cmocka_unit_test(tangent_degenerate_never_nan),
+        cmocka_unit_test(tangent_bad_input_is_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

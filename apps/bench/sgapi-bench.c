@@ -88,10 +88,13 @@ typedef struct options {
     int rounds;  /* --rounds: measurements of each scene, in turn; the median is kept */
     sgSimd simd; /* SG_SIMD_DEFAULT: the best the CPU runs */
     bool quick, pareto;
-    bool strict;      /* --strict: an unknown key in a scene file is an error */
-    const char *csv;  /* NULL: no CSV */
-    const char *plot; /* --plot; NULL: pareto.png */
-    const char *ref;  /* --ref; NULL: sgapi-ref beside this program */
+    bool strict;              /* --strict: an unknown key in a scene file is an error */
+    const char *csv;          /* NULL: no CSV */
+    const char *plot;         /* --plot; NULL: pareto.png */
+    const char *ref;          /* --ref; NULL: sgapi-ref beside this program */
+    const char **shader_libs; /* --shaders: shader libraries, given to sgapi-ref too */
+    int shader_lib_count;
+    const sc_shaders *shaders; /* the shaders scene files may name, once loaded */
 } options;
 
 static void usage(FILE *f) {
@@ -109,6 +112,8 @@ static void usage(FILE *f) {
             "  --simd SET      sgapi's instruction set: scalar, sse2, avx2, avx512 or neon\n"
             "                  (default: the best this CPU runs)\n"
             "  --csv FILE      also write the table as CSV\n"
+            "  --shaders LIB.so  load the shaders of a shader library (repeatable; sgapi-ref\n"
+            "                  gets the same)\n"
             "  --pareto        also measure every setting (default, nearest filter) at T threads:\n"
             "                  print a second table, write pareto.csv (beside --csv FILE, or in\n"
             "                  the current folder) and plot it when gnuplot is installed\n"
@@ -159,7 +164,8 @@ static int parse_args(int argc, char **argv, options *o) {
     o->warmup = WARMUP_FRAMES;
     o->threads = default_threads();
     o->files = calloc((size_t)argc, sizeof *o->files);
-    if (!o->files) {
+    o->shader_libs = calloc((size_t)argc, sizeof *o->shader_libs);
+    if (!o->files || !o->shader_libs) {
         fprintf(stderr, "sgapi-bench: out of memory\n");
         return 2;
     }
@@ -168,7 +174,7 @@ static int parse_args(int argc, char **argv, options *o) {
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool takes_value = !strcmp(a, "--frames") || !strcmp(a, "--rounds") ||
                            !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--csv") ||
-                           !strcmp(a, "--plot") || !strcmp(a, "--ref");
+                           !strcmp(a, "--plot") || !strcmp(a, "--ref") || !strcmp(a, "--shaders");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -209,6 +215,8 @@ static int parse_args(int argc, char **argv, options *o) {
             o->plot = value;
         } else if (!strcmp(a, "--ref")) {
             o->ref = value;
+        } else if (!strcmp(a, "--shaders")) {
+            o->shader_libs[o->shader_lib_count++] = value;
         } else if (!strcmp(a, "--pareto")) {
             o->pareto = true;
         } else if (!strcmp(a, "--quick")) {
@@ -407,11 +415,24 @@ static bool run_lavapipe(const options *o, const char *ref, const char *file, co
     sc_msg err = {0};
     snprintf(frames_s, sizeof frames_s, "%d", o->frames);
     snprintf(threads_s, sizeof threads_s, "%d", threads);
-    char *argv[] = {(char *)ref, (char *)file, "--frames", frames_s,       "--scene", (char *)scene,
-                    "--threads", threads_s,    "-o",       (char *)tmpdir, NULL};
+    const char *fixed[] = {ref,   file,        "--frames", frames_s, "--scene",
+                           scene, "--threads", threads_s,  "-o",     tmpdir};
+    enum { FIXED = sizeof fixed / sizeof fixed[0] };
+    char **argv = calloc(FIXED + 2 * (size_t)o->shader_lib_count + 1, sizeof *argv);
+    if (!argv) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return false;
+    }
+    for (int i = 0; i < FIXED; i++) argv[i] = (char *)fixed[i];
+    for (int i = 0; i < o->shader_lib_count; i++) {
+        argv[FIXED + 2 * i] = "--shaders";
+        argv[FIXED + 2 * i + 1] = (char *)o->shader_libs[i];
+    }
     char *out;
     int status;
-    if (run_child(argv, &out, &status, &err) != 0) {
+    int run = run_child(argv, &out, &status, &err);
+    free(argv);
+    if (run != 0) {
         fprintf(stderr, "sgapi-bench: %s\n", err.text);
         sc_msg_free(&err);
         fprintf(stderr, "sgapi-bench: the lavapipe reference could not run; build sgapi-ref "
@@ -452,10 +473,11 @@ static bool run_lavapipe(const options *o, const char *ref, const char *file, co
 /* ---- sgapi ----------------------------------------------------------------------------------- */
 
 /* The pipeline state of a draw, as sgapi-render makes it, then changed by the setting. */
-static sgPipelineDesc pipeline_of(const sc_draw *d, const setting *st) {
-    sgPipelineDesc p = ss_pipeline_desc(d);
-    if (st->adjust) st->adjust(&p);
-    return p;
+static bool pipeline_of(const options *o, const sc_file *f, const sc_draw *d, const setting *st,
+                        sgPipelineDesc *p) {
+    if (!ss_pipeline_desc(PROG, f, d, o->shaders, p)) return false;
+    if (st->adjust) st->adjust(p);
+    return true;
 }
 
 /* Draws a scene o->warmup untimed frames, then o->frames timed ones; *ms is the median time of a
@@ -474,8 +496,10 @@ static bool measure_scene(sgDevice *dev, ss_pso_cache *cache, const sc_file *f, 
         goto done;
     }
     for (size_t i = 0; i < s->draw_count; i++) {
-        sgPipelineDesc desc = pipeline_of(&s->draws[i], st);
-        if (!ss_get_pso(PROG, dev, cache, &desc, &psos[i])) goto done;
+        sgPipelineDesc desc;
+        if (!pipeline_of(o, f, &s->draws[i], st, &desc) ||
+            !ss_get_pso(PROG, dev, cache, &desc, &psos[i]))
+            goto done;
     }
     sgPassDesc pass;
     if (!ss_create_targets(PROG, dev, s, &color, &depth, &pass) ||
@@ -896,6 +920,7 @@ int main(int argc, char **argv) {
     int status = parse_args(argc, argv, &o);
     if (status) {
         free(o.files);
+        free(o.shader_libs);
         return status == 1 ? 0 : 2;
     }
     status = 1;
@@ -903,6 +928,7 @@ int main(int argc, char **argv) {
     result *res = NULL;
     size_t count = 0;
     int loaded = 0;
+    sc_shaders *shaders = NULL;
     char *ref = NULL, *pareto_path = NULL, *tmpdir = NULL;
     FILE *csv = NULL, *pareto_csv = NULL;
     double floor_ms[2] = {0, 0};
@@ -960,6 +986,21 @@ int main(int argc, char **argv) {
     for (int i = 0; i < loaded; i++)
         clean &= sc_report_warnings(&files[i], "sgapi-bench", o.strict);
     if (!clean) goto done;
+    /* The shaders the files name: a problem there is a bad argument (exit 2), before any
+     * measuring. */
+    sc_msg shader_err = {0};
+    bool shaders_ok = sc_shaders_open(&shaders, &shader_err);
+    for (int i = 0; shaders_ok && i < o.shader_lib_count; i++)
+        shaders_ok = sc_shaders_load(shaders, o.shader_libs[i], &shader_err);
+    for (int i = 0; shaders_ok && i < loaded; i++)
+        shaders_ok = sc_shaders_check(shaders, &files[i], &shader_err);
+    if (!shaders_ok) {
+        fprintf(stderr, "sgapi-bench: %s\n", shader_err.text);
+        sc_msg_free(&shader_err);
+        status = 2;
+        goto done;
+    }
+    o.shaders = shaders;
     res = calloc(count ? count : 1, sizeof *res);
     if (!res) {
         fprintf(stderr, "sgapi-bench: out of memory\n");
@@ -1016,6 +1057,8 @@ done:
     free(tmpdir);
     free(pareto_path);
     free(ref);
+    sc_shaders_close(shaders);
     free(o.files);
+    free(o.shader_libs);
     return status;
 }

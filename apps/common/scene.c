@@ -504,14 +504,11 @@ static bool get_mesh(ctx *c, const loc *l, const cJSON *draw, int *out) {
     return add_mesh(c, l, source, kind, &mesh, out);
 }
 
-/* The draw's "texture": a path, null or absent (-1). */
-static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(draw, "texture");
-    *out = -1;
-    if (!v || cJSON_IsNull(v)) return true;
-    if (!cJSON_IsString(v)) return fail(c, l, "'texture' must be a path or null");
-    if (v->valuestring[0] == '\0') return fail(c, l, "'texture' names an empty path");
-    char *path = resolve_path(c, v->valuestring);
+/* A texture path of the file, loaded once per file: *out is its index in f->textures. key names
+ * the value in messages ("'texture'", "'textures'[2]"). */
+static bool load_texture(ctx *c, const loc *l, const char *key, const char *rel, int *out) {
+    if (rel[0] == '\0') return fail(c, l, "%s names an empty path", key);
+    char *path = resolve_path(c, rel);
     if (!path) return fail(c, l, "out of memory");
     sc_file *f = c->f;
     for (size_t i = 0; i < f->texture_count; i++) {
@@ -529,7 +526,7 @@ static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
     sc_image img;
     if (!sc_image_load(path, &img, &why)) {
         free(path);
-        fail(c, l, "texture: %s", why.text);
+        fail(c, l, "%s: %s", strcmp(key, "'texture'") == 0 ? "texture" : key, why.text);
         sc_msg_free(&why);
         return false;
     }
@@ -552,6 +549,15 @@ static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
     f->texture_sources[f->texture_count] = path;
     *out = (int)f->texture_count++;
     return true;
+}
+
+/* The draw's "texture": a path, null or absent (-1). */
+static bool get_texture(ctx *c, const loc *l, const cJSON *draw, int *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(draw, "texture");
+    *out = -1;
+    if (!v || cJSON_IsNull(v)) return true;
+    if (!cJSON_IsString(v)) return fail(c, l, "'texture' must be a path or null");
+    return load_texture(c, l, "'texture'", v->valuestring, out);
 }
 
 /* ---- scenes and draws ------------------------------------------------------------------------ */
@@ -589,7 +595,126 @@ static bool check_lines(ctx *c, const loc *l, const sc_draw *d) {
     return true;
 }
 
-static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
+/* Most instances of one draw: the instance index stays exact in a float (a twin may compute with
+ * it so). */
+#define SC_MAX_INSTANCES (1 << 24)
+
+static bool valid_shader_name(const char *s) {
+    size_t n = 0;
+    for (; s[n]; n++) {
+        char ch = s[n];
+        bool ok = (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') ||
+                  (ch >= '0' && ch <= '9') || ch == '_';
+        if (!ok) return false;
+    }
+    return n >= 1 && n <= 64;
+}
+
+/* "uniforms": an array of finite numbers (a float each), any length the API takes. */
+static bool get_uniforms(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
+    const int max = SC_MAX_UNIFORMS;
+    if (!cJSON_IsArray(v)) return fail(c, l, "'uniforms' must be an array of numbers");
+    int n = cJSON_GetArraySize(v);
+    if (n > max)
+        return fail(c, l, "'uniforms' holds %d numbers, more than the %d a draw takes", n, max);
+    if (n == 0) return true;
+    d->uniforms = malloc((size_t)n * sizeof *d->uniforms);
+    if (!d->uniforms) return fail(c, l, "out of memory");
+    int i = 0;
+    const cJSON *e;
+    cJSON_ArrayForEach(e, v) {
+        if (!cJSON_IsNumber(e)) return fail(c, l, "'uniforms'[%d] is not a number", i);
+        float f = (float)e->valuedouble;
+        if (!isfinite(f))
+            return fail(c, l, "'uniforms'[%d] = %g does not fit a float", i, e->valuedouble);
+        d->uniforms[i++] = f;
+    }
+    d->uniform_count = n;
+    return true;
+}
+
+/* "textures": an array of paths, each loaded as "texture" is. */
+static bool get_shader_textures(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
+    if (!cJSON_IsArray(v)) return fail(c, l, "'textures' must be an array of paths");
+    int n = cJSON_GetArraySize(v);
+    if (n > SC_MAX_DRAW_TEXTURES)
+        return fail(c, l, "'textures' names %d textures, more than the %d a draw binds", n,
+                    SC_MAX_DRAW_TEXTURES);
+    int i = 0;
+    const cJSON *e;
+    cJSON_ArrayForEach(e, v) {
+        char key[32];
+        snprintf(key, sizeof key, "'textures'[%d]", i);
+        if (!cJSON_IsString(e)) return fail(c, l, "%s must be a path", key);
+        if (!load_texture(c, l, key, e->valuestring, &d->shader_textures[i])) return false;
+        d->shader_texture_count = ++i;
+    }
+    return true;
+}
+
+/* The keys of programmable stages (docs/scene-format.md, "Shaders"): "shader" and what only a
+ * shader draw takes. A shader replaces the fixed colour, texture, lighting and shadows, so a draw
+ * asking for both is refused rather than silently drawn one way. The name itself is checked by
+ * the program, which knows its shaders (sc_shaders_check). */
+static bool parse_shader_keys(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
+    const cJSON *name = cJSON_GetObjectItemCaseSensitive(v, "shader");
+    const cJSON *uniforms = cJSON_GetObjectItemCaseSensitive(v, "uniforms");
+    const cJSON *textures = cJSON_GetObjectItemCaseSensitive(v, "textures");
+    bool has_instances;
+    d->instances = 1;
+    if (!get_int(c, l, v, "instances", 1, SC_MAX_INSTANCES, &d->instances, &has_instances))
+        return false;
+    if (!name) {
+        const char *key = uniforms ? "uniforms" : textures ? "textures" : "instances";
+        if (uniforms || textures || has_instances)
+            return fail(c, l, "'%s' is for shader draws, and the draw names no 'shader'", key);
+        return true;
+    }
+    if (!cJSON_IsString(name) || !valid_shader_name(name->valuestring))
+        return fail(c, l, "'shader' must be a shader's name (1 to 64 of A-Z a-z 0-9 _)");
+    static const char *const replaced[] = {"the shader replaces the fixed shading",
+                                           "the shader samples the draw's 'textures'",
+                                           "a shader draw is not lit: the shader computes its "
+                                           "own light",
+                                           "a shader draw neither casts nor receives the "
+                                           "scene's shadow (a shader may sample a shadow map "
+                                           "given in 'textures')"};
+    const cJSON *mode = cJSON_GetObjectItemCaseSensitive(v, "mode");
+    if (mode && d->mode != SC_MODE_VERTEX_COLOR)
+        return fail(c, l, "'mode' 'texture' with a 'shader': %s", replaced[0]);
+    if (d->texture >= 0) return fail(c, l, "'texture' with a 'shader': %s", replaced[1]);
+    if (d->lighting != SC_LIGHTING_NONE)
+        return fail(c, l, "'lighting' with a 'shader': %s", replaced[2]);
+    if (d->color[0] != 1.0f || d->color[1] != 1.0f || d->color[2] != 1.0f || d->color[3] != 1.0f)
+        return fail(c, l, "'color' with a 'shader': %s (give the colour in 'uniforms')",
+                    replaced[0]);
+    if (d->specular[0] != 0.0f || d->specular[1] != 0.0f || d->specular[2] != 0.0f ||
+        d->shininess != 0.0f)
+        return fail(c, l, "'%s' with a 'shader': %s",
+                    d->shininess != 0.0f ? "shininess" : "specular", replaced[2]);
+    const cJSON *cs = cJSON_GetObjectItemCaseSensitive(v, "casts_shadow");
+    const cJSON *rs = cJSON_GetObjectItemCaseSensitive(v, "receives_shadow");
+    if (cJSON_IsTrue(cs) || cJSON_IsTrue(rs))
+        return fail(c, l, "'%s' true with a 'shader': %s",
+                    cJSON_IsTrue(cs) ? "casts_shadow" : "receives_shadow", replaced[3]);
+    d->casts_shadow = false;
+    d->receives_shadow = false;
+    if (uniforms && !get_uniforms(c, l, uniforms, d)) return false;
+    if (textures && !get_shader_textures(c, l, textures, d)) return false;
+    d->shader = dup_str(name->valuestring);
+    if (!d->shader) return fail(c, l, "out of memory");
+    return true;
+}
+
+void sc_draw_free(sc_draw *d) {
+    free(d->shader);
+    free(d->uniforms);
+    d->shader = NULL;
+    d->uniforms = NULL;
+    d->uniform_count = 0;
+}
+
+static bool parse_draw_fields(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     if (!cJSON_IsObject(v)) return fail(c, l, "a draw must be an object");
     if (!get_mesh(c, l, v, &d->mesh)) return false;
     if (!get_texture(c, l, v, &d->texture)) return false;
@@ -640,7 +765,14 @@ static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
     if (!present) return fail(c, l, "missing 'worldView' (16 numbers, row-major)");
     if (!get_floats(c, l, v, "proj", 16, -HUGE_VAL, HUGE_VAL, d->proj, &present)) return false;
     if (!present) return fail(c, l, "missing 'proj' (16 numbers, row-major)");
-    return true;
+    return parse_shader_keys(c, l, v, d);
+}
+
+/* One draw; on failure it holds nothing (the scene counts only the draws parsed). */
+static bool parse_draw(ctx *c, const loc *l, const cJSON *v, sc_draw *d) {
+    if (parse_draw_fields(c, l, v, d)) return true;
+    sc_draw_free(d);
+    return false;
 }
 
 /* One light object; l names it in messages. */
@@ -899,6 +1031,8 @@ void sc_free(sc_file *file) {
     if (!file) return;
     for (size_t i = 0; i < file->scene_count; i++) {
         free(file->scenes[i].name);
+        for (size_t j = 0; j < file->scenes[i].draw_count; j++)
+            sc_draw_free(&file->scenes[i].draws[j]);
         free(file->scenes[i].draws);
     }
     free(file->scenes);

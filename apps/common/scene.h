@@ -100,6 +100,8 @@ typedef struct sc_shadow {
 
 /* Most textures a shader draw binds (sgapi's SG_MAX_DRAW_TEXTURES). */
 #define SC_MAX_DRAW_TEXTURES 8
+/* Most uniforms a shader draw gives: sgapi's SG_MAX_UNIFORM_SIZE bytes of floats. */
+#define SC_MAX_UNIFORMS (65536 / 4)
 
 /* One draw call: the mesh's triangles, then its lines, with the same state. */
 typedef struct sc_draw {
@@ -172,6 +174,9 @@ typedef struct sc_file {
 bool sc_load(const char *path, sc_file *out, sc_msg *err);
 /** Parses scene JSON text; path names it in messages and relative paths start at its folder. */
 bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, sc_msg *err);
+/** Frees what one draw holds on the heap (its shader name and uniforms), leaving those fields
+ *  zeroed; for a program that removes a draw from a scene. */
+void sc_draw_free(sc_draw *d);
 /** Frees everything a loaded file holds and zeroes it; a zeroed file is fine. */
 void sc_free(sc_file *file);
 

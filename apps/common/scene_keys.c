@@ -36,6 +36,10 @@ static const char *const draw_keys[] = {"mesh",
                                         "polygon_mode",
                                         "worldView",
                                         "proj",
+                                        "shader",
+                                        "uniforms",
+                                        "textures",
+                                        "instances",
                                         NULL};
 /* A mesh object is a heightmap or a shape (with the parameters of every shape). */
 static const char *const mesh_keys[] = {"heightmap", "height_scale", "shape",       "size",

@@ -9,6 +9,8 @@
 #include <string.h>
 #include <time.h>
 
+#include <sgapi/sgapi_util.h>
+
 #include "shadow.h"
 
 static const sgCompare compare_map[] = {
@@ -29,18 +31,33 @@ static const sgLightingMode lighting_map[] = {
     [SC_LIGHTING_PHONG] = SG_LIGHTING_PHONG,
 };
 
-sgPipelineDesc ss_pipeline_desc(const sc_draw *d) {
+bool ss_pipeline_desc(const char *prog, const sc_file *f, const sc_draw *d,
+                      const sc_shaders *shaders, sgPipelineDesc *out) {
     sgPipelineDesc p;
     memset(&p, 0, sizeof p);
-    /* A texture draw without a texture is drawn with its vertex colours: the OpenGL reference
-     * binds an incomplete texture there, which disables texturing. */
-    bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
-    p.shade = textured ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_VERTEX_COLOR;
-    /* Filter and wrap only matter when a texture is sampled; left at their defaults otherwise,
-     * so that more draws share one pipeline. */
-    if (textured) {
+    if (d->shader) {
+        /* The shader replaces shade and lighting (left at their defaults) and samples the draw's
+         * textures with its filter and wrap; the loader refuses a texture or lighting with it. */
+        const sgShaderInfo *info = sc_shaders_find(shaders, d->shader);
+        if (!info) {
+            fprintf(stderr, "%s: %s: unknown shader '%s'\n", prog, f ? f->path : "?", d->shader);
+            return false;
+        }
+        p.shader = info->desc;
         p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
         p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
+    } else {
+        /* A texture draw without a texture is drawn with its vertex colours: the OpenGL
+         * reference binds an incomplete texture there, which disables texturing. */
+        bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
+        p.shade = textured ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_VERTEX_COLOR;
+        /* Filter and wrap only matter when a texture is sampled; left at their defaults
+         * otherwise, so that more draws share one pipeline. */
+        if (textured) {
+            p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
+            p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
+        }
+        p.lighting = lighting_map[d->lighting];
     }
     p.depth.compare = compare_map[d->depth_compare];
     p.depth.write = d->depth_write;
@@ -49,10 +66,10 @@ sgPipelineDesc ss_pipeline_desc(const sc_draw *d) {
                                         : SG_CULL_NONE;
     p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
     p.blend = d->blend == SC_BLEND_ALPHA ? SG_BLEND_ALPHA : SG_BLEND_OPAQUE;
-    p.lighting = lighting_map[d->lighting];
     p.polygon_mode =
         d->polygon_mode == SC_POLYGON_MODE_LINE ? SG_POLYGON_MODE_LINE : SG_POLYGON_MODE_FILL;
-    return p;
+    *out = p;
+    return true;
 }
 
 /* The scene's ambient and lights as sgapi takes them. */
@@ -71,10 +88,16 @@ static void scene_lighting(const sc_scene *s, sgLighting *out) {
     }
 }
 
+static bool same_shader(const sgShaderDesc *a, const sgShaderDesc *b) {
+    return a->vertex == b->vertex && a->fragment == b->fragment &&
+           a->varying_count == b->varying_count && a->flat_varyings == b->flat_varyings &&
+           a->texture_count == b->texture_count;
+}
+
 static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
-    return a->shade == b->shade && a->filter == b->filter && a->wrap == b->wrap &&
-           a->depth.compare == b->depth.compare && a->depth.write == b->depth.write &&
-           a->depth.bias_constant == b->depth.bias_constant &&
+    return same_shader(&a->shader, &b->shader) && a->shade == b->shade && a->filter == b->filter &&
+           a->wrap == b->wrap && a->depth.compare == b->depth.compare &&
+           a->depth.write == b->depth.write && a->depth.bias_constant == b->depth.bias_constant &&
            a->depth.bias_slope == b->depth.bias_slope && a->cull == b->cull &&
            a->front_face == b->front_face && a->blend == b->blend && a->lighting == b->lighting &&
            a->polygon_mode == b->polygon_mode;
@@ -118,17 +141,23 @@ int ss_pipeline_pool_size(const sc_file *files, int file_count, int settings) {
      * 8 compares x 2 depth writes x 3 culls x 2 front faces x 2 blends x 4 lighting modes x
      * 2 polygon modes; a file may use fewer states than it has draws. A shadow's casters take at
      * most 3 culls x 2 front faces x 2 polygon modes with the scene's depth bias. */
-    uint64_t draws = 0, casters = 0;
+    uint64_t draws = 0, casters = 0, shader_draws = 0;
     for (int i = 0; i < file_count; i++) {
         for (size_t j = 0; j < files[i].scene_count; j++) {
             const sc_scene *s = &files[i].scenes[j];
-            draws += s->draw_count;
+            /* A shader draw's state has a shader besides: counted apart, one each. */
+            for (size_t k = 0; k < s->draw_count; k++) {
+                if (s->draws[k].shader)
+                    shader_draws++;
+                else
+                    draws++;
+            }
             if (s->has_shadow) casters += s->draw_count < 12 ? s->draw_count : 12;
         }
     }
     const uint64_t states = 5 * 8 * 2 * 3 * 2 * 2 * 4 * 2, limit = 65535;
     uint64_t n = (draws < states ? draws : states) * (uint64_t)(settings > 0 ? settings : 1);
-    n += casters;
+    n += casters + shader_draws * (uint64_t)(settings > 0 ? settings : 1);
     return n < 64 ? 64 : n > limit ? (int)limit : (int)n;
 }
 
@@ -138,6 +167,9 @@ void ss_destroy_uploads(sgDevice *dev, ss_uploads *u) {
         if (u->line_geoms[i].id) sgDestroyGeom(dev, u->line_geoms[i]);
     }
     for (size_t i = 0; i < u->image_count; i++) sgDestroyImage2D(dev, u->images[i]);
+    if (u->tangents)
+        for (size_t i = 0; i < u->mesh_count; i++) free(u->tangents[i]);
+    free(u->tangents);
     free(u->geoms);
     free(u->line_geoms);
     free(u->images);
@@ -152,8 +184,8 @@ size_t ss_geom_count(const sc_file *f) {
 }
 
 /* One geom of a mesh: its triangles or its lines, over the mesh's vertex arrays. */
-static bool upload_geom(const char *prog, sgDevice *dev, const sc_file *f, size_t mesh, bool lines,
-                        sgGeom *out) {
+static bool upload_geom(const char *prog, sgDevice *dev, const sc_file *f, const ss_uploads *u,
+                        size_t mesh, bool lines, sgGeom *out) {
     const sc_mesh *m = &f->meshes[mesh];
     /* The loader caps every count at INT32_MAX, so they fit. The loaded file outlives the geom,
      * so the arrays need not be copied. */
@@ -163,6 +195,7 @@ static bool upload_geom(const char *prog, sgDevice *dev, const sc_file *f, size_
         .colors = m->colors,
         .texcoords = m->texcoords,
         .normals = m->normals,
+        .attributes = {u->tangents[mesh]},
         .index_count = (int)(lines ? m->line_index_count : m->index_count),
         .indices = lines ? m->line_indices : m->indices,
         .primitive = lines ? SG_PRIMITIVE_LINES : SG_PRIMITIVE_TRIANGLES,
@@ -174,15 +207,42 @@ static bool upload_geom(const char *prog, sgDevice *dev, const sc_file *f, size_
     return true;
 }
 
+/* The tangents of the meshes that shader draws use, where they have normals and texture
+ * coordinates: every program that runs shaders gives them the same attribute 0. */
+static bool make_tangents(const char *prog, const sc_file *f, ss_uploads *u) {
+    for (size_t i = 0; i < f->scene_count; i++) {
+        for (size_t j = 0; j < f->scenes[i].draw_count; j++) {
+            const sc_draw *d = &f->scenes[i].draws[j];
+            const sc_mesh *m = &f->meshes[d->mesh];
+            if (!d->shader || u->tangents[d->mesh] || !m->normals || !m->texcoords) continue;
+            float *t = malloc((size_t)m->vertex_count * 4 * sizeof *t);
+            /* The counts fit an int: the loader caps them at INT32_MAX. */
+            if (!t ||
+                sgu_compute_tangents(m->positions, m->normals, m->texcoords, (int)m->vertex_count,
+                                     m->indices, (int)m->index_count, 0, t) != 0) {
+                free(t);
+                fprintf(stderr, "%s: mesh '%s': out of memory for its tangents\n", prog,
+                        f->mesh_sources[d->mesh]);
+                return false;
+            }
+            u->tangents[d->mesh] = t;
+        }
+    }
+    return true;
+}
+
 bool ss_upload(const char *prog, sgDevice *dev, const sc_file *f, ss_uploads *u) {
     memset(u, 0, sizeof *u);
     u->geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->geoms);
     u->line_geoms = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->line_geoms);
     u->images = calloc(f->texture_count ? f->texture_count : 1, sizeof *u->images);
-    if (!u->geoms || !u->line_geoms || !u->images) {
+    u->tangents = calloc(f->mesh_count ? f->mesh_count : 1, sizeof *u->tangents);
+    u->mesh_count = f->mesh_count;
+    if (!u->geoms || !u->line_geoms || !u->images || !u->tangents) {
         fprintf(stderr, "%s: out of memory\n", prog);
         return false;
     }
+    if (!make_tangents(prog, f, u)) return false;
     for (size_t i = 0; i < f->texture_count; i++) {
         const sc_image *t = &f->textures[i];
         sgImage2DDesc desc = {t->width, t->height, SG_FORMAT_RGBA8_UNORM, t->pixels};
@@ -194,8 +254,9 @@ bool ss_upload(const char *prog, sgDevice *dev, const sc_file *f, ss_uploads *u)
         /* Counted first, so that ss_destroy_uploads frees what a failure leaves. */
         u->geom_count++;
         const sc_mesh *m = &f->meshes[i];
-        if (m->index_count > 0 && !upload_geom(prog, dev, f, i, false, &u->geoms[i])) return false;
-        if (m->line_index_count > 0 && !upload_geom(prog, dev, f, i, true, &u->line_geoms[i]))
+        if (m->index_count > 0 && !upload_geom(prog, dev, f, u, i, false, &u->geoms[i]))
+            return false;
+        if (m->line_index_count > 0 && !upload_geom(prog, dev, f, u, i, true, &u->line_geoms[i]))
             return false;
     }
     return true;
@@ -270,9 +331,13 @@ bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, cons
         p.depth.write = true;
         p.depth.bias_constant = s->shadow.bias;
         p.depth.bias_slope = s->shadow.slope_bias;
-        p.cull = ss_pipeline_desc(d).cull;
-        p.front_face = ss_pipeline_desc(d).front_face;
-        p.polygon_mode = ss_pipeline_desc(d).polygon_mode; /* a wireframe casts its edges */
+        p.cull = d->cull == SC_CULL_BACK    ? SG_CULL_BACK
+                 : d->cull == SC_CULL_FRONT ? SG_CULL_FRONT
+                                            : SG_CULL_NONE;
+        p.front_face = d->front_face == SC_FRONT_FACE_CW ? SG_FRONT_FACE_CW : SG_FRONT_FACE_CCW;
+        /* a wireframe casts its edges */
+        p.polygon_mode =
+            d->polygon_mode == SC_POLYGON_MODE_LINE ? SG_POLYGON_MODE_LINE : SG_POLYGON_MODE_FILL;
         p.blend = SG_BLEND_OPAQUE;
         p.lighting = SG_LIGHTING_NONE;
         if (!ss_get_pso(prog, dev, cache, &p, &out->psos[i])) {
@@ -353,18 +418,29 @@ bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *f, const sc_s
         memset(&params, 0, sizeof params);
         memcpy(params.world_view, d->world_view, sizeof params.world_view);
         memcpy(params.proj, d->proj, sizeof params.proj);
-        if (d->texture >= 0) params.texture = u->images[d->texture];
-        /* NULL for the default white keeps such draws on the path without a colour multiply. */
-        sgColor color = {d->color[0], d->color[1], d->color[2], d->color[3]};
-        bool white = color.r == 1.0f && color.g == 1.0f && color.b == 1.0f && color.a == 1.0f;
-        params.color = white ? NULL : &color;
         params.sort = d->sort == SC_SORT_BACK_TO_FRONT ? SG_SORT_BACK_TO_FRONT : SG_SORT_NONE;
-        if (d->lighting != SC_LIGHTING_NONE) {
-            params.lighting = &lighting;
-            memcpy(params.specular, d->specular, sizeof params.specular);
-            params.shininess = d->shininess;
+        sgColor color = {d->color[0], d->color[1], d->color[2], d->color[3]};
+        if (d->shader) {
+            /* The shader's inputs alone: no colour, texture, lighting or shadow (the loader
+             * refuses them with a shader). */
+            params.uniforms = d->uniform_count ? d->uniforms : NULL;
+            params.uniform_size = (size_t)d->uniform_count * sizeof(float);
+            for (int k = 0; k < d->shader_texture_count; k++)
+                params.textures[k] = u->images[d->shader_textures[k]];
+            params.instance_count = d->instances;
+        } else {
+            if (d->texture >= 0) params.texture = u->images[d->texture];
+            /* NULL for the default white keeps such draws on the path without a colour
+             * multiply. */
+            bool white = color.r == 1.0f && color.g == 1.0f && color.b == 1.0f && color.a == 1.0f;
+            params.color = white ? NULL : &color;
+            if (d->lighting != SC_LIGHTING_NONE) {
+                params.lighting = &lighting;
+                memcpy(params.specular, d->specular, sizeof params.specular);
+                params.shininess = d->shininess;
+            }
+            if (shadowed && d->receives_shadow) params.shadow = &shadow->receiver;
         }
-        if (shadowed && d->receives_shadow) params.shadow = &shadow->receiver;
         r = draw_mesh(dev, psos[i], u, d->mesh, &params);
         if (r != SG_OK) {
             ss_fail(prog, dev, r, "scene '%s', draw %zu (%s): sgDraw", s->name, i,

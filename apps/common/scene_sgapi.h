@@ -10,9 +10,14 @@
 #include <sgapi/sgapi.h>
 
 #include "scene.h"
+#include "shader_lib.h"
 
-/** The pipeline state of a draw. A texture draw without a texture uses its vertex colours. */
-sgPipelineDesc ss_pipeline_desc(const sc_draw *draw);
+/** The pipeline state of a draw into *out. A texture draw without a texture uses its vertex
+ *  colours; a shader draw takes its shader's stages from shaders (filter and wrap for its
+ *  textures), and false, with a message naming prog, file and shader, when shaders does not know
+ *  it (sc_shaders_check refuses such a file before). */
+bool ss_pipeline_desc(const char *prog, const sc_file *file, const sc_draw *draw,
+                      const sc_shaders *shaders, sgPipelineDesc *out);
 
 /* Pipelines created on first use of a state and reused for every draw with it. */
 typedef struct ss_pso_cache {
@@ -38,9 +43,15 @@ typedef struct ss_uploads {
     sgGeom *line_geoms; /* per mesh: its lines (SG_PRIMITIVE_LINES) */
     sgImage2D *images;
     size_t geom_count, image_count; /* meshes and textures uploaded so far */
+    /* Per mesh: its tangents (sgu_compute_tangents, 4 floats a vertex), the geoms' attribute 0,
+     * when a shader draw uses the mesh and it has normals and texture coordinates; else NULL. */
+    float **tangents;
+    size_t mesh_count; /* entries of tangents */
 } ss_uploads;
 
-/** Creates the geoms of every mesh (referencing the file's arrays) and an image per texture. */
+/** Creates the geoms of every mesh (referencing the file's arrays) and an image per texture; a
+ *  mesh that a shader draw uses gets its tangents as attribute 0 when it has normals and texture
+ *  coordinates. */
 bool ss_upload(const char *prog, sgDevice *dev, const sc_file *file, ss_uploads *out);
 /** How many geoms ss_upload creates for a file: one per mesh with triangles, one per mesh with
  *  lines. */
@@ -74,9 +85,10 @@ bool ss_fit_shadow(const char *prog, const sc_file *file, const sc_scene *scene,
 void ss_destroy_shadow(sgDevice *dev, ss_shadow *shadow);
 
 /** One frame: the shadow's depth-only pass when the scene has one (every caster into the map),
- *  then sgBeginRenderPass, every draw of the scene with psos[i] (receivers with the shadow),
- *  sgEndRenderPass. A draw is its mesh's triangles, then its lines, both with its pipeline (lines
- *  are lines whatever the polygon mode). shadow may be NULL for a scene without one. */
+ *  then sgBeginRenderPass, every draw of the scene with psos[i] (receivers with the shadow; shader
+ *  draws with their uniforms, textures and instance count), sgEndRenderPass. A draw is its mesh's
+ * triangles, then its lines, both with its pipeline (lines are lines whatever the polygon mode).
+ * shadow may be NULL for a scene without one. */
 bool ss_draw_frame(const char *prog, sgDevice *dev, const sc_file *file, const sc_scene *scene,
                    const ss_uploads *u, const sgPipelineStateObject *psos, const sgPassDesc *pass,
                    const ss_shadow *shadow);

@@ -35,6 +35,7 @@
 #include "image_io.h"
 #include "scene.h"
 #include "scene_keys.h"
+#include "shader_lib.h"
 #include "shadow.h"
 #include "spv_color_frag.h"
 #include "spv_color_shadow_frag.h"
@@ -1300,6 +1301,8 @@ static void usage(FILE *f) {
                "  --threads T     lavapipe's raster threads (sets LP_NUM_THREADS)\n"
                "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
                "                  rendered), not a warning\n"
+               "  --shaders LIB.so  load the shaders of a shader library (repeatable): scene\n"
+               "                  files name them with \"shader\"\n"
                "  -h, --help      show this help\n");
 }
 
@@ -1324,9 +1327,10 @@ int main(int argc, char **argv) {
     const char *out_dir = NULL;
     const char **files = calloc((size_t)argc, sizeof *files);
     const char **only = calloc((size_t)argc, sizeof *only);
-    int nfiles = 0, nonly = 0, frames = 1;
+    const char **libs = calloc((size_t)argc, sizeof *libs);
+    int nfiles = 0, nonly = 0, nlibs = 0, frames = 1;
     bool strict = false;
-    if (!files || !only) return 1;
+    if (!files || !only || !libs) return 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         bool more = i + 1 < argc;
@@ -1344,6 +1348,8 @@ int main(int argc, char **argv) {
             strict = true;
         } else if (!strcmp(a, "--scene") && more) {
             only[nonly++] = argv[++i];
+        } else if (!strcmp(a, "--shaders") && more) {
+            libs[nlibs++] = argv[++i];
         } else if (!strcmp(a, "--threads") && more) {
             int threads;
             if (!sc_parse_int(argv[++i], 0, 1024, &threads)) {
@@ -1364,19 +1370,41 @@ int main(int argc, char **argv) {
         usage(stderr);
         return 2;
     }
-    /* Files are rendered one after the other; with --strict every file's keys are checked
-     * first, so that a warning in the last stops the run before the first is rendered. */
-    for (int fi = 0; fi < nfiles && strict; fi++) {
+    /* The shaders scene files may name: the built-in ones and those of --shaders. */
+    sc_shaders *shaders = NULL;
+    sc_msg shader_err = {0};
+    bool shaders_ok = sc_shaders_open(&shaders, &shader_err);
+    for (int i = 0; shaders_ok && i < nlibs; i++)
+        shaders_ok = sc_shaders_load(shaders, libs[i], &shader_err);
+    if (!shaders_ok) {
+        fprintf(stderr, "sgapi-ref: %s\n", shader_err.text);
+        sc_msg_free(&shader_err);
+        sc_shaders_close(shaders);
+        return 2;
+    }
+    /* Files are rendered one after the other; every file is checked first, so that a shader
+     * draw that does not fit its shader (exit 2), or with --strict an unknown key, in the last
+     * stops the run before the first is rendered. */
+    for (int fi = 0; fi < nfiles; fi++) {
         sc_file f;
         sc_msg err = {0};
         if (!sc_load(files[fi], &f, &err)) {
             fprintf(stderr, "sgapi-ref: %s\n", err.text);
             sc_msg_free(&err);
+            sc_shaders_close(shaders);
             return 1;
         }
-        bool clean = sc_report_warnings(&f, "sgapi-ref", true);
+        bool clean = !strict || sc_report_warnings(&f, "sgapi-ref", true);
+        bool fits = sc_shaders_check(shaders, &f, &shader_err);
         sc_free(&f);
-        if (!clean) return 1;
+        if (!fits) {
+            fprintf(stderr, "sgapi-ref: %s\n", shader_err.text);
+            sc_msg_free(&shader_err);
+        }
+        if (!clean || !fits) {
+            sc_shaders_close(shaders);
+            return clean ? 2 : 1;
+        }
     }
     if (!make_dir(out_dir)) {
         fprintf(stderr, "sgapi-ref: cannot create output folder %s: %s\n", out_dir,
@@ -1423,7 +1451,9 @@ int main(int argc, char **argv) {
     }
     destroy_ref(r);
     free(r);
+    sc_shaders_close(shaders);
     free(files);
     free(only);
+    free(libs);
     return status;
 }

@@ -12,7 +12,8 @@
  * its frames per second from its first frame to its last written file.
  *
  * Exit status: 0 done; 1 a failure while loading, rendering or writing; 2 bad arguments or a setup
- * that cannot work (an unwritable DIR, no ffmpeg for --video), found before any rendering.
+ * that cannot work (an unwritable DIR, no ffmpeg for --video, a --shaders library that cannot be
+ * used, a shader draw its shader refuses), found before any rendering.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -79,6 +80,8 @@ typedef struct options {
                       default */
     int png_level; /* --png-level; -1: the run's default */
     int model_width, model_height; /* --size: of the images of model files */
+    const char **shader_libs;      /* --shaders: shader libraries to load, in order */
+    int shader_lib_count;
 } options;
 
 static void usage(FILE *f) {
@@ -88,6 +91,8 @@ static void usage(FILE *f) {
                "is a scene of its own named after the file (DIR/<stem>.png): the camera framed\n"
                "on the model's bounding sphere, a default light, its colours and textures.\n"
                "  --size WxH      image size of model files (default 1024x768)\n"
+               "  --shaders LIB.so  load the shaders of a shader library (repeatable): scene\n"
+               "                  files name them with \"shader\" (docs/scene-format.md)\n"
                "  -o DIR          output folder, created if missing (required)\n"
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --frame-times   print each frame's time to stderr, first frame first (the first\n"
@@ -227,7 +232,8 @@ static int parse_args(int argc, char **argv, options *o) {
     o->png_level = -1;
     o->files = calloc((size_t)argc, sizeof *o->files);
     o->scenes = calloc((size_t)argc, sizeof *o->scenes);
-    if (!o->files || !o->scenes) {
+    o->shader_libs = calloc((size_t)argc, sizeof *o->shader_libs);
+    if (!o->files || !o->scenes || !o->shader_libs) {
         fprintf(stderr, "sgapi-render: out of memory\n");
         return 2;
     }
@@ -243,7 +249,8 @@ static int parse_args(int argc, char **argv, options *o) {
             !strcmp(a, "--spin") || !strcmp(a, "--up") || !strcmp(a, "--shard") ||
             !strcmp(a, "--video") || !strcmp(a, "--fps") || !strcmp(a, "--video-width") ||
             !strcmp(a, "--png-level") || !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
-            !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size");
+            !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size") ||
+            !strcmp(a, "--shaders");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -254,6 +261,8 @@ static int parse_args(int argc, char **argv, options *o) {
         }
         if (!strcmp(a, "-o")) {
             o->out_dir = value;
+        } else if (!strcmp(a, "--shaders")) {
+            o->shader_libs[o->shader_lib_count++] = value;
         } else if (!strcmp(a, "--size")) {
             char w[16], h[16];
             const char *x = strchr(value, 'x');
@@ -481,9 +490,10 @@ typedef struct run {
     sc_png_writer *png;   /* still images */
     frame_writer *frames; /* turntable frames */
     progress bar;
-    int digits;               /* of a turntable's frame names */
-    rg_thresholds thresholds; /* --compare: the targets of every scene */
-    rg_scene *results;        /* --compare: one record per compared scene */
+    int digits;                /* of a turntable's frame names */
+    const sc_shaders *shaders; /* the shaders scene files may name */
+    rg_thresholds thresholds;  /* --compare: the targets of every scene */
+    rg_scene *results;         /* --compare: one record per compared scene */
     size_t result_count;
 } run;
 
@@ -543,8 +553,9 @@ static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_s
         goto done;
     }
     for (size_t i = 0; i < s->draw_count; i++) {
-        sgPipelineDesc desc = ss_pipeline_desc(&s->draws[i]);
-        if (!ss_get_pso(PROG, dev, cache, &desc, &psos[i])) {
+        sgPipelineDesc desc;
+        if (!ss_pipeline_desc(PROG, f, &s->draws[i], rn->shaders, &desc) ||
+            !ss_get_pso(PROG, dev, cache, &desc, &psos[i])) {
             fprintf(stderr, "sgapi-render: in %s, scene '%s', draw %zu\n", f->path, s->name, i);
             goto done;
         }
@@ -645,8 +656,9 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
         goto done;
     }
     for (size_t i = 0; i < s->draw_count; i++) {
-        sgPipelineDesc desc = ss_pipeline_desc(&s->draws[i]);
-        if (!ss_get_pso(PROG, dev, &rn->cache, &desc, &psos[i])) {
+        sgPipelineDesc desc;
+        if (!ss_pipeline_desc(PROG, f, &s->draws[i], rn->shaders, &desc) ||
+            !ss_get_pso(PROG, dev, &rn->cache, &desc, &psos[i])) {
             fprintf(stderr, "sgapi-render: in %s, scene '%s', draw %zu\n", f->path, s->name, i);
             goto done;
         }
@@ -896,6 +908,7 @@ int main(int argc, char **argv) {
     if (status) {
         free(o.files);
         free(o.scenes);
+        free(o.shader_libs);
         return status == 1 ? 0 : 2;
     }
 
@@ -903,6 +916,7 @@ int main(int argc, char **argv) {
     sc_file *files = calloc((size_t)o.file_count, sizeof *files);
     run rn = {.digits = frame_digits(o.turntable)};
     int loaded = 0;
+    sc_shaders *shaders = NULL;
     status = 1;
     if (!files) {
         fprintf(stderr, "sgapi-render: out of memory\n");
@@ -939,6 +953,23 @@ int main(int argc, char **argv) {
     for (int i = 0; i < loaded; i++)
         clean &= sc_report_warnings(&files[i], "sgapi-render", o.strict);
     if (!clean) goto done;
+    /* The shaders the files name: a library that cannot be used, a shader no library has or
+     * uniforms that do not fit it are bad arguments for these files (exit 2), found before
+     * anything renders. */
+    status = 2;
+    sc_msg shader_err = {0};
+    bool shaders_ok = sc_shaders_open(&shaders, &shader_err);
+    for (int i = 0; shaders_ok && i < o.shader_lib_count; i++)
+        shaders_ok = sc_shaders_load(shaders, o.shader_libs[i], &shader_err);
+    for (int i = 0; shaders_ok && i < loaded; i++)
+        shaders_ok = sc_shaders_check(shaders, &files[i], &shader_err);
+    if (!shaders_ok) {
+        fprintf(stderr, "sgapi-render: %s\n", shader_err.text);
+        sc_msg_free(&shader_err);
+        goto done;
+    }
+    rn.shaders = shaders;
+    status = 1;
 
     /* Each name is one output file: two selected scenes of one name would overwrite each other. */
     size_t max_images = 0, max_geoms = 0;
@@ -1105,7 +1136,9 @@ done:
     rg_thresholds_free(&rn.thresholds);
     for (int i = 0; i < loaded; i++) sc_free(&files[i]);
     free(files);
+    sc_shaders_close(shaders); /* after the device: no pipeline runs a library's code any more */
     free(o.files);
     free(o.scenes);
+    free(o.shader_libs);
     return status;
 }

@@ -8,4 +8,7 @@
 /** The built-in library. */
 const sgShaderLibrary *sg_builtin_shader_library(void);
 
+/* The shaders, one file each. */
+extern const sgShaderInfo sg_shader_unlit; /* the fixed vertex-colour equation: 4 varyings */
+
 #endif

@@ -32,10 +32,12 @@ typedef struct options {
     const char *scene; /* --scene NAME: of a scene file; NULL: its first */
     int width, height;
     int threads;
-    int frames;           /* --frames N: render N frames, print the rate and quit; 0: run */
-    bool print_fps;       /* --print-fps: the rate once a second on stdout */
-    bool strict;          /* --strict: an unknown key in the scene file is an error */
-    const char *save_dir; /* --save-dir: where F12 writes frame-NNNN.png */
+    int frames;               /* --frames N: render N frames, print the rate and quit; 0: run */
+    bool print_fps;           /* --print-fps: the rate once a second on stdout */
+    bool strict;              /* --strict: an unknown key in the scene file is an error */
+    const char *save_dir;     /* --save-dir: where F12 writes frame-NNNN.png */
+    const char **shader_libs; /* --shaders: shader libraries, in order */
+    int shader_lib_count;
 } options;
 
 /* The camera, on top of the scene's view space: orbit angles about the target, a dolly along
@@ -66,6 +68,7 @@ typedef struct viewer {
     ss_uploads uploads;
     bool uploaded;
     ss_pso_cache cache;
+    sc_shaders *shaders; /* what the scene's "shader" keys name */
     sgPipelineStateObject *psos;
     sgImage2D color, depth;
     sgPassDesc pass;
@@ -94,6 +97,7 @@ static void usage(FILE *f) {
                "  --save-dir DIR  where F12 saves frames (default .): DIR/frame-0001.png ...\n"
                "  --frames N      render N frames, print frames per second, quit (a benchmark)\n"
                "  --print-fps     print frames per second once a second\n"
+               "  --shaders LIB.so  load the shaders of a shader library (repeatable)\n"
                "  --strict        an unknown key in the scene file is an error (exit 1, nothing\n"
                "                  shown), not a warning\n"
                "Mouse:\n"
@@ -102,7 +106,8 @@ static void usage(FILE *f) {
                "Keys:\n"
                "  W A S D, arrows fly forward, left, back, right;  Q / E  down / up\n"
                "  L               wireframe on/off\n"
-               "  M               shading: as loaded, unlit, flat, Gouraud, Phong\n"
+               "  M               shading: as loaded, unlit, flat, Gouraud, Phong (shader\n"
+               "                  draws keep their shader)\n"
                "  C               back-face culling on/off\n"
                "  N               add the next standard shape at the view centre (cube,\n"
                "                  tetrahedron, octahedron, icosphere, sphere, cylinder, cone,\n"
@@ -214,11 +219,14 @@ static bool update_draws(viewer *v, double seconds) {
         d->lighting = l->lighting;
         d->receives_shadow = l->receives_shadow;
         /* Flat lighting takes faces: a mesh with lines keeps its own lighting. */
-        if (v->shading > 0 && !mesh->line_index_count) d->lighting = (sc_lighting)(v->shading - 1);
+        if (v->shading > 0 && !mesh->line_index_count && !d->shader)
+            d->lighting = (sc_lighting)(v->shading - 1);
         if (d->lighting == SC_LIGHTING_FLAT || d->lighting == SC_LIGHTING_GOURAUD)
             d->receives_shadow = false;
-        sgPipelineDesc desc = ss_pipeline_desc(d);
-        if (!ss_get_pso(PROG, v->dev, &v->cache, &desc, &v->psos[i])) return false;
+        sgPipelineDesc desc;
+        if (!ss_pipeline_desc(PROG, &v->file, d, v->shaders, &desc) ||
+            !ss_get_pso(PROG, v->dev, &v->cache, &desc, &v->psos[i]))
+            return false;
     }
     /* The lights belong to the world: they turn and move with it. */
     for (int k = 0; k < s->light_count; k++) {
@@ -349,6 +357,7 @@ static void delete_selected(viewer *v) {
     sc_scene *s = v->scene;
     if (i < 0 || (size_t)i >= s->draw_count) return;
     size_t tail = s->draw_count - (size_t)i - 1;
+    sc_draw_free(&s->draws[i]);
     memmove(&s->draws[i], &s->draws[i + 1], tail * sizeof *s->draws);
     memmove(&v->loaded[i], &v->loaded[i + 1], tail * sizeof *v->loaded);
     memmove(&v->objects[i], &v->objects[i + 1], tail * sizeof *v->objects);
@@ -543,11 +552,12 @@ static int parse_args(int argc, char **argv, options *o) {
     o->width = 1024, o->height = 768;
     o->save_dir = ".";
     o->files = calloc((size_t)argc, sizeof *o->files);
-    if (!o->files) return 2;
+    o->shader_libs = calloc((size_t)argc, sizeof *o->shader_libs);
+    if (!o->files || !o->shader_libs) return 2;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool takes = !strcmp(a, "--scene") || !strcmp(a, "--size") || !strcmp(a, "--threads") ||
-                     !strcmp(a, "--save-dir") || !strcmp(a, "--frames");
+                     !strcmp(a, "--save-dir") || !strcmp(a, "--frames") || !strcmp(a, "--shaders");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -581,6 +591,8 @@ static int parse_args(int argc, char **argv, options *o) {
             }
         } else if (!strcmp(a, "--save-dir")) {
             o->save_dir = value;
+        } else if (!strcmp(a, "--shaders")) {
+            o->shader_libs[o->shader_lib_count++] = value;
         } else if (!strcmp(a, "--print-fps")) {
             o->print_fps = true;
             continue;
@@ -684,6 +696,7 @@ int main(int argc, char **argv) {
     int status = parse_args(argc, argv, &o);
     if (status) {
         free(o.files);
+        free(o.shader_libs);
         return status == 1 ? 0 : 2;
     }
     viewer v = {0};
@@ -693,6 +706,19 @@ int main(int argc, char **argv) {
     pipeline pl = {.v = &v, .ready = -1, .showing = -1};
     status = 1;
     if (!load(&v, &o)) goto done;
+    /* The shaders the scene names: a problem there is a bad argument (exit 2), before any
+     * frame. */
+    sc_msg shader_err = {0};
+    bool shaders_ok = sc_shaders_open(&v.shaders, &shader_err);
+    for (int i = 0; shaders_ok && i < o.shader_lib_count; i++)
+        shaders_ok = sc_shaders_load(v.shaders, o.shader_libs[i], &shader_err);
+    if (shaders_ok) shaders_ok = sc_shaders_check(v.shaders, &v.file, &shader_err);
+    if (!shaders_ok) {
+        fprintf(stderr, PROG ": %s\n", shader_err.text);
+        sc_msg_free(&shader_err);
+        status = 2;
+        goto done;
+    }
     struct stat st;
     if (stat(o.save_dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
         fprintf(stderr, PROG ": --save-dir '%s' is not a folder\n", o.save_dir);
@@ -868,9 +894,11 @@ done:
     sgDestroyDevice(v.dev);
     sc_png_writer_destroy(v.png);
     sc_free(&v.file);
+    sc_shaders_close(v.shaders); /* after the device: no pipeline runs a library's code any more */
     free(v.loaded);
     free(v.objects);
     free(v.psos);
     free(o.files);
+    free(o.shader_libs);
     return status;
 }

@@ -30,6 +30,36 @@
  * runs out. On failure out_normals is unchanged. indices may be NULL when index_count is 0 (every
  * normal is then (0, 0, 0)).
  *
+ * Tangents
+ *
+ *   float tangents[4 * VERTEX_COUNT];
+ *   if (sgu_compute_tangents(positions, normals, texcoords, vertex_count, indices, index_count, 0,
+ *                            tangents) != 0)
+ *       ...bad input or out of memory...
+ *   then pass `tangents` as one of sgGeomDesc.attributes, for a normal-mapping shader.
+ *
+ *   A tangent per vertex: the direction in which texture coordinate s grows on the surface, for a
+ *   shader that reads a tangent-space normal map. Each triangle gives the directions in which s
+ *   and t grow across it (from its edges and their texture coordinate differences); a vertex sums
+ *   them over the triangles that use it, and its tangent is that s direction made orthogonal to
+ *   its normal (Gram-Schmidt) and normalised:
+ *
+ *   - out (x, y, z, w): (x, y, z) is a unit vector perpendicular to the normal; w = +1 or -1 is the
+ *     handedness, so that the bitangent (where t grows) is w * cross(normal, tangent); a mirrored
+ *     texture gives -1.
+ *   - Vertices are not merged by position: each side of a texture seam keeps its own tangent.
+ *   - Sums are formed in double, triangle after triangle in index order; a position whose w is
+ *     not 1 is divided by w first; normals need not be unit length.
+ *   - A vertex whose triangles' texture coordinates span no area (or whose sum is parallel to
+ *     its normal, or not finite) still gets a unit tangent perpendicular to its normal (the axis
+ *     least aligned with the normal, made orthogonal to it) and w = +1; a zero normal gives the
+ *     s direction, or (1, 0, 0). Never NaN.
+ *   - quads as for sgu_compute_normals.
+ *
+ * Returns 0 on success; -1 on bad input (a NULL array, vertex_count < 1, index_count < 0 or not a
+ * multiple of 3, or of 4 for quads, quads not 0 or 1, an index >= vertex_count) or when memory
+ * runs out. On failure out_tangents is unchanged.
+ *
  * Standard shapes
  *
  *   sguShapeDesc d = {.shape = SGU_SHAPE_UV_SPHERE};     (zeros: the defaults below)
@@ -70,6 +100,10 @@ extern "C" {
 /** Smooth vertex normals (see above): positions are xyzw per vertex, out_normals xyz per vertex. */
 int sgu_compute_normals(const float *positions, int vertex_count, const uint32_t *indices,
                         int index_count, int quads, float *out_normals);
+/** Per-vertex tangents (see above): normals xyz, texcoords st, out_tangents xyzw per vertex. */
+int sgu_compute_tangents(const float *positions, const float *normals, const float *texcoords,
+                         int vertex_count, const uint32_t *indices, int index_count, int quads,
+                         float *out_tangents);
 
 typedef enum sguShape {
     SGU_SHAPE_CUBE,

@@ -1,0 +1,70 @@
+/* unlit.c - the fixed SG_SHADE_VERTEX_COLOR equation as a shader: the interpolated vertex colour,
+ * nothing else. It exists to compare a shader pipeline's cost with the fixed path's on the same
+ * image, so its clip positions are those of the fixed path bit for bit. */
+#include "builtin.h"
+
+/* The fixed path's combined matrix: proj * world_view, each element summed in double and rounded
+ * to float once (sgapi's vertex stage forms it the same way, once per draw). */
+static void mvp_of(const float *proj, const float *world_view, float out[16]) {
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) {
+            double s = 0.0;
+            for (int k = 0; k < 4; k++)
+                s += (double)proj[r * 4 + k] * (double)world_view[k * 4 + c];
+            out[r * 4 + c] = (float)s;
+        }
+}
+
+static void unlit_vertex(sgVertexBatch *b, const void *uniforms) {
+    (void)uniforms;
+    /* Once per batch: 64 products against 16 lanes of 16 each. */
+    float m[16];
+    mvp_of(b->proj, b->world_view, m);
+    for (int r = 0; r < 4; r++)
+        /* ((m0 x + m1 y) + m2 z) + m3 w in float, the fixed path's order (no fused multiply-add:
+         * this file is compiled with -ffp-contract=off). */
+        for (int i = 0; i < SG_SHADER_LANES; i++)
+            b->clip[r][i] = m[r * 4 + 0] * b->position[0][i] + m[r * 4 + 1] * b->position[1][i] +
+                            m[r * 4 + 2] * b->position[2][i] + m[r * 4 + 3] * b->position[3][i];
+    for (int c = 0; c < 4; c++)
+        for (int i = 0; i < SG_SHADER_LANES; i++) b->varying[c][i] = b->color[c][i];
+}
+
+static void unlit_fragment(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    for (int c = 0; c < 4; c++)
+        for (int i = 0; i < SG_SHADER_LANES; i++) b->color[c][i] = b->varying[c][i];
+    b->discard = 0;
+}
+
+/* The twin: the same product (the reference gives world_view and proj so that proj * world_view *
+ * p is the C computation) and the same interpolated colour at location 0. */
+static const char unlit_glsl_vertex[] =
+    "#version 450\n"
+    "layout(location = 0) in vec4 sg_position;\n"
+    "layout(location = 1) in vec4 sg_color;\n"
+    "layout(push_constant) uniform SgDraw { mat4 world_view; mat4 proj; };\n"
+    "layout(std430, set = 0, binding = 0) readonly buffer SgUniforms { float u[]; };\n"
+    "layout(location = 0) out vec4 v_color;\n"
+    "void main() {\n"
+    "    gl_Position = proj * world_view * sg_position;\n"
+    "    v_color = sg_color;\n"
+    "}\n";
+
+static const char unlit_glsl_fragment[] =
+    "#version 450\n"
+    "layout(std430, set = 0, binding = 0) readonly buffer SgUniforms { float u[]; };\n"
+    "layout(set = 0, binding = 1) uniform sampler2D sg_textures[8];\n"
+    "layout(location = 0) in vec4 v_color;\n"
+    "layout(location = 0) out vec4 o_color;\n"
+    "void main() {\n"
+    "    o_color = v_color;\n"
+    "}\n";
+
+const sgShaderInfo sg_shader_unlit = {
+    .name = "unlit",
+    .desc = {.vertex = unlit_vertex, .fragment = unlit_fragment, .varying_count = 4},
+    .uniform_count = 0,
+    .glsl_vertex = unlit_glsl_vertex,
+    .glsl_fragment = unlit_glsl_fragment,
+};
