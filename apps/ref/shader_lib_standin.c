@@ -25,7 +25,14 @@ bool sc_shaders_open(sc_shaders **out, sc_msg *err) {
 bool sc_shaders_load(sc_shaders *s, const char *path, sc_msg *err) {
     /* Lazy: sgapi-ref runs the twins, never the C stages, so what they call (sgSample) need
      * not be there. */
-    void *h = dlopen(path, RTLD_LAZY | RTLD_LOCAL);
+    /* A bare name is a file here, not one for dlopen's library search. */
+    char *file = strchr(path, '/') ? sc_format("%s", path) : sc_format("./%s", path);
+    if (!file) {
+        sc_msg_set(err, "out of memory");
+        return false;
+    }
+    void *h = dlopen(file, RTLD_LAZY | RTLD_LOCAL);
+    free(file);
     if (!h) {
         sc_msg_set(err, "%s: cannot load the shader library: %s", path, dlerror());
         return false;
