@@ -4,7 +4,7 @@
 set -eu
 
 PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev libdeflate-dev
-    libvulkan-dev mesa-vulkan-drivers glslang-tools
+    libvulkan-dev mesa-vulkan-drivers glslang-tools glslang-dev g++
     clang libclang-rt-14-dev valgrind gnuplot-nox python3 ffmpeg
     chromium chromium-driver python3-selenium python3-yaml
     libsdl2-dev xvfb xauth xdotool assimp-testmodels geomview"

@@ -1,7 +1,8 @@
 /* sgapi-ref - renders scene files with Vulkan on Mesa's lavapipe (llvmpipe), headless, as the
  * reference that sgapi's images are checked against.
  *
- *   sgapi-ref [--frames N] [--scene NAME]... [--threads T] SCENE.json... -o DIR
+ *   sgapi-ref [--frames N] [--scene NAME]... [--threads T] [--shaders LIB.so]... SCENE.json...
+ *             -o DIR
  *
  * Same scene loader, same conventions as sgapi-render (see docs/reference.md): OpenGL clip space
  * mapped to Vulkan's in the vertex shader, texture rows uploaded bottom first so t = 0 is the
@@ -13,6 +14,10 @@
  * the fragment shader, and the receivers' test done in GLSL with texelFetch; a mesh's lines are a
  * line list drawn after its triangles, and wireframes polygon mode LINE, both rasterised as
  * Bresenham lines (VK_EXT_line_rasterization).
+ * A shader draw runs its shader's GLSL twin (sgapi/sgapi_shaders.h), compiled once per run with
+ * glslang's library: the twin's main is renamed and wrapped by one that maps its OpenGL clip
+ * position to Vulkan's as the fixed stages do; the matrices are pushed transposed (GLSL's
+ * column-major mat4), the uniforms are a storage buffer and the textures an array of 8 samplers.
  * Writes DIR/<scene>.png and prints the time per frame (submit to fence, median of N). --threads
  * sets LP_NUM_THREADS.
  */
@@ -28,12 +33,15 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include <glslang/Include/glslang_c_interface.h>
+#include <glslang/Public/resource_limits_c.h>
 #include <vulkan/vulkan.h>
 
 #include "cli.h"
 #include "depth_sort.h"
 #include "image_io.h"
 #include "scene.h"
+#include "sgapi/sgapi_util.h"
 #include "scene_keys.h"
 #include "shader_lib.h"
 #include "shadow.h"
@@ -131,8 +139,19 @@ typedef struct texture {
 
 typedef struct pipeline_entry {
     uint32_t key;
+    int twin; /* index into ref.twins, or -1: the fixed stages */
     VkPipeline pipeline;
 } pipeline_entry;
+
+/* A shader's GLSL twin, compiled: once per run, whatever the number of draws using it. */
+typedef struct twin {
+    const sgShaderInfo *info;
+    VkShaderModule vert, frag;
+} twin;
+
+/* The bindings of a twin (docs/api.md, "Shaders"): the draw's uniforms, its textures. */
+#define TWIN_TEXTURES 8
+_Static_assert(TWIN_TEXTURES == SG_MAX_DRAW_TEXTURES, "twins bind sgapi's number of textures");
 
 typedef struct ref {
     VkInstance instance;
@@ -159,7 +178,16 @@ typedef struct ref {
     VkRenderPass depth_pass; /* the shadow map's: depth only, left ready for sampling */
     pipeline_entry pipelines[MAX_PIPELINES];
     int pipeline_count;
-    sc_msg err; /* the last failure */
+    /* Shader draws. */
+    const sc_shaders *shaders; /* the registry the draws' names are looked up in */
+    bool glslang_ready;        /* glslang_initialize_process done */
+    twin *twins;               /* compiled twins, twin_count of them */
+    int twin_count;
+    VkDescriptorSetLayout twin_set_layout; /* set 0: uniforms (storage), textures[8] */
+    VkPipelineLayout layout_twin;
+    VkDeviceSize storage_align; /* minStorageBufferOffsetAlignment */
+    texture blank;              /* 1 x 1 (0, 0, 0, 1): what an unbound texture slot samples */
+    sc_msg err;                 /* the last failure */
 } ref;
 
 /* Records a failure; the arguments may name the last one (r->err.text). Returns false. */
@@ -227,6 +255,8 @@ static bool create_device(ref *r) {
     /* One block per draw, each at an offset the device accepts for a dynamic uniform buffer. */
     VkDeviceSize align = props.limits.minUniformBufferOffsetAlignment, size = sizeof(draw_block);
     r->draw_stride = align > 1 ? (size + align - 1) / align * align : size;
+    r->storage_align = props.limits.minStorageBufferOffsetAlignment;
+    if (r->storage_align < 4) r->storage_align = 4;
     /* sgapi's lines follow the diamond-exit rule: Bresenham lines, an extension's feature. */
     bool line_ext = false;
     uint32_t next = 0;
@@ -380,6 +410,26 @@ static bool create_shaders_and_layouts(ref *r) {
     /* An untextured receiver leaves set 1 unbound: its shaders do not use it. */
     pli.setLayoutCount = 3;
     VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_shadow));
+    /* Twins: one set, the draw's uniforms and its textures, and the matrices pushed; either stage
+     * may read any of them. */
+    VkShaderStageFlags twin_stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    VkDescriptorSetLayoutBinding twb[2] = {
+        {.binding = 0,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+         .descriptorCount = 1,
+         .stageFlags = twin_stages},
+        {.binding = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+         .descriptorCount = TWIN_TEXTURES,
+         .stageFlags = twin_stages}};
+    dli.bindingCount = 2;
+    dli.pBindings = twb;
+    VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &dli, NULL, &r->twin_set_layout));
+    VkPushConstantRange twin_pcr = {.stageFlags = twin_stages, .size = 128};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &r->twin_set_layout;
+    pli.pPushConstantRanges = &twin_pcr;
+    VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_twin));
     for (int f = 0; f < 2; f++)
         for (int w = 0; w < 2; w++) {
             VkSamplerAddressMode am =
@@ -462,6 +512,133 @@ static bool create_shaders_and_layouts(ref *r) {
     return true;
 }
 
+/* A vertex twin's source is patched: after its #version line, a macro renames its main (#line
+ * keeps glslang's line numbers those of the twin); at its end, a main that runs it, then takes
+ * gl_Position from OpenGL's clip convention to Vulkan's with the fixed stages' very expression
+ * (y flipped, z from [-w, w] to [0, w]), so that shader and fixed draws rasterise alike. */
+static const char twin_vertex_main[] =
+    "\n#undef main\n"
+    "void main() {\n"
+    "    sg_twin_main();\n"
+    "    gl_Position = vec4(gl_Position.x, -gl_Position.y, 0.5 * (gl_Position.z + gl_Position.w),\n"
+    "                       gl_Position.w);\n"
+    "}\n";
+
+/* The length of glslang's log without its trailing blank lines. */
+static int log_length(const char *log) {
+    size_t n = log ? strlen(log) : 0;
+    while (n > 0 && (log[n - 1] == '\n' || log[n - 1] == ' ')) n--;
+    return (int)n;
+}
+
+/* Compiles one stage of a twin to SPIR-V and a module; on failure the message names the shader
+ * and the stage and gives glslang's log. */
+static bool compile_twin_stage(ref *r, const sgShaderInfo *info, bool vertex, VkShaderModule *out) {
+    const char *stage_name = vertex ? "vertex" : "fragment";
+    const char *text = vertex ? info->glsl_vertex : info->glsl_fragment;
+    if (!text)
+        return fail(r, "shader '%s' has no GLSL %s twin (sgShaderInfo.glsl_%s)", info->name,
+                    stage_name, stage_name);
+    char *code;
+    if (vertex) {
+        /* After the #version line (the first line of a twin, or a later one after comments). */
+        const char *version = strstr(text, "#version");
+        if (!version)
+            return fail(r, "shader '%s': the GLSL vertex twin has no #version line", info->name);
+        const char *eol = strchr(version, '\n');
+        int head = eol ? (int)(eol + 1 - text) : (int)strlen(text);
+        int next_line = 1; /* the number of the line after #version's */
+        for (int i = 0; i < head; i++) next_line += text[i] == '\n';
+        code = sc_format("%.*s%s#define main sg_twin_main\n#line %d\n%s%s", head, text,
+                         eol ? "" : "\n", next_line, text + head, twin_vertex_main);
+    } else {
+        code = sc_format("%s", text);
+    }
+    if (!code) return fail(r, "out of memory");
+    glslang_stage_t stage = vertex ? GLSLANG_STAGE_VERTEX : GLSLANG_STAGE_FRAGMENT;
+    glslang_input_t in = {.language = GLSLANG_SOURCE_GLSL,
+                          .stage = stage,
+                          .client = GLSLANG_CLIENT_VULKAN,
+                          .client_version = GLSLANG_TARGET_VULKAN_1_1,
+                          .target_language = GLSLANG_TARGET_SPV,
+                          .target_language_version = GLSLANG_TARGET_SPV_1_3,
+                          .code = code,
+                          .default_version = 450,
+                          .default_profile = GLSLANG_NO_PROFILE,
+                          .messages = GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT,
+                          .resource = glslang_default_resource()};
+    glslang_shader_t *sh = glslang_shader_create(&in);
+    glslang_program_t *prog = NULL;
+    bool ok = sh != NULL || fail(r, "shader '%s': glslang cannot start", info->name);
+    if (ok && (!glslang_shader_preprocess(sh, &in) || !glslang_shader_parse(sh, &in)))
+        ok =
+            fail(r, "shader '%s': the GLSL %s twin does not compile:\n%.*s", info->name, stage_name,
+                 log_length(glslang_shader_get_info_log(sh)), glslang_shader_get_info_log(sh));
+    if (ok) {
+        prog = glslang_program_create();
+        ok = prog != NULL || fail(r, "out of memory");
+    }
+    if (ok) {
+        glslang_program_add_shader(prog, sh);
+        if (!glslang_program_link(prog, GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT))
+            ok = fail(r, "shader '%s': the GLSL %s twin does not link:\n%.*s", info->name,
+                      stage_name, log_length(glslang_program_get_info_log(prog)),
+                      glslang_program_get_info_log(prog));
+    }
+    if (ok) {
+        glslang_program_SPIRV_generate(prog, stage);
+        const char *msgs = glslang_program_SPIRV_get_messages(prog);
+        size_t words = glslang_program_SPIRV_get_size(prog);
+        if (words == 0)
+            ok = fail(r, "shader '%s': no SPIR-V for the GLSL %s twin:\n%.*s", info->name,
+                      stage_name, log_length(msgs), msgs ? msgs : "");
+    }
+    if (ok) {
+        VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                        .codeSize = glslang_program_SPIRV_get_size(prog) * 4,
+                                        .pCode = glslang_program_SPIRV_get_ptr(prog)};
+        VkResult vr = vkCreateShaderModule(r->device, &smi, NULL, out);
+        if (vr != VK_SUCCESS)
+            ok = fail(r, "shader '%s': vkCreateShaderModule of the %s twin failed (VkResult %d)",
+                      info->name, stage_name, (int)vr);
+    }
+    if (prog) glslang_program_delete(prog);
+    if (sh) glslang_shader_delete(sh);
+    free(code);
+    return ok;
+}
+
+/* The compiled twin of the shader a draw names, compiled on first use; *index into r->twins. */
+static bool get_twin(ref *r, const char *name, int *index) {
+    for (int i = 0; i < r->twin_count; i++)
+        if (strcmp(r->twins[i].info->name, name) == 0) {
+            *index = i;
+            return true;
+        }
+    const sgShaderInfo *info = r->shaders ? sc_shaders_find(r->shaders, name) : NULL;
+    if (!info) return fail(r, "unknown shader '%s'", name);
+    if (!r->glslang_ready) {
+        if (!glslang_initialize_process()) return fail(r, "glslang cannot start");
+        r->glslang_ready = true;
+    }
+    twin t = {.info = info};
+    if (!compile_twin_stage(r, info, true, &t.vert)) return false;
+    if (!compile_twin_stage(r, info, false, &t.frag)) {
+        vkDestroyShaderModule(r->device, t.vert, NULL);
+        return false;
+    }
+    twin *grown = realloc(r->twins, (size_t)(r->twin_count + 1) * sizeof *grown);
+    if (!grown) {
+        vkDestroyShaderModule(r->device, t.vert, NULL);
+        vkDestroyShaderModule(r->device, t.frag, NULL);
+        return fail(r, "out of memory");
+    }
+    r->twins = grown;
+    r->twins[r->twin_count] = t;
+    *index = r->twin_count++;
+    return true;
+}
+
 /* The pipeline state a draw needs, packed into a key: for its triangles, or (lines) for its mesh's
  * line list, where the polygon mode plays no part. A caster's depth-only pipeline depends on its
  * cull, winding and polygon mode alone (the bias is in the uniform block). */
@@ -492,17 +669,21 @@ static VkPipelineLayout layout_of(const ref *r, bool textured, draw_kind kind) {
     return textured && kind == DRAW_PLAIN ? r->layout_texture : r->layout_color;
 }
 
+/* The pipeline of a draw's triangles or lines: with the fixed stages (twin -1), or with the
+ * compiled twin r->twins[twin] (a shader draw of the scene's pass: untextured in the fixed sense,
+ * unlit, receiving no shadow). */
 static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind, bool lines,
-                         VkPipeline *out) {
+                         int twin, VkPipeline *out) {
     if (kind == DRAW_CASTER) textured = false;
+    if (kind == DRAW_CASTER) twin = -1;
     uint32_t key = pipeline_key(d, textured, kind, lines);
     for (int i = 0; i < r->pipeline_count; i++)
-        if (r->pipelines[i].key == key) {
+        if (r->pipelines[i].key == key && r->pipelines[i].twin == twin) {
             *out = r->pipelines[i].pipeline;
             return true;
         }
     if (r->pipeline_count == MAX_PIPELINES) return fail(r, "too many pipeline states");
-    const bool lit = d->lighting != SC_LIGHTING_NONE && kind != DRAW_CASTER;
+    const bool lit = d->lighting != SC_LIGHTING_NONE && kind != DRAW_CASTER && twin < 0;
     if (lit && d->lighting == SC_LIGHTING_FLAT && !r->has_geometry)
         return fail(r, "flat lighting needs geometry shaders, which this lavapipe does not offer "
                        "(VkPhysicalDeviceFeatures.geometryShader)");
@@ -525,7 +706,10 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
          .stage = VK_SHADER_STAGE_GEOMETRY_BIT,
          .module = r->modules[SH_FLAT_GEOM],
          .pName = "main"}};
-    if (kind == DRAW_CASTER) {
+    if (twin >= 0) {
+        stages[0].module = r->twins[twin].vert;
+        stages[1].module = r->twins[twin].frag;
+    } else if (kind == DRAW_CASTER) {
         stages[0].module = r->modules[SH_DEPTH_VERT];
         stages[1].module = r->modules[SH_DEPTH_FRAG];
     } else if (lit) {
@@ -559,12 +743,25 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
                                                  {2, 2, VK_FORMAT_R32G32_SFLOAT, 0},
                                                  {3, 3, VK_FORMAT_R32G32B32_SFLOAT, 0}};
     uint32_t inputs = kind == DRAW_CASTER ? 1 : lit ? 4 : textured ? 3 : 2;
+    /* A twin's inputs (docs/api.md, "Shaders"), binding b at location b: position, colour,
+     * normal, texcoord, then the four attributes. */
+    VkVertexInputBindingDescription twin_bind[8] = {
+        {0, 16, VK_VERTEX_INPUT_RATE_VERTEX}, {1, 16, VK_VERTEX_INPUT_RATE_VERTEX},
+        {2, 12, VK_VERTEX_INPUT_RATE_VERTEX}, {3, 8, VK_VERTEX_INPUT_RATE_VERTEX},
+        {4, 16, VK_VERTEX_INPUT_RATE_VERTEX}, {5, 16, VK_VERTEX_INPUT_RATE_VERTEX},
+        {6, 16, VK_VERTEX_INPUT_RATE_VERTEX}, {7, 16, VK_VERTEX_INPUT_RATE_VERTEX}};
+    VkVertexInputAttributeDescription twin_attr[8] = {
+        {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0}, {1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+        {2, 2, VK_FORMAT_R32G32B32_SFLOAT, 0},    {3, 3, VK_FORMAT_R32G32_SFLOAT, 0},
+        {4, 4, VK_FORMAT_R32G32B32A32_SFLOAT, 0}, {5, 5, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+        {6, 6, VK_FORMAT_R32G32B32A32_SFLOAT, 0}, {7, 7, VK_FORMAT_R32G32B32A32_SFLOAT, 0}};
+    if (twin >= 0) inputs = 8;
     VkPipelineVertexInputStateCreateInfo vi = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
         .vertexBindingDescriptionCount = inputs,
-        .pVertexBindingDescriptions = bind,
+        .pVertexBindingDescriptions = twin >= 0 ? twin_bind : bind,
         .vertexAttributeDescriptionCount = inputs,
-        .pVertexAttributeDescriptions = attr};
+        .pVertexAttributeDescriptions = twin >= 0 ? twin_attr : attr};
     VkPipelineInputAssemblyStateCreateInfo ia = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
         .topology = lines ? VK_PRIMITIVE_TOPOLOGY_LINE_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
@@ -631,10 +828,11 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
         .pDepthStencilState = &ds,
         .pColorBlendState = &cb,
         .pDynamicState = &dy,
-        .layout = layout_of(r, textured, kind),
+        .layout = twin >= 0 ? r->layout_twin : layout_of(r, textured, kind),
         .renderPass = kind == DRAW_CASTER ? r->depth_pass : r->render_pass};
     VK_CHECK(r, vkCreateGraphicsPipelines(r->device, VK_NULL_HANDLE, 1, &gpi, NULL, out));
     r->pipelines[r->pipeline_count].key = key;
+    r->pipelines[r->pipeline_count].twin = twin;
     r->pipelines[r->pipeline_count].pipeline = *out;
     r->pipeline_count++;
     return true;
@@ -769,9 +967,23 @@ static bool upload_texture(ref *r, const sc_image *img, texture *t) {
     return ok || fail(r, "texture upload failed: %s", sc_msg_text(&r->err));
 }
 
+/* Where each section of a mesh's vertex buffer starts, in bytes per vertex before it: the fixed
+ * stages read the first four, twins all (the attributes: 16 bytes a vertex, the first for
+ * attribute 0, the second, all zero, for attributes 1 to 3). */
+enum {
+    VERTEX_POSITIONS = 0,
+    VERTEX_COLORS = 16,
+    VERTEX_TEXCOORDS = 32,
+    VERTEX_NORMALS = 40,
+    VERTEX_ATTRIBUTE0 = 52,
+    VERTEX_ZEROS = 68,
+    VERTEX_BYTES = 84
+};
+
 /* GPU copies of one scene file's meshes and textures. */
 typedef struct uploads {
-    buffer *vertex;     /* per mesh: positions | colours | texcoords | normals, back to back */
+    buffer *vertex;     /* per mesh: positions | colours | texcoords | normals | attributes, back to
+                           back; see VERTEX_* */
     buffer *index;      /* per mesh: its triangles (no buffer when it has none) */
     buffer *line_index; /* per mesh: its line list (no buffer when it has none) */
     texture *textures;
@@ -787,7 +999,7 @@ static bool upload_file(ref *r, const sc_file *f, uploads *u) {
     for (size_t i = 0; i < f->mesh_count; i++) {
         const sc_mesh *m = &f->meshes[i];
         size_t n = m->vertex_count;
-        size_t bytes = n * 16 + n * 16 + n * 8 + n * 12;
+        size_t bytes = n * VERTEX_BYTES;
         if (!create_buffer(r, bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &u->vertex[i]))
             return false;
         u->mesh_count = i + 1;
@@ -803,6 +1015,17 @@ static bool upload_file(ref *r, const sc_file *f, uploads *u) {
             memcpy(p + n * 40, m->normals, n * 12);
         else
             memset(p + n * 40, 0, n * 12);
+        /* Attribute 0 of a shader draw: the mesh's tangents where it has normals and texture
+         * coordinates (as sgapi-render gives them, sgu_compute_tangents), else zero; 1 to 3 are
+         * zero. */
+        memset(p + n * VERTEX_ATTRIBUTE0, 0, n * (VERTEX_BYTES - VERTEX_ATTRIBUTE0));
+        if (m->normals && m->texcoords && m->index_count > 0 &&
+            sgu_compute_tangents(m->positions, m->normals, m->texcoords, (int)n, m->indices,
+                                 (int)m->index_count, 0,
+                                 (float *)(void *)(p + n * VERTEX_ATTRIBUTE0)) != 0) {
+            fprintf(stderr, "sgapi-ref: mesh %zu: out of memory for its tangents\n", i);
+            return false;
+        }
         if (m->index_count > 0) {
             if (!create_buffer(r, (VkDeviceSize)m->index_count * 4,
                                VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &u->index[i]))
@@ -884,7 +1107,7 @@ static bool record_shadow(ref *r, const sc_file *f, const sc_scene *s, const upl
             uint32_t count = lines ? m->line_index_count : m->index_count;
             if (count == 0) continue;
             VkPipeline pipe;
-            if (!get_pipeline(r, d, false, DRAW_CASTER, lines, &pipe)) return false;
+            if (!get_pipeline(r, d, false, DRAW_CASTER, lines, -1, &pipe)) return false;
             vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
             float pc[32];
             memcpy(pc, sh->world_view[i], 64);
@@ -907,17 +1130,57 @@ static bool record_shadow(ref *r, const sc_file *f, const sc_scene *s, const upl
     return true;
 }
 
+/* Records one shader draw of the scene's pass with its twin: its triangles or its lines (count
+ * indices), instances times. */
+static bool record_twin_draw(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
+                             size_t i, bool lines, uint32_t count, VkDescriptorSet set,
+                             const buffer *sorted) {
+    const sc_draw *d = &s->draws[i];
+    int t;
+    VkPipeline pipe;
+    if (!get_twin(r, d->shader, &t) || !get_pipeline(r, d, false, DRAW_PLAIN, lines, t, &pipe))
+        return false;
+    vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    /* Transposed: a twin declares plain (column-major) mat4s, so that proj * world_view * p in
+     * GLSL is the product of the scene's row-major matrices. */
+    float pc[32];
+    for (int row = 0; row < 4; row++)
+        for (int col = 0; col < 4; col++) {
+            pc[col * 4 + row] = d->world_view[row * 4 + col];
+            pc[16 + col * 4 + row] = d->proj[row * 4 + col];
+        }
+    vkCmdPushConstants(r->cmd, r->layout_twin,
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, 128, pc);
+    vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->layout_twin, 0, 1, &set, 0,
+                            NULL);
+    VkDeviceSize n = f->meshes[d->mesh].vertex_count;
+    VkBuffer vb[8];
+    for (int k = 0; k < 8; k++) vb[k] = u->vertex[d->mesh].buffer;
+    VkDeviceSize off[8] = {n * VERTEX_POSITIONS, n * VERTEX_COLORS,     n * VERTEX_NORMALS,
+                           n * VERTEX_TEXCOORDS, n * VERTEX_ATTRIBUTE0, n * VERTEX_ZEROS,
+                           n * VERTEX_ZEROS,     n * VERTEX_ZEROS};
+    vkCmdBindVertexBuffers(r->cmd, 0, 8, vb, off);
+    VkBuffer ib = lines              ? u->line_index[d->mesh].buffer
+                  : sorted[i].buffer ? sorted[i].buffer
+                                     : u->index[d->mesh].buffer;
+    vkCmdBindIndexBuffer(r->cmd, ib, 0, VK_INDEX_TYPE_UINT32);
+    /* The loader gives every draw instances >= 1; 0 means 1, as sgDrawParams.instance_count. */
+    vkCmdDrawIndexed(r->cmd, count, d->instances > 0 ? (uint32_t)d->instances : 1u, 0, 0, 0);
+    return true;
+}
+
 /* Records one draw of the scene's pass: its mesh's triangles, or its mesh's lines (count indices).
  */
 static bool record_draw(ref *r, const sc_file *f, const sc_scene *s, const uploads *u, size_t i,
                         bool lines, uint32_t count, VkDescriptorSet color_set,
                         const VkDescriptorSet *sets, const buffer *sorted, const shadow_pass *sh) {
     const sc_draw *d = &s->draws[i];
+    if (d->shader) return record_twin_draw(r, f, s, u, i, lines, count, sets[i], sorted);
     /* As in sgapi-render: a texture draw without a texture is drawn with vertex colour. */
     bool textured = d->mode == SC_MODE_TEXTURE && d->texture >= 0;
     draw_kind kind = s->has_shadow && d->receives_shadow ? DRAW_RECEIVER : DRAW_PLAIN;
     VkPipeline pipe;
-    if (!get_pipeline(r, d, textured, kind, lines, &pipe)) return false;
+    if (!get_pipeline(r, d, textured, kind, lines, -1, &pipe)) return false;
     vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
     VkPipelineLayout layout = layout_of(r, textured, kind);
     float pc[32];
@@ -1125,11 +1388,69 @@ static void destroy_shadow(ref *r, shadow_pass *sh) {
     memset(sh, 0, sizeof *sh);
 }
 
+/* The sets of a scene's shader draws (sets[i] for draw i): each draw's uniforms, at their own
+ * aligned offset in one storage buffer (one float of zero for a draw without uniforms), and its
+ * textures with its filter and wrap, the slots it leaves unbound the blank image. */
+static bool prepare_twin_sets(ref *r, const sc_scene *s, const uploads *u, VkDescriptorPool pool,
+                              buffer *uniforms, VkDescriptorSet *sets) {
+    VkDeviceSize size = 0, align = r->storage_align;
+    for (size_t i = 0; i < s->draw_count; i++)
+        if (s->draws[i].shader) {
+            int count = s->draws[i].uniform_count;
+            size = (size + align - 1) / align * align + (VkDeviceSize)(count > 0 ? count : 1) * 4;
+        }
+    if (size == 0) return true;
+    if (!create_buffer(r, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, uniforms)) return false;
+    VkDeviceSize offset = 0;
+    for (size_t i = 0; i < s->draw_count; i++) {
+        const sc_draw *d = &s->draws[i];
+        if (!d->shader) continue;
+        offset = (offset + align - 1) / align * align;
+        VkDeviceSize range = (VkDeviceSize)(d->uniform_count > 0 ? d->uniform_count : 1) * 4;
+        if (d->uniform_count > 0)
+            memcpy((uint8_t *)uniforms->mapped + offset, d->uniforms, (size_t)range);
+        else
+            memset((uint8_t *)uniforms->mapped + offset, 0, (size_t)range);
+        VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                           .descriptorPool = pool,
+                                           .descriptorSetCount = 1,
+                                           .pSetLayouts = &r->twin_set_layout};
+        if (vkAllocateDescriptorSets(r->device, &dai, &sets[i]) != VK_SUCCESS)
+            return fail(r, "vkAllocateDescriptorSets failed");
+        VkDescriptorBufferInfo bi = {.buffer = uniforms->buffer, .offset = offset, .range = range};
+        VkSampler sampler = r->samplers[(d->filter == SC_FILTER_BILINEAR ? 2 : 0) +
+                                        (d->wrap == SC_WRAP_CLAMP ? 1 : 0)];
+        VkDescriptorImageInfo ii[TWIN_TEXTURES];
+        for (int k = 0; k < TWIN_TEXTURES; k++) {
+            bool bound = k < d->shader_texture_count;
+            ii[k] = (VkDescriptorImageInfo){
+                .sampler = sampler,
+                .imageView = bound ? u->textures[d->shader_textures[k]].view : r->blank.view,
+                .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        }
+        VkWriteDescriptorSet w[2] = {{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                      .dstSet = sets[i],
+                                      .dstBinding = 0,
+                                      .descriptorCount = 1,
+                                      .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                      .pBufferInfo = &bi},
+                                     {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                      .dstSet = sets[i],
+                                      .dstBinding = 1,
+                                      .descriptorCount = TWIN_TEXTURES,
+                                      .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                      .pImageInfo = ii}};
+        vkUpdateDescriptorSets(r->device, 2, w, 0, NULL);
+        offset += range;
+    }
+    return true;
+}
+
 static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          const char *out_dir, int frames) {
     shadow_pass sh = {0};
     texture color = {0}, depth = {0};
-    buffer readback = {0}, blocks = {0};
+    buffer readback = {0}, blocks = {0}, uniforms = {0};
     VkFramebuffer fb = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet color_set = VK_NULL_HANDLE;
@@ -1161,13 +1482,18 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
              fail(r, "vkCreateFramebuffer failed");
     }
     if (ok && s->draw_count) {
-        VkDescriptorPoolSize ps[3] = {
-            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, (uint32_t)s->draw_count},
+        /* A set per textured draw and per shader draw, whose set has TWIN_TEXTURES images. */
+        uint32_t shader_draws = 0;
+        for (size_t i = 0; i < s->draw_count; i++) shader_draws += s->draws[i].shader != NULL;
+        VkDescriptorPoolSize ps[4] = {
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+             (uint32_t)s->draw_count + shader_draws * TWIN_TEXTURES},
             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
-            {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 1}};
+            {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 1},
+            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, shader_draws ? shader_draws : 1}};
         VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                           .maxSets = (uint32_t)s->draw_count + 2,
-                                          .poolSizeCount = 3,
+                                          .poolSizeCount = 4,
                                           .pPoolSizes = ps};
         ok = vkCreateDescriptorPool(r->device, &dpi, NULL, &pool) == VK_SUCCESS ||
              fail(r, "vkCreateDescriptorPool failed");
@@ -1206,7 +1532,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         }
         for (size_t i = 0; ok && i < s->draw_count; i++) {
             const sc_draw *d = &s->draws[i];
-            if (d->mode != SC_MODE_TEXTURE || d->texture < 0) continue;
+            if (d->shader || d->mode != SC_MODE_TEXTURE || d->texture < 0) continue;
             VkDescriptorSetAllocateInfo dai = {.sType =
                                                    VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
                                                .descriptorPool = pool,
@@ -1228,6 +1554,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
             vkUpdateDescriptorSets(r->device, 1, &w, 0, NULL);
         }
     }
+    ok = ok && prepare_twin_sets(r, s, u, pool, &uniforms, sets);
     ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, color_set, sets, sorted, &sh);
     for (int i = 0; ok && i < frames; i++) {
         double t0 = now_ms();
@@ -1256,6 +1583,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     if (fb) vkDestroyFramebuffer(r->device, fb, NULL);
     destroy_buffer(r, &readback);
     destroy_buffer(r, &blocks);
+    destroy_buffer(r, &uniforms);
     for (size_t i = 0; sorted && i < s->draw_count; i++) destroy_buffer(r, &sorted[i]);
     destroy_image(r, &color);
     destroy_image(r, &depth);
@@ -1266,9 +1594,23 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     return ok;
 }
 
+/* What a twin's texture slot that the draw leaves unbound samples: one (0, 0, 0, 1) texel. */
+static bool create_blank(ref *r) {
+    unsigned char black[4] = {0, 0, 0, 255};
+    sc_image img = {.width = 1, .height = 1, .pixels = black};
+    return upload_texture(r, &img, &r->blank);
+}
+
 static void destroy_ref(ref *r) {
     if (r->device) {
         vkDeviceWaitIdle(r->device);
+        for (int i = 0; i < r->twin_count; i++) {
+            vkDestroyShaderModule(r->device, r->twins[i].vert, NULL);
+            vkDestroyShaderModule(r->device, r->twins[i].frag, NULL);
+        }
+        destroy_image(r, &r->blank);
+        if (r->layout_twin) vkDestroyPipelineLayout(r->device, r->layout_twin, NULL);
+        if (r->twin_set_layout) vkDestroyDescriptorSetLayout(r->device, r->twin_set_layout, NULL);
         for (int i = 0; i < r->pipeline_count; i++)
             vkDestroyPipeline(r->device, r->pipelines[i].pipeline, NULL);
         if (r->render_pass) vkDestroyRenderPass(r->device, r->render_pass, NULL);
@@ -1288,6 +1630,8 @@ static void destroy_ref(ref *r) {
         vkDestroyDevice(r->device, NULL);
     }
     if (r->instance) vkDestroyInstance(r->instance, NULL);
+    free(r->twins);
+    if (r->glslang_ready) glslang_finalize_process();
     sc_msg_free(&r->err);
 }
 
@@ -1299,6 +1643,9 @@ static void usage(FILE *f) {
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     lavapipe's raster threads (sets LP_NUM_THREADS)\n"
+               "  --shaders LIB   also know the shaders of that shader library (a shared object\n"
+               "                  exporting sgapi_shader_library; repeatable); their GLSL twins\n"
+               "                  render the scenes' shader draws\n"
                "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
                "                  rendered), not a warning\n"
                "  --shaders LIB.so  load the shaders of a shader library (repeatable): scene\n"
@@ -1321,6 +1668,22 @@ static bool make_dir(const char *path) {
     free(buf);
     struct stat st;
     return ok && stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+/* Loads a scene file and checks its shader draws against the known shaders; on failure prints
+ * why and returns the exit status (1: the file, 2: a shader draw), else 0. */
+static int load_file(const char *path, const sc_shaders *shaders, sc_file *f) {
+    sc_msg err = {0};
+    int status = 0;
+    if (!sc_load(path, f, &err)) {
+        status = 1;
+    } else if (!sc_shaders_check(shaders, f, &err)) {
+        sc_free(f);
+        status = 2;
+    }
+    if (status) fprintf(stderr, "sgapi-ref: %s\n", sc_msg_text(&err));
+    sc_msg_free(&err);
+    return status;
 }
 
 int main(int argc, char **argv) {
@@ -1370,15 +1733,14 @@ int main(int argc, char **argv) {
         usage(stderr);
         return 2;
     }
-    /* The shaders scene files may name: the built-in ones and those of --shaders. */
+    /* The shaders scene files may name: the built-in ones and the libraries given. */
     sc_shaders *shaders = NULL;
-    sc_msg shader_err = {0};
-    bool shaders_ok = sc_shaders_open(&shaders, &shader_err);
-    for (int i = 0; shaders_ok && i < nlibs; i++)
-        shaders_ok = sc_shaders_load(shaders, libs[i], &shader_err);
-    if (!shaders_ok) {
-        fprintf(stderr, "sgapi-ref: %s\n", shader_err.text);
-        sc_msg_free(&shader_err);
+    sc_msg err = {0};
+    bool known = sc_shaders_open(&shaders, &err);
+    for (int i = 0; known && i < nlibs; i++) known = sc_shaders_load(shaders, libs[i], &err);
+    if (!known) {
+        fprintf(stderr, "sgapi-ref: %s\n", sc_msg_text(&err));
+        sc_msg_free(&err);
         sc_shaders_close(shaders);
         return 2;
     }
@@ -1387,54 +1749,57 @@ int main(int argc, char **argv) {
      * stops the run before the first is rendered. */
     for (int fi = 0; fi < nfiles; fi++) {
         sc_file f;
-        sc_msg err = {0};
-        if (!sc_load(files[fi], &f, &err)) {
-            fprintf(stderr, "sgapi-ref: %s\n", err.text);
-            sc_msg_free(&err);
+        int bad = load_file(files[fi], shaders, &f);
+        if (bad) {
             sc_shaders_close(shaders);
-            return 1;
+            return bad;
         }
         bool clean = !strict || sc_report_warnings(&f, "sgapi-ref", true);
-        bool fits = sc_shaders_check(shaders, &f, &shader_err);
         sc_free(&f);
-        if (!fits) {
-            fprintf(stderr, "sgapi-ref: %s\n", shader_err.text);
-            sc_msg_free(&shader_err);
-        }
-        if (!clean || !fits) {
+        if (!clean) {
             sc_shaders_close(shaders);
-            return clean ? 2 : 1;
+            return 1;
         }
     }
     if (!make_dir(out_dir)) {
         fprintf(stderr, "sgapi-ref: cannot create output folder %s: %s\n", out_dir,
                 strerror(errno));
+        sc_shaders_close(shaders);
         return 1;
     }
     ref *r = calloc(1, sizeof *r);
     if (!r) return 1;
+    r->shaders = shaders;
     int status = 0;
-    if (!create_instance(r) || !create_device(r) || !create_shaders_and_layouts(r)) {
+    if (!create_instance(r) || !create_device(r) || !create_shaders_and_layouts(r) ||
+        !create_blank(r)) {
         fprintf(stderr, "sgapi-ref: %s\n", sc_msg_text(&r->err));
         destroy_ref(r);
         free(r);
+        sc_shaders_close(shaders);
         return 1;
     }
     for (int fi = 0; fi < nfiles && !status; fi++) {
         sc_file f;
-        sc_msg err = {0};
-        if (!sc_load(files[fi], &f, &err)) {
-            fprintf(stderr, "sgapi-ref: %s\n", err.text);
-            sc_msg_free(&err);
-            status = 1;
-            break;
-        }
+        status = load_file(files[fi], shaders, &f);
+        if (status) break;
         if (!strict) sc_report_warnings(&f, "sgapi-ref", false);
         uploads u = {0};
         if (!upload_file(r, &f, &u)) {
             fprintf(stderr, "sgapi-ref: %s: %s\n", files[fi], sc_msg_text(&r->err));
             status = 1;
         }
+        /* Every twin the file's draws run, compiled before its first scene renders. */
+        for (size_t si = 0; !status && si < f.scene_count; si++)
+            for (size_t di = 0; !status && di < f.scenes[si].draw_count; di++) {
+                const sc_draw *d = &f.scenes[si].draws[di];
+                int t;
+                if (d->shader && !get_twin(r, d->shader, &t)) {
+                    fprintf(stderr, "sgapi-ref: %s: scene %s, draw %zu: %s\n", files[fi],
+                            f.scenes[si].name, di, sc_msg_text(&r->err));
+                    status = 1;
+                }
+            }
         for (size_t si = 0; !status && si < f.scene_count; si++) {
             const sc_scene *s = &f.scenes[si];
             bool want = nonly == 0;
