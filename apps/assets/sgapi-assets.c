@@ -455,6 +455,42 @@ static bool make_brick(const char *path) {
     return ok;
 }
 
+/* The bricks of make_brick as a tangent-space normal map (the `normal_map` shader's texture 0):
+ * each brick a raised block whose edges slope down over 4 texels to the mortar, with a little
+ * grain. r, g, b = x, y, z of the unit normal mapped from [-1, 1] to [0, 1], x along s (to the
+ * right) and y along t (up the image as displayed). */
+static double brick_relief(int x, int y) {
+    enum { N = 256, BW = 64, BH = 32, MORTAR = 2, SLOPE = 4 };
+    x = wrap_int(x, N), y = wrap_int(y, N);
+    int row = y / BH;
+    int shifted = x + ((row & 1) ? BW / 2 : 0);
+    int mx = shifted % BW, my = y % BH;
+    int dx = mx - MORTAR < BW - MORTAR - 1 - mx ? mx - MORTAR : BW - MORTAR - 1 - mx;
+    int dy = my - MORTAR < BH - MORTAR - 1 - my ? my - MORTAR : BH - MORTAR - 1 - my;
+    int d = dx < dy ? dx : dy; /* texels inside the brick's edge; < 0 in the mortar */
+    double grain = fbm((x + 0.5) / N, (y + 0.5) / N, 32, 3, 0xB41Du);
+    double h = d < 0 ? 0.0 : smoothstep(0.0, SLOPE, d + 1.0);
+    return h + 0.15 * grain;
+}
+
+static bool make_brick_normal(const char *path) {
+    enum { N = 256 };
+    const double strength = 1.5; /* height units per texel of slope */
+    image im = image_new(N, N, 3);
+    for (int y = 0; y < N; y++) {
+        for (int x = 0; x < N; x++) {
+            double dhdx = 0.5 * (brick_relief(x + 1, y) - brick_relief(x - 1, y));
+            /* t grows up the image, y down it */
+            double dhdt = 0.5 * (brick_relief(x, y - 1) - brick_relief(x, y + 1));
+            vec3 n = v3_norm(v3(-strength * dhdx, -strength * dhdt, 1.0));
+            put_rgb(&im, x, y, v3(0.5 + 0.5 * n.x, 0.5 + 0.5 * n.y, 0.5 + 0.5 * n.z));
+        }
+    }
+    bool ok = image_write(&im, path);
+    free(im.px);
+    return ok;
+}
+
 /* RGBA: a round lattice window. Its bars are opaque and shaded by hue; the panes are cut out
  * (alpha 0) in a ring and glazed with alpha falling from 0.9 at the top to 0.1 at the bottom
  * elsewhere, so one texture shows a hard cut-out edge and a smooth alpha gradient. */
@@ -1378,6 +1414,7 @@ static void write_scene(FILE *f, const scene *s, bool last) {
 #define A_CHECKER      "assets/checker.png"
 #define A_MOSAIC       "assets/mosaic.png"
 #define A_BRICK        "assets/brick.png"
+#define A_BRICK_NORMAL "assets/brick_normal.png"
 #define A_HEIGHT       "assets/height.png"
 #define A_TERRAIN      "assets/terrain_color.png"
 #define A_CUTOUT       "assets/cutout.png"
@@ -2570,6 +2607,7 @@ static int write_assets(const char *out, char **path) {
     unsigned char *height = xmalloc(HEIGHT_N * HEIGHT_N);
     bool ok = make_checker(join(path, out, A_CHECKER)) && make_mosaic(join(path, out, A_MOSAIC)) &&
               make_brick(join(path, out, A_BRICK)) &&
+              make_brick_normal(join(path, out, A_BRICK_NORMAL)) &&
               make_height(join(path, out, A_HEIGHT), height) &&
               make_terrain_color(join(path, out, A_TERRAIN), height) &&
               make_cutout(join(path, out, A_CUTOUT));

@@ -1,0 +1,370 @@
+/* shader_math.h - what the built-in shaders share: per-lane maths written so that a loop over the
+ * 16 lanes vectorises (no calls, no branches a select cannot replace), and the GLSL text of the
+ * same functions and declarations for their twins (docs/api.md, "Shaders").
+ *
+ * Only static inline functions and macros: a shader file owns no state but its sgShaderInfo.
+ */
+#ifndef SG_SHADER_MATH_H
+#define SG_SHADER_MATH_H
+
+#include <float.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "sgapi/sgapi_shaders.h"
+
+#define SGS_LANES SG_SHADER_LANES
+
+/* ---- the twins' declarations ------------------------------------------------------------------
+ */
+
+/* The contract of every twin: version and the uniforms; a vertex stage adds the draw's matrices
+ * (SGS_GLSL_DRAW), the mathematical ones (proj * world_view * p is the C product; the renderer
+ * that runs the twin uploads them to match), and its inputs. */
+#define SGS_GLSL_HEADER                                                                            \
+    "#version 450\n"                                                                               \
+    "layout(std430, set = 0, binding = 0) readonly buffer SgUniforms { float u[]; };\n"
+#define SGS_GLSL_DRAW "layout(push_constant) uniform SgDraw { mat4 world_view; mat4 proj; };\n"
+#define SGS_GLSL_INPUTS                                                                            \
+    "layout(location = 0) in vec4 sg_position;\n"                                                  \
+    "layout(location = 1) in vec4 sg_color;\n"                                                     \
+    "layout(location = 2) in vec3 sg_normal;\n"                                                    \
+    "layout(location = 3) in vec2 sg_texcoord;\n"                                                  \
+    "layout(location = 4) in vec4 sg_attribute0;\n"
+#define SGS_GLSL_TEXTURES "layout(set = 0, binding = 1) uniform sampler2D sg_textures[8];\n"
+#define SGS_GLSL_OUTPUT   "layout(location = 0) out vec4 sg_frag_color;\n"
+
+/* vec3 of three consecutive uniforms. */
+#define SGS_GLSL_U3 "vec3 u3(int k) { return vec3(u[k], u[k + 1], u[k + 2]); }\n"
+
+/* ---- scalar helpers ----------------------------------------------------------------------------
+ */
+
+static inline float sgs_min(float a, float b) {
+    return a < b ? a : b;
+}
+static inline float sgs_max(float a, float b) {
+    return a > b ? a : b;
+}
+static inline float sgs_clamp01(float v) {
+    return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+}
+static inline float sgs_sqrt(float v) {
+    return __builtin_sqrtf(v); /* one instruction; no errno for the values used here (>= 0) */
+}
+
+/* floor for |x| < 2^31, by truncation and a correction: a conversion the SIMD sets all have
+ * (floorf needs SSE4.1 to be inlined). Exactly floor, as GLSL's. */
+static inline float sgs_floor(float x) {
+    float t = (float)(int32_t)x, below = t - 1.0f;
+    return t > x ? below : t;
+}
+
+/* 1 / |v|, 0 for a zero length (never NaN), as the fixed lighting normalises (light.h).
+ *
+ * Here and below, every operation is computed whatever a condition says and the condition only
+ * selects between results: a floating-point operation under a condition is a possible trap the
+ * compiler will not move out of it, which keeps the lane loop from vectorising. */
+static inline float sgs_inv_len(float x, float y, float z) {
+    float len2 = (x * x + y * y) + z * z;
+    float inv = 1.0f / sgs_sqrt(len2);
+    return len2 > 0.0f ? inv : 0.0f;
+}
+
+/* sin(x) for |x| < 2^20: x less the nearest multiple of 2 pi (in two parts, so the reduction is
+ * exact to float), folded into [-pi/2, pi/2], then Taylor to x^11 (error below 1e-7). */
+static inline float sgs_sin(float x) {
+    float k = sgs_floor(x * 0.159154943f + 0.5f);
+    float r = (x - k * 6.28318548f) - k * -1.74845553e-7f;
+    float above = 3.14159265f - r, below = -3.14159265f - r;
+    r = r > 1.57079633f ? above : r;
+    r = r < -1.57079633f ? below : r;
+    float r2 = r * r;
+    float p = -2.50521084e-8f;
+    p = p * r2 + 2.75573192e-6f;
+    p = p * r2 - 1.98412698e-4f;
+    p = p * r2 + 8.33333333e-3f;
+    p = p * r2 - 1.66666667e-1f;
+    return r + (r * r2) * p;
+}
+static inline float sgs_cos(float x) {
+    return sgs_sin(x + 1.57079633f);
+}
+
+/* x^s for x in [0, 1], s in [0, 128], as the fixed lighting computes it (light.h: sg_pow_unit),
+ * without branches: 1 when s = 0, 0 below the smallest normal float. */
+static inline float sgs_pow_unit(float x, float s) {
+    uint32_t bits;
+    float xs = x >= FLT_MIN ? x : 1.0f;
+    memcpy(&bits, &xs, sizeof bits);
+    int32_t e = (int32_t)((bits >> 23) & 255u) - 127;
+    bits = (bits & 0x007fffffu) | 0x3f800000u;
+    float m;
+    memcpy(&m, &bits, sizeof m);
+    int big = m > 1.41421356f;
+    float half = m * 0.5f;
+    m = big ? half : m;
+    e = big ? e + 1 : e;
+    float t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
+    float p = 1.0f / 11.0f;
+    p = p * t2 + 1.0f / 9.0f;
+    p = p * t2 + 1.0f / 7.0f;
+    p = p * t2 + 1.0f / 5.0f;
+    p = p * t2 + 1.0f / 3.0f;
+    p = p * t2 + 1.0f;
+    float z = s * ((float)e + (p * t) * 2.88539008f);
+    float zc = z >= -126.0f ? z : -126.0f;
+    float n = sgs_floor(zc + 0.5f);
+    float y = (zc - n) * 0.693147181f;
+    float q = 1.0f / 5040.0f;
+    q = q * y + 1.0f / 720.0f;
+    q = q * y + 1.0f / 120.0f;
+    q = q * y + 1.0f / 24.0f;
+    q = q * y + 1.0f / 6.0f;
+    q = q * y + 0.5f;
+    q = q * y + 1.0f;
+    q = q * y + 1.0f;
+    uint32_t sb = (uint32_t)((int32_t)n + 127) << 23;
+    float scale;
+    memcpy(&scale, &sb, sizeof scale);
+    float r = q * scale;
+    r = z >= -126.0f ? r : 0.0f;
+    r = x >= FLT_MIN ? r : 0.0f;
+    return s == 0.0f ? 1.0f : r;
+}
+#define SGS_GLSL_POW_UNIT                                                                          \
+    "float pow_unit(float x, float s) {\n"                                                         \
+    "    return s == 0.0 ? 1.0 : (x > 0.0 ? pow(x, s) : 0.0);\n"                                   \
+    "}\n"
+
+/* ---- the normal matrix -------------------------------------------------------------------------
+ */
+
+/* The inverse transpose of world_view's upper-left 3 x 3 (row-major), in double, as the fixed
+ * lighting's; a singular matrix gives zeros. Once per batch. */
+static inline void sgs_normal_matrix(const float *wv, float nm[9]) {
+    double a = wv[0], b = wv[1], c = wv[2], d = wv[4], e = wv[5], f = wv[6], g = wv[8], h = wv[9],
+           i = wv[10];
+    /* (A^-1)^T is the cofactor matrix over the determinant. */
+    double cof[9] = {e * i - f * h, f * g - d * i, d * h - e * g, c * h - b * i, a * i - c * g,
+                     b * g - a * h, b * f - c * e, c * d - a * f, a * e - b * d};
+    double det = a * cof[0] + b * cof[1] + c * cof[2];
+    for (int k = 0; k < 9; k++) nm[k] = det != 0.0 ? (float)(cof[k] / det) : 0.0f;
+}
+
+/* Lane i of the clip position (proj x (world_view x p)) into b->clip, the view-space position
+ * (world_view x p) into varyings vp..vp+2 and the normal (normal matrix x n) into vn..vn+2 (-1:
+ * not written), from positions p[4] and normals n[3] of 16 lanes each. */
+static inline void sgs_transform_from(sgVertexBatch *b, const float (*p)[SGS_LANES],
+                                      const float (*n)[SGS_LANES], int vp, int vn) {
+    const float *m = b->world_view, *pr = b->proj;
+    float nm[9];
+    sgs_normal_matrix(m, nm);
+    for (int i = 0; i < SGS_LANES; i++) {
+        float x = p[0][i], y = p[1][i], z = p[2][i], w = p[3][i];
+        float v0 = ((m[0] * x + m[1] * y) + m[2] * z) + m[3] * w;
+        float v1 = ((m[4] * x + m[5] * y) + m[6] * z) + m[7] * w;
+        float v2 = ((m[8] * x + m[9] * y) + m[10] * z) + m[11] * w;
+        float v3 = ((m[12] * x + m[13] * y) + m[14] * z) + m[15] * w;
+        b->clip[0][i] = ((pr[0] * v0 + pr[1] * v1) + pr[2] * v2) + pr[3] * v3;
+        b->clip[1][i] = ((pr[4] * v0 + pr[5] * v1) + pr[6] * v2) + pr[7] * v3;
+        b->clip[2][i] = ((pr[8] * v0 + pr[9] * v1) + pr[10] * v2) + pr[11] * v3;
+        b->clip[3][i] = ((pr[12] * v0 + pr[13] * v1) + pr[14] * v2) + pr[15] * v3;
+        if (vp >= 0) {
+            b->varying[vp][i] = v0;
+            b->varying[vp + 1][i] = v1;
+            b->varying[vp + 2][i] = v2;
+        }
+        if (vn >= 0) {
+            float nx = n[0][i], ny = n[1][i], nz = n[2][i];
+            b->varying[vn][i] = (nm[0] * nx + nm[1] * ny) + nm[2] * nz;
+            b->varying[vn + 1][i] = (nm[3] * nx + nm[4] * ny) + nm[5] * nz;
+            b->varying[vn + 2][i] = (nm[6] * nx + nm[7] * ny) + nm[8] * nz;
+        }
+    }
+}
+
+/* The same from the batch's own positions and normals. */
+static inline void sgs_transform(sgVertexBatch *b, int vp, int vn) {
+    sgs_transform_from(b, (const float(*)[SGS_LANES])b->position,
+                       (const float(*)[SGS_LANES])b->normal, vp, vn);
+}
+
+/* ---- one directional light ---------------------------------------------------------------------
+ *
+ * The fixed lighting's equation (light.h) for one directional light with a local viewer:
+ *   N = normalize(n), V = normalize(-P), L = -normalize(direction), H = normalize(L + V)
+ *   colour = clamp(base ambient + base max(N.L, 0) light, 0, 1)
+ *            + (N.L > 0 ? pow(max(N.H, 0), shininess) : 0) light specular
+ * (the sum clamped to [0, 1] by the output). L is prepared once per draw call of the stage. */
+
+typedef struct sgs_light {
+    float ambient[3], dir[3], color[3], specular[3], shininess;
+} sgs_light;
+
+/* Reads ambient, direction (the way the light travels, view space), colour, specular and
+ * shininess from u at the given offsets (specular < 0: no specular term) and prepares L. */
+static inline sgs_light sgs_light_read(const float *u, int ambient, int direction, int color,
+                                       int specular, int shininess) {
+    sgs_light l;
+    for (int k = 0; k < 3; k++) {
+        l.ambient[k] = u[ambient + k];
+        l.color[k] = u[color + k];
+        l.specular[k] = specular >= 0 ? u[specular + k] : 0.0f;
+    }
+    float inv = sgs_inv_len(u[direction], u[direction + 1], u[direction + 2]);
+    for (int k = 0; k < 3; k++) l.dir[k] = -u[direction + k] * inv;
+    l.shininess = shininess >= 0 ? u[shininess] : 0.0f;
+    if (!(l.shininess >= 0.0f)) l.shininess = 0.0f;
+    if (l.shininess > 128.0f) l.shininess = 128.0f;
+    return l;
+}
+
+/* The equation at one lane: view-space point (px, py, pz), normal (nx, ny, nz), base colour.
+ * Written out channel by channel: an inner loop would keep the lane loop from vectorising. */
+static inline void sgs_light_eval(const sgs_light *l, float px, float py, float pz, float nx,
+                                  float ny, float nz, const float base[3], float out[3]) {
+    float in = sgs_inv_len(nx, ny, nz), iv = sgs_inv_len(px, py, pz);
+    nx *= in, ny *= in, nz *= in;
+    float vx = -px * iv, vy = -py * iv, vz = -pz * iv;
+    float ndotl = (nx * l->dir[0] + ny * l->dir[1]) + nz * l->dir[2];
+    float hx = l->dir[0] + vx, hy = l->dir[1] + vy, hz = l->dir[2] + vz;
+    float ih = sgs_inv_len(hx, hy, hz);
+    hx *= ih, hy *= ih, hz *= ih;
+    float ndoth = (nx * hx + ny * hy) + nz * hz;
+    float pw = sgs_pow_unit(ndoth > 0.0f ? ndoth : 0.0f, l->shininess);
+    float d = ndotl > 0.0f ? ndotl : 0.0f, s = ndotl > 0.0f ? pw : 0.0f;
+    out[0] = sgs_clamp01(base[0] * l->ambient[0] + base[0] * (d * l->color[0])) +
+             (s * l->color[0]) * l->specular[0];
+    out[1] = sgs_clamp01(base[1] * l->ambient[1] + base[1] * (d * l->color[1])) +
+             (s * l->color[1]) * l->specular[1];
+    out[2] = sgs_clamp01(base[2] * l->ambient[2] + base[2] * (d * l->color[2])) +
+             (s * l->color[2]) * l->specular[2];
+}
+
+/* The same in GLSL: light(P, n, base, ambient, direction, colour, specular, shininess) with the
+ * uniform offsets; spec < 0: none. */
+#define SGS_GLSL_LIGHT                                                                             \
+    SGS_GLSL_U3 SGS_GLSL_POW_UNIT                                                                  \
+        "vec3 safe_normalize(vec3 v) {\n"                                                          \
+        "    precise float len2 = (v.x * v.x + v.y * v.y) + v.z * v.z;\n"                          \
+        "    return len2 > 0.0 ? v / sqrt(len2) : vec3(0.0);\n"                                    \
+        "}\n"                                                                                      \
+        "vec3 light(vec3 P, vec3 n, vec3 base, int amb, int dir, int col, int spec, int shin) {\n" \
+        "    vec3 N = safe_normalize(n), V = safe_normalize(-P);\n"                                \
+        "    vec3 L = -safe_normalize(u3(dir));\n"                                                 \
+        "    vec3 c = u3(col);\n"                                                                  \
+        "    float ndotl = dot(N, L);\n"                                                           \
+        "    vec3 prim = clamp(base * u3(amb) + base * (max(ndotl, 0.0) * c), 0.0, 1.0);\n"        \
+        "    if (spec < 0 || !(ndotl > 0.0)) return prim;\n"                                       \
+        "    float s = shin >= 0 ? clamp(u[shin], 0.0, 128.0) : 0.0;\n"                            \
+        "    float ndoth = dot(N, safe_normalize(L + V));\n"                                       \
+        "    return prim + (pow_unit(max(ndoth, 0.0), s) * c) * u3(spec);\n"                       \
+        "}\n"
+
+/* ---- value noise ------------------------------------------------------------------------------
+ *
+ * 3D value noise on the integer lattice: each lattice point gets a value in [0, 1) from an
+ * integer hash of its coordinates (32-bit unsigned arithmetic, exactly the same in C and GLSL),
+ * and the eight around a point are blended with the smooth fade t^2 (3 - 2t). Only products and
+ * sums of small numbers follow the hash, so C and GLSL agree to a few units of the last place. */
+
+static inline float sgs_hash3(int32_t x, int32_t y, int32_t z) {
+    uint32_t h =
+        ((uint32_t)x * 0x8da6b343u) ^ ((uint32_t)y * 0xd8163841u) ^ ((uint32_t)z * 0xcb1ab31fu);
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return (float)(h >> 8) * (1.0f / 16777216.0f);
+}
+
+static inline float sgs_lerp(float a, float b, float t) {
+    return a + (b - a) * t;
+}
+
+static inline float sgs_noise3(float x, float y, float z) {
+    float fx = sgs_floor(x), fy = sgs_floor(y), fz = sgs_floor(z);
+    int32_t ix = (int32_t)fx, iy = (int32_t)fy, iz = (int32_t)fz;
+    float tx = x - fx, ty = y - fy, tz = z - fz;
+    tx = tx * tx * (3.0f - 2.0f * tx);
+    ty = ty * ty * (3.0f - 2.0f * ty);
+    tz = tz * tz * (3.0f - 2.0f * tz);
+    float a = sgs_lerp(sgs_hash3(ix, iy, iz), sgs_hash3(ix + 1, iy, iz), tx);
+    float b = sgs_lerp(sgs_hash3(ix, iy + 1, iz), sgs_hash3(ix + 1, iy + 1, iz), tx);
+    float c = sgs_lerp(sgs_hash3(ix, iy, iz + 1), sgs_hash3(ix + 1, iy, iz + 1), tx);
+    float d = sgs_lerp(sgs_hash3(ix, iy + 1, iz + 1), sgs_hash3(ix + 1, iy + 1, iz + 1), tx);
+    return sgs_lerp(sgs_lerp(a, b, ty), sgs_lerp(c, d, ty), tz);
+}
+
+/* Turbulence: octaves of |2 noise - 1|, each of twice the frequency and half the weight, over
+ * their total weight: in [0, 1]. Four octaves, written out (see sgs_light_eval). */
+static inline float sgs_turb1(float x, float y, float z) {
+    float n = 2.0f * sgs_noise3(x, y, z) - 1.0f;
+    return n < 0.0f ? -n : n;
+}
+static inline float sgs_turbulence(float x, float y, float z) {
+    float sum = sgs_turb1(x, y, z);
+    sum = sum + 0.5f * sgs_turb1(x * 2.0f, y * 2.0f, z * 2.0f);
+    sum = sum + 0.25f * sgs_turb1(x * 4.0f, y * 4.0f, z * 4.0f);
+    sum = sum + 0.125f * sgs_turb1(x * 8.0f, y * 8.0f, z * 8.0f);
+    return sum * (1.0f / 1.875f); /* 1 + 1/2 + 1/4 + 1/8 */
+}
+
+/* Fractal sum: octaves of noise, each of twice the frequency and half the weight, over their
+ * total weight: in [0, 1), mostly near 1/2. */
+static inline float sgs_fbm(float x, float y, float z) {
+    float sum = sgs_noise3(x, y, z);
+    sum = sum + 0.5f * sgs_noise3(x * 2.0f, y * 2.0f, z * 2.0f);
+    sum = sum + 0.25f * sgs_noise3(x * 4.0f, y * 4.0f, z * 4.0f);
+    sum = sum + 0.125f * sgs_noise3(x * 8.0f, y * 8.0f, z * 8.0f);
+    return sum * (1.0f / 1.875f);
+}
+
+/* The same in GLSL; `precise` keeps the compiler from fusing products and sums (SPIR-V
+ * NoContraction), as the C is compiled without contraction. */
+#define SGS_GLSL_HASH                                                                              \
+    "float hash3(ivec3 p) {\n"                                                                     \
+    "    uvec3 q = uvec3(p);\n"                                                                    \
+    "    uint h = (q.x * 0x8da6b343u) ^ (q.y * 0xd8163841u) ^ (q.z * 0xcb1ab31fu);\n"              \
+    "    h ^= h >> 16; h *= 0x7feb352du; h ^= h >> 15; h *= 0x846ca68bu; h ^= h >> 16;\n"          \
+    "    return float(h >> 8) * (1.0 / 16777216.0);\n"                                             \
+    "}\n"
+#define SGS_GLSL_NOISE                                                                             \
+    SGS_GLSL_HASH                                                                                  \
+    "precise float lerp1(float a, float b, float t) { return a + (b - a) * t; }\n"                 \
+    "float noise3(vec3 p) {\n"                                                                     \
+    "    vec3 f = floor(p);\n"                                                                     \
+    "    ivec3 i = ivec3(f);\n"                                                                    \
+    "    precise vec3 t = p - f;\n"                                                                \
+    "    t = t * t * (3.0 - 2.0 * t);\n"                                                           \
+    "    float a = lerp1(hash3(i), hash3(i + ivec3(1, 0, 0)), t.x);\n"                             \
+    "    float b = lerp1(hash3(i + ivec3(0, 1, 0)), hash3(i + ivec3(1, 1, 0)), t.x);\n"            \
+    "    float c = lerp1(hash3(i + ivec3(0, 0, 1)), hash3(i + ivec3(1, 0, 1)), t.x);\n"            \
+    "    float d = lerp1(hash3(i + ivec3(0, 1, 1)), hash3(i + ivec3(1, 1, 1)), t.x);\n"            \
+    "    return lerp1(lerp1(a, b, t.y), lerp1(c, d, t.y), t.z);\n"                                 \
+    "}\n"                                                                                          \
+    "float turbulence(vec3 p) {\n"                                                                 \
+    "    precise float sum = 0.0;\n"                                                               \
+    "    float amp = 1.0;\n"                                                                       \
+    "    for (int o = 0; o < 4; o++) {\n"                                                          \
+    "        precise float n = 2.0 * noise3(p) - 1.0;\n"                                           \
+    "        sum = sum + amp * abs(n);\n"                                                          \
+    "        amp = amp * 0.5;\n"                                                                   \
+    "        p = p * 2.0;\n"                                                                       \
+    "    }\n"                                                                                      \
+    "    return sum * (1.0 / 1.875);\n"                                                            \
+    "}\n"                                                                                          \
+    "float fbm(vec3 p) {\n"                                                                        \
+    "    precise float sum = 0.0;\n"                                                               \
+    "    float amp = 1.0;\n"                                                                       \
+    "    for (int o = 0; o < 4; o++) {\n"                                                          \
+    "        sum = sum + amp * noise3(p);\n"                                                       \
+    "        amp = amp * 0.5;\n"                                                                   \
+    "        p = p * 2.0;\n"                                                                       \
+    "    }\n"                                                                                      \
+    "    return sum * (1.0 / 1.875);\n"                                                            \
+    "}\n"
+
+#endif
