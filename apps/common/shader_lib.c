@@ -63,21 +63,18 @@ static const char *bad_shader(const sgShaderInfo *info) {
     return NULL;
 }
 
-/* Adds a library's shaders (all checked first); source is taken over, even on failure. */
-static bool add_library(sc_shaders *s, const sgShaderLibrary *lib, char *source, void *handle,
-                        sc_msg *err) {
+/* Adds a library's shaders, `count` of them at list[0..] (all checked first); source is taken
+ * over, even on failure. */
+static bool add_shaders(sc_shaders *s, const sgShaderInfo *const *list, int count, char *source,
+                        void *handle, sc_msg *err) {
     bool ok = false;
     if (!source) {
         sc_msg_set(err, "out of memory");
+        if (handle) dlclose(handle);
         return false;
     }
-    if (lib->count < 0 || (lib->count > 0 && !lib->shaders)) {
-        sc_msg_set(err, "%s: its shader list is malformed (count %d, shaders %s)", source,
-                   lib->count, lib->shaders ? "set" : "NULL");
-        goto done;
-    }
-    for (int i = 0; i < lib->count; i++) {
-        const sgShaderInfo *info = &lib->shaders[i];
+    for (int i = 0; i < count; i++) {
+        const sgShaderInfo *info = list[i];
         const char *why = bad_shader(info);
         if (why) {
             sc_msg_set(err, "%s: shaders[%d]%s%s%s %s", source, i, info->name ? " ('" : "",
@@ -93,14 +90,14 @@ static bool add_library(sc_shaders *s, const sgShaderLibrary *lib, char *source,
             }
         }
         for (int k = 0; k < i; k++) {
-            if (strcmp(lib->shaders[k].name, info->name) == 0) {
+            if (strcmp(list[k]->name, info->name) == 0) {
                 sc_msg_set(err, "%s: shader '%s' is defined twice (shaders[%d] and [%d])", source,
                            info->name, k, i);
                 goto done;
             }
         }
     }
-    size_t need = s->count + (size_t)lib->count;
+    size_t need = s->count + (size_t)count;
     if (need > s->cap) {
         size_t cap = s->cap ? s->cap : 16;
         while (cap < need) cap *= 2;
@@ -120,8 +117,8 @@ static bool add_library(sc_shaders *s, const sgShaderLibrary *lib, char *source,
         sc_msg_set(err, "out of memory");
         goto done;
     }
-    for (int i = 0; i < lib->count; i++)
-        s->shaders[s->count++] = (known){&lib->shaders[i], (int)s->library_count};
+    for (int i = 0; i < count; i++)
+        s->shaders[s->count++] = (known){list[i], (int)s->library_count};
     s->sources[s->library_count] = source;
     s->handles[s->library_count++] = handle;
     return true;
@@ -138,8 +135,9 @@ bool sc_shaders_open(sc_shaders **out, sc_msg *err) {
         sc_msg_set(err, "out of memory");
         return false;
     }
-    if (!add_library(s, sg_builtin_shader_library(), sc_format("the built-in library"), NULL,
-                     err)) {
+    int n = 0;
+    const sgShaderInfo *const *builtin = sg_builtin_shaders(&n);
+    if (!add_shaders(s, builtin, n, sc_format("the built-in library"), NULL, err)) {
         sc_shaders_close(s);
         return false;
     }
@@ -219,7 +217,23 @@ bool sc_shaders_load(sc_shaders *s, const char *path, sc_msg *err) {
         dlclose(h);
         return false;
     }
-    return add_library(s, lib, sc_format("shader library '%s'", path), h, err);
+    if (lib->count < 0 || (lib->count > 0 && !lib->shaders)) {
+        sc_msg_set(err, "shader library '%s': its shader list is malformed (count %d, shaders %s)",
+                   path, lib->count, lib->shaders ? "set" : "NULL");
+        dlclose(h);
+        return false;
+    }
+    /* The registry keeps pointers: the library's array, one entry each. */
+    const sgShaderInfo **list = malloc(((size_t)lib->count + 1) * sizeof *list);
+    if (!list) {
+        sc_msg_set(err, "out of memory");
+        dlclose(h);
+        return false;
+    }
+    for (int i = 0; i < lib->count; i++) list[i] = &lib->shaders[i];
+    bool ok = add_shaders(s, list, lib->count, sc_format("shader library '%s'", path), h, err);
+    free(list);
+    return ok;
 }
 
 /* "a, b, c": the known names, in the order they were added. */

@@ -5,19 +5,17 @@
 
 #include "sgapi/sgapi_shaders.h"
 
-/* The shaders, one file each (apps/shaders/<name>.c; uniforms described at the top of each). */
-extern const sgShaderInfo sg_shader_phong;
-extern const sgShaderInfo sg_shader_toon;
-extern const sgShaderInfo sg_shader_normal_map;
-extern const sgShaderInfo sg_shader_marble;
-extern const sgShaderInfo sg_shader_waves;
-extern const sgShaderInfo sg_shader_dissolve;
-extern const sgShaderInfo sg_shader_instanced;
+/** The built-in shaders: *count pointers, the same every call. */
+const sgShaderInfo *const *sg_builtin_shaders(int *count);
 
-/** The built-in library. */
-const sgShaderLibrary *sg_builtin_shader_library(void);
-
-/* The shaders, one file each. */
-extern const sgShaderInfo sg_shader_unlit; /* the fixed vertex-colour equation: 4 varyings */
+/* The shaders, one file each (uniform layouts in each file's first comment). */
+extern const sgShaderInfo sg_shader_unlit;      /* the fixed vertex-colour equation */
+extern const sgShaderInfo sg_shader_phong;      /* the fixed per-pixel lighting */
+extern const sgShaderInfo sg_shader_toon;       /* banded diffuse and a rim */
+extern const sgShaderInfo sg_shader_normal_map; /* a tangent-space normal map */
+extern const sgShaderInfo sg_shader_marble;     /* 3D noise in object space */
+extern const sgShaderInfo sg_shader_waves;      /* a displaced grid, analytic normals */
+extern const sgShaderInfo sg_shader_dissolve;   /* discard by noise, a glowing edge */
+extern const sgShaderInfo sg_shader_instanced;  /* a grid of cubes in one draw */
 
 #endif
