@@ -20,7 +20,7 @@
 #include "builtin.h"
 #include "shader_math.h"
 
-static void dissolve_vertex(sgVertexBatch *b, const void *uniforms) {
+SGS_STAGE static void dissolve_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     sgs_transform(b, 3, 6);
     for (int k = 0; k < 3; k++)
@@ -30,7 +30,7 @@ static void dissolve_vertex(sgVertexBatch *b, const void *uniforms) {
         }
 }
 
-static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms) {
+SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 9, 12, 15, -1, -1);
     const float threshold = u[0], inv_width = u[1] > 0.0f ? 1.0f / u[1] : 0.0f;

@@ -19,14 +19,14 @@
 #include "builtin.h"
 #include "shader_math.h"
 
-static void marble_vertex(sgVertexBatch *b, const void *uniforms) {
+SGS_STAGE static void marble_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     sgs_transform(b, 3, 6);
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < SGS_LANES; i++) b->varying[k][i] = b->position[k][i] * u[0];
 }
 
-static void marble_fragment(sgFragmentBatch *b, const void *uniforms) {
+SGS_STAGE static void marble_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 8, 11, 14, 17, 20);
     const float turb = u[1], sr = u[2], sg = u[3], sb = u[4], vr = u[5], vg = u[6], vb = u[7];

@@ -18,7 +18,7 @@
 #include "builtin.h"
 #include "shader_math.h"
 
-static void normal_map_vertex(sgVertexBatch *b, const void *uniforms) {
+SGS_STAGE static void normal_map_vertex(sgVertexBatch *b, const void *uniforms) {
     (void)uniforms;
     const float *m = b->world_view;
     sgs_transform(b, 0, 3);
@@ -33,7 +33,7 @@ static void normal_map_vertex(sgVertexBatch *b, const void *uniforms) {
     }
 }
 
-static void normal_map_fragment(sgFragmentBatch *b, const void *uniforms) {
+SGS_STAGE static void normal_map_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 2, 5, 8, 11, 14);
     const float weight = u[0], strength = u[1];

@@ -14,14 +14,14 @@
 #include "builtin.h"
 #include "shader_math.h"
 
-static void phong_vertex(sgVertexBatch *b, const void *uniforms) {
+SGS_STAGE static void phong_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     sgs_transform(b, 0, 3);
     for (int k = 0; k < 4; k++)
         for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] = b->color[k][i] * u[k];
 }
 
-static void phong_fragment(sgFragmentBatch *b, const void *uniforms) {
+SGS_STAGE static void phong_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 4, 7, 10, 13, 16);
     for (int i = 0; i < SGS_LANES; i++) {

@@ -15,6 +15,17 @@
 
 #define SGS_LANES SG_SHADER_LANES
 
+/* A stage function compiled for the baseline and for AVX2 and AVX-512, the copy this CPU runs
+ * chosen when the program starts: 16 lanes fill one AVX-512 register. Lane-wise IEEE operations
+ * without fused multiply-add give the same bits in every copy. (Not under the sanitizers, whose
+ * builds need no speed.) */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
+    !defined(__SANITIZE_THREAD__)
+#define SGS_STAGE __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define SGS_STAGE
+#endif
+
 /* ---- the twins' declarations ------------------------------------------------------------------
  */
 

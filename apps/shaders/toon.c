@@ -15,14 +15,14 @@
 #include "builtin.h"
 #include "shader_math.h"
 
-static void toon_vertex(sgVertexBatch *b, const void *uniforms) {
+SGS_STAGE static void toon_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     sgs_transform(b, 0, 3);
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] = b->color[k][i] * u[k];
 }
 
-static void toon_fragment(sgFragmentBatch *b, const void *uniforms) {
+SGS_STAGE static void toon_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     float il = sgs_inv_len(u[3], u[4], u[5]);
     const float lx = -u[3] * il, ly = -u[4] * il, lz = -u[5] * il;

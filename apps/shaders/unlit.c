@@ -2,6 +2,7 @@
  * nothing else. It exists to compare a shader pipeline's cost with the fixed path's on the same
  * image, so its clip positions are those of the fixed path bit for bit. */
 #include "builtin.h"
+#include "shader_math.h"
 
 /* The fixed path's combined matrix: proj * world_view, each element summed in double and rounded
  * to float once (sgapi's vertex stage forms it the same way, once per draw). */
@@ -15,7 +16,7 @@ static void mvp_of(const float *proj, const float *world_view, float out[16]) {
         }
 }
 
-static void unlit_vertex(sgVertexBatch *b, const void *uniforms) {
+SGS_STAGE static void unlit_vertex(sgVertexBatch *b, const void *uniforms) {
     (void)uniforms;
     /* Once per batch: 64 products against 16 lanes of 16 each. */
     float m[16];
@@ -30,7 +31,7 @@ static void unlit_vertex(sgVertexBatch *b, const void *uniforms) {
         for (int i = 0; i < SG_SHADER_LANES; i++) b->varying[c][i] = b->color[c][i];
 }
 
-static void unlit_fragment(sgFragmentBatch *b, const void *uniforms) {
+SGS_STAGE static void unlit_fragment(sgFragmentBatch *b, const void *uniforms) {
     (void)uniforms;
     for (int c = 0; c < 4; c++)
         for (int i = 0; i < SG_SHADER_LANES; i++) b->color[c][i] = b->varying[c][i];

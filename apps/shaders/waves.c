@@ -19,7 +19,7 @@
 #include "builtin.h"
 #include "shader_math.h"
 
-static void waves_vertex(sgVertexBatch *b, const void *uniforms) {
+SGS_STAGE static void waves_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const float time = u[0];
     float p[4][SGS_LANES], n[3][SGS_LANES];
@@ -42,7 +42,7 @@ static void waves_vertex(sgVertexBatch *b, const void *uniforms) {
     sgs_transform_from(b, (const float(*)[SGS_LANES])p, (const float(*)[SGS_LANES])n, 0, 3);
 }
 
-static void waves_fragment(sgFragmentBatch *b, const void *uniforms) {
+SGS_STAGE static void waves_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 16, 19, 22, 25, 28);
     for (int i = 0; i < SGS_LANES; i++) {

@@ -2,12 +2,20 @@
 #include "raster/shade_shader.h"
 
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "raster/blend.h"
 #include "raster/blend_walk.h"
 
+/* Lane i's pixel offset from the tile's top-left pixel. */
+static const float LANE_X[SG_SHADER_LANES] = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
+static const float LANE_Y[SG_SHADER_LANES] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+
 /* The batch of a tile: every lane interpolated at its pixel centre (helper lanes too), as the
- * fixed shading does: attribute / w and 1 / w planes, then one division. */
+ * fixed shading does: attribute / w and 1 / w planes, then one division. Loops over the 16 lanes
+ * without branches, so that they vectorise. */
 static void fill_batch(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                        sgFragmentBatch *b) {
     const sg_shader_state *s = &c->shader;
@@ -21,35 +29,45 @@ static void fill_batch(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
     b->discard = 0;
     b->internal = c;
     const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
-    float w[SG_SHADER_LANES];
+    float dx[SG_SHADER_LANES], dy[SG_SHADER_LANES], w[SG_SHADER_LANES];
     for (int i = 0; i < SG_SHADER_LANES; i++) {
-        const float dx = ox + (float)(i & 3), dy = oy + (float)(i >> 2);
-        b->z[i] = sg_tri_depth(t, dx, dy);
-        w[i] = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+        dx[i] = ox + LANE_X[i];
+        dy[i] = oy + LANE_Y[i];
+    }
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        const float z = t->z + t->z_dx * dx[i] + t->z_dy * dy[i];
+        b->z[i] = z < 0.0f ? 0.0f : (z > 1.0f ? 1.0f : z); /* sg_tri_depth */
+        w[i] = 1.0f / (t->q + t->q_dx * dx[i] + t->q_dy * dy[i]);
     }
     for (int k = 0; k < s->varying_count; k++) {
-        const float *a, *ax, *ay;
+        float a, ax, ay;
         if (k < SG_TRI_ATTRS) {
-            a = &t->a[k];
-            ax = &t->a_dx[k];
-            ay = &t->a_dy[k];
+            a = t->a[k];
+            ax = t->a_dx[k];
+            ay = t->a_dy[k];
         } else {
-            a = &ext->a[k - SG_TRI_ATTRS];
-            ax = &ext->a_dx[k - SG_TRI_ATTRS];
-            ay = &ext->a_dy[k - SG_TRI_ATTRS];
+            a = ext->a[k - SG_TRI_ATTRS];
+            ax = ext->a_dx[k - SG_TRI_ATTRS];
+            ay = ext->a_dy[k - SG_TRI_ATTRS];
         }
+        float *v = b->varying[k];
         if (s->flat >> k & 1) {
-            for (int i = 0; i < SG_SHADER_LANES; i++) b->varying[k][i] = *a;
+            for (int i = 0; i < SG_SHADER_LANES; i++) v[i] = a;
             continue;
         }
-        for (int i = 0; i < SG_SHADER_LANES; i++) {
-            const float dx = ox + (float)(i & 3), dy = oy + (float)(i >> 2);
-            b->varying[k][i] = (*a + *ax * dx + *ay * dy) * w[i];
-        }
+        for (int i = 0; i < SG_SHADER_LANES; i++) v[i] = (a + ax * dx[i] + ay * dy[i]) * w[i];
     }
-    for (int k = s->varying_count; k < SG_MAX_VARYINGS; k++)
-        for (int i = 0; i < SG_SHADER_LANES; i++) b->varying[k][i] = 0.0f;
+    if (s->varying_count < SG_MAX_VARYINGS)
+        memset(b->varying[s->varying_count], 0,
+               (size_t)(SG_MAX_VARYINGS - s->varying_count) * sizeof b->varying[0]);
     memset(b->color, 0, sizeof b->color);
+}
+
+/* A channel to unorm8 as sg_to_unorm8 rounds it (NaN and below 0 give 0), without branches. */
+static inline __attribute__((unused)) uint32_t unorm8(float v) {
+    float c = v > 0.0f ? v : 0.0f;
+    c = c < 1.0f ? c : 1.0f;
+    return (uint32_t)(int32_t)(c * 255.0f + 0.5f);
 }
 
 uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
@@ -58,10 +76,33 @@ uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int
     fill_batch(c, t, x0, y0, mask, &b);
     c->shader.fragment(&b, c->shader.uniforms);
     const uint32_t keep = mask & ~b.discard;
-    for (uint32_t m = keep; m; m &= m - 1) {
-        const int i = __builtin_ctz(m);
-        dst[i] = sg_to_unorm8(b.color[0][i]) | sg_to_unorm8(b.color[1][i]) << 8 |
-                 sg_to_unorm8(b.color[2][i]) << 16 | sg_to_unorm8(b.color[3][i]) << 24;
+    _Alignas(16) uint32_t px[SG_SHADER_LANES];
+#if defined(__SSE2__)
+    /* unorm8 four lanes at a time: max(v, 0) gives 0 for NaN (the second operand) as the scalar
+     * test does, and the truncation of c 255 + 0.5 is the same conversion. */
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), k255 = _mm_set1_ps(255.0f),
+                 half = _mm_set1_ps(0.5f);
+    for (int i = 0; i < SG_SHADER_LANES; i += 4) {
+        __m128i p = _mm_setzero_si128();
+        for (int ch = 0; ch < 4; ch++) {
+            __m128 v = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(&b.color[ch][i]), zero), one);
+            __m128i u = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(v, k255), half));
+            p = _mm_or_si128(p, _mm_slli_epi32(u, 8 * ch));
+        }
+        _mm_store_si128((__m128i *)(void *)(px + i), p);
+    }
+#else
+    for (int i = 0; i < SG_SHADER_LANES; i++)
+        px[i] = unorm8(b.color[0][i]) | unorm8(b.color[1][i]) << 8 | unorm8(b.color[2][i]) << 16 |
+                unorm8(b.color[3][i]) << 24;
+#endif
+    if (keep == 0xffffu) {
+        memcpy(dst, px, sizeof px);
+    } else {
+        for (uint32_t m = keep; m; m &= m - 1) {
+            const int i = __builtin_ctz(m);
+            dst[i] = px[i];
+        }
     }
     return keep;
 }
