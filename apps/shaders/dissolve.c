@@ -23,8 +23,7 @@
 SGS_STAGE static void dissolve_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     sgs_transform(b, 3, 6);
-    for (int k = 0; k < 3; k++)
-        for (int i = 0; i < SGS_LANES; i++) {
+    for (int k = 0; k < 3; k++) SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
             b->varying[k][i] = b->position[k][i] * u[2];
             b->varying[9 + k][i] = b->color[k][i] * u[6 + k];
         }
@@ -37,7 +36,7 @@ SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms
     const float flip = b->front_facing ? 1.0f : -1.0f;
     const float gr = u[3], gg = u[4], gb = u[5];
     uint32_t gone[SGS_LANES];
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         float n = sgs_fbm(b->varying[0][i], b->varying[1][i], b->varying[2][i]);
         gone[i] = n < threshold;
         /* 1 at the cut, 0 from the band's top up */
@@ -53,7 +52,7 @@ SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms
         b->color[3][i] = 1.0f;
     }
     uint32_t discard = 0; /* apart: a mask built in the lane loop keeps it from vectorising */
-    for (int i = 0; i < SGS_LANES; i++) discard |= gone[i] << i;
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) discard |= gone[i] << i;
     b->discard = discard;
 }
 

@@ -42,7 +42,7 @@ SGS_STAGE static void instanced_vertex(sgVertexBatch *b, const void *uniforms) {
     for (int k = 0; k < 3; k++) rgb[k] = 0.25f + 0.75f * sgs_hash3(inst, k + 1, 0);
     const float s = u[2];
     float p[4][SGS_LANES], n[3][SGS_LANES];
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         /* R = Ry Rx, applied to the scaled vertex and to its normal. */
         float v[2][3] = {{b->position[0][i] * s, b->position[1][i] * s, b->position[2][i] * s},
                          {b->normal[0][i], b->normal[1][i], b->normal[2][i]}};
@@ -57,7 +57,7 @@ SGS_STAGE static void instanced_vertex(sgVertexBatch *b, const void *uniforms) {
     sgs_transform_from(b, (const float(*)[SGS_LANES])p, (const float(*)[SGS_LANES])n, -1, 0);
     float il = sgs_inv_len(u[8], u[9], u[10]);
     const float lx = -u[8] * il, ly = -u[9] * il, lz = -u[10] * il;
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         float nx = b->varying[0][i], ny = b->varying[1][i], nz = b->varying[2][i];
         float in = sgs_inv_len(nx, ny, nz);
         float d = sgs_max(((nx * lx + ny * ly) + nz * lz) * in, 0.0f);
@@ -68,7 +68,7 @@ SGS_STAGE static void instanced_vertex(sgVertexBatch *b, const void *uniforms) {
 
 SGS_STAGE static void instanced_fragment(sgFragmentBatch *b, const void *uniforms) {
     (void)uniforms;
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         b->color[0][i] = b->varying[0][i];
         b->color[1][i] = b->varying[1][i];
         b->color[2][i] = b->varying[2][i];

@@ -23,14 +23,14 @@ SGS_STAGE static void marble_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     sgs_transform(b, 3, 6);
     for (int k = 0; k < 3; k++)
-        for (int i = 0; i < SGS_LANES; i++) b->varying[k][i] = b->position[k][i] * u[0];
+        SGS_SIMD for (int i = 0; i < SGS_LANES; i++) b->varying[k][i] = b->position[k][i] * u[0];
 }
 
 SGS_STAGE static void marble_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 8, 11, 14, 17, 20);
     const float turb = u[1], sr = u[2], sg = u[3], sb = u[4], vr = u[5], vg = u[6], vb = u[7];
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         float x = b->varying[0][i], y = b->varying[1][i], z = b->varying[2][i];
         float t = sgs_turbulence(x, y, z);
         /* Bands across x + y / 2, two units apart, shifted by the turbulence; v is 0 on a vein. */

@@ -22,7 +22,7 @@ SGS_STAGE static void normal_map_vertex(sgVertexBatch *b, const void *uniforms) 
     (void)uniforms;
     const float *m = b->world_view;
     sgs_transform(b, 0, 3);
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         float tx = b->attribute[0][0][i], ty = b->attribute[0][1][i], tz = b->attribute[0][2][i];
         for (int r = 0; r < 3; r++)
             b->varying[6 + r][i] = (m[4 * r] * tx + m[4 * r + 1] * ty) + m[4 * r + 2] * tz;
@@ -40,7 +40,7 @@ SGS_STAGE static void normal_map_fragment(sgFragmentBatch *b, const void *unifor
     float map[4][SGS_LANES], tex[4][SGS_LANES];
     sgSample(b, 0, b->varying[10], b->varying[11], map);
     sgSample(b, 1, b->varying[10], b->varying[11], tex);
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         float nx = b->varying[3][i], ny = b->varying[4][i], nz = b->varying[5][i];
         float in = sgs_inv_len(nx, ny, nz);
         nx *= in, ny *= in, nz *= in;

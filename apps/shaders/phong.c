@@ -18,13 +18,13 @@ SGS_STAGE static void phong_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     sgs_transform(b, 0, 3);
     for (int k = 0; k < 4; k++)
-        for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] = b->color[k][i] * u[k];
+        SGS_SIMD for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] = b->color[k][i] * u[k];
 }
 
 SGS_STAGE static void phong_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 4, 7, 10, 13, 16);
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         const float base[3] = {b->varying[6][i], b->varying[7][i], b->varying[8][i]};
         float c[3];
         sgs_light_eval(&l, b->varying[0][i], b->varying[1][i], b->varying[2][i], b->varying[3][i],

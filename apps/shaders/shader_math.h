@@ -15,6 +15,10 @@
 
 #define SGS_LANES SG_SHADER_LANES
 
+/* Before a loop over the lanes: vectorise it whatever the compiler's cost model says of its
+ * selects (-fopenmp-simd; the lanes are independent). */
+#define SGS_SIMD _Pragma("omp simd")
+
 /* A stage function compiled for the baseline and for AVX2 and AVX-512, the copy this CPU runs
  * chosen when the program starts: 16 lanes fill one AVX-512 register. Lane-wise IEEE operations
  * without fused multiply-add give the same bits in every copy. (Not under the sanitizers, whose
@@ -57,8 +61,11 @@ static inline float sgs_min(float a, float b) {
 static inline float sgs_max(float a, float b) {
     return a > b ? a : b;
 }
+/* Two selects, not one nested in another: a three-way choice keeps AVX2 and AVX-512 loops from
+ * vectorising. NaN gives 0. */
 static inline float sgs_clamp01(float v) {
-    return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+    float c = v > 0.0f ? v : 0.0f;
+    return c < 1.0f ? c : 1.0f;
 }
 static inline float sgs_sqrt(float v) {
     return __builtin_sqrtf(v); /* one instruction; no errno for the values used here (>= 0) */
@@ -103,7 +110,10 @@ static inline float sgs_cos(float x) {
 }
 
 /* x^s for x in [0, 1], s in [0, 128], as the fixed lighting computes it (light.h: sg_pow_unit),
- * without branches: 1 when s = 0, 0 below the smallest normal float. */
+ * without branches: 0 below the smallest normal float. s = 0 gives 1 for every x from FLT_MIN up
+ * (2^(0 log2 x)); the caller raises x to FLT_MIN for s = 0 (sgs_light.min_x), so that 0^0 = 1
+ * too without a test of s in the lane loop (a test of a value the same in every lane becomes a
+ * branch, which keeps the loop from vectorising). */
 static inline float sgs_pow_unit(float x, float s) {
     uint32_t bits;
     float xs = x >= FLT_MIN ? x : 1.0f;
@@ -140,8 +150,7 @@ static inline float sgs_pow_unit(float x, float s) {
     memcpy(&scale, &sb, sizeof scale);
     float r = q * scale;
     r = z >= -126.0f ? r : 0.0f;
-    r = x >= FLT_MIN ? r : 0.0f;
-    return s == 0.0f ? 1.0f : r;
+    return x >= FLT_MIN ? r : 0.0f;
 }
 #define SGS_GLSL_POW_UNIT                                                                          \
     "float pow_unit(float x, float s) {\n"                                                         \
@@ -211,6 +220,7 @@ static inline void sgs_transform(sgVertexBatch *b, int vp, int vn) {
 
 typedef struct sgs_light {
     float ambient[3], dir[3], color[3], specular[3], shininess;
+    float min_x; /* the least base sgs_pow_unit is given: FLT_MIN when shininess is 0, else 0 */
 } sgs_light;
 
 /* Reads ambient, direction (the way the light travels, view space), colour, specular and
@@ -228,6 +238,7 @@ static inline sgs_light sgs_light_read(const float *u, int ambient, int directio
     l.shininess = shininess >= 0 ? u[shininess] : 0.0f;
     if (!(l.shininess >= 0.0f)) l.shininess = 0.0f;
     if (l.shininess > 128.0f) l.shininess = 128.0f;
+    l.min_x = l.shininess == 0.0f ? FLT_MIN : 0.0f;
     return l;
 }
 
@@ -243,7 +254,7 @@ static inline void sgs_light_eval(const sgs_light *l, float px, float py, float 
     float ih = sgs_inv_len(hx, hy, hz);
     hx *= ih, hy *= ih, hz *= ih;
     float ndoth = (nx * hx + ny * hy) + nz * hz;
-    float pw = sgs_pow_unit(ndoth > 0.0f ? ndoth : 0.0f, l->shininess);
+    float pw = sgs_pow_unit(ndoth > l->min_x ? ndoth : l->min_x, l->shininess);
     float d = ndotl > 0.0f ? ndotl : 0.0f, s = ndotl > 0.0f ? pw : 0.0f;
     out[0] = sgs_clamp01(base[0] * l->ambient[0] + base[0] * (d * l->color[0])) +
              (s * l->color[0]) * l->specular[0];

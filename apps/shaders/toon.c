@@ -19,7 +19,7 @@ SGS_STAGE static void toon_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     sgs_transform(b, 0, 3);
     for (int k = 0; k < 3; k++)
-        for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] = b->color[k][i] * u[k];
+        SGS_SIMD for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] = b->color[k][i] * u[k];
 }
 
 SGS_STAGE static void toon_fragment(sgFragmentBatch *b, const void *uniforms) {
@@ -28,7 +28,7 @@ SGS_STAGE static void toon_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float lx = -u[3] * il, ly = -u[4] * il, lz = -u[5] * il;
     const float ambient = u[9], bands = u[10] >= 2.0f ? u[10] : 2.0f, width = u[11];
     const float lr = u[6], lg = u[7], lb = u[8], rr = u[12], rg = u[13], rb = u[14];
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         float px = b->varying[0][i], py = b->varying[1][i], pz = b->varying[2][i];
         float nx = b->varying[3][i], ny = b->varying[4][i], nz = b->varying[5][i];
         float in = sgs_inv_len(nx, ny, nz), iv = sgs_inv_len(px, py, pz);

@@ -23,7 +23,7 @@ SGS_STAGE static void waves_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const float time = u[0];
     float p[4][SGS_LANES], n[3][SGS_LANES];
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         float x = b->position[0][i], z = b->position[2][i];
         float y = b->position[1][i], dx = 0.0f, dz = 0.0f;
         for (int w = 0; w < 3; w++) {
@@ -45,7 +45,7 @@ SGS_STAGE static void waves_vertex(sgVertexBatch *b, const void *uniforms) {
 SGS_STAGE static void waves_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 16, 19, 22, 25, 28);
-    for (int i = 0; i < SGS_LANES; i++) {
+    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
         const float base[3] = {b->varying[6][i], b->varying[7][i], b->varying[8][i]};
         float c[3];
         sgs_light_eval(&l, b->varying[0][i], b->varying[1][i], b->varying[2][i], b->varying[3][i],
