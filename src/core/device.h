@@ -104,6 +104,8 @@ struct sgDevice {
     uint64_t *bin_order;  /* the bins, busiest first, for sgEndRenderPass (pass.c) */
     uint32_t *fe_counts;  /* per front-end chunk and bin: triangles, then write positions */
     size_t fe_counts_capacity;
+    uint32_t *fe_ranges; /* per triangle of a front-end round: its bins (sg_binner_count_tri) */
+    size_t fe_ranges_capacity;
     void *sort_scratch; /* a sorted draw's keys and its reordered indices (sort.h) */
     size_t sort_scratch_capacity;
     int bin_order_capacity;
