@@ -51,16 +51,19 @@ static sg_tri *bin_slot(void *user, sg_tri_ext **ext) {
     sg_binner *b = &dev->binner;
     /* The budget is looked at only when the triangles or the list entries pass half of what was
      * left at the last look, or the storage is full (room_tris, room_listed): two compares a
-     * triangle. */
-    if (b->tri_count >= dev->room_tris || b->listed >= dev->room_listed) {
-        if (b->out_of_memory || !room_for(dev, 1) || !sg_binner_reserve(b, 1)) return NULL;
-        size_t used = sg_binner_bytes(b);
-        size_t left = dev->bin_memory_limit > used ? dev->bin_memory_limit - used : 0;
-        size_t tris = left / 2 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
-        if (tris > b->tri_capacity - b->tri_count) tris = b->tri_capacity - b->tri_count;
-        dev->room_tris = b->tri_count + tris; /* tris 0: look again at the next triangle */
-        dev->room_listed = b->listed + left / 2 / sizeof(uint32_t);
+     * triangle. Below room_tris the storage (and the extensions') holds the triangle, so the
+     * common case needs no call. */
+    if (b->tri_count < dev->room_tris && b->listed < dev->room_listed && !b->out_of_memory) {
+        if (b->use_ext) *ext = b->ext + b->tri_count;
+        return b->tris + b->tri_count;
     }
+    if (b->out_of_memory || !room_for(dev, 1) || !sg_binner_reserve(b, 1)) return NULL;
+    size_t used = sg_binner_bytes(b);
+    size_t left = dev->bin_memory_limit > used ? dev->bin_memory_limit - used : 0;
+    size_t tris = left / 2 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
+    if (tris > b->tri_capacity - b->tri_count) tris = b->tri_capacity - b->tri_count;
+    dev->room_tris = b->tri_count + tris; /* tris 0: look again at the next triangle */
+    dev->room_listed = b->listed + left / 2 / sizeof(uint32_t);
     sg_tri *t = sg_binner_reserve(b, 1);
     if (t && b->use_ext) *ext = b->ext + b->tri_count;
     return t;
