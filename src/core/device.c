@@ -233,6 +233,7 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->draws);
     sg_free(dev, dev->bin_order);
     sg_free(dev, dev->fe_counts);
+    sg_free(dev, dev->fe_ranges);
     sg_free(dev, dev->flush_depth);
     sg_free(dev, dev->sort_scratch);
     sg_free(dev, dev->uniforms);

@@ -112,6 +112,8 @@ struct sgDevice {
     uint64_t *bin_order;  /* the bins, busiest first, for sgEndRenderPass (pass.c) */
     uint32_t *fe_counts;  /* per front-end chunk and bin: triangles, then write positions */
     size_t fe_counts_capacity;
+    uint32_t *fe_ranges; /* per triangle of a front-end round: its bins (sg_binner_count_tri) */
+    size_t fe_ranges_capacity;
     unsigned char *uniforms; /* the open pass's shader draws' uniforms, copied (16-byte aligned) */
     size_t uniforms_used, uniforms_capacity;
     int shader_discards; /* counts discarded fragments' tiles in visibility-first bins (rast_bin.c)

@@ -52,16 +52,19 @@ static sg_tri *bin_slot(void *user, sg_tri_ext **ext) {
     sg_binner *b = &dev->binner;
     /* The budget is looked at only when the triangles or the list entries pass half of what was
      * left at the last look, or the storage is full (room_tris, room_listed): two compares a
-     * triangle. */
-    if (b->tri_count >= dev->room_tris || b->listed >= dev->room_listed) {
-        if (b->out_of_memory || !room_for(dev, 1) || !sg_binner_reserve(b, 1)) return NULL;
-        size_t used = sg_binner_bytes(b);
-        size_t left = dev->bin_memory_limit > used ? dev->bin_memory_limit - used : 0;
-        size_t tris = left / 2 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
-        if (tris > b->tri_capacity - b->tri_count) tris = b->tri_capacity - b->tri_count;
-        dev->room_tris = b->tri_count + tris; /* tris 0: look again at the next triangle */
-        dev->room_listed = b->listed + left / 2 / sizeof(uint32_t);
+     * triangle. Below room_tris the storage (and the extensions') holds the triangle, so the
+     * common case needs no call. */
+    if (b->tri_count < dev->room_tris && b->listed < dev->room_listed && !b->out_of_memory) {
+        if (b->use_ext) *ext = b->ext + b->tri_count;
+        return b->tris + b->tri_count;
     }
+    if (b->out_of_memory || !room_for(dev, 1) || !sg_binner_reserve(b, 1)) return NULL;
+    size_t used = sg_binner_bytes(b);
+    size_t left = dev->bin_memory_limit > used ? dev->bin_memory_limit - used : 0;
+    size_t tris = left / 2 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
+    if (tris > b->tri_capacity - b->tri_count) tris = b->tri_capacity - b->tri_count;
+    dev->room_tris = b->tri_count + tris; /* tris 0: look again at the next triangle */
+    dev->room_listed = b->listed + left / 2 / sizeof(uint32_t);
     sg_tri *t = sg_binner_reserve(b, 1);
     if (t && b->use_ext) *ext = b->ext + b->tri_count;
     return t;
@@ -96,6 +99,9 @@ typedef struct fe_chunk {
     sg_tri *out;
     sg_tri_ext *out_ext; /* beside out, when the draw uses extensions */
     size_t base, count, capacity;
+    const sg_binner *binner;
+    uint32_t *counts;  /* the chunk's triangles per bin (NULL: listed one by one afterwards) */
+    uint32_t *ranges;  /* each triangle's bins (sg_binner_count_tri), beside out */
     int per, tris_per; /* indices a primitive, raster primitives it makes at most unclipped */
     int done;          /* primitives assembled; the rest are the calling thread's */
     uint32_t draw;
@@ -114,7 +120,10 @@ static sg_tri *fe_slot(void *user, sg_tri_ext **ext) {
 
 static void fe_emit(void *user) {
     fe_chunk *c = user;
-    c->out[c->count++].draw = c->draw;
+    sg_tri *t = &c->out[c->count];
+    t->draw = c->draw;
+    if (c->counts) c->ranges[c->count] = sg_binner_count_tri(c->binner, t, c->counts);
+    c->count++;
 }
 
 static void fe_run(void *chunks, int index) {
@@ -124,6 +133,8 @@ static void fe_run(void *chunks, int index) {
     a.emit = fe_emit;
     a.user = c;
     const int prims = c->a.index_count / c->per;
+    if (c->counts)
+        memset(c->counts, 0, (size_t)(c->binner->bins_x * c->binner->bins_y) * sizeof *c->counts);
     for (c->done = 0; c->done < prims;) {
         int n = prims - c->done < FE_BLOCK ? prims - c->done : FE_BLOCK;
         /* Room for the block unclipped; clipping can make more, then the block is undone. */
@@ -141,33 +152,24 @@ static void fe_run(void *chunks, int index) {
     }
 }
 
-/* Lists the chunks' triangles in the bins on every thread (sg_binner_count, _make_room, _fill):
- * the same lists, in the same order, as listing them one by one. False: no room for the counts
- * (the caller then lists them itself). */
+/* Lists the chunks' triangles in the bins on every thread (sg_binner_make_room, _fill), from
+ * the counts the chunks made: the same lists, in the same order, as listing them one by one. */
 typedef struct fe_list {
-    sg_binner *b;
+    const sg_binner *b;
     const fe_chunk *chunks;
     size_t first;
-    uint32_t *counts;
-    int nbins;
 } fe_list;
-
-static void fe_count(void *vjob, int i) {
-    const fe_list *j = vjob;
-    sg_binner_count(j->b, j->first + j->chunks[i].base, j->chunks[i].count,
-                    j->counts + (size_t)i * (size_t)j->nbins);
-}
 
 static void fe_fill(void *vjob, int i) {
     const fe_list *j = vjob;
-    sg_binner_fill(j->b, j->first + j->chunks[i].base, j->chunks[i].count,
-                   j->counts + (size_t)i * (size_t)j->nbins);
+    const fe_chunk *c = &j->chunks[i];
+    sg_binner_fill(j->b, j->first + c->base, c->count, c->ranges, c->counts);
 }
 
-static bool list_parallel(sgDevice *dev, const fe_chunk *chunks, int n, size_t first) {
-    sg_binner *b = &dev->binner;
-    int nbins = b->bins_x * b->bins_y;
-    size_t need = (size_t)n * (size_t)nbins;
+/* Room for the counts and bin ranges of n chunks of `total` triangles in all; false: none (the
+ * chunks' triangles are then listed one by one). */
+static bool count_room(sgDevice *dev, int n, size_t total) {
+    size_t need = (size_t)n * (size_t)(dev->binner.bins_x * dev->binner.bins_y);
     if (need > dev->fe_counts_capacity) {
         uint32_t *c = sg_alloc(dev, need * sizeof *c);
         if (!c) return false;
@@ -175,9 +177,13 @@ static bool list_parallel(sgDevice *dev, const fe_chunk *chunks, int n, size_t f
         dev->fe_counts = c;
         dev->fe_counts_capacity = need;
     }
-    fe_list job = {b, chunks, first, dev->fe_counts, nbins};
-    sg_workers_run(&dev->workers, n, fe_count, &job);
-    if (sg_binner_make_room(b, dev->fe_counts, n)) sg_workers_run(&dev->workers, n, fe_fill, &job);
+    if (total > dev->fe_ranges_capacity) {
+        uint32_t *r = sg_alloc(dev, total * sizeof *r);
+        if (!r) return false;
+        sg_free(dev, dev->fe_ranges);
+        dev->fe_ranges = r;
+        dev->fe_ranges_capacity = total;
+    }
     return true;
 }
 
@@ -206,17 +212,27 @@ static void assemble_round(sgDevice *dev, const sg_assembly *a, int p0, int prim
     if (!room_for(dev, total)) return;
     sg_tri *room = sg_binner_reserve(b, total);
     if (!room) return; /* out_of_memory is set: the draw fails */
+    const bool counted = count_room(dev, n, total);
+    const size_t nbins = (size_t)(b->bins_x * b->bins_y);
     for (int i = 0; i < n; i++) {
         chunks[i].out = room + chunks[i].base;
         chunks[i].out_ext = b->use_ext ? b->ext + (room - b->tris) + chunks[i].base : NULL;
+        chunks[i].binner = b;
+        chunks[i].counts = counted ? dev->fe_counts + (size_t)i * nbins : NULL;
+        chunks[i].ranges = counted ? dev->fe_ranges + chunks[i].base : NULL;
     }
     size_t first = b->tri_count;
-    sg_workers_run(&dev->workers, n, fe_run, chunks);
+    sg_workers_run_shares(&dev->workers, n, fe_run, chunks);
     /* The array ends after the last chunk's triangles: the room reserved past them is free. */
     b->tri_count += chunks[n - 1].base + chunks[n - 1].count;
     bool all = true;
     for (int i = 0; i < n; i++) all &= chunks[i].done == chunks[i].a.index_count / per;
-    if (all && list_parallel(dev, chunks, n, first)) return;
+    if (all && counted) {
+        fe_list job = {b, chunks, first};
+        if (sg_binner_make_room(b, dev->fe_counts, n))
+            sg_workers_run_shares(&dev->workers, n, fe_fill, &job);
+        return;
+    }
     for (int i = 0; i < n && !b->out_of_memory; i++) {
         for (size_t k = 0; k < chunks[i].count; k++)
             sg_binner_list(b, (uint32_t)(first + chunks[i].base + k));
@@ -299,7 +315,7 @@ static void transform_vertices(sgDevice *dev, const float *mvp, const sg_geom *g
                   guard, setup,           lit,    geom->vertex_count, 1};
     if (dev->thread_count > 1 && geom->vertex_count >= FE_MIN_TRIANGLES)
         job.chunks = 2 * dev->thread_count;
-    sg_workers_run(&dev->workers, job.chunks, vs_run, &job);
+    sg_workers_run_shares(&dev->workers, job.chunks, vs_run, &job);
 }
 
 /* Room for one more draw record in the open pass. */

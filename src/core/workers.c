@@ -79,10 +79,27 @@ static void leave_cpu(int cpu) {
 #endif
 }
 
+/* The next job of a batch run by shares for thread `id`: the first its share has left, else the
+ * last any other share has left (its owner takes from the front); -1 when all are taken. Called
+ * with the lock held. */
+static int next_shared(sg_workers *w, int id) {
+    const int n = w->count, jobs = w->jobs;
+    const int lo = (int)((int64_t)jobs * id / n), hi = (int)((int64_t)jobs * (id + 1) / n);
+    for (int j = lo; j < hi; j++)
+        if (!(w->taken >> j & 1u)) return j;
+    for (int j = jobs - 1; j >= 0; j--)
+        if (!(w->taken >> j & 1u)) return j;
+    return -1;
+}
+
 /* Takes job indices until the batch is exhausted; returns with the lock held. */
-static void drain(sg_workers *w) {
+static void drain(sg_workers *w, int id) {
     while (w->next < w->jobs) {
         int job = w->next++;
+        if (w->shares) {
+            job = next_shared(w, id);
+            w->taken |= (uint64_t)1 << job;
+        }
         sg_job_fn fn = w->fn; /* read under the lock: the next batch may replace them */
         void *ctx = w->ctx;
         pthread_mutex_unlock(&w->lock);
@@ -96,6 +113,7 @@ static void *worker_main(void *arg) {
     sg_workers *w = arg;
     int seen = 0;
     pthread_mutex_lock(&w->lock);
+    const int id = ++w->started;
     for (;;) {
         pthread_mutex_unlock(&w->lock);
         const uint64_t start = now_ns();
@@ -119,7 +137,7 @@ static void *worker_main(void *arg) {
             pthread_mutex_lock(&w->lock);
         }
         w->busy++;
-        drain(w);
+        drain(w, id);
         w->busy--;
         if (w->finished == w->jobs && w->busy == 0) pthread_cond_signal(&w->done);
     }
@@ -131,6 +149,9 @@ bool sg_workers_start(sg_workers *w, int count, pthread_t *threads) {
     w->count = count < 1 ? 1 : count;
     w->threads = threads;
     w->jobs = w->next = 0;
+    w->shares = false;
+    w->taken = 0;
+    w->started = 0;
     atomic_init(&w->finished, 0);
     atomic_init(&w->generation, 0);
     atomic_init(&w->busy, 0);
@@ -147,7 +168,7 @@ bool sg_workers_start(sg_workers *w, int count, pthread_t *threads) {
     return true;
 }
 
-void sg_workers_run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx) {
+static void run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx, bool shares) {
     if (w->count == 1 || jobs <= 1) { /* nothing to share: no locking at all */
         for (int i = 0; i < jobs; i++) fn(ctx, i);
         return;
@@ -161,10 +182,12 @@ void sg_workers_run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx) {
     w->ctx = ctx;
     w->jobs = jobs;
     w->next = 0;
+    w->shares = shares;
+    w->taken = 0;
     atomic_store(&w->finished, 0);
     atomic_fetch_add(&w->generation, 1);
     pthread_cond_broadcast(&w->start);
-    drain(w);
+    drain(w, 0);
     if (w->finished < w->jobs || w->busy > 0) { /* others are still on the last jobs */
         pthread_mutex_unlock(&w->lock);
         const uint64_t start = now_ns();
@@ -176,6 +199,14 @@ void sg_workers_run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx) {
     }
     while (w->finished < w->jobs || w->busy > 0) pthread_cond_wait(&w->done, &w->lock);
     pthread_mutex_unlock(&w->lock);
+}
+
+void sg_workers_run(sg_workers *w, int jobs, sg_job_fn fn, void *ctx) {
+    run(w, jobs, fn, ctx, false);
+}
+
+void sg_workers_run_shares(sg_workers *w, int jobs, sg_job_fn fn, void *ctx) {
+    run(w, jobs, fn, ctx, jobs <= SG_WORKERS_SHARE_MAX);
 }
 
 void sg_workers_stop(sg_workers *w) {

@@ -172,19 +172,23 @@ void sg_binner_list(sg_binner *b, uint32_t index) {
             if (!list_in(b, y * b->bins_x + x, index)) return;
 }
 
-void sg_binner_count(const sg_binner *b, size_t first, size_t n, uint32_t *counts) {
-    memset(counts, 0, (size_t)(b->bins_x * b->bins_y) * sizeof *counts);
-    for (size_t i = first; i < first + n; i++) {
-        const sg_tri *t = &b->tris[i];
-        if (t->line) {
-            int bins[LINE_BINS_MAX], nb = line_bins(b, t, bins);
-            for (int k = 0; k < nb; k++) counts[bins[k]]++;
-            continue;
-        }
-        for (int y = t->miny >> SG_BIN_SHIFT; y <= t->maxy >> SG_BIN_SHIFT; y++)
-            for (int x = t->minx >> SG_BIN_SHIFT; x <= t->maxx >> SG_BIN_SHIFT; x++)
-                counts[y * b->bins_x + x]++;
+/* A triangle's bins as four bytes: first and last column, first and last row (a target is at
+ * most 256 bins wide and high). A line, whose bins are not its bounds', is marked by a first
+ * column past its last. */
+enum { RANGE_LINE = 0xffu };
+_Static_assert(SG_MAX_IMAGE_SIZE / SG_BIN_SIZE <= 256, "a bin index fits a byte");
+
+uint32_t sg_binner_count_tri(const sg_binner *b, const sg_tri *t, uint32_t *counts) {
+    if (t->line) {
+        int bins[LINE_BINS_MAX], nb = line_bins(b, t, bins);
+        for (int k = 0; k < nb; k++) counts[bins[k]]++;
+        return RANGE_LINE;
     }
+    const int x0 = t->minx >> SG_BIN_SHIFT, x1 = t->maxx >> SG_BIN_SHIFT;
+    const int y0 = t->miny >> SG_BIN_SHIFT, y1 = t->maxy >> SG_BIN_SHIFT;
+    for (int y = y0; y <= y1; y++)
+        for (int x = x0; x <= x1; x++) counts[y * b->bins_x + x]++;
+    return (uint32_t)x0 | (uint32_t)x1 << 8 | (uint32_t)y0 << 16 | (uint32_t)y1 << 24;
 }
 
 bool sg_binner_make_room(sg_binner *b, uint32_t *counts, int runs) {
@@ -213,18 +217,21 @@ bool sg_binner_make_room(sg_binner *b, uint32_t *counts, int runs) {
     return true;
 }
 
-void sg_binner_fill(const sg_binner *b, size_t first, size_t n, uint32_t *at) {
-    for (size_t i = first; i < first + n; i++) {
-        const sg_tri *t = &b->tris[i];
-        if (t->line) {
-            int bins[LINE_BINS_MAX], nb = line_bins(b, t, bins);
-            for (int k = 0; k < nb; k++) b->bins[bins[k]].tris[at[bins[k]]++] = (uint32_t)i;
+void sg_binner_fill(const sg_binner *b, size_t first, size_t n, const uint32_t *ranges,
+                    uint32_t *at) {
+    for (size_t i = 0; i < n; i++) {
+        const uint32_t r = ranges[i], index = (uint32_t)(first + i);
+        if (r == RANGE_LINE) {
+            int bins[LINE_BINS_MAX], nb = line_bins(b, &b->tris[first + i], bins);
+            for (int k = 0; k < nb; k++) b->bins[bins[k]].tris[at[bins[k]]++] = index;
             continue;
         }
-        for (int y = t->miny >> SG_BIN_SHIFT; y <= t->maxy >> SG_BIN_SHIFT; y++)
-            for (int x = t->minx >> SG_BIN_SHIFT; x <= t->maxx >> SG_BIN_SHIFT; x++) {
+        const int x0 = (int)(r & 0xffu), x1 = (int)(r >> 8 & 0xffu);
+        const int y0 = (int)(r >> 16 & 0xffu), y1 = (int)(r >> 24);
+        for (int y = y0; y <= y1; y++)
+            for (int x = x0; x <= x1; x++) {
                 int bin = y * b->bins_x + x;
-                b->bins[bin].tris[at[bin]++] = (uint32_t)i;
+                b->bins[bin].tris[at[bin]++] = index;
             }
     }
 }

@@ -61,17 +61,21 @@ void sg_binner_commit(sg_binner *b);
 /** Lists a stored triangle in every bin its bounds touch (after those listed before it). */
 void sg_binner_list(sg_binner *b, uint32_t index);
 /* Listing many stored triangles on several threads, in the order one thread would give: each
- * thread counts its run's triangles per bin, sg_binner_make_room turns the counts of all runs
- * into each run's first free place in every bin (growing the lists), and each thread then writes
- * its run there. counts is runs x bins_x * bins_y entries, run-major. */
+ * thread counts its run's triangles per bin as it stores them (sg_binner_count_tri, while the
+ * triangle is still in its cache), sg_binner_make_room turns the counts of all runs into each
+ * run's first free place in every bin (growing the lists), and each thread then writes its run
+ * there from the bin ranges the counting kept (4 bytes a triangle, not its 224). counts is runs x
+ * bins_x * bins_y entries, run-major. */
 
-/** counts[bin] = how many of tris[first .. first + n) bin `bin` gets (counts is zeroed first). */
-void sg_binner_count(const sg_binner *b, size_t first, size_t n, uint32_t *counts);
+/** Adds triangle t's bins to counts[]; returns its bin range, packed for sg_binner_fill. */
+uint32_t sg_binner_count_tri(const sg_binner *b, const sg_tri *t, uint32_t *counts);
 /** Counts of `runs` runs -> their write positions; grows every list; false when out of memory
  *  (out_of_memory is set and nothing was listed). */
 bool sg_binner_make_room(sg_binner *b, uint32_t *counts, int runs);
-/** Writes the indices of tris[first .. first + n) at the positions `at` (advancing them). */
-void sg_binner_fill(const sg_binner *b, size_t first, size_t n, uint32_t *at);
+/** Writes the indices of tris[first .. first + n) at the positions `at` (advancing them);
+ *  ranges[i] is what sg_binner_count_tri returned for tris[first + i]. */
+void sg_binner_fill(const sg_binner *b, size_t first, size_t n, const uint32_t *ranges,
+                    uint32_t *at);
 /** Forgets every triangle from index `count` on: undoes a draw that ran out of memory. */
 void sg_binner_truncate(sg_binner *b, size_t count);
 /** Frees everything the binner holds. */
