@@ -540,7 +540,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %zu uniform bytes",
                         params->uniform_size);
     st->fragment = sh->fragment;
-    st->uniform_offset = uoff;
+    st->uniform_offset = params->uniform_size ? uoff : SIZE_MAX;
     st->varying_count = nv;
     st->flat = sh->flat_varyings;
     st->bilinear = pso->desc.filter == SG_FILTER_BILINEAR;
@@ -607,7 +607,8 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
          &a.setup},
         geom->vertex_count,
         1};
-    vs.run.uniforms = dev->uniforms + uoff; /* the arena does not move before the draw ends */
+    /* The arena does not move before the draw ends; no bytes: no pointer. */
+    vs.run.uniforms = params->uniform_size ? dev->uniforms + uoff : NULL;
     if (dev->thread_count > 1 && geom->vertex_count >= FE_MIN_TRIANGLES)
         vs.chunks = 2 * dev->thread_count;
 

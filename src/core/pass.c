@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "raster/shade.h"
@@ -165,7 +166,9 @@ static void render_bins(sgDevice *dev) {
         c->tris = dev->binner.tris;
         c->ext = dev->binner.use_ext ? dev->binner.ext : NULL;
         if (c->shader.fragment) { /* the uniform arena may have moved since the draw */
-            c->shader.uniforms = dev->uniforms + c->shader.uniform_offset;
+            c->shader.uniforms = c->shader.uniform_offset != SIZE_MAX
+                                     ? dev->uniforms + c->shader.uniform_offset
+                                     : NULL;
             c->shader.pass_discards = &dev->shader_discards;
         }
     }

@@ -33,7 +33,7 @@ typedef struct sg_shader_tex {
 typedef struct sg_shader_state {
     void (*fragment)(sgFragmentBatch *b, const void *uniforms); /* NULL: not a shader draw */
     const void *uniforms;  /* the draw's copy, set when the pass renders its bins (pass.c) */
-    size_t uniform_offset; /* where that copy is in the device's uniform arena */
+    size_t uniform_offset; /* where that copy is in the device's uniform arena (SIZE_MAX: none) */
     int varying_count;
     uint32_t flat; /* flat varyings: taken as they are, not divided by 1/w */
     bool bilinear, repeat;
