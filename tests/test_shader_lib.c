@@ -45,8 +45,8 @@ static void builtin_library(void **state) {
     assert_true(sc_shaders_open(&s, &err));
     const sgShaderInfo *unlit = sc_shaders_find(s, "unlit");
     assert_non_null(unlit);
-    assert_int_equal(unlit->uniform_count, 0);
-    assert_int_equal(unlit->desc.varying_count, 4);
+    assert_int_equal(unlit->uniform_count, 1);
+    assert_int_equal(unlit->desc.varying_count, 6);
     assert_non_null(unlit->glsl_vertex);
     assert_non_null(unlit->glsl_fragment);
     assert_null(sc_shaders_find(s, "tint"));
@@ -97,7 +97,8 @@ static void unlit_stages(void **state) {
     fb->discard = 0x5;
     for (int c = 0; c < 4; c++)
         for (int i = 0; i < 16; i++) fb->varying[c][i] = (float)(c * 16 + i) / 64;
-    sg_shader_unlit.desc.fragment(fb, NULL);
+    const float untextured[1] = {0};
+    sg_shader_unlit.desc.fragment(fb, untextured);
     for (int c = 0; c < 4; c++)
         for (int i = 0; i < 16; i++) assert_float_equal(fb->color[c][i], fb->varying[c][i], 0);
     assert_int_equal(fb->discard, 0);
@@ -197,7 +198,7 @@ static void check_scene_shaders(void **state) {
     static const struct {
         const char *keys, *want; /* want NULL: the draw fits */
     } cases[] = {
-        {"\"shader\": \"unlit\"", NULL},
+        {"\"shader\": \"unlit\", \"uniforms\": [0]", NULL},
         {"\"shader\": \"tint\", \"uniforms\": [1, 0.5, 0]", NULL},
         {"\"depth_write\": true", NULL},
         {"\"shader\": \"tnit\"",
@@ -207,8 +208,8 @@ static void check_scene_shaders(void **state) {
          "draw.json: scenes[0] ('s'), draws[0]: shader 'tint' takes 3 uniforms, and 'uniforms' "
          "has 2"},
         {"\"shader\": \"tint\"", "shader 'tint' takes 3 uniforms, and 'uniforms' has 0"},
-        {"\"shader\": \"unlit\", \"uniforms\": [1]",
-         "shader 'unlit' takes 0 uniforms, and 'uniforms' has 1"},
+        {"\"shader\": \"unlit\", \"uniforms\": [1, 0]",
+         "shader 'unlit' takes 1 uniform, and 'uniforms' has 2"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         sc_file f;

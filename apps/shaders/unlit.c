@@ -1,6 +1,10 @@
-/* unlit.c - the fixed SG_SHADE_VERTEX_COLOR equation as a shader: the interpolated vertex colour,
- * nothing else. It exists to compare a shader pipeline's cost with the fixed path's on the same
- * image, so its clip positions are those of the fixed path bit for bit. */
+/* unlit.c - the fixed unlit equations as a shader: the interpolated vertex colour
+ * (SG_SHADE_VERTEX_COLOR), times texture 0 when u[0] is not 0 (SG_SHADE_TEXTURE_MODULATE, with
+ * the pipeline's filter and wrap). It exists to compare a shader pipeline's cost with the fixed
+ * path's on the same image, so its clip positions are those of the fixed path bit for bit.
+ *
+ * Uniforms (1 float): u[0] 1: modulate by texture 0; 0: the vertex colour alone.
+ * Varyings: 0..3 the colour, 4..5 the texture coordinates. */
 #include "builtin.h"
 #include "shader_math.h"
 
@@ -29,12 +33,18 @@ SGS_STAGE static void unlit_vertex(sgVertexBatch *b, const void *uniforms) {
                             m[r * 4 + 2] * b->position[2][i] + m[r * 4 + 3] * b->position[3][i];
     for (int c = 0; c < 4; c++)
         for (int i = 0; i < SG_SHADER_LANES; i++) b->varying[c][i] = b->color[c][i];
+    for (int c = 0; c < 2; c++)
+        for (int i = 0; i < SG_SHADER_LANES; i++) b->varying[4 + c][i] = b->texcoord[c][i];
 }
 
 SGS_STAGE static void unlit_fragment(sgFragmentBatch *b, const void *uniforms) {
-    (void)uniforms;
+    const float *u = uniforms;
+    float texel[4][SG_SHADER_LANES];
+    sgSample(b, 0, b->varying[4], b->varying[5], texel);
+    const float on = u[0] != 0.0f ? 1.0f : 0.0f, off = 1.0f - on;
     for (int c = 0; c < 4; c++)
-        for (int i = 0; i < SG_SHADER_LANES; i++) b->color[c][i] = b->varying[c][i];
+        SGS_SIMD for (int i = 0; i < SG_SHADER_LANES; i++) b->color[c][i] =
+            b->varying[c][i] * (texel[c][i] * on + off);
     b->discard = 0;
 }
 
@@ -46,10 +56,13 @@ static const char unlit_glsl_vertex[] =
     "layout(location = 1) in vec4 sg_color;\n"
     "layout(push_constant) uniform SgDraw { mat4 world_view; mat4 proj; };\n"
     "layout(std430, set = 0, binding = 0) readonly buffer SgUniforms { float u[]; };\n"
+    "layout(location = 3) in vec2 sg_texcoord;\n"
     "layout(location = 0) out vec4 v_color;\n"
+    "layout(location = 1) out vec2 v_st;\n"
     "void main() {\n"
     "    gl_Position = proj * world_view * sg_position;\n"
     "    v_color = sg_color;\n"
+    "    v_st = sg_texcoord;\n"
     "}\n";
 
 static const char unlit_glsl_fragment[] =
@@ -57,15 +70,17 @@ static const char unlit_glsl_fragment[] =
     "layout(std430, set = 0, binding = 0) readonly buffer SgUniforms { float u[]; };\n"
     "layout(set = 0, binding = 1) uniform sampler2D sg_textures[8];\n"
     "layout(location = 0) in vec4 v_color;\n"
+    "layout(location = 1) in vec2 v_st;\n"
     "layout(location = 0) out vec4 o_color;\n"
     "void main() {\n"
-    "    o_color = v_color;\n"
+    "    float on = u[0] != 0.0 ? 1.0 : 0.0, off = 1.0 - on;\n"
+    "    o_color = v_color * (texture(sg_textures[0], v_st) * on + off);\n"
     "}\n";
 
 const sgShaderInfo sg_shader_unlit = {
     .name = "unlit",
-    .desc = {.vertex = unlit_vertex, .fragment = unlit_fragment, .varying_count = 4},
-    .uniform_count = 0,
+    .desc = {.vertex = unlit_vertex, .fragment = unlit_fragment, .varying_count = 6},
+    .uniform_count = 1,
     .glsl_vertex = unlit_glsl_vertex,
     .glsl_fragment = unlit_glsl_fragment,
 };
