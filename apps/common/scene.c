@@ -599,7 +599,7 @@ static bool check_lines(ctx *c, const loc *l, const sc_draw *d) {
  * it so). */
 #define SC_MAX_INSTANCES (1 << 24)
 
-static bool valid_shader_name(const char *s) {
+bool sc_shader_name_valid(const char *s) {
     size_t n = 0;
     for (; s[n]; n++) {
         char ch = s[n];
@@ -607,7 +607,7 @@ static bool valid_shader_name(const char *s) {
                   (ch >= '0' && ch <= '9') || ch == '_';
         if (!ok) return false;
     }
-    return n >= 1 && n <= 64;
+    return n >= 1 && n <= SC_MAX_SHADER_NAME;
 }
 
 /* "uniforms": an array of finite numbers (a float each), any length the API takes. */
@@ -670,7 +670,7 @@ static bool parse_shader_keys(ctx *c, const loc *l, const cJSON *v, sc_draw *d) 
             return fail(c, l, "'%s' is for shader draws, and the draw names no 'shader'", key);
         return true;
     }
-    if (!cJSON_IsString(name) || !valid_shader_name(name->valuestring))
+    if (!cJSON_IsString(name) || !sc_shader_name_valid(name->valuestring))
         return fail(c, l, "'shader' must be a shader's name (1 to 64 of A-Z a-z 0-9 _)");
     static const char *const replaced[] = {"the shader replaces the fixed shading",
                                            "the shader samples the draw's 'textures'",

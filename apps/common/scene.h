@@ -98,6 +98,9 @@ typedef struct sc_shadow {
     bool pcf;         /* 2 x 2 percentage-closer filtering, else the one texel under the point */
 } sc_shadow;
 
+/* Longest shader name. */
+#define SC_MAX_SHADER_NAME 64
+
 /* Most textures a shader draw binds (sgapi's SG_MAX_DRAW_TEXTURES). */
 #define SC_MAX_DRAW_TEXTURES 8
 /* Most uniforms a shader draw gives: sgapi's SG_MAX_UNIFORM_SIZE bytes of floats. */
@@ -169,6 +172,8 @@ typedef struct sc_file {
     size_t warning_count;
 } sc_file;
 
+/** Whether s is a shader's name: 1 to SC_MAX_SHADER_NAME of A-Z a-z 0-9 _. */
+bool sc_shader_name_valid(const char *s);
 /** Loads a scene file and every mesh and texture it names; on failure *out is zeroed. Every
  *  mesh has normals: a mesh without them gets smooth ones (sgu_compute_normals). */
 bool sc_load(const char *path, sc_file *out, sc_msg *err);

@@ -15,7 +15,6 @@
 #include "builtin.h"
 
 /* Longest shader name accepted: it appears in messages and file names of reports. */
-#define SC_MAX_SHADER_NAME 64
 
 typedef struct known {
     const sgShaderInfo *info; /* inside its library, which stays loaded as long as s */
@@ -30,17 +29,6 @@ struct sc_shaders {
     size_t library_count;
 };
 
-static bool valid_shader_name(const char *s) {
-    size_t n = 0;
-    for (; s[n]; n++) {
-        char ch = s[n];
-        bool ok = (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') ||
-                  (ch >= '0' && ch <= '9') || ch == '_';
-        if (!ok) return false;
-    }
-    return n >= 1 && n <= SC_MAX_SHADER_NAME;
-}
-
 const sgShaderInfo *sc_shaders_find(const sc_shaders *s, const char *name) {
     if (!s || !name) return NULL;
     for (size_t i = 0; i < s->count; i++)
@@ -51,7 +39,7 @@ const sgShaderInfo *sc_shaders_find(const sc_shaders *s, const char *name) {
 /* Why a library's shader cannot be used, or NULL. */
 static const char *bad_shader(const sgShaderInfo *info) {
     if (!info->name) return "has no name";
-    if (!valid_shader_name(info->name)) return "has a name that is not 1 to 64 of A-Z a-z 0-9 _";
+    if (!sc_shader_name_valid(info->name)) return "has a name that is not 1 to 64 of A-Z a-z 0-9 _";
     if (!info->desc.vertex || !info->desc.fragment)
         return "lacks a vertex or a fragment stage (a shader has both)";
     if (info->desc.varying_count < 0 || info->desc.varying_count > SG_MAX_VARYINGS)
@@ -301,4 +289,16 @@ void sc_shaders_close(sc_shaders *s) {
     free(s->handles);
     free(s->shaders);
     free(s);
+}
+
+bool sc_shaders_prepare(sc_shaders **out, const char *const *libs, int nlibs, const sc_file *files,
+                        int nfiles, sc_msg *err) {
+    bool ok = sc_shaders_open(out, err);
+    for (int i = 0; ok && i < nlibs; i++) ok = sc_shaders_load(*out, libs[i], err);
+    for (int i = 0; ok && i < nfiles; i++) ok = sc_shaders_check(*out, &files[i], err);
+    if (!ok) {
+        sc_shaders_close(*out);
+        *out = NULL;
+    }
+    return ok;
 }

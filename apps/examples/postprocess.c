@@ -123,7 +123,7 @@ static void filter_direct(const post_uniforms *u, const uint8_t *in, uint8_t *ou
 #define CHECK(call)                                                                                \
     do {                                                                                           \
         sgResult r_ = (call);                                                                      \
-        if (r_ != SG_OK) {                                                                    \
+        if (r_ != SG_OK) {                                                                         \
             fprintf(stderr, "postprocess: %s: %s (%s)\n", #call, sgResultName(r_),                 \
                     sgGetLastError(dev));                                                          \
             goto done;                                                                             \

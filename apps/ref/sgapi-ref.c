@@ -1736,12 +1736,9 @@ int main(int argc, char **argv) {
     /* The shaders scene files may name: the built-in ones and the libraries given. */
     sc_shaders *shaders = NULL;
     sc_msg err = {0};
-    bool known = sc_shaders_open(&shaders, &err);
-    for (int i = 0; known && i < nlibs; i++) known = sc_shaders_load(shaders, libs[i], &err);
-    if (!known) {
+    if (!sc_shaders_prepare(&shaders, libs, nlibs, NULL, 0, &err)) {
         fprintf(stderr, "sgapi-ref: %s\n", sc_msg_text(&err));
         sc_msg_free(&err);
-        sc_shaders_close(shaders);
         return 2;
     }
     /* Files are rendered one after the other; every file is checked first, so that a shader

@@ -958,12 +958,8 @@ int main(int argc, char **argv) {
      * anything renders. */
     status = 2;
     sc_msg shader_err = {0};
-    bool shaders_ok = sc_shaders_open(&shaders, &shader_err);
-    for (int i = 0; shaders_ok && i < o.shader_lib_count; i++)
-        shaders_ok = sc_shaders_load(shaders, o.shader_libs[i], &shader_err);
-    for (int i = 0; shaders_ok && i < loaded; i++)
-        shaders_ok = sc_shaders_check(shaders, &files[i], &shader_err);
-    if (!shaders_ok) {
+    if (!sc_shaders_prepare(&shaders, (const char *const *)o.shader_libs, o.shader_lib_count, files,
+                            loaded, &shader_err)) {
         fprintf(stderr, "sgapi-render: %s\n", shader_err.text);
         sc_msg_free(&shader_err);
         goto done;

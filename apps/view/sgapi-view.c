@@ -709,11 +709,8 @@ int main(int argc, char **argv) {
     /* The shaders the scene names: a problem there is a bad argument (exit 2), before any
      * frame. */
     sc_msg shader_err = {0};
-    bool shaders_ok = sc_shaders_open(&v.shaders, &shader_err);
-    for (int i = 0; shaders_ok && i < o.shader_lib_count; i++)
-        shaders_ok = sc_shaders_load(v.shaders, o.shader_libs[i], &shader_err);
-    if (shaders_ok) shaders_ok = sc_shaders_check(v.shaders, &v.file, &shader_err);
-    if (!shaders_ok) {
+    if (!sc_shaders_prepare(&v.shaders, (const char *const *)o.shader_libs, o.shader_lib_count,
+                            &v.file, 1, &shader_err)) {
         fprintf(stderr, PROG ": %s\n", shader_err.text);
         sc_msg_free(&shader_err);
         status = 2;

@@ -455,6 +455,26 @@ static void refuse_lighting(void *user, int code, const char *fmt, va_list ap) {
     r->result = sg_verror(r->dev, (sgResult)code, "sgDraw: ", fmt, ap);
 }
 
+/* What the assembly of every draw starts from: the geom's primitives, the vertex stage's arenas
+ * and the binner as the triangles' destination. */
+static sg_assembly assembly_of(sgDevice *dev, const sg_pso *pso, const sg_geom *geom) {
+    sg_assembly a = {0};
+    a.guard = sg_guard_for_viewport(dev->pass.width, dev->pass.height);
+    a.indices = geom->indices;
+    a.index_count = geom->index_count;
+    a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
+    a.lines = geom->primitive == SG_PRIMITIVE_LINES;
+    a.wire = !a.lines && pso->desc.polygon_mode == SG_POLYGON_MODE_LINE;
+    a.clip = (const float(*)[4])dev->clip;
+    a.outcodes = dev->outcodes;
+    a.screen = dev->screen;
+    a.screen_ok = dev->screen_ok;
+    a.slot = bin_slot;
+    a.emit = bin_emit;
+    a.user = dev;
+    return a;
+}
+
 /* The uniforms of a shader draw copied into the pass's arena (16-byte aligned); their offset, or
  * SIZE_MAX when out of memory. The arena is reused by the next pass. */
 static size_t copy_uniforms(sgDevice *dev, const void *src, size_t size) {
@@ -549,17 +569,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
 
     const int width = dev->pass.width, height = dev->pass.height;
     const bool depth_only = dev->pass.color == NULL;
-    sg_assembly a = {0};
-    a.guard = sg_guard_for_viewport(width, height);
-    a.indices = geom->indices;
-    a.index_count = geom->index_count;
-    a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
-    a.lines = geom->primitive == SG_PRIMITIVE_LINES;
-    a.wire = !a.lines && pso->desc.polygon_mode == SG_POLYGON_MODE_LINE;
-    a.clip = (const float(*)[4])dev->clip;
-    a.outcodes = dev->outcodes;
-    a.screen = dev->screen;
-    a.screen_ok = dev->screen_ok;
+    sg_assembly a = assembly_of(dev, pso, geom);
     a.vattr = dev->lit;
     a.vstride = nv;
     a.setup = (sg_setup_params){width,
@@ -577,9 +587,6 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
                                 pso->desc.depth.bias_slope,
                                 1,
                                 depth_only ? 0 : sh->flat_varyings};
-    a.slot = bin_slot;
-    a.emit = bin_emit;
-    a.user = dev;
     if (params->sort == SG_SORT_BACK_TO_FRONT &&
         !sort_primitives(dev, geom, params->world_view, &a))
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
@@ -829,15 +836,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
 
     float mvp[16];
     sg_mat4_mul(mvp, params->proj, params->world_view);
-    sg_assembly a = {0};
-    a.guard = sg_guard_for_viewport(width, height);
-    a.indices = geom->indices;
-    a.index_count = geom->index_count;
-    a.quads = geom->primitive == SG_PRIMITIVE_QUADS;
-    a.lines = geom->primitive == SG_PRIMITIVE_LINES;
-    a.wire = !a.lines && pso->desc.polygon_mode == SG_POLYGON_MODE_LINE;
-    a.clip = (const float(*)[4])dev->clip;
-    a.outcodes = dev->outcodes;
+    sg_assembly a = assembly_of(dev, pso, geom);
     a.colors = depth_only ? NULL : geom->colors;
     a.texcoords = depth_only ? NULL : geom->texcoords;
     a.tint = tinted && !depth_only ? tint : NULL; /* white multiplies nothing */
@@ -868,11 +867,6 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
                         "sgDraw: out of memory to sort %d indices back to front",
                         geom->index_count);
     transform_vertices(dev, mvp, geom, &a.guard, &a.setup, vattr ? &lit : NULL, a.colors);
-    a.screen = dev->screen;
-    a.screen_ok = dev->screen_ok;
-    a.slot = bin_slot;
-    a.emit = bin_emit;
-    a.user = dev;
     /* The draw's state is in place before its triangles: a flush may render some of them. */
     sg_draw_state *ds = &dev->draws[dev->draw_count++];
     const bool put_lines = a.lines && pso->raster_line && !depth_only && !shadowed && !sec;
