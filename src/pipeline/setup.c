@@ -191,11 +191,13 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     memset(out->a_dy, 0, sizeof out->a_dy);
     int n = p->nattr < SG_TRI_ATTRS ? p->nattr : SG_TRI_ATTRS;
     for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < n; k++)
-        if (p->flat_mask >> k & 1)
-            out->a[k] = attr[0][k]; /* a flat varying, as it is */
-        else
-            plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
-                  (double)attr[2][k] * s[2].q, &out->a[k], &out->a_dx[k], &out->a_dy[k]);
+        plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
+              (double)attr[2][k] * s[2].q, &out->a[k], &out->a_dx[k], &out->a_dy[k]);
+    for (uint32_t m = p->flat_mask & ((1u << SG_TRI_ATTRS) - 1); m; m &= m - 1) {
+        const int k = __builtin_ctz(m); /* a shader's flat varying, as it is */
+        out->a[k] = attr[0][k];
+        out->a_dx[k] = out->a_dy[k] = 0.0f;
+    }
 }
 
 void sg_setup_planes_ext(const sg_setup_params *p, const sg_svert s[3], const float *const attr[3],
