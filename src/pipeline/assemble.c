@@ -148,9 +148,14 @@ SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint
         return;
     float attr[3][SG_MAX_ATTRS];
     const float *order[3] = {attr[0], attr[1], attr[2]}; /* reordered by coverage */
+    /* A slot only for a triangle that covers some pixel centre: on a dense mesh most do not (back
+     * faces, and faces smaller than a pixel). */
+    sg_bounds bounds;
+    if (!sg_setup_bounds(&a->setup, s, order, &bounds)) return;
     sg_tri_ext *ext = NULL;
     sg_tri *tri = a->slot(a->user, &ext);
-    if (!tri || !sg_setup_coverage(&a->setup, s, order, tri)) return;
+    if (!tri) return;
+    sg_setup_edges(&bounds, s, tri);
     fetch_attributes(a, i0, attr[0], lit);
     fetch_attributes(a, i1, attr[1], lit);
     fetch_attributes(a, i2, attr[2], lit);

@@ -95,8 +95,19 @@ bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s)
 int64_t sg_setup_area(const sg_svert s[3]);
 /** Whether a triangle of that signed area is culled (zero area always is). */
 bool sg_setup_culled(const sg_setup_params *p, int64_t area);
-/** Area, culling, pixel bounds and edge functions. Puts s[] (and attr[] alongside) in the order
- *  sg_setup_planes wants; false: nothing to draw. Reads no attribute: attr[] may still be empty. */
+/* The pixels a triangle may cover: its bounds, clamped to the render rectangle. */
+typedef struct sg_bounds {
+    int minx, miny, maxx, maxy;
+    bool rect_cut; /* the clamp cut them */
+} sg_bounds;
+
+/** Area, culling and pixel bounds (no triangle written: assembly asks for a slot only for a
+ *  triangle that passes). Puts s[] (and attr[] alongside) in the order sg_setup_planes wants;
+ *  false: nothing to draw. Reads no attribute: attr[] may still be empty. */
+bool sg_setup_bounds(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_bounds *out);
+/** The bounds and edge functions into out, of a triangle that passed sg_setup_bounds with s[]. */
+void sg_setup_edges(const sg_bounds *bounds, const sg_svert s[3], sg_tri *out);
+/** sg_setup_bounds, then sg_setup_edges. */
 bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out);
 /** Depth, 1/w and attribute plane equations and the flat colour of a triangle that passed
  *  sg_setup_coverage, with the s[] and attr[] it reordered (each attr[i] holds nattr values).
