@@ -149,9 +149,11 @@ SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint
     float attr[3][SG_MAX_ATTRS];
     const float *order[3] = {attr[0], attr[1], attr[2]}; /* reordered by coverage */
     /* A slot only for a triangle that covers some pixel centre: on a dense mesh most do not (back
-     * faces, and faces smaller than a pixel). */
+     * faces, culled here without a call, and faces between pixel centres). */
+    const int64_t area = sg_setup_area(s);
+    if (sg_setup_culled(&a->setup, area)) return;
     sg_bounds bounds;
-    if (!sg_setup_bounds(&a->setup, s, order, &bounds)) return;
+    if (!sg_setup_bounds(&a->setup, s, area, order, &bounds)) return;
     sg_tri_ext *ext = NULL;
     sg_tri *tri = a->slot(a->user, &ext);
     if (!tri) return;

@@ -40,23 +40,8 @@ bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s)
     return true;
 }
 
-int64_t sg_setup_area(const sg_svert s[3]) {
-    return (int64_t)(s[1].x - s[0].x) * (s[2].y - s[0].y) -
-           (int64_t)(s[2].x - s[0].x) * (s[1].y - s[0].y);
-}
-
-bool sg_setup_culled(const sg_setup_params *p, int64_t area) {
-    if (area == 0) return true;
-    bool ccw = area < 0; /* counter-clockwise as seen with y up */
-    bool front = (p->front_face == SG_FRONT_FACE_CW) ? !ccw : ccw;
-    return (p->cull == SG_CULL_BACK && !front) || (p->cull == SG_CULL_FRONT && front);
-}
-
-bool sg_setup_bounds(const sg_setup_params *p, sg_svert s[3], const float *attr[3],
+bool sg_setup_bounds(const sg_setup_params *p, sg_svert s[3], int64_t area, const float *attr[3],
                      sg_bounds *out) {
-    /* Twice the signed area in y-down pixel space: exact. Positive is clockwise on screen. */
-    int64_t area = sg_setup_area(s);
-    if (sg_setup_culled(p, area)) return false;
     if (area < 0) { /* one orientation for the edge functions of sg_setup_edges */
         sg_svert t = s[1];
         s[1] = s[2];
@@ -119,8 +104,10 @@ void sg_setup_edges(const sg_bounds *bounds, const sg_svert s[3], sg_tri *out) {
 }
 
 bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out) {
+    /* Twice the signed area in y-down pixel space: exact. Positive is clockwise on screen. */
+    int64_t area = sg_setup_area(s);
     sg_bounds bounds;
-    if (!sg_setup_bounds(p, s, attr, &bounds)) return false;
+    if (sg_setup_culled(p, area) || !sg_setup_bounds(p, s, area, attr, &bounds)) return false;
     sg_setup_edges(&bounds, s, out);
     return true;
 }
