@@ -15,6 +15,14 @@ static const char *const isa_names[SG_ISA_COUNT] = {"scalar", "SSE2", "AVX2", "A
 _Static_assert(SG_SIMD_AVX512 - SG_SIMD_SCALAR == SG_ISA_AVX512, "sgSimd and sg_isa out of step");
 _Static_assert(SG_SIMD_NEON - SG_SIMD_SCALAR == SG_ISA_NEON, "sgSimd and sg_isa out of step");
 
+/* The Gouraud lighting of vertices in the device's instruction set, as sg_shade_phong_select
+ * picks the per-pixel one: AVX-512, else AVX2, else scalar; NEON, else scalar. */
+static sg_vertex_lit_fn vertex_gouraud_select(sg_isa isa) {
+    if (isa == SG_ISA_NEON) return sg_vertex_gouraud_neon();
+    sg_vertex_lit_fn fn = isa >= SG_ISA_AVX512 ? sg_vertex_gouraud_avx512() : NULL;
+    return fn || isa < SG_ISA_AVX2 ? fn : sg_vertex_gouraud_avx2();
+}
+
 static void *default_alloc(size_t size, void *user) {
     (void)user;
     return malloc(size);
@@ -190,6 +198,7 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     dev->thread_count = d.thread_count ? d.thread_count : (cores > 0 ? (int)cores : 1);
     dev->isa = isa;
+    dev->vertex_gouraud = vertex_gouraud_select(isa);
     dev->images = pool_create(dev, &dev->image_pool, ip, 1, sizeof(sg_image));
     dev->geoms = pool_create(dev, &dev->geom_pool, gp, 2, sizeof(sg_geom));
     dev->psos = pool_create(dev, &dev->pso_pool, pp, 3, sizeof(sg_pso));

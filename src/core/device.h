@@ -10,6 +10,7 @@
 #include "core/pool.h"
 #include "core/stage_times.h"
 #include "core/workers.h"
+#include "pipeline/vertex.h"
 #include "raster/bin.h"
 #include "raster/framebuffer.h"
 #include "raster/rast_bin.h"
@@ -66,7 +67,8 @@ struct sgDevice {
     void (*log)(sgResult result, const char *message, void *user_data);
     void *log_user_data;
     int thread_count;
-    sg_isa isa; /* instruction set of the raster */
+    sg_isa isa;                      /* instruction set of the raster */
+    sg_vertex_lit_fn vertex_gouraud; /* Gouraud lighting of vertices in that set; NULL: scalar */
     /* The last failed call's message (sgGetLastError): NULL (none yet), error_short, or
      * error_long. A message that fits error_short takes no allocation, so a failed call leaves the
      * allocator's counts as they were; a longer one grows error_long to its size (kept until

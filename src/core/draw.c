@@ -832,6 +832,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         lit.lights = &ctx.lights;
         lit.stride = vstride;
         lit.split = split ? params->shadow->light + 1 : 0;
+        lit.gouraud = dev->vertex_gouraud;
     }
 
     float mvp[16];

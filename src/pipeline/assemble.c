@@ -103,11 +103,12 @@ static inline void copy_flat(const sg_assembly *a, float *const attr[], int n) {
     }
 }
 
-/* What a shader draw's fragment stage is told of a triangle or line it set up. */
-static inline void stamp(const sg_assembly *a, sg_tri *t, int prim) {
+/* What a shader draw's fragment stage is told of a triangle (of signed area `area`, as
+ * sg_setup_area gives it) or line (area 0) it set up: lines face the viewer. */
+static inline void stamp(const sg_assembly *a, sg_tri *t, int prim, int64_t area) {
     t->sh.primitive = prim;
     t->sh.instance = a->instance;
-    if (t->line) t->sh.front_facing = 1;
+    t->sh.front_facing = area == 0 || (area < 0) != (a->setup.front_face == SG_FRONT_FACE_CW);
 }
 
 /* A triangle that crosses a clip plane: clipped to a convex polygon, set up as a fan. Rare, and
@@ -143,10 +144,11 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes, i
         sg_tri_ext *ext = NULL;
         sg_tri *tri = a->slot(a->user, &ext);
         if (!tri) return;
+        const int64_t area = sg_setup_area(t);
         if (!sg_setup_coverage(&a->setup, t, attr, tri)) continue;
         sg_setup_planes(&a->setup, t, attr, tri);
         if (ext) sg_setup_planes_ext(&a->setup, t, attr, tri, ext);
-        if (a->setup.shader) stamp(a, tri, prim);
+        if (a->setup.shader) stamp(a, tri, prim, area);
         a->emit(a->user);
     }
 }
@@ -168,9 +170,16 @@ SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint
         return;
     float attr[3][SG_MAX_ATTRS];
     const float *order[3] = {attr[0], attr[1], attr[2]}; /* reordered by coverage */
+    /* A slot only for a triangle that covers some pixel centre: on a dense mesh most do not (back
+     * faces, culled here without a call, and faces between pixel centres). */
+    const int64_t area = sg_setup_area(s);
+    if (sg_setup_culled(&a->setup, area)) return;
+    sg_bounds bounds;
+    if (!sg_setup_bounds(&a->setup, s, area, order, &bounds)) return;
     sg_tri_ext *ext = NULL;
     sg_tri *tri = a->slot(a->user, &ext);
-    if (!tri || !sg_setup_coverage(&a->setup, s, order, tri)) return;
+    if (!tri) return;
+    sg_setup_edges(&bounds, s, tri);
     fetch_attributes(a, i0, attr[0], lit);
     fetch_attributes(a, i1, attr[1], lit);
     fetch_attributes(a, i2, attr[2], lit);
@@ -181,7 +190,7 @@ SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint
     if (lit == 2) copy_flat(a, (float *const[3]){attr[0], attr[1], attr[2]}, 3);
     sg_setup_planes(&a->setup, s, order, tri);
     if (lit && ext) sg_setup_planes_ext(&a->setup, s, order, tri, ext);
-    if (lit == 2) stamp(a, tri, prim);
+    if (lit == 2) stamp(a, tri, prim, area);
     a->emit(a->user);
 }
 
@@ -213,7 +222,7 @@ static void emit_line(const sg_assembly *a, const sg_svert s[2], const float *co
     sg_tri_ext *ext = NULL;
     sg_tri *tri = a->slot(a->user, &ext);
     if (!tri || !sg_setup_line(&a->setup, s, attr, tri, ext)) return;
-    if (a->setup.shader) stamp(a, tri, prim);
+    if (a->setup.shader) stamp(a, tri, prim, 0);
     a->emit(a->user);
 }
 

@@ -40,24 +40,9 @@ bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s)
     return true;
 }
 
-int64_t sg_setup_area(const sg_svert s[3]) {
-    return (int64_t)(s[1].x - s[0].x) * (s[2].y - s[0].y) -
-           (int64_t)(s[2].x - s[0].x) * (s[1].y - s[0].y);
-}
-
-bool sg_setup_culled(const sg_setup_params *p, int64_t area) {
-    if (area == 0) return true;
-    bool ccw = area < 0; /* counter-clockwise as seen with y up */
-    bool front = (p->front_face == SG_FRONT_FACE_CW) ? !ccw : ccw;
-    return (p->cull == SG_CULL_BACK && !front) || (p->cull == SG_CULL_FRONT && front);
-}
-
-bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out) {
-    /* Twice the signed area in y-down pixel space: exact. Positive is clockwise on screen. */
-    int64_t area = sg_setup_area(s);
-    if (sg_setup_culled(p, area)) return false;
-    if (p->shader) out->sh.front_facing = (area < 0) != (p->front_face == SG_FRONT_FACE_CW);
-    if (area < 0) { /* one orientation for the edge functions below */
+bool sg_setup_bounds(const sg_setup_params *p, sg_svert s[3], int64_t area, const float *attr[3],
+                     sg_bounds *out) {
+    if (area < 0) { /* one orientation for the edge functions of sg_setup_edges */
         sg_svert t = s[1];
         s[1] = s[2];
         s[2] = t;
@@ -81,7 +66,6 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
     int64_t maxx = ((int64_t)xmax - half) >> SG_SUBPIXEL_BITS;
     int64_t miny = ((int64_t)ymin - half + one - 1) >> SG_SUBPIXEL_BITS;
     int64_t maxy = ((int64_t)ymax - half) >> SG_SUBPIXEL_BITS;
-    out->line = 0;
     out->rect_cut =
         minx < p->rect_x0 || miny < p->rect_y0 || maxx > p->rect_x1 - 1 || maxy > p->rect_y1 - 1;
     if (minx < p->rect_x0) minx = p->rect_x0;
@@ -93,11 +77,22 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
     out->miny = (int)miny;
     out->maxx = (int)maxx;
     out->maxy = (int)maxy;
+    return true;
+}
+
+void sg_setup_edges(const sg_bounds *bounds, const sg_svert s[3], sg_tri *out) {
+    out->line = 0;
+    out->rect_cut = bounds->rect_cut;
+    out->minx = bounds->minx;
+    out->miny = bounds->miny;
+    out->maxx = bounds->maxx;
+    out->maxy = bounds->maxy;
 
     /* Edge a->b: E(P) = DX (Py - ay) - DY (Px - ax), positive inside. A top edge (DY == 0, DX > 0)
      * or a left edge (DY < 0) keeps pixels whose centre lies exactly on it; others lose them, which
      * the -1 bias does in integer arithmetic. */
-    int64_t ox = minx * one + half, oy = miny * one + half;
+    const int64_t one = SG_SUBPIXEL_ONE, half = SG_SUBPIXEL_ONE / 2;
+    int64_t ox = bounds->minx * one + half, oy = bounds->miny * one + half;
     for (int i = 0; i < 3; i++) {
         const sg_svert *a = &s[i], *b = &s[i == 2 ? 0 : i + 1];
         int64_t dx = (int64_t)b->x - a->x, dy = (int64_t)b->y - a->y;
@@ -106,6 +101,14 @@ bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *att
         out->edge_dx[i] = -dy * one;
         out->edge_dy[i] = dx * one;
     }
+}
+
+bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out) {
+    /* Twice the signed area in y-down pixel space: exact. Positive is clockwise on screen. */
+    int64_t area = sg_setup_area(s);
+    sg_bounds bounds;
+    if (sg_setup_culled(p, area) || !sg_setup_bounds(p, s, area, attr, &bounds)) return false;
+    sg_setup_edges(&bounds, s, out);
     return true;
 }
 

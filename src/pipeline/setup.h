@@ -102,12 +102,34 @@ typedef struct sg_svert {
 /** Projects a clip-space position (w > 0); false: it does not fit the raster's range. */
 bool sg_setup_project(const sg_setup_params *p, const float pos[4], sg_svert *s);
 /** Twice the signed area of a projected triangle, in 1/256 pixel squared (exact); positive is
- *  clockwise on screen. */
-int64_t sg_setup_area(const sg_svert s[3]);
+ *  clockwise on screen. Inline: assembly culls with it before anything else. */
+static inline int64_t sg_setup_area(const sg_svert s[3]) {
+    return (int64_t)(s[1].x - s[0].x) * (s[2].y - s[0].y) -
+           (int64_t)(s[2].x - s[0].x) * (s[1].y - s[0].y);
+}
+
 /** Whether a triangle of that signed area is culled (zero area always is). */
-bool sg_setup_culled(const sg_setup_params *p, int64_t area);
-/** Area, culling, pixel bounds and edge functions. Puts s[] (and attr[] alongside) in the order
- *  sg_setup_planes wants; false: nothing to draw. Reads no attribute: attr[] may still be empty. */
+static inline bool sg_setup_culled(const sg_setup_params *p, int64_t area) {
+    if (area == 0) return true;
+    bool ccw = area < 0; /* counter-clockwise as seen with y up */
+    bool front = (p->front_face == SG_FRONT_FACE_CW) ? !ccw : ccw;
+    return (p->cull == SG_CULL_BACK && !front) || (p->cull == SG_CULL_FRONT && front);
+}
+/* The pixels a triangle may cover: its bounds, clamped to the render rectangle. */
+typedef struct sg_bounds {
+    int minx, miny, maxx, maxy;
+    bool rect_cut; /* the clamp cut them */
+} sg_bounds;
+
+/** Pixel bounds of a triangle of signed area `area` (sg_setup_area) that culling kept; no
+ *  triangle written, so that assembly asks for a slot only for one that passes. Puts s[] (and
+ *  attr[] alongside) in the order sg_setup_planes wants; false: no pixel centre to draw. Reads
+ *  no attribute: attr[] may still be empty. */
+bool sg_setup_bounds(const sg_setup_params *p, sg_svert s[3], int64_t area, const float *attr[3],
+                     sg_bounds *out);
+/** The bounds and edge functions into out, of a triangle that passed sg_setup_bounds with s[]. */
+void sg_setup_edges(const sg_bounds *bounds, const sg_svert s[3], sg_tri *out);
+/** Area, culling (sg_setup_culled), sg_setup_bounds, then sg_setup_edges. */
 bool sg_setup_coverage(const sg_setup_params *p, sg_svert s[3], const float *attr[3], sg_tri *out);
 /** Depth, 1/w and attribute plane equations and the flat colour of a triangle that passed
  *  sg_setup_coverage, with the s[] and attr[] it reordered (each attr[i] holds nattr values).

@@ -133,6 +133,11 @@ void sg_vertex_check_attributes(const float *colors, const float *texcoords, int
 
 void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, float *out,
                               uint8_t *ok) {
+    if (l->mode == SG_LIGHTING_GOURAUD && l->gouraud) { /* vectors, then the last few here */
+        int done = l->gouraud(l, first, count, out, ok);
+        first += done;
+        count -= done;
+    }
     static const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     const float *m = l->world_view, *nm = l->normal_matrix;
     for (int i = first; i < first + count; i++) {

@@ -32,6 +32,14 @@ static inline bool sg_vertex_attributes_finite(const float *colors, const float 
     return !bad;
 }
 
+struct sg_vertex_lit;
+
+/* Gouraud lighting in one instruction set (the GOURAUD path of sg_vertex_lit_attributes, the same
+ * bytes) of the vertices [first, first + done) of [first, first + count); returns done, a whole
+ * number of vectors. */
+typedef int (*sg_vertex_lit_fn)(const struct sg_vertex_lit *l, int first, int count, float *out,
+                                uint8_t *ok);
+
 /* What the vertex stage of a lit draw needs (light.h has the layout of what it makes). */
 typedef struct sg_vertex_lit {
     sgLightingMode mode; /* FLAT, GOURAUD or PHONG; NONE: unlit, receiving a shadow map */
@@ -43,6 +51,7 @@ typedef struct sg_vertex_lit {
     /* GOURAUD receiving a shadow map: 1 + the light it hides, whose part of the colours is kept
      * apart (the split colours of light.h, SG_LIT_SPLIT_*); 0: none. */
     int split;
+    sg_vertex_lit_fn gouraud; /* GOURAUD in the device's instruction set; NULL: scalar */
 } sg_vertex_lit;
 
 /** The lit attributes of vertices [first, first + count) into out (stride floats each): base
@@ -51,6 +60,11 @@ typedef struct sg_vertex_lit {
  *  vertex any of whose attributes is NaN or infinite gets ok[i] = 0. */
 void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, float *out,
                               uint8_t *ok);
+
+/** The vector Gouraud lighting of AVX2, AVX-512 and NEON; NULL where the build has none. */
+sg_vertex_lit_fn sg_vertex_gouraud_avx2(void);
+sg_vertex_lit_fn sg_vertex_gouraud_avx512(void);
+sg_vertex_lit_fn sg_vertex_gouraud_neon(void);
 
 /** Clears ok[i] of the vertices with a NaN or infinite attribute the draw reads (colour: 4 floats
  *  a vertex, NULL for none; texcoords: 2 floats a vertex, read when nattr > 4). */

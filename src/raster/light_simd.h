@@ -1,10 +1,11 @@
-/* light_simd.h - the lighting equation of light.h on vectors of pixels, written once for every
- * instruction set: a file compiled for one set defines the vector operations below, then includes
- * this header. Every lane computes the IEEE operations of sg_light_eval (and of sg_normalize3,
+/* light_simd.h - the lighting equation of light.h on vectors of pixels (Phong) or of vertices
+ * (Gouraud), written once for every instruction set: light_avx2.h, light_avx512.h and light_neon.h
+ * define the vector operations below for their set, then include this header. Every lane computes
+ * the IEEE operations of sg_light_eval and sg_light_eval_split (and of sg_normalize3,
  * sg_log2_pos, sg_exp2_neg, sg_pow_unit) in their order; where the scalar code branches per point,
  * the vector code computes both sides and selects, which changes no lane's bits.
  *
- * The including file defines:
+ * Each defines:
  *   LV, LM, LI              float vector, lane mask, int32 vector
  *   lv_set1(f), li_set1(i)
  *   lv_add, lv_sub, lv_mul, lv_div, lv_sqrt, lv_floor (toward -inf), lv_neg (sign flipped)
@@ -117,6 +118,46 @@ LS_INLINE LV lv_shadow_visibility(const sg_shadow_view *s, const LV P[3], LM liv
     return lv_sel(ok, lv_mul(sum, lv_set1(0.25f)), one);
 }
 
+/* sg_light_vector: L and the attenuation of light i. */
+LS_INLINE LV lv_light_vector(const sg_lights *ls, int i, const LV P[3], LV L[3]) {
+    if (!ls->light[i].point) {
+        for (int j = 0; j < 3; j++) L[j] = lv_set1(ls->light[i].v[j]);
+        return lv_set1(1.0f);
+    }
+    const LV zero = lv_set1(0.0f);
+    const float *lp = ls->light[i].v, *k = ls->light[i].att;
+    LV v[3] = {lv_sub(lv_set1(lp[0]), P[0]), lv_sub(lv_set1(lp[1]), P[1]),
+               lv_sub(lv_set1(lp[2]), P[2])};
+    LV d2 = lv_dot3(v, v), d = lv_sqrt(d2);
+    LM ok = lm_and(lm_gt(d, zero), lm_le(d, lv_set1(FLT_MAX)));
+    LV inv = lv_sel(ok, lv_div(lv_set1(1.0f), d), zero);
+    for (int j = 0; j < 3; j++) L[j] = lv_mul(v[j], inv);
+    LV den = lv_add(lv_add(lv_set1(k[0]), lv_mul(lv_set1(k[1]), d)), lv_mul(lv_set1(k[2]), d2));
+    den = lv_sel(lm_gt(den, lv_set1(FLT_MIN)), den, lv_set1(FLT_MIN));
+    return lv_div(lv_set1(1.0f), den);
+}
+
+/* The diffuse and specular sums of light i with L, att (the loop body of sg_light_eval_shadowed
+ * and sg_light_eval_split), in the lanes where N.L > 0. */
+LS_INLINE void lv_light_add(const sg_lights *ls, int i, const LV N[3], const LV V[3], const LV L[3],
+                            LV att, LV diff[3], LV spec[3]) {
+    const LV zero = lv_set1(0.0f);
+    const float *c = ls->light[i].color;
+    LV ndotl = lv_dot3(N, L);
+    LM lit = lm_gt(ndotl, zero);
+    LV f = lv_mul(att, ndotl);
+    for (int j = 0; j < 3; j++)
+        diff[j] = lv_sel(lit, lv_add(diff[j], lv_mul(f, lv_set1(c[j]))), diff[j]);
+    if (ls->has_specular) {
+        LV h[3] = {lv_add(L[0], V[0]), lv_add(L[1], V[1]), lv_add(L[2], V[2])}, H[3];
+        lv_normalize3(h, H);
+        LV ndoth = lv_dot3(N, H);
+        LV g = lv_mul(att, lv_pow_unit(lv_sel(lm_gt(ndoth, zero), ndoth, zero), ls->shininess));
+        for (int j = 0; j < 3; j++)
+            spec[j] = lv_sel(lit, lv_add(spec[j], lv_mul(g, lv_set1(c[j]))), spec[j]);
+    }
+}
+
 /* sg_light_eval_shadowed */
 LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], const LV base[4],
                              int shadowed, LV vis, LV prim[4], LV sec[3]) {
@@ -126,37 +167,9 @@ LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], 
     const LV zero = lv_set1(0.0f);
     LV diff[3] = {zero, zero, zero}, spec[3] = {zero, zero, zero};
     for (int i = 0; i < ls->count; i++) {
-        LV L[3], att = lv_set1(1.0f);
-        const float *c = ls->light[i].color;
-        if (ls->light[i].point) {
-            const float *lp = ls->light[i].v, *k = ls->light[i].att;
-            LV v[3] = {lv_sub(lv_set1(lp[0]), P[0]), lv_sub(lv_set1(lp[1]), P[1]),
-                       lv_sub(lv_set1(lp[2]), P[2])};
-            LV d2 = lv_dot3(v, v), d = lv_sqrt(d2);
-            LM ok = lm_and(lm_gt(d, zero), lm_le(d, lv_set1(FLT_MAX)));
-            LV inv = lv_sel(ok, lv_div(lv_set1(1.0f), d), zero);
-            for (int j = 0; j < 3; j++) L[j] = lv_mul(v[j], inv);
-            LV den =
-                lv_add(lv_add(lv_set1(k[0]), lv_mul(lv_set1(k[1]), d)), lv_mul(lv_set1(k[2]), d2));
-            den = lv_sel(lm_gt(den, lv_set1(FLT_MIN)), den, lv_set1(FLT_MIN));
-            att = lv_div(lv_set1(1.0f), den);
-        } else {
-            for (int j = 0; j < 3; j++) L[j] = lv_set1(ls->light[i].v[j]);
-        }
+        LV L[3], att = lv_light_vector(ls, i, P, L);
         if (i == shadowed) att = lv_mul(att, vis);
-        LV ndotl = lv_dot3(N, L);
-        LM lit = lm_gt(ndotl, zero);
-        LV f = lv_mul(att, ndotl);
-        for (int j = 0; j < 3; j++)
-            diff[j] = lv_sel(lit, lv_add(diff[j], lv_mul(f, lv_set1(c[j]))), diff[j]);
-        if (ls->has_specular) {
-            LV h[3] = {lv_add(L[0], V[0]), lv_add(L[1], V[1]), lv_add(L[2], V[2])}, H[3];
-            lv_normalize3(h, H);
-            LV ndoth = lv_dot3(N, H);
-            LV g = lv_mul(att, lv_pow_unit(lv_sel(lm_gt(ndoth, zero), ndoth, zero), ls->shininess));
-            for (int j = 0; j < 3; j++)
-                spec[j] = lv_sel(lit, lv_add(spec[j], lv_mul(g, lv_set1(c[j]))), spec[j]);
-        }
+        lv_light_add(ls, i, N, V, L, att, diff, spec);
     }
     for (int k = 0; k < 3; k++) {
         const LV big = lv_set1(FLT_MAX);
@@ -167,6 +180,43 @@ LS_INLINE void lv_light_eval(const sg_lights *ls, const LV P[3], const LV n[3], 
         sec[k] = lv_mul(spec[k], lv_set1(ls->specular[k]));
     }
     prim[3] = base[3];
+}
+
+/* sg_split_bound */
+LS_INLINE LV lv_split_bound(LV v) {
+    const LV hi = lv_set1(SG_LIT_SPLIT_MAX), lo = lv_set1(-SG_LIT_SPLIT_MAX);
+    v = lv_sel(lm_lt(v, hi), v, hi);
+    return lv_sel(lm_gt(v, lo), v, lo);
+}
+
+/* sg_light_eval_split */
+LS_INLINE void lv_light_eval_split(const sg_lights *ls, const LV P[3], const LV n[3],
+                                   const LV base[4], int shadowed, LV rest[4], LV light[3],
+                                   LV rest_sec[3], LV light_sec[3]) {
+    LV N[3], V[3], mp[3] = {lv_neg(P[0]), lv_neg(P[1]), lv_neg(P[2])};
+    lv_normalize3(n, N);
+    lv_normalize3(mp, V);
+    const LV zero = lv_set1(0.0f);
+    LV diff[2][3] = {{zero, zero, zero}, {zero, zero, zero}};
+    LV spec[2][3] = {{zero, zero, zero}, {zero, zero, zero}};
+    for (int i = 0; i < ls->count; i++) {
+        LV L[3], att = lv_light_vector(ls, i, P, L);
+        const int j = i == shadowed;
+        lv_light_add(ls, i, N, V, L, att, diff[j], spec[j]);
+    }
+    for (int k = 0; k < 3; k++) {
+        const LV big = lv_set1(FLT_MAX);
+        for (int j = 0; j < 2; j++) {
+            diff[j][k] = lv_sel(lm_gt(big, diff[j][k]), diff[j][k], big);
+            spec[j][k] = lv_sel(lm_gt(big, spec[j][k]), spec[j][k], big);
+        }
+        rest[k] = lv_split_bound(
+            lv_add(lv_mul(base[k], lv_set1(ls->ambient[k])), lv_mul(base[k], diff[0][k])));
+        light[k] = lv_split_bound(lv_mul(base[k], diff[1][k]));
+        rest_sec[k] = lv_split_bound(lv_mul(spec[0][k], lv_set1(ls->specular[k])));
+        light_sec[k] = lv_split_bound(lv_mul(spec[1][k], lv_set1(ls->specular[k])));
+    }
+    rest[3] = base[3];
 }
 
 /* sg_light_split_combine */

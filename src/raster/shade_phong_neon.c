@@ -5,48 +5,7 @@
 
 #if defined(SG_SHADE_NEON)
 
-/* p[i] in the lanes of m (no other lane is read), 0 elsewhere: NEON has no gather. */
-INLINE float32x4_t gather4(const float *p, int32x4_t i, uint32x4_t m) {
-    int32_t k[4];
-    uint32_t live[4];
-    float v[4];
-    vst1q_s32(k, i);
-    vst1q_u32(live, m);
-    for (int l = 0; l < 4; l++) v[l] = live[l] ? p[k[l]] : 0.0f;
-    return vld1q_f32(v);
-}
-
-typedef float32x4_t LV;
-typedef uint32x4_t LM; /* all ones in a lane that passes */
-typedef int32x4_t LI;
-#define lv_set1(f)         vdupq_n_f32(f)
-#define li_set1(i)         vdupq_n_s32(i)
-#define lv_add             vaddq_f32
-#define lv_sub             vsubq_f32
-#define lv_mul             vmulq_f32
-#define lv_div             vdivq_f32
-#define lv_sqrt            vsqrtq_f32
-#define lv_floor(v)        vrndmq_f32(v)
-#define lv_neg(v)          vnegq_f32(v)
-#define lm_gt(a, b)        vcgtq_f32(a, b)
-#define lm_ge(a, b)        vcgeq_f32(a, b)
-#define lm_le(a, b)        vcleq_f32(a, b)
-#define lm_lt(a, b)        vcltq_f32(a, b)
-#define lm_and             vandq_u32
-#define lv_sel(m, a, b)    vbslq_f32(m, a, b)
-#define lv_bits(v)         vreinterpretq_s32_f32(v)
-#define lv_of_bits(i)      vreinterpretq_f32_s32(i)
-#define lv_of_int(i)       vcvtq_f32_s32(i)
-#define li_of_float(v)     vcvtq_s32_f32(v)
-#define li_and             vandq_s32
-#define li_or              vorrq_s32
-#define li_add             vaddq_s32
-#define li_sub             vsubq_s32
-#define li_mul             vmulq_s32
-#define lv_gather(p, i, m) gather4(p, i, m)
-#define li_srl(i, n)       vreinterpretq_s32_u32(vshrq_n_u32(vreinterpretq_u32_s32(i), n))
-#define li_sll(i, n)       vshlq_n_s32(i, n)
-#include "raster/light_simd.h"
+#include "raster/light_neon.h"
 
 INLINE void phong_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
                        int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
