@@ -2,43 +2,54 @@
 #include "raster/shade_shader.h"
 
 #include <string.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "raster/blend.h"
 #include "raster/blend_walk.h"
 
-/* Lane i's pixel offset from the tile's top-left pixel. */
-static const float LANE_X[SG_SHADER_LANES] = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
-static const float LANE_Y[SG_SHADER_LANES] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+/* 16 lanes as one value (GCC vector types): the fragment stage's setup and conversion and
+ * sgSample's RGBA8 path. Each operation is the scalar one in every lane, in the same order. */
+typedef float sg_vf __attribute__((vector_size(4 * SG_SHADER_LANES)));
+typedef int32_t sg_vi __attribute__((vector_size(4 * SG_SHADER_LANES)));
 
-/* The batch of a tile: every lane interpolated at its pixel centre (helper lanes too), as the
- * fixed shading does: attribute / w and 1 / w planes, then one division. Loops over the 16 lanes
- * without branches, so that they vectorise. */
-static void fill_batch(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
-                       sgFragmentBatch *b) {
+#define SEL(m, a, b)  ((sg_vf)(((m) & (sg_vi)(a)) | (~(m) & (sg_vi)(b))))
+#define SELI(m, a, b) (((m) & (a)) | (~(m) & (b)))
+
+/* Copies for the baseline, AVX2 and AVX-512, chosen at start: the same bits in each (lane-wise
+ * IEEE operations, no FMA). Not under the sanitizers, whose builds need no speed. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
+    !defined(__SANITIZE_THREAD__)
+#define LANE_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define LANE_CLONES
+#endif
+
+/* A tile through the fragment stage, into RGBA8 pixels px; returns the lanes discarded.
+ *
+ * The batch: every lane interpolated at its pixel centre (helper lanes too), as the fixed
+ * shading does: attribute / w and 1 / w planes, then one division. Varyings past the count and
+ * the colour start at 0. The colour: each channel to unorm8 as sg_to_unorm8 rounds it (NaN and
+ * below 0 give 0). */
+LANE_CLONES static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,
+                                       uint32_t mask, uint32_t px[SG_SHADER_LANES]) {
     const sg_shader_state *s = &c->shader;
     const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
-    b->mask = mask;
-    b->x = x0;
-    b->y = y0;
-    b->front_facing = t->sh.front_facing != 0;
-    b->primitive = t->sh.primitive;
-    b->instance = t->sh.instance;
-    b->discard = 0;
-    b->internal = c;
-    const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
-    float dx[SG_SHADER_LANES], dy[SG_SHADER_LANES], w[SG_SHADER_LANES];
-    for (int i = 0; i < SG_SHADER_LANES; i++) {
-        dx[i] = ox + LANE_X[i];
-        dy[i] = oy + LANE_Y[i];
-    }
-    for (int i = 0; i < SG_SHADER_LANES; i++) {
-        const float z = t->z + t->z_dx * dx[i] + t->z_dy * dy[i];
-        b->z[i] = z < 0.0f ? 0.0f : (z > 1.0f ? 1.0f : z); /* sg_tri_depth */
-        w[i] = 1.0f / (t->q + t->q_dx * dx[i] + t->q_dy * dy[i]);
-    }
+    sgFragmentBatch b;
+    b.mask = mask;
+    b.x = x0;
+    b.y = y0;
+    b.front_facing = t->sh.front_facing != 0;
+    b.primitive = t->sh.primitive;
+    b.instance = t->sh.instance;
+    b.discard = 0;
+    b.internal = c;
+    const sg_vf lane_x = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
+    const sg_vf lane_y = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+    const sg_vf zero = {0}, one = zero + 1.0f;
+    const sg_vf dx = (float)(x0 - t->minx) + lane_x, dy = (float)(y0 - t->miny) + lane_y;
+    const sg_vf z = t->z + t->z_dx * dx + t->z_dy * dy;
+    const sg_vf zc = SEL(z < 0.0f, zero, SEL(z > 1.0f, one, z)); /* sg_tri_depth */
+    memcpy(b.z, &zc, sizeof zc);
+    const sg_vf w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
     for (int k = 0; k < s->varying_count; k++) {
         float a, ax, ay;
         if (k < SG_TRI_ATTRS) {
@@ -50,52 +61,30 @@ static void fill_batch(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
             ax = ext->a_dx[k - SG_TRI_ATTRS];
             ay = ext->a_dy[k - SG_TRI_ATTRS];
         }
-        float *v = b->varying[k];
-        if (s->flat >> k & 1) {
-            for (int i = 0; i < SG_SHADER_LANES; i++) v[i] = a;
-            continue;
-        }
-        for (int i = 0; i < SG_SHADER_LANES; i++) v[i] = (a + ax * dx[i] + ay * dy[i]) * w[i];
+        const sg_vf v = s->flat >> k & 1 ? zero + a : (a + ax * dx + ay * dy) * w;
+        memcpy(b.varying[k], &v, sizeof v);
     }
     if (s->varying_count < SG_MAX_VARYINGS)
-        memset(b->varying[s->varying_count], 0,
-               (size_t)(SG_MAX_VARYINGS - s->varying_count) * sizeof b->varying[0]);
-    memset(b->color, 0, sizeof b->color);
-}
-
-/* A channel to unorm8 as sg_to_unorm8 rounds it (NaN and below 0 give 0), without branches. */
-static inline __attribute__((unused)) uint32_t unorm8(float v) {
-    float c = v > 0.0f ? v : 0.0f;
-    c = c < 1.0f ? c : 1.0f;
-    return (uint32_t)(int32_t)(c * 255.0f + 0.5f);
+        memset(b.varying[s->varying_count], 0,
+               (size_t)(SG_MAX_VARYINGS - s->varying_count) * sizeof b.varying[0]);
+    memset(b.color, 0, sizeof b.color);
+    s->fragment(&b, s->uniforms);
+    sg_vi p = {0};
+    for (int ch = 0; ch < 4; ch++) {
+        sg_vf v;
+        memcpy(&v, b.color[ch], sizeof v);
+        v = SEL(v > 0.0f, v, zero);
+        v = SEL(v < 1.0f, v, one);
+        p |= __builtin_convertvector(v * 255.0f + 0.5f, sg_vi) << (8 * ch);
+    }
+    memcpy(px, &p, sizeof p);
+    return b.discard;
 }
 
 uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                              uint32_t *dst) {
-    sgFragmentBatch b;
-    fill_batch(c, t, x0, y0, mask, &b);
-    c->shader.fragment(&b, c->shader.uniforms);
-    const uint32_t keep = mask & ~b.discard;
-    _Alignas(16) uint32_t px[SG_SHADER_LANES];
-#if defined(__SSE2__)
-    /* unorm8 four lanes at a time: max(v, 0) gives 0 for NaN (the second operand) as the scalar
-     * test does, and the truncation of c 255 + 0.5 is the same conversion. */
-    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), k255 = _mm_set1_ps(255.0f),
-                 half = _mm_set1_ps(0.5f);
-    for (int i = 0; i < SG_SHADER_LANES; i += 4) {
-        __m128i p = _mm_setzero_si128();
-        for (int ch = 0; ch < 4; ch++) {
-            __m128 v = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(&b.color[ch][i]), zero), one);
-            __m128i u = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(v, k255), half));
-            p = _mm_or_si128(p, _mm_slli_epi32(u, 8 * ch));
-        }
-        _mm_store_si128((__m128i *)(void *)(px + i), p);
-    }
-#else
-    for (int i = 0; i < SG_SHADER_LANES; i++)
-        px[i] = unorm8(b.color[0][i]) | unorm8(b.color[1][i]) << 8 | unorm8(b.color[2][i]) << 16 |
-                unorm8(b.color[3][i]) << 24;
-#endif
+    uint32_t px[SG_SHADER_LANES];
+    const uint32_t keep = mask & ~shade_tile(c, t, x0, y0, mask, px);
     if (keep == 0xffffu) {
         memcpy(dst, px, sizeof px);
     } else {
@@ -196,21 +185,6 @@ static float sample_depth(const sg_shader_tex *tx, float s, float t, bool biline
 #define CHANNEL_SHIFT(k) (8 * (k))
 #endif
 
-typedef float sg_vf __attribute__((vector_size(4 * SG_SHADER_LANES)));
-typedef int32_t sg_vi __attribute__((vector_size(4 * SG_SHADER_LANES)));
-
-#define SEL(m, a, b)  ((sg_vf)(((m) & (sg_vi)(a)) | (~(m) & (sg_vi)(b))))
-#define SELI(m, a, b) (((m) & (a)) | (~(m) & (b)))
-
-/* Copies for the baseline, AVX2 and AVX-512, chosen at start: the same bits in each (lane-wise
- * IEEE operations, no FMA). Not under the sanitizers, whose builds need no speed. */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
-    !defined(__SANITIZE_THREAD__)
-#define SAMPLE_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-#else
-#define SAMPLE_CLONES
-#endif
-
 /* floorf, lane by lane: truncation corrected below 2^23 in magnitude; from there up every float
  * is an integer (and NaN and the infinities are their own floor). */
 #define VFLOOR(out, x)                                                                             \
@@ -251,9 +225,9 @@ static inline __attribute__((always_inline)) void wrap16(int32_t *idx, int n, bo
     memcpy(idx, &i, sizeof i);
 }
 
-SAMPLE_CLONES static void sample_rgba8(const sg_shader_tex *tx, bool bilinear, bool repeat,
-                                       const float *u, const float *v,
-                                       float rgba[4][SG_SHADER_LANES]) {
+LANE_CLONES static void sample_rgba8(const sg_shader_tex *tx, bool bilinear, bool repeat,
+                                     const float *u, const float *v,
+                                     float rgba[4][SG_SHADER_LANES]) {
     const int w = tx->width, h = tx->height;
     const sg_vf zero = {0};
     sg_vf s, t;
