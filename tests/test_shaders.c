@@ -10,7 +10,6 @@
  */
 #include "test_common.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -89,7 +88,7 @@ static void test_pow_unit(void **state) {
             double got = sgs_pow_unit(x, ss[k]);
             assert_true(fabs(got - want) <= 1e-5 * want + 1e-30);
         }
-    /* OpenGL's 0^0: the caller raises the base to FLT_MIN when s = 0 (sgs_light.min_x) */
+    /* OpenGL's 0^0 = 1: the lighting raises the base to FLT_MIN when s = 0 (sgs_light.min_x) */
     assert_true(sgs_pow_unit(FLT_MIN, 0.0f) == 1.0f);
     assert_true(sgs_pow_unit(0.3f, 0.0f) == 1.0f);
     assert_true(sgs_pow_unit(0.0f, 5.0f) == 0.0f);

@@ -34,25 +34,22 @@ SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms
     const sgs_light l = sgs_light_read(u, 9, 12, 15, -1, -1);
     const float threshold = u[0], inv_width = u[1] > 0.0f ? 1.0f / u[1] : 0.0f;
     const float flip = b->front_facing ? 1.0f : -1.0f;
-    const float gr = u[3], gg = u[4], gb = u[5];
-    uint32_t gone[SGS_LANES];
-    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
-        float n = sgs_fbm(b->varying[0][i], b->varying[1][i], b->varying[2][i]);
-        gone[i] = n < threshold;
-        /* 1 at the cut, 0 from the band's top up */
-        float e = 1.0f - sgs_clamp01((n - threshold) * inv_width);
-        const float base[3] = {b->varying[9][i], b->varying[10][i], b->varying[11][i]};
-        float c[3];
-        sgs_light_eval(&l, b->varying[3][i], b->varying[4][i], b->varying[5][i],
-                       b->varying[6][i] * flip, b->varying[7][i] * flip, b->varying[8][i] * flip,
-                       base, c);
-        b->color[0][i] = c[0] + (gr - c[0]) * e;
-        b->color[1][i] = c[1] + (gg - c[1]) * e;
-        b->color[2][i] = c[2] + (gb - c[2]) * e;
-        b->color[3][i] = 1.0f;
-    }
-    uint32_t discard = 0; /* apart: a mask built in the lane loop keeps it from vectorising */
-    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) discard |= gone[i] << i;
+    const float glow[3] = {u[3], u[4], u[5]};
+    sgs_vf n =
+        sgs_vfbm(sgs_vload(b->varying[0]), sgs_vload(b->varying[1]), sgs_vload(b->varying[2]));
+    const sgs_vi gone = n < threshold;
+    /* 1 at the cut, 0 from the band's top up */
+    sgs_vf e = 1.0f - sgs_vclamp01((n - threshold) * inv_width);
+    const sgs_vf base[3] = {sgs_vload(b->varying[9]), sgs_vload(b->varying[10]),
+                            sgs_vload(b->varying[11])};
+    sgs_vf c[3];
+    sgs_vlight_eval(&l, sgs_vload(b->varying[3]), sgs_vload(b->varying[4]),
+                    sgs_vload(b->varying[5]), sgs_vload(b->varying[6]) * flip,
+                    sgs_vload(b->varying[7]) * flip, sgs_vload(b->varying[8]) * flip, base, c);
+    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k] + (glow[k] - c[k]) * e);
+    sgs_vstore(b->color[3], sgs_vsplat(1.0f));
+    uint32_t discard = 0;
+    for (int i = 0; i < SGS_LANES; i++) discard |= ((uint32_t)gone[i] & 1u) << i;
     b->discard = discard;
 }
 

@@ -30,27 +30,25 @@ SGS_STAGE static void marble_fragment(sgFragmentBatch *b, const void *uniforms) 
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 8, 11, 14, 17, 20);
     const float turb = u[1], sr = u[2], sg = u[3], sb = u[4], vr = u[5], vg = u[6], vb = u[7];
-    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
-        float x = b->varying[0][i], y = b->varying[1][i], z = b->varying[2][i];
-        float t = sgs_turbulence(x, y, z);
-        /* Bands across x + y / 2, two units apart, shifted by the turbulence; v is 0 on a vein. */
-        float s = 0.5f * ((x + 0.5f * y) + turb * t);
-        float w = s - sgs_floor(s);
-        float v = 2.0f * w - 1.0f;
-        v = v < 0.0f ? -v : v;
-        float q = sgs_clamp01(v * 2.85714286f); /* smoothstep(0, 0.35, v) */
-        float vein = 1.0f - q * q * (3.0f - 2.0f * q);
-        float grain = 0.85f + 0.15f * t;
-        float s0 = sr * grain, s1 = sg * grain, s2 = sb * grain;
-        const float base[3] = {s0 + (vr - s0) * vein, s1 + (vg - s1) * vein, s2 + (vb - s2) * vein};
-        float c[3];
-        sgs_light_eval(&l, b->varying[3][i], b->varying[4][i], b->varying[5][i], b->varying[6][i],
-                       b->varying[7][i], b->varying[8][i], base, c);
-        b->color[0][i] = c[0];
-        b->color[1][i] = c[1];
-        b->color[2][i] = c[2];
-        b->color[3][i] = 1.0f;
-    }
+    const sgs_vf x = sgs_vload(b->varying[0]), y = sgs_vload(b->varying[1]),
+                 z = sgs_vload(b->varying[2]);
+    sgs_vf t = sgs_vturbulence(x, y, z);
+    /* Bands across x + y / 2, two units apart, shifted by the turbulence; v is 0 on a vein. */
+    sgs_vf s = 0.5f * ((x + 0.5f * y) + turb * t);
+    sgs_vf w = s - sgs_vfloor(s);
+    sgs_vf v = 2.0f * w - 1.0f;
+    v = sgs_vsel(v < 0.0f, -v, v);
+    sgs_vf q = sgs_vclamp01(v * 2.85714286f); /* smoothstep(0, 0.35, v) */
+    sgs_vf vein = 1.0f - q * q * (3.0f - 2.0f * q);
+    sgs_vf grain = 0.85f + 0.15f * t;
+    sgs_vf s0 = sr * grain, s1 = sg * grain, s2 = sb * grain;
+    const sgs_vf base[3] = {s0 + (vr - s0) * vein, s1 + (vg - s1) * vein, s2 + (vb - s2) * vein};
+    sgs_vf c[3];
+    sgs_vlight_eval(&l, sgs_vload(b->varying[3]), sgs_vload(b->varying[4]),
+                    sgs_vload(b->varying[5]), sgs_vload(b->varying[6]), sgs_vload(b->varying[7]),
+                    sgs_vload(b->varying[8]), base, c);
+    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
+    sgs_vstore(b->color[3], sgs_vsplat(1.0f));
 }
 
 static const char marble_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS

@@ -40,34 +40,31 @@ SGS_STAGE static void normal_map_fragment(sgFragmentBatch *b, const void *unifor
     float map[4][SGS_LANES], tex[4][SGS_LANES];
     sgSample(b, 0, b->varying[10], b->varying[11], map);
     sgSample(b, 1, b->varying[10], b->varying[11], tex);
-    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
-        float nx = b->varying[3][i], ny = b->varying[4][i], nz = b->varying[5][i];
-        float in = sgs_inv_len(nx, ny, nz);
-        nx *= in, ny *= in, nz *= in;
-        /* T made perpendicular to N (Gram-Schmidt): interpolation bends them apart. */
-        float tx = b->varying[6][i], ty = b->varying[7][i], tz = b->varying[8][i];
-        float d = (nx * tx + ny * ty) + nz * tz;
-        tx = tx - nx * d, ty = ty - ny * d, tz = tz - nz * d;
-        float it = sgs_inv_len(tx, ty, tz);
-        tx *= it, ty *= it, tz *= it;
-        float w = b->varying[9][i] < 0.0f ? -1.0f : 1.0f;
-        float bx = (ny * tz - nz * ty) * w, by = (nz * tx - nx * tz) * w,
-              bz = (nx * ty - ny * tx) * w;
-        float mx = (map[0][i] * 2.0f - 1.0f) * strength, my = (map[1][i] * 2.0f - 1.0f) * strength,
-              mz = map[2][i] * 2.0f - 1.0f;
-        float sx = (tx * mx + bx * my) + nx * mz, sy = (ty * mx + by * my) + ny * mz,
-              sz = (tz * mx + bz * my) + nz * mz;
-        const float base[3] = {b->varying[12][i] * (1.0f + (tex[0][i] - 1.0f) * weight),
-                               b->varying[13][i] * (1.0f + (tex[1][i] - 1.0f) * weight),
-                               b->varying[14][i] * (1.0f + (tex[2][i] - 1.0f) * weight)};
-        float c[3];
-        sgs_light_eval(&l, b->varying[0][i], b->varying[1][i], b->varying[2][i], sx, sy, sz, base,
-                       c);
-        b->color[0][i] = c[0];
-        b->color[1][i] = c[1];
-        b->color[2][i] = c[2];
-        b->color[3][i] = b->varying[15][i];
-    }
+    sgs_vf nx = sgs_vload(b->varying[3]), ny = sgs_vload(b->varying[4]),
+           nz = sgs_vload(b->varying[5]);
+    sgs_vf in = sgs_vinv_len(nx, ny, nz);
+    nx *= in, ny *= in, nz *= in;
+    /* T made perpendicular to N (Gram-Schmidt): interpolation bends them apart. */
+    sgs_vf tx = sgs_vload(b->varying[6]), ty = sgs_vload(b->varying[7]),
+           tz = sgs_vload(b->varying[8]);
+    sgs_vf d = (nx * tx + ny * ty) + nz * tz;
+    tx = tx - nx * d, ty = ty - ny * d, tz = tz - nz * d;
+    sgs_vf it = sgs_vinv_len(tx, ty, tz);
+    tx *= it, ty *= it, tz *= it;
+    sgs_vf w = sgs_vsel(sgs_vload(b->varying[9]) < 0.0f, sgs_vsplat(-1.0f), sgs_vsplat(1.0f));
+    sgs_vf bx = (ny * tz - nz * ty) * w, by = (nz * tx - nx * tz) * w, bz = (nx * ty - ny * tx) * w;
+    sgs_vf mx = (sgs_vload(map[0]) * 2.0f - 1.0f) * strength,
+           my = (sgs_vload(map[1]) * 2.0f - 1.0f) * strength, mz = sgs_vload(map[2]) * 2.0f - 1.0f;
+    sgs_vf sx = (tx * mx + bx * my) + nx * mz, sy = (ty * mx + by * my) + ny * mz,
+           sz = (tz * mx + bz * my) + nz * mz;
+    sgs_vf base[3];
+    for (int k = 0; k < 3; k++)
+        base[k] = sgs_vload(b->varying[12 + k]) * (1.0f + (sgs_vload(tex[k]) - 1.0f) * weight);
+    sgs_vf c[3];
+    sgs_vlight_eval(&l, sgs_vload(b->varying[0]), sgs_vload(b->varying[1]),
+                    sgs_vload(b->varying[2]), sx, sy, sz, base, c);
+    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
+    memcpy(b->color[3], b->varying[15], sizeof b->color[3]);
 }
 
 static const char normal_map_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS

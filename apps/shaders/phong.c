@@ -24,16 +24,14 @@ SGS_STAGE static void phong_vertex(sgVertexBatch *b, const void *uniforms) {
 SGS_STAGE static void phong_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 4, 7, 10, 13, 16);
-    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
-        const float base[3] = {b->varying[6][i], b->varying[7][i], b->varying[8][i]};
-        float c[3];
-        sgs_light_eval(&l, b->varying[0][i], b->varying[1][i], b->varying[2][i], b->varying[3][i],
-                       b->varying[4][i], b->varying[5][i], base, c);
-        b->color[0][i] = c[0];
-        b->color[1][i] = c[1];
-        b->color[2][i] = c[2];
-        b->color[3][i] = b->varying[9][i];
-    }
+    const sgs_vf base[3] = {sgs_vload(b->varying[6]), sgs_vload(b->varying[7]),
+                            sgs_vload(b->varying[8])};
+    sgs_vf c[3];
+    sgs_vlight_eval(&l, sgs_vload(b->varying[0]), sgs_vload(b->varying[1]),
+                    sgs_vload(b->varying[2]), sgs_vload(b->varying[3]), sgs_vload(b->varying[4]),
+                    sgs_vload(b->varying[5]), base, c);
+    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
+    memcpy(b->color[3], b->varying[9], sizeof b->color[3]);
 }
 
 static const char phong_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS

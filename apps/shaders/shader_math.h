@@ -30,6 +30,49 @@
 #define SGS_STAGE
 #endif
 
+/* ---- 16 lanes as one value ---------------------------------------------------------------------
+ *
+ * The lane loops with conditions (lighting, pow, noise) are written on GCC vector types, not as
+ * loops over lanes: the compiler turns a loop's selects into branches where it duplicates code
+ * (jump threading), and the loop then stays scalar. An operation on a vector is the same IEEE
+ * operation in every lane, in the order written, so these give the bits of the scalar code; the
+ * AVX-512 copy computes a vector in one register, the AVX2 one in two, the baseline in four. */
+
+/* 64-byte vectors are passed only to inline functions, here and in the files that include this
+ * header: the note that their calling convention differs without AVX-512 does not apply. */
+#pragma GCC diagnostic ignored "-Wpragmas"
+#pragma GCC diagnostic ignored "-Wunknown-warning-option"
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+typedef float sgs_vf __attribute__((vector_size(4 * SGS_LANES)));
+typedef int32_t sgs_vi __attribute__((vector_size(4 * SGS_LANES)));
+typedef uint32_t sgs_vu __attribute__((vector_size(4 * SGS_LANES)));
+
+static inline sgs_vf sgs_vload(const float *p) {
+    sgs_vf v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+static inline void sgs_vstore(float *p, sgs_vf v) {
+    memcpy(p, &v, sizeof v);
+}
+static inline sgs_vf sgs_vsplat(float s) {
+    return (sgs_vf){s, s, s, s, s, s, s, s, s, s, s, s, s, s, s, s};
+}
+/* m ? a : b lane by lane, m from a comparison (all bits set or none). */
+static inline sgs_vf sgs_vsel(sgs_vi m, sgs_vf a, sgs_vf b) {
+    return (sgs_vf)((m & (sgs_vi)a) | (~m & (sgs_vi)b));
+}
+static inline sgs_vi sgs_vseli(sgs_vi m, sgs_vi a, sgs_vi b) {
+    return (m & a) | (~m & b);
+}
+/* Square root lane by lane: a loop the compiler turns into one instruction per register. */
+static inline sgs_vf sgs_vsqrt(sgs_vf v) {
+    sgs_vf r;
+    for (int i = 0; i < SGS_LANES; i++) r[i] = __builtin_sqrtf(v[i]);
+    return r;
+}
+
 /* ---- the twins' declarations ------------------------------------------------------------------
  */
 
@@ -89,55 +132,76 @@ static inline float sgs_inv_len(float x, float y, float z) {
     return len2 > 0.0f ? inv : 0.0f;
 }
 
+/* The same lane by lane. */
+static inline sgs_vf sgs_vfloor(sgs_vf x) {
+    sgs_vf t = __builtin_convertvector(__builtin_convertvector(x, sgs_vi), sgs_vf),
+           below = t - 1.0f;
+    return sgs_vsel(t > x, below, t);
+}
+static inline sgs_vf sgs_vclamp01(sgs_vf v) {
+    sgs_vf c = sgs_vsel(v > 0.0f, v, sgs_vsplat(0.0f));
+    return sgs_vsel(c < 1.0f, c, sgs_vsplat(1.0f));
+}
+static inline sgs_vf sgs_vinv_len(sgs_vf x, sgs_vf y, sgs_vf z) {
+    sgs_vf len2 = (x * x + y * y) + z * z;
+    sgs_vf inv = 1.0f / sgs_vsqrt(len2);
+    return sgs_vsel(len2 > 0.0f, inv, sgs_vsplat(0.0f));
+}
+
 /* sin(x) for |x| < 2^20: x less the nearest multiple of 2 pi (in two parts, so the reduction is
  * exact to float), folded into [-pi/2, pi/2], then Taylor to x^11 (error below 1e-7). */
-static inline float sgs_sin(float x) {
-    float k = sgs_floor(x * 0.159154943f + 0.5f);
-    float r = (x - k * 6.28318548f) - k * -1.74845553e-7f;
-    float above = 3.14159265f - r, below = -3.14159265f - r;
-    r = r > 1.57079633f ? above : r;
-    r = r < -1.57079633f ? below : r;
-    float r2 = r * r;
-    float p = -2.50521084e-8f;
+static inline sgs_vf sgs_vsin(sgs_vf x) {
+    sgs_vf k = sgs_vfloor(x * 0.159154943f + 0.5f);
+    sgs_vf r = (x - k * 6.28318548f) - k * -1.74845553e-7f;
+    sgs_vf above = 3.14159265f - r, below = -3.14159265f - r;
+    r = sgs_vsel(r > 1.57079633f, above, r);
+    r = sgs_vsel(r < -1.57079633f, below, r);
+    sgs_vf r2 = r * r;
+    sgs_vf p = sgs_vsplat(-2.50521084e-8f);
     p = p * r2 + 2.75573192e-6f;
     p = p * r2 - 1.98412698e-4f;
     p = p * r2 + 8.33333333e-3f;
     p = p * r2 - 1.66666667e-1f;
     return r + (r * r2) * p;
 }
+static inline sgs_vf sgs_vcos(sgs_vf x) {
+    return sgs_vsin(x + 1.57079633f);
+}
+/* One value (lane 0 of the vector form): for per-draw constants and tests, not lane loops. */
+static inline float sgs_sin(float x) {
+    return sgs_vsin(sgs_vsplat(x))[0];
+}
 static inline float sgs_cos(float x) {
-    return sgs_sin(x + 1.57079633f);
+    return sgs_vcos(sgs_vsplat(x))[0];
 }
 
 /* x^s for x in [0, 1], s in [0, 128], as the fixed lighting computes it (light.h: sg_pow_unit),
  * without branches: 0 below the smallest normal float. s = 0 gives 1 for every x from FLT_MIN up
  * (2^(0 log2 x)); the caller raises x to FLT_MIN for s = 0 (sgs_light.min_x), so that 0^0 = 1
- * too without a test of s in the lane loop (a test of a value the same in every lane becomes a
- * branch, which keeps the loop from vectorising). */
-static inline float sgs_pow_unit(float x, float s) {
-    uint32_t bits;
-    float xs = x >= FLT_MIN ? x : 1.0f;
-    memcpy(&bits, &xs, sizeof bits);
-    int32_t e = (int32_t)((bits >> 23) & 255u) - 127;
+ * too without a test of s per lane. */
+static inline sgs_vf sgs_vpow_unit(sgs_vf x, float s) {
+    const sgs_vi normal = x >= FLT_MIN;
+    sgs_vu bits = (sgs_vu)sgs_vsel(normal, x, sgs_vsplat(1.0f));
+    sgs_vi e = (sgs_vi)((bits >> 23) & 255u) - 127;
     bits = (bits & 0x007fffffu) | 0x3f800000u;
-    float m;
-    memcpy(&m, &bits, sizeof m);
-    int big = m > 1.41421356f;
-    float half = m * 0.5f;
-    m = big ? half : m;
-    e = big ? e + 1 : e;
-    float t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
-    float p = 1.0f / 11.0f;
+    sgs_vf m = (sgs_vf)bits;
+    const sgs_vi big = m > 1.41421356f;
+    sgs_vf half = m * 0.5f;
+    m = sgs_vsel(big, half, m);
+    e = sgs_vseli(big, e + 1, e);
+    sgs_vf t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
+    sgs_vf p = sgs_vsplat(1.0f / 11.0f);
     p = p * t2 + 1.0f / 9.0f;
     p = p * t2 + 1.0f / 7.0f;
     p = p * t2 + 1.0f / 5.0f;
     p = p * t2 + 1.0f / 3.0f;
     p = p * t2 + 1.0f;
-    float z = s * ((float)e + (p * t) * 2.88539008f);
-    float zc = z >= -126.0f ? z : -126.0f;
-    float n = sgs_floor(zc + 0.5f);
-    float y = (zc - n) * 0.693147181f;
-    float q = 1.0f / 5040.0f;
+    sgs_vf z = s * (__builtin_convertvector(e, sgs_vf) + (p * t) * 2.88539008f);
+    const sgs_vi above = z >= -126.0f;
+    sgs_vf zc = sgs_vsel(above, z, sgs_vsplat(-126.0f));
+    sgs_vf n = sgs_vfloor(zc + 0.5f);
+    sgs_vf y = (zc - n) * 0.693147181f;
+    sgs_vf q = sgs_vsplat(1.0f / 5040.0f);
     q = q * y + 1.0f / 720.0f;
     q = q * y + 1.0f / 120.0f;
     q = q * y + 1.0f / 24.0f;
@@ -145,12 +209,13 @@ static inline float sgs_pow_unit(float x, float s) {
     q = q * y + 0.5f;
     q = q * y + 1.0f;
     q = q * y + 1.0f;
-    uint32_t sb = (uint32_t)((int32_t)n + 127) << 23;
-    float scale;
-    memcpy(&scale, &sb, sizeof scale);
-    float r = q * scale;
-    r = z >= -126.0f ? r : 0.0f;
-    return x >= FLT_MIN ? r : 0.0f;
+    sgs_vu sb = (sgs_vu)(__builtin_convertvector(n, sgs_vi) + 127) << 23;
+    sgs_vf r = q * (sgs_vf)sb;
+    r = sgs_vsel(above, r, sgs_vsplat(0.0f));
+    return sgs_vsel(normal, r, sgs_vsplat(0.0f));
+}
+static inline float sgs_pow_unit(float x, float s) {
+    return sgs_vpow_unit(sgs_vsplat(x), s)[0];
 }
 #define SGS_GLSL_POW_UNIT                                                                          \
     "float pow_unit(float x, float s) {\n"                                                         \
@@ -242,26 +307,24 @@ static inline sgs_light sgs_light_read(const float *u, int ambient, int directio
     return l;
 }
 
-/* The equation at one lane: view-space point (px, py, pz), normal (nx, ny, nz), base colour.
- * Written out channel by channel: an inner loop would keep the lane loop from vectorising. */
-static inline void sgs_light_eval(const sgs_light *l, float px, float py, float pz, float nx,
-                                  float ny, float nz, const float base[3], float out[3]) {
-    float in = sgs_inv_len(nx, ny, nz), iv = sgs_inv_len(px, py, pz);
+/* The equation for 16 lanes: view-space point (px, py, pz), normal (nx, ny, nz), base colour. */
+static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs_vf pz, sgs_vf nx,
+                                   sgs_vf ny, sgs_vf nz, const sgs_vf base[3], sgs_vf out[3]) {
+    sgs_vf in = sgs_vinv_len(nx, ny, nz), iv = sgs_vinv_len(px, py, pz);
     nx *= in, ny *= in, nz *= in;
-    float vx = -px * iv, vy = -py * iv, vz = -pz * iv;
-    float ndotl = (nx * l->dir[0] + ny * l->dir[1]) + nz * l->dir[2];
-    float hx = l->dir[0] + vx, hy = l->dir[1] + vy, hz = l->dir[2] + vz;
-    float ih = sgs_inv_len(hx, hy, hz);
+    sgs_vf vx = -px * iv, vy = -py * iv, vz = -pz * iv;
+    sgs_vf ndotl = (nx * l->dir[0] + ny * l->dir[1]) + nz * l->dir[2];
+    sgs_vf hx = l->dir[0] + vx, hy = l->dir[1] + vy, hz = l->dir[2] + vz;
+    sgs_vf ih = sgs_vinv_len(hx, hy, hz);
     hx *= ih, hy *= ih, hz *= ih;
-    float ndoth = (nx * hx + ny * hy) + nz * hz;
-    float pw = sgs_pow_unit(ndoth > l->min_x ? ndoth : l->min_x, l->shininess);
-    float d = ndotl > 0.0f ? ndotl : 0.0f, s = ndotl > 0.0f ? pw : 0.0f;
-    out[0] = sgs_clamp01(base[0] * l->ambient[0] + base[0] * (d * l->color[0])) +
-             (s * l->color[0]) * l->specular[0];
-    out[1] = sgs_clamp01(base[1] * l->ambient[1] + base[1] * (d * l->color[1])) +
-             (s * l->color[1]) * l->specular[1];
-    out[2] = sgs_clamp01(base[2] * l->ambient[2] + base[2] * (d * l->color[2])) +
-             (s * l->color[2]) * l->specular[2];
+    sgs_vf ndoth = (nx * hx + ny * hy) + nz * hz;
+    sgs_vf pw =
+        sgs_vpow_unit(sgs_vsel(ndoth > l->min_x, ndoth, sgs_vsplat(l->min_x)), l->shininess);
+    const sgs_vi lit = ndotl > 0.0f;
+    sgs_vf d = sgs_vsel(lit, ndotl, sgs_vsplat(0.0f)), s = sgs_vsel(lit, pw, sgs_vsplat(0.0f));
+    for (int k = 0; k < 3; k++)
+        out[k] = sgs_vclamp01(base[k] * l->ambient[k] + base[k] * (d * l->color[k])) +
+                 (s * l->color[k]) * l->specular[k];
 }
 
 /* The same in GLSL: light(P, n, base, ambient, direction, colour, specular, shininess) with the
@@ -301,47 +364,69 @@ static inline float sgs_hash3(int32_t x, int32_t y, int32_t z) {
     h ^= h >> 16;
     return (float)(h >> 8) * (1.0f / 16777216.0f);
 }
+static inline sgs_vf sgs_vhash3(sgs_vi x, sgs_vi y, sgs_vi z) {
+    sgs_vu h = ((sgs_vu)x * 0x8da6b343u) ^ ((sgs_vu)y * 0xd8163841u) ^ ((sgs_vu)z * 0xcb1ab31fu);
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    /* below 2^24: the signed conversion is exact, as the scalar unsigned one */
+    return __builtin_convertvector((sgs_vi)(h >> 8), sgs_vf) * (1.0f / 16777216.0f);
+}
 
-static inline float sgs_lerp(float a, float b, float t) {
+static inline sgs_vf sgs_vlerp(sgs_vf a, sgs_vf b, sgs_vf t) {
     return a + (b - a) * t;
 }
 
-static inline float sgs_noise3(float x, float y, float z) {
-    float fx = sgs_floor(x), fy = sgs_floor(y), fz = sgs_floor(z);
-    int32_t ix = (int32_t)fx, iy = (int32_t)fy, iz = (int32_t)fz;
-    float tx = x - fx, ty = y - fy, tz = z - fz;
+static inline sgs_vf sgs_vnoise3(sgs_vf x, sgs_vf y, sgs_vf z) {
+    sgs_vf fx = sgs_vfloor(x), fy = sgs_vfloor(y), fz = sgs_vfloor(z);
+    sgs_vi ix = __builtin_convertvector(fx, sgs_vi), iy = __builtin_convertvector(fy, sgs_vi),
+           iz = __builtin_convertvector(fz, sgs_vi);
+    sgs_vf tx = x - fx, ty = y - fy, tz = z - fz;
     tx = tx * tx * (3.0f - 2.0f * tx);
     ty = ty * ty * (3.0f - 2.0f * ty);
     tz = tz * tz * (3.0f - 2.0f * tz);
-    float a = sgs_lerp(sgs_hash3(ix, iy, iz), sgs_hash3(ix + 1, iy, iz), tx);
-    float b = sgs_lerp(sgs_hash3(ix, iy + 1, iz), sgs_hash3(ix + 1, iy + 1, iz), tx);
-    float c = sgs_lerp(sgs_hash3(ix, iy, iz + 1), sgs_hash3(ix + 1, iy, iz + 1), tx);
-    float d = sgs_lerp(sgs_hash3(ix, iy + 1, iz + 1), sgs_hash3(ix + 1, iy + 1, iz + 1), tx);
-    return sgs_lerp(sgs_lerp(a, b, ty), sgs_lerp(c, d, ty), tz);
+    sgs_vf a = sgs_vlerp(sgs_vhash3(ix, iy, iz), sgs_vhash3(ix + 1, iy, iz), tx);
+    sgs_vf b = sgs_vlerp(sgs_vhash3(ix, iy + 1, iz), sgs_vhash3(ix + 1, iy + 1, iz), tx);
+    sgs_vf c = sgs_vlerp(sgs_vhash3(ix, iy, iz + 1), sgs_vhash3(ix + 1, iy, iz + 1), tx);
+    sgs_vf d = sgs_vlerp(sgs_vhash3(ix, iy + 1, iz + 1), sgs_vhash3(ix + 1, iy + 1, iz + 1), tx);
+    return sgs_vlerp(sgs_vlerp(a, b, ty), sgs_vlerp(c, d, ty), tz);
 }
 
 /* Turbulence: octaves of |2 noise - 1|, each of twice the frequency and half the weight, over
- * their total weight: in [0, 1]. Four octaves, written out (see sgs_light_eval). */
-static inline float sgs_turb1(float x, float y, float z) {
-    float n = 2.0f * sgs_noise3(x, y, z) - 1.0f;
-    return n < 0.0f ? -n : n;
+ * their total weight: in [0, 1]. */
+static inline sgs_vf sgs_vturb1(sgs_vf x, sgs_vf y, sgs_vf z) {
+    sgs_vf n = 2.0f * sgs_vnoise3(x, y, z) - 1.0f;
+    return sgs_vsel(n < 0.0f, -n, n);
 }
-static inline float sgs_turbulence(float x, float y, float z) {
-    float sum = sgs_turb1(x, y, z);
-    sum = sum + 0.5f * sgs_turb1(x * 2.0f, y * 2.0f, z * 2.0f);
-    sum = sum + 0.25f * sgs_turb1(x * 4.0f, y * 4.0f, z * 4.0f);
-    sum = sum + 0.125f * sgs_turb1(x * 8.0f, y * 8.0f, z * 8.0f);
+static inline sgs_vf sgs_vturbulence(sgs_vf x, sgs_vf y, sgs_vf z) {
+    sgs_vf sum = sgs_vturb1(x, y, z);
+    sum = sum + 0.5f * sgs_vturb1(x * 2.0f, y * 2.0f, z * 2.0f);
+    sum = sum + 0.25f * sgs_vturb1(x * 4.0f, y * 4.0f, z * 4.0f);
+    sum = sum + 0.125f * sgs_vturb1(x * 8.0f, y * 8.0f, z * 8.0f);
     return sum * (1.0f / 1.875f); /* 1 + 1/2 + 1/4 + 1/8 */
 }
 
 /* Fractal sum: octaves of noise, each of twice the frequency and half the weight, over their
  * total weight: in [0, 1), mostly near 1/2. */
-static inline float sgs_fbm(float x, float y, float z) {
-    float sum = sgs_noise3(x, y, z);
-    sum = sum + 0.5f * sgs_noise3(x * 2.0f, y * 2.0f, z * 2.0f);
-    sum = sum + 0.25f * sgs_noise3(x * 4.0f, y * 4.0f, z * 4.0f);
-    sum = sum + 0.125f * sgs_noise3(x * 8.0f, y * 8.0f, z * 8.0f);
+static inline sgs_vf sgs_vfbm(sgs_vf x, sgs_vf y, sgs_vf z) {
+    sgs_vf sum = sgs_vnoise3(x, y, z);
+    sum = sum + 0.5f * sgs_vnoise3(x * 2.0f, y * 2.0f, z * 2.0f);
+    sum = sum + 0.25f * sgs_vnoise3(x * 4.0f, y * 4.0f, z * 4.0f);
+    sum = sum + 0.125f * sgs_vnoise3(x * 8.0f, y * 8.0f, z * 8.0f);
     return sum * (1.0f / 1.875f);
+}
+
+/* One value (lane 0 of the vector forms), for tests. */
+static inline float sgs_noise3(float x, float y, float z) {
+    return sgs_vnoise3(sgs_vsplat(x), sgs_vsplat(y), sgs_vsplat(z))[0];
+}
+static inline float sgs_turbulence(float x, float y, float z) {
+    return sgs_vturbulence(sgs_vsplat(x), sgs_vsplat(y), sgs_vsplat(z))[0];
+}
+static inline float sgs_fbm(float x, float y, float z) {
+    return sgs_vfbm(sgs_vsplat(x), sgs_vsplat(y), sgs_vsplat(z))[0];
 }
 
 /* The same in GLSL; `precise` keeps the compiler from fusing products and sums (SPIR-V

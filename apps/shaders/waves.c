@@ -23,38 +23,37 @@ SGS_STAGE static void waves_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const float time = u[0];
     float p[4][SGS_LANES], n[3][SGS_LANES];
-    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
-        float x = b->position[0][i], z = b->position[2][i];
-        float y = b->position[1][i], dx = 0.0f, dz = 0.0f;
-        for (int w = 0; w < 3; w++) {
-            const float *wave = u + 1 + 4 * w;
-            float phase = (wave[1] * x + wave[2] * z) + wave[3] * time;
-            float s = sgs_sin(phase), c = sgs_cos(phase);
-            y = y + wave[0] * s;
-            dx = dx + (wave[0] * wave[1]) * c;
-            dz = dz + (wave[0] * wave[2]) * c;
-        }
-        p[0][i] = x, p[1][i] = y, p[2][i] = z, p[3][i] = b->position[3][i];
-        /* The surface (x, y(x, z), z): tangents (1, dy/dx, 0) and (0, dy/dz, 1). */
-        n[0][i] = -dx, n[1][i] = 1.0f, n[2][i] = -dz;
-        for (int k = 0; k < 3; k++) b->varying[6 + k][i] = b->color[k][i] * u[13 + k];
+    const sgs_vf x = sgs_vload(b->position[0]), z = sgs_vload(b->position[2]);
+    sgs_vf y = sgs_vload(b->position[1]), dx = sgs_vsplat(0.0f), dz = sgs_vsplat(0.0f);
+    for (int w = 0; w < 3; w++) {
+        const float *wave = u + 1 + 4 * w;
+        sgs_vf phase = (wave[1] * x + wave[2] * z) + wave[3] * time;
+        sgs_vf s = sgs_vsin(phase), c = sgs_vcos(phase);
+        y = y + wave[0] * s;
+        dx = dx + (wave[0] * wave[1]) * c;
+        dz = dz + (wave[0] * wave[2]) * c;
     }
+    sgs_vstore(p[0], x), sgs_vstore(p[1], y), sgs_vstore(p[2], z);
+    memcpy(p[3], b->position[3], sizeof p[3]);
+    /* The surface (x, y(x, z), z): tangents (1, dy/dx, 0) and (0, dy/dz, 1). */
+    sgs_vstore(n[0], -dx), sgs_vstore(n[1], sgs_vsplat(1.0f)), sgs_vstore(n[2], -dz);
+    for (int k = 0; k < 3; k++)
+        SGS_SIMD for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] =
+            b->color[k][i] * u[13 + k];
     sgs_transform_from(b, (const float(*)[SGS_LANES])p, (const float(*)[SGS_LANES])n, 0, 3);
 }
 
 SGS_STAGE static void waves_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 16, 19, 22, 25, 28);
-    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
-        const float base[3] = {b->varying[6][i], b->varying[7][i], b->varying[8][i]};
-        float c[3];
-        sgs_light_eval(&l, b->varying[0][i], b->varying[1][i], b->varying[2][i], b->varying[3][i],
-                       b->varying[4][i], b->varying[5][i], base, c);
-        b->color[0][i] = c[0];
-        b->color[1][i] = c[1];
-        b->color[2][i] = c[2];
-        b->color[3][i] = 1.0f;
-    }
+    const sgs_vf base[3] = {sgs_vload(b->varying[6]), sgs_vload(b->varying[7]),
+                            sgs_vload(b->varying[8])};
+    sgs_vf c[3];
+    sgs_vlight_eval(&l, sgs_vload(b->varying[0]), sgs_vload(b->varying[1]),
+                    sgs_vload(b->varying[2]), sgs_vload(b->varying[3]), sgs_vload(b->varying[4]),
+                    sgs_vload(b->varying[5]), base, c);
+    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
+    sgs_vstore(b->color[3], sgs_vsplat(1.0f));
 }
 
 static const char waves_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS
