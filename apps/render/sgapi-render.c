@@ -824,16 +824,18 @@ done:
     return ok;
 }
 
-/* Makes a scene's videos from its frames on disk; with `check`, first that every frame is there
- * and whole, naming those that are not (the first ten, and how many in all). */
-static bool make_videos(const options *o, run *rn, const sc_scene *s, bool check) {
-    char *dir = frame_path(o, rn, s, -1), *frame = frame_path(o, rn, s, o->turntable - 1);
-    char *out = NULL;
-    bool ok = dir && frame;
-    if (!ok) fprintf(stderr, "sgapi-render: out of memory\n");
+/* --assemble: how many of a scene's frames are missing or not whole, naming the first ten of them
+ * on stderr; -1 when out of memory. */
+static int missing_frames(const options *o, run *rn, const sc_scene *s) {
+    char *frame = frame_path(o, rn, s, o->turntable - 1);
+    if (!frame) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        return -1;
+    }
     int bad = 0;
-    for (int k = 0; ok && check && k < o->turntable; k++) {
-        snprintf(frame + strlen(dir) + 1, (size_t)rn->digits + 5, "%0*d.png", rn->digits, k);
+    for (int k = 0; k < o->turntable; k++) {
+        snprintf(frame + strlen(frame) - (size_t)rn->digits - 4, (size_t)rn->digits + 5, "%0*d.png",
+                 rn->digits, k);
         sc_msg why = {0};
         fc_status st = fc_check(frame, s->width, s->height, &rn->check, &why);
         if (st != FC_WHOLE && ++bad <= 10)
@@ -841,14 +843,23 @@ static bool make_videos(const options *o, run *rn, const sc_scene *s, bool check
                     st == FC_MISSING ? "is missing" : sc_msg_text(&why));
         sc_msg_free(&why);
     }
-    if (bad) {
+    if (bad > 10) fprintf(stderr, "sgapi-render: --assemble: ... and %d more\n", bad - 10);
+    if (bad)
         fprintf(stderr,
                 "sgapi-render: --assemble: %d of the %d frames of '%s' missing or not whole: "
                 "every shard must have finished (run the shards that did not again, with "
                 "--resume)\n",
                 bad, o->turntable, s->name);
-        ok = false;
-    }
+    free(frame);
+    return bad;
+}
+
+/* Makes a scene's videos from its frames on disk. */
+static bool make_videos(const options *o, const run *rn, const sc_scene *s) {
+    char *dir = frame_path(o, rn, s, -1);
+    char *out = NULL;
+    bool ok = dir != NULL;
+    if (!ok) fprintf(stderr, "sgapi-render: out of memory\n");
     for (unsigned fmt = VIDEO_GIF; ok && fmt <= VIDEO_MP4; fmt <<= 1) {
         if (!(o->video & fmt)) continue;
         free(out);
@@ -863,7 +874,6 @@ static bool make_videos(const options *o, run *rn, const sc_scene *s, bool check
     }
     fflush(stdout);
     free(dir);
-    free(frame);
     free(out);
     return ok;
 }
@@ -1156,11 +1166,24 @@ int main(int argc, char **argv) {
     }
 
     if (o.assemble) {
-        bool ok = true;
+        /* Every scene's frames checked before any video is made: a run with frames missing
+         * names them all and makes nothing. */
+        long long bad = 0;
+        for (int i = 0; bad >= 0 && i < o.file_count; i++)
+            for (size_t j = 0; j < files[i].scene_count; j++)
+                if (selected(&o, files[i].scenes[j].name)) {
+                    int n = missing_frames(&o, &rn, &files[i].scenes[j]);
+                    if (n < 0) {
+                        bad = -1;
+                        break;
+                    }
+                    bad += n;
+                }
+        bool ok = bad == 0;
         for (int i = 0; ok && i < o.file_count; i++)
             for (size_t j = 0; ok && j < files[i].scene_count; j++)
                 if (selected(&o, files[i].scenes[j].name))
-                    ok = make_videos(&o, &rn, &files[i].scenes[j], true);
+                    ok = make_videos(&o, &rn, &files[i].scenes[j]);
         status = ok ? 0 : 1;
         goto done;
     }
@@ -1219,7 +1242,7 @@ int main(int argc, char **argv) {
             if (!selected(&o, s->name)) continue;
             if (o.turntable) {
                 ok = render_turntable(&rn, &o, f, s, &u, items);
-                if (ok && o.video) ok = make_videos(&o, &rn, s, false);
+                if (ok && o.video) ok = make_videos(&o, &rn, s);
                 items += o.turntable;
             } else {
                 if (in_shard(&o, items)) {
