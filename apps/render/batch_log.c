@@ -73,8 +73,9 @@ void bl_done(batch_log *l, const char *path, double ms, bool print) {
     }
     if (!l->progress) return;
     progress_item(l, "done", path);
-    fprintf(l->progress, ", \"ms\": %.3f, \"finished\": %lld, \"items\": %lld", ms,
-            l->rendered + l->skipped, l->items);
+    if (ms >= 0) fprintf(l->progress, ", \"ms\": %.3f", ms);
+    fprintf(l->progress, ", \"finished\": %lld, \"items\": %lld", l->rendered + l->skipped,
+            l->items);
     end_line(l->progress);
 }
 

@@ -24,7 +24,8 @@ bool bl_open(batch_log *l, const char *progress_path);
  *  line. */
 void bl_start(batch_log *l, bool frames, bool summary, long long items, int shard_index,
               int shard_count, bool resume);
-/** An item written to disk in `ms` of rendering: path is relative to the output folder. Frames
+/** An item written to disk in `ms` of rendering (< 0: not told): path is relative to the output
+ *  folder. Frames
  *  get their stdout line here; with print false only the progress file hears of it. */
 void bl_done(batch_log *l, const char *path, double ms, bool print);
 /** An item already whole on disk (--resume): not rendered, no stdout line. */

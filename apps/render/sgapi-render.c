@@ -1251,7 +1251,7 @@ int main(int argc, char **argv) {
                     if (!ok) fprintf(stderr, "sgapi-render: out of memory\n");
                     if (ok && !already_done(&rn, &o, png, s->width, s->height)) {
                         ok = render_scene(&rn, &o, f, s, &u);
-                        if (ok) bl_done(&rn.log, png + rn.out_dir_len + 1, 0.0, false);
+                        if (ok) bl_done(&rn.log, png + rn.out_dir_len + 1, -1.0, false);
                     }
                     free(png);
                 }

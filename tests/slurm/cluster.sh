@@ -50,6 +50,14 @@ cluster_processes() {
     done
 }
 
+# Whether a TCP port of this machine is listening (/proc/net/tcp*: state 0A).
+listening() {
+    hex=$(printf '%04X' "$1")
+    cat /proc/net/tcp /proc/net/tcp6 2>/dev/null |
+        awk -v p=":$hex" '$4 == "0A" && substr($2, length($2) - 4) == p { found = 1 }
+            END { exit !found }'
+}
+
 # Waits up to $2 tenths of a second for process $1 to end.
 wait_gone() {
     n=0
@@ -78,6 +86,13 @@ stop() {
     done
     for pid in $daemons; do
         wait_gone "$pid" 100 || { kill -KILL "$pid" 2>/dev/null; wait_gone "$pid" 20; }
+    done
+    # No socket: the daemons' TCP ports no longer listen (munge's is in the folder, removed).
+    for port in ${ctld_port:-} ${slurmd_port:-}; do
+        if listening "$port"; then
+            echo "cluster: port $port still listens after the stop" >&2
+            status=1
+        fi
     done
     left=$(cluster_processes)
     if [ -n "$left" ]; then
