@@ -34,7 +34,13 @@ for s in $scenes; do
     cmp -s "$work/plain/$s.png" "$work/all/$s/0000.png" || fail "$s: frame 0 is not the plain render"
     grep -q "^$s  *[0-9.]* frames/s ($frames frames in " "$work/all.out" || fail "$s: no line"
 done
-[ "$(wc -l <"$work/all.out")" -eq 3 ] || fail "not one line per scene: $(cat "$work/all.out")"
+# Stdout: a line per frame as it is on disk, a line per scene, the summary last.
+[ "$(grep -c '^frame [a-z_]*/000[0-6]\.png [0-9.]* ms$' "$work/all.out")" -eq 21 ] ||
+    fail "not one line per frame: $(cat "$work/all.out")"
+[ "$(grep -c 'frames/s' "$work/all.out")" -eq 3 ] || fail "not one line per scene"
+tail -n 1 "$work/all.out" | grep -q '^done: 21 of 21 frames on disk (21 rendered, 0 already there) in ' ||
+    fail "no summary last: $(tail -n 1 "$work/all.out")"
+[ "$(wc -l <"$work/all.out")" -eq 25 ] || fail "other lines: $(cat "$work/all.out")"
 cmp -s "$work/all/lit_shadow/0000.png" "$work/all/lit_shadow/0001.png" && fail "lit_shadow does not turn"
 cmp -s "$work/all/empty/0000.png" "$work/all/empty/0003.png" || fail "a scene without draws changed"
 # A whole turn in four frames: frame 2 is half a turn, the image of a scene mirrored.
@@ -87,6 +93,55 @@ for n in 1 2 3 7; do
 done
 echo "shards of 1, 2, 3, 7 give the unsharded files"
 
+# ---- --resume and --progress-file ----
+# A whole run resumed renders nothing; frames deleted, cut short or of another size are rendered
+# again (the damaged ones named on stderr), and the folder ends as the uninterrupted run's.
+cp -r "$work/all" "$work/res"
+"$render" "$work/tiny.json" -o "$work/res" --turntable $frames --resume --progress-file \
+    "$work/res.jsonl" >"$work/res.out" 2>"$work/res.err"
+tail -n 1 "$work/res.out" | grep -q '^done: 21 of 21 frames on disk (0 rendered, 21 already there)' ||
+    fail "--resume of a whole run: $(tail -n 1 "$work/res.out")"
+grep -q '^frame ' "$work/res.out" && fail "--resume of a whole run rendered $(grep '^frame ' "$work/res.out")"
+[ -s "$work/res.err" ] && fail "--resume of a whole run said $(cat "$work/res.err")"
+rm "$work/res/textured/0003.png"
+head -c 200 "$work/all/lit_shadow/0005.png" >"$work/res/lit_shadow/0005.png"
+cp "$work/all/textured/0001.png" "$work/res/lit_shadow/0002.png" # another scene's size
+printf 'not a png' >"$work/res/empty/0006.png"
+"$render" "$work/tiny.json" -o "$work/res" --turntable $frames --resume --progress-file \
+    "$work/res.jsonl" >"$work/res.out" 2>"$work/res.err"
+[ "$(grep -c '^frame ' "$work/res.out")" -eq 4 ] || fail "--resume rendered: $(cat "$work/res.out")"
+for f in textured/0003 lit_shadow/0005 lit_shadow/0002 empty/0006; do
+    grep -q "^frame $f.png " "$work/res.out" || fail "--resume did not render $f"
+done
+grep -q "lit_shadow/0005.png ends inside its chunk 'IDAT' (200 bytes): rendering it again" \
+    "$work/res.err" || fail "a frame cut short is not named: $(cat "$work/res.err")"
+grep -q "lit_shadow/0002.png is [0-9]*x[0-9]*, not [0-9]*x[0-9]*: rendering it again" \
+    "$work/res.err" || fail "a frame of another size is not named: $(cat "$work/res.err")"
+grep -q "empty/0006.png is too short for a PNG file" "$work/res.err" || fail "a bad file: $(cat "$work/res.err")"
+[ "$(wc -l <"$work/res.err")" -eq 3 ] || fail "--resume said more: $(cat "$work/res.err")"
+diff -r "$work/all" "$work/res" >/dev/null || fail "--resume did not end with the whole run's files"
+# The progress file: both runs appended, each from "start" to "end".
+python3 - "$work/res.jsonl" <<'PY' || fail "the progress file"
+import json, sys
+events = [json.loads(line) for line in open(sys.argv[1])]
+kinds = [e["event"] for e in events]
+assert kinds.count("start") == 2 and kinds.count("end") == 2, kinds
+assert kinds.count("skipped") == 21 + 17 and kinds.count("done") == 4, kinds
+assert kinds.count("redo") == 3, kinds
+assert events[-1] == {**events[-1], "status": 0, "items": 21, "rendered": 4, "skipped": 17, "not_done": 0}
+assert all(e["finished"] <= e["items"] for e in events if "finished" in e)
+PY
+# Still images: --resume skips the images on disk.
+cp -r "$work/plain" "$work/res_plain"
+rm "$work/res_plain/textured.png"
+"$render" "$work/tiny.json" -o "$work/res_plain" --png-level 0 --resume >"$work/res.out"
+[ "$(grep -c 'ms/frame' "$work/res.out")" -eq 1 ] && grep -q '^textured ' "$work/res.out" ||
+    fail "--resume of still images: $(cat "$work/res.out")"
+tail -n 1 "$work/res.out" | grep -q '^done: 3 of 3 images on disk (1 rendered, 2 already there)' ||
+    fail "--resume of still images: $(tail -n 1 "$work/res.out")"
+diff -r "$work/plain" "$work/res_plain" >/dev/null || fail "--resume of still images differs"
+echo "--resume renders only what is missing or damaged and ends byte-identical"
+
 # ---- bad input: exit 2, nothing written ----
 touch "$work/file"
 bad() { # DIR options...
@@ -117,6 +172,9 @@ bad "$work/bad" --turntable 3 --up 0
 bad "$work/bad" --up 0 --scene lit_shadow
 bad "$work/bad" --turntable 3 --frames 2
 bad "$work/bad" --turntable 3 --png-level 13
+bad "$work/bad" --turntable 3 --video gif --assemble --resume
+bad "$work/bad" --resume --no-write
+bad "$work/bad" --turntable 3 --progress-file "$work/file/p.jsonl"
 
 # ---- the progress bar ----
 if command -v script >/dev/null 2>&1; then
@@ -125,7 +183,8 @@ if command -v script >/dev/null 2>&1; then
         "$work/tty.log" >/dev/null
     grep -q "\] 21/21 frames .* fps .* left" "$work/tty.log" || fail "no progress bar on a terminal"
     grep -q "fps" "$work/tty.out" && fail "the progress bar went to stdout"
-    [ "$(wc -l <"$work/tty.out")" -eq 3 ] || fail "stdout is not one line per scene"
+    [ "$(grep -c frames/s "$work/tty.out")" -eq 3 ] || fail "stdout is not one line per scene"
+    [ "$(grep -c '^frame ' "$work/tty.out")" -eq 21 ] || fail "stdout is not one line per frame"
     script -qec "'$render' '$work/tiny.json' -o '$work/tty' --turntable $frames --quiet \
         >'$work/tty.out'" "$work/quiet.log" >/dev/null
     grep -q "left" "$work/quiet.log" && fail "--quiet drew a progress bar"

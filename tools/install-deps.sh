@@ -3,11 +3,13 @@
 # Runs apt-get as root, or through sudo otherwise.
 set -eu
 
+# slurm-wlm and munge: the one-node Slurm cluster the batch-rendering test starts (tests/slurm/).
 PACKAGES="gcc make cmake pkg-config libc6-dev libcmocka-dev libstb-dev libcjson-dev libdeflate-dev
     libvulkan-dev mesa-vulkan-drivers glslang-tools glslang-dev g++
     clang libclang-rt-14-dev valgrind gnuplot-nox python3 ffmpeg
     chromium chromium-driver python3-selenium python3-yaml
-    libsdl2-dev xvfb xauth xdotool assimp-testmodels geomview"
+    libsdl2-dev xvfb xauth xdotool assimp-testmodels geomview
+    slurm-wlm munge"
 # The AArch64 (NEON) build, tested under emulation by `make test-arm64`: Debian's cross compiler,
 # qemu-user, and the arm64 builds of the libraries the core's tests and the renderer link.
 # (On an arm64 machine the ordinary build and tests already are the NEON ones.)

@@ -21,6 +21,7 @@ typedef struct slot {
     size_t cap;
     int width, height;
     char *path;
+    double tag;
 } slot;
 
 struct frame_writer {
@@ -34,9 +35,29 @@ struct frame_writer {
     int *free_list, free_count;
     int *queue, queue_head, queue_count;
     int busy; /* frames being written right now */
+    /* Frames written and not yet collected: their paths (owned) and tags. */
+    char **done_paths;
+    double *done_tags;
+    size_t done_count, done_cap;
     bool stopping, failed;
     sc_msg error; /* the first failure */
 };
+
+/* Appends a written frame to the done list (under the lock); false when out of memory. */
+static bool record_done(frame_writer *w, char *path, double tag) {
+    if (w->done_count == w->done_cap) {
+        size_t cap = w->done_cap ? w->done_cap * 2 : 16;
+        char **paths = realloc(w->done_paths, cap * sizeof *paths);
+        if (paths) w->done_paths = paths;
+        double *tags = paths ? realloc(w->done_tags, cap * sizeof *tags) : NULL;
+        if (tags) w->done_tags = tags;
+        if (!paths || !tags) return false;
+        w->done_cap = cap;
+    }
+    w->done_paths[w->done_count] = path;
+    w->done_tags[w->done_count++] = tag;
+    return true;
+}
 
 static void *writer_main(void *arg) {
     frame_writer *w = arg;
@@ -72,6 +93,14 @@ static void *writer_main(void *arg) {
             w->error = err; /* handed over whole */
             err = (sc_msg){0};
         }
+        if (ok && !skip && !record_done(w, s->path, s->tag)) {
+            if (!w->failed) {
+                w->failed = true;
+                sc_msg_set(&w->error, "out of memory");
+            }
+        } else if (ok && !skip) {
+            s->path = NULL; /* the done list owns it now */
+        }
         free(s->path);
         s->path = NULL;
         w->free_list[w->free_count++] = i;
@@ -89,6 +118,9 @@ static void free_writer(frame_writer *w) {
         free(w->slots[i].pixels);
         free(w->slots[i].path);
     }
+    for (size_t i = 0; i < w->done_count; i++) free(w->done_paths[i]);
+    free(w->done_paths);
+    free(w->done_tags);
     free(w->slots);
     free(w->free_list);
     free(w->queue);
@@ -153,13 +185,15 @@ unsigned char *fw_acquire(frame_writer *w, size_t bytes) {
     return out;
 }
 
-bool fw_submit(frame_writer *w, unsigned char *pixels, int width, int height, const char *path) {
+bool fw_submit(frame_writer *w, unsigned char *pixels, int width, int height, const char *path,
+               double tag) {
     pthread_mutex_lock(&w->lock);
     int i = 0;
     while (w->slots[i].pixels != pixels) i++;
     slot *s = &w->slots[i];
     s->width = width;
     s->height = height;
+    s->tag = tag;
     s->path = strdup(path);
     if (!s->path && !w->failed) {
         w->failed = true;
@@ -185,6 +219,24 @@ bool fw_drain(frame_writer *w) {
     bool ok = !w->failed;
     pthread_mutex_unlock(&w->lock);
     return ok;
+}
+
+void fw_collect(frame_writer *w, void (*done)(void *ctx, const char *path, double tag), void *ctx) {
+    /* The lists are taken whole, so the calls run without the lock (writers go on). */
+    pthread_mutex_lock(&w->lock);
+    char **paths = w->done_paths;
+    double *tags = w->done_tags;
+    size_t n = w->done_count;
+    w->done_paths = NULL;
+    w->done_tags = NULL;
+    w->done_count = w->done_cap = 0;
+    pthread_mutex_unlock(&w->lock);
+    for (size_t i = 0; i < n; i++) {
+        done(ctx, paths[i], tags[i]);
+        free(paths[i]);
+    }
+    free(paths);
+    free(tags);
 }
 
 const char *fw_error(const frame_writer *w) {

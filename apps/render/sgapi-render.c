@@ -3,17 +3,19 @@
  *
  *   sgapi-render [--frames N] [--scene NAME]... [--threads T] [--simd SET] SCENE.json... -o DIR
  *   sgapi-render SCENE.json... -o DIR --turntable N [--up I] [--spin I] [--video gif,mp4]
- *                [--shard I/N] [--assemble]
+ *                [--shard I/N] [--resume] [--progress-file F] [--assemble]
  *
  * Writes DIR/<scene name>.png and prints, per scene, the wall-clock time of one frame: the time
  * from sgBeginRenderPass to the return of sgEndRenderPass, of the shadow's depth-only pass and the
  * scene's pass together when the scene has a shadow (loading and uploads are not counted), the
  * median over N frames. A turntable writes DIR/<scene name>/0000.png ... and prints, per scene,
- * its frames per second from its first frame to its last written file.
+ * its frames per second from its first frame to its last written file; each frame, once on
+ * disk, gets a line "frame <scene>/<frame>.png <ms> ms", and the run a summary line last.
  *
- * Exit status: 0 done; 1 a failure while loading, rendering or writing; 2 bad arguments or a setup
- * that cannot work (an unwritable DIR, no ffmpeg for --video, a --shaders library that cannot be
- * used, a shader draw its shader refuses), found before any rendering.
+ * Exit status: 0 done, every item on disk; 1 not all done: a failure while loading, rendering or
+ * writing (named on stderr; what was written is whole, --resume renders the rest); 2 bad arguments
+ * or a setup that cannot work (an unwritable DIR, no ffmpeg for --video, a --shaders library that
+ * cannot be used, a shader draw its shader refuses), found before any rendering.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -31,6 +33,8 @@
 #include <sgapi/sgapi.h>
 
 #include "cli.h"
+#include "batch_log.h"
+#include "frame_check.h"
 #include "frame_writer.h"
 #include "image_diff.h"
 #include "image_io.h"
@@ -69,13 +73,16 @@ typedef struct options {
     int spin;                     /* --spin I: the draw that spins; -1: the camera orbits */
     int up;                       /* --up I: the axis is draw I's +y; -1: view-space +y */
     int shard_index, shard_count; /* --shard I/N: every item k with k mod N = I; 0/1: all */
-    unsigned video;               /* --video: VIDEO_GIF | VIDEO_MP4 */
-    int fps;                      /* --fps: of the videos */
-    int video_width;              /* --video-width: of the videos; 0: the frames' */
-    bool assemble;                /* --assemble: only make the videos of frames on disk */
-    bool quiet;                   /* --quiet: no progress bar */
-    bool strict;                  /* --strict: an unknown key in a scene file is an error */
-    bool no_write;                /* --no-write: render and read back, write nothing */
+    bool shard_given;
+    bool resume;               /* --resume: items whole on disk are not rendered again */
+    const char *progress_path; /* --progress-file: events as JSON lines */
+    unsigned video;            /* --video: VIDEO_GIF | VIDEO_MP4 */
+    int fps;                   /* --fps: of the videos */
+    int video_width;           /* --video-width: of the videos; 0: the frames' */
+    bool assemble;             /* --assemble: only make the videos of frames on disk */
+    bool quiet;                /* --quiet: no progress bar */
+    bool strict;               /* --strict: an unknown key in a scene file is an error */
+    bool no_write;             /* --no-write: render and read back, write nothing */
     int writers;   /* --writers: threads writing turntable frames; 0: the rendering thread; -1:
                       default */
     int png_level; /* --png-level; -1: the run's default */
@@ -139,6 +146,14 @@ static void usage(FILE *f) {
                "                  every frame of every scene, counted on across scenes) with\n"
                "                  k mod N = I, 0 <= I < N: N such runs together write exactly\n"
                "                  the files of one run without --shard, byte for byte\n"
+               "  --resume        skip the images and frames already whole on disk (a PNG of\n"
+               "                  the scene's size, every chunk whole), render the rest: a\n"
+               "                  run stopped half-way (a task killed or requeued) ends with\n"
+               "                  the files of an uninterrupted run; a file of another size or\n"
+               "                  cut short is rendered again and named on stderr\n"
+               "  --progress-file F  append the run's events to F as JSON lines (start, each\n"
+               "                  item done, skipped or redone, end with the exit status), each\n"
+               "                  flushed at once, for job monitors\n"
                "Turntables:\n"
                "  --turntable N   render N frames of each scene to DIR/<scene name>/0000.png ...\n"
                "                  (more digits past 10000 frames): the camera orbits the centre\n"
@@ -162,8 +177,14 @@ static void usage(FILE *f) {
                "                  render (default: one per core, at least 2; 0: the rendering\n"
                "                  thread writes each frame before it renders the next)\n"
                "  -h, --help      show this help\n"
-               "Exit status: 0 done, 1 failed while loading, rendering or writing, 2 bad\n"
-               "arguments or setup (found before anything is rendered).\n");
+               "Output: a line per still image (its time per frame) or per frame written\n"
+               "(\"frame <scene>/0007.png 12.34 ms\", its rendering time) as each is on disk;\n"
+               "with --turntable, --shard, --resume or --progress-file a summary line last\n"
+               "(\"done: ...\" or \"failed: ...\", with what was rendered and skipped).\n"
+               "Exit status: 0 all done (every item of the run, or of its shard, on disk); 1 some\n"
+               "failed: an item could not be loaded, rendered or written (named on stderr; the\n"
+               "files written are whole, run again with --resume for the rest); 2 bad arguments\n"
+               "or setup (found before anything is rendered).\n");
 }
 
 /* "I/N" with 0 <= I < N. */
@@ -200,6 +221,10 @@ static int check_combination(const options *o) {
         problem = "--video needs every frame, and a shard has some: render the shards without "
                   "--video, then run the same command once with --video LIST --assemble "
                   "(docs/scale-out.md)";
+    else if (o->resume && (o->assemble || o->no_write || o->compare_dir))
+        problem = o->assemble   ? "--assemble renders nothing: --resume has nothing to skip"
+                  : o->no_write ? "--resume skips what is on disk; --no-write writes nothing"
+                                : "--compare needs every image rendered: drop --resume";
     else if (o->assemble && o->no_write)
         problem = "--assemble writes videos only; --no-write has nothing to add";
     else if (o->no_write && (o->video || o->compare_dir))
@@ -250,7 +275,7 @@ static int parse_args(int argc, char **argv, options *o) {
             !strcmp(a, "--video") || !strcmp(a, "--fps") || !strcmp(a, "--video-width") ||
             !strcmp(a, "--png-level") || !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
             !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size") ||
-            !strcmp(a, "--shaders");
+            !strcmp(a, "--shaders") || !strcmp(a, "--progress-file");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -300,6 +325,7 @@ static int parse_args(int argc, char **argv, options *o) {
                 return 2;
             }
         } else if (!strcmp(a, "--shard")) {
+            o->shard_given = true;
             if (!parse_shard(value, o)) {
                 fprintf(stderr,
                         "sgapi-render: --shard needs I/N, whole numbers with 0 <= I < N, not "
@@ -353,6 +379,10 @@ static int parse_args(int argc, char **argv, options *o) {
             o->report_dir = value;
         } else if (!strcmp(a, "--update-golden")) {
             o->update_golden = true;
+        } else if (!strcmp(a, "--resume")) {
+            o->resume = true;
+        } else if (!strcmp(a, "--progress-file")) {
+            o->progress_path = value;
         } else if (!strcmp(a, "--assemble")) {
             o->assemble = true;
         } else if (!strcmp(a, "--quiet")) {
@@ -495,6 +525,10 @@ typedef struct run {
     rg_thresholds thresholds;  /* --compare: the targets of every scene */
     rg_scene *results;         /* --compare: one record per compared scene */
     size_t result_count;
+    batch_log log; /* item lines, summary, --progress-file */
+    bool log_open;
+    size_t out_dir_len; /* items are named relative to the output folder */
+    fc_buffer check;    /* --resume, --assemble: files read back */
 } run;
 
 /* Compares a rendered scene (written to `png`, rendered in `ms` per frame) with its golden image:
@@ -635,13 +669,62 @@ static char *frame_path(const options *o, const run *rn, const sc_scene *s, int 
     return p;
 }
 
+/* A frame on disk: its line and progress event (fw_collect's callback). */
+static void frame_done(void *ctx, const char *path, double ms) {
+    run *rn = ctx;
+    pg_hide(&rn->bar);
+    bl_done(&rn->log, path + rn->out_dir_len + 1, ms, true);
+}
+
+/* --resume: whether the image at path is already whole (then it is counted as skipped); one that
+ * is there but not whole is named and rendered again. */
+static bool already_done(run *rn, const options *o, const char *path, int width, int height) {
+    if (!o->resume) return false;
+    sc_msg why = {0};
+    fc_status st = fc_check(path, width, height, &rn->check, &why);
+    if (st == FC_WHOLE)
+        bl_skipped(&rn->log, path + rn->out_dir_len + 1);
+    else if (st == FC_BAD)
+        bl_redo(&rn->log, PROG, o->out_dir, path + rn->out_dir_len + 1, sc_msg_text(&why));
+    sc_msg_free(&why);
+    return st == FC_WHOLE;
+}
+
 /* Renders this shard's frames of a scene's turntable (the first frame is item `first` of the
- * run), hands each to the frame writer, and prints the scene's frames per second: from the start
- * of its first frame until its last file is written. */
+ * run) but those already whole on disk with --resume, hands each to the frame writer, and prints
+ * the scene's frames per second: from the start of its first frame until its last file is
+ * written. */
 static bool render_turntable(run *rn, const options *o, const sc_file *f, const sc_scene *s,
                              const ss_uploads *u, long long first) {
-    const int count = shard_frames(o, first);
-    if (count == 0) return true;
+    if (shard_frames(o, first) == 0) return true;
+    /* Which frames to render: checked first, so a scene whose frames are all there costs no
+     * pipelines or targets. */
+    bool *todo = calloc((size_t)o->turntable, sizeof *todo);
+    char *check_path = frame_path(o, rn, s, o->turntable - 1);
+    if (!todo || !check_path) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        free(todo);
+        free(check_path);
+        return false;
+    }
+    int count = 0;
+    for (int k = 0; k < o->turntable; k++) {
+        if (!in_shard(o, first + k)) continue;
+        snprintf(check_path + strlen(check_path) - (size_t)rn->digits - 4, (size_t)rn->digits + 5,
+                 "%0*d.png", rn->digits, k);
+        todo[k] = !already_done(rn, o, check_path, s->width, s->height);
+        count += todo[k];
+    }
+    free(check_path);
+    pg_step(&rn->bar, shard_frames(o, first) - count);
+    if (count == 0) {
+        pg_hide(&rn->bar);
+        printf("%-32s %d frames already on disk, none to render\n", s->name,
+               shard_frames(o, first));
+        fflush(stdout);
+        free(todo);
+        return true;
+    }
     sgDevice *dev = rn->dev;
     bool ok = false;
     sgImage2D color = {0}, depth = {0};
@@ -672,7 +755,8 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
     const size_t bytes = (size_t)s->width * (size_t)s->height * 4;
     double t0 = ss_now_ms();
     for (int k = 0; k < o->turntable; k++) {
-        if (!in_shard(o, first + k)) continue;
+        if (!todo[k]) continue;
+        double frame_t0 = ss_now_ms();
         sc_scene turned;
         sc_turntable_at(&table, s, 360.0 * k / o->turntable, draws, &turned);
         /* The casters moved against the light's fit (a spinning draw), or the fit's box is no
@@ -690,10 +774,11 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
             sg_fail(dev, r, "scene '%s', frame %d: sgReadImage2D", s->name, k);
             goto done;
         }
+        double ms = ss_now_ms() - frame_t0;
         snprintf(path + strlen(path) - (size_t)rn->digits - 4, (size_t)rn->digits + 5, "%0*d.png",
                  rn->digits, k);
         sc_msg err = {0};
-        bool written = rn->frames ? fw_submit(rn->frames, pixels, s->width, s->height, path)
+        bool written = rn->frames ? fw_submit(rn->frames, pixels, s->width, s->height, path, ms)
                        : rn->png
                            ? sc_png_writer_write(rn->png, path, s->width, s->height, pixels, &err)
                            : true;
@@ -703,6 +788,12 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
             sc_msg_free(&err);
             goto done;
         }
+        if (rn->frames)
+            fw_collect(rn->frames, frame_done, rn);
+        else if (rn->png)
+            frame_done(rn, path, ms);
+        else
+            bl_done(&rn->log, path + rn->out_dir_len + 1, ms, false); /* --no-write */
         pg_step(&rn->bar, 1);
     }
     if (rn->frames && !fw_drain(rn->frames)) {
@@ -710,6 +801,7 @@ static bool render_turntable(run *rn, const options *o, const sc_file *f, const 
         fprintf(stderr, "sgapi-render: %s\n", fw_error(rn->frames));
         goto done;
     }
+    if (rn->frames) fw_collect(rn->frames, frame_done, rn);
     double seconds = (ss_now_ms() - t0) / 1e3;
     pg_hide(&rn->bar);
     if (count == o->turntable)
@@ -728,27 +820,46 @@ done:
     free(draws);
     free(scratch);
     free(path);
+    free(todo);
     return ok;
 }
 
-/* Makes a scene's videos from its frames on disk; with `check`, first that every frame is there.
- */
-static bool make_videos(const options *o, const run *rn, const sc_scene *s, bool check) {
-    char *dir = frame_path(o, rn, s, -1), *frame = frame_path(o, rn, s, o->turntable - 1);
-    char *out = NULL;
-    bool ok = dir && frame;
-    if (!ok) fprintf(stderr, "sgapi-render: out of memory\n");
-    for (int k = 0; ok && check && k < o->turntable; k++) {
-        struct stat st;
-        snprintf(frame + strlen(dir) + 1, (size_t)rn->digits + 5, "%0*d.png", rn->digits, k);
-        if (stat(frame, &st) != 0 || !S_ISREG(st.st_mode)) {
-            fprintf(stderr,
-                    "sgapi-render: --assemble: %s is missing: every shard must have finished "
-                    "(%d frames of '%s')\n",
-                    frame, o->turntable, s->name);
-            ok = false;
-        }
+/* --assemble: how many of a scene's frames are missing or not whole, naming the first ten of them
+ * on stderr; -1 when out of memory. */
+static int missing_frames(const options *o, run *rn, const sc_scene *s) {
+    char *frame = frame_path(o, rn, s, o->turntable - 1);
+    if (!frame) {
+        fprintf(stderr, "sgapi-render: out of memory\n");
+        return -1;
     }
+    int bad = 0;
+    for (int k = 0; k < o->turntable; k++) {
+        snprintf(frame + strlen(frame) - (size_t)rn->digits - 4, (size_t)rn->digits + 5, "%0*d.png",
+                 rn->digits, k);
+        sc_msg why = {0};
+        fc_status st = fc_check(frame, s->width, s->height, &rn->check, &why);
+        if (st != FC_WHOLE && ++bad <= 10)
+            fprintf(stderr, "sgapi-render: --assemble: %s %s\n", frame,
+                    st == FC_MISSING ? "is missing" : sc_msg_text(&why));
+        sc_msg_free(&why);
+    }
+    if (bad > 10) fprintf(stderr, "sgapi-render: --assemble: ... and %d more\n", bad - 10);
+    if (bad)
+        fprintf(stderr,
+                "sgapi-render: --assemble: %d of the %d frames of '%s' missing or not whole: "
+                "every shard must have finished (run the shards that did not again, with "
+                "--resume)\n",
+                bad, o->turntable, s->name);
+    free(frame);
+    return bad;
+}
+
+/* Makes a scene's videos from its frames on disk. */
+static bool make_videos(const options *o, const run *rn, const sc_scene *s) {
+    char *dir = frame_path(o, rn, s, -1);
+    char *out = NULL;
+    bool ok = dir != NULL;
+    if (!ok) fprintf(stderr, "sgapi-render: out of memory\n");
     for (unsigned fmt = VIDEO_GIF; ok && fmt <= VIDEO_MP4; fmt <<= 1) {
         if (!(o->video & fmt)) continue;
         free(out);
@@ -763,7 +874,6 @@ static bool make_videos(const options *o, const run *rn, const sc_scene *s, bool
     }
     fflush(stdout);
     free(dir);
-    free(frame);
     free(out);
     return ok;
 }
@@ -1023,6 +1133,8 @@ int main(int argc, char **argv) {
             }
         }
     }
+    /* The progress file before the output folder, so that nothing is made when it cannot be. */
+    if (!o.assemble && !(rn.log_open = bl_open(&rn.log, o.progress_path))) goto done;
     if (!make_dirs(o.out_dir) || (!o.no_write && !writable_dir(o.out_dir))) goto done;
     if (o.compare_dir && !regression_setup(&o, &rn)) goto done;
     for (int i = 0; i < o.file_count; i++) {
@@ -1050,11 +1162,24 @@ int main(int argc, char **argv) {
     }
 
     if (o.assemble) {
-        bool ok = true;
+        /* Every scene's frames checked before any video is made: a run with frames missing
+         * names them all and makes nothing. */
+        long long bad = 0;
+        for (int i = 0; bad >= 0 && i < o.file_count; i++)
+            for (size_t j = 0; j < files[i].scene_count; j++)
+                if (selected(&o, files[i].scenes[j].name)) {
+                    int n = missing_frames(&o, &rn, &files[i].scenes[j]);
+                    if (n < 0) {
+                        bad = -1;
+                        break;
+                    }
+                    bad += n;
+                }
+        bool ok = bad == 0;
         for (int i = 0; ok && i < o.file_count; i++)
             for (size_t j = 0; ok && j < files[i].scene_count; j++)
                 if (selected(&o, files[i].scenes[j].name))
-                    ok = make_videos(&o, &rn, &files[i].scenes[j], true);
+                    ok = make_videos(&o, &rn, &files[i].scenes[j]);
         status = ok ? 0 : 1;
         goto done;
     }
@@ -1099,6 +1224,9 @@ int main(int argc, char **argv) {
         }
     }
     pg_init(&rn.bar, !o.quiet, (long)total);
+    rn.out_dir_len = strlen(o.out_dir);
+    bl_start(&rn.log, o.turntable > 0, o.turntable || o.shard_given || o.resume || o.progress_path,
+             o.turntable ? total : total / o.frames, o.shard_index, o.shard_count, o.resume);
 
     items = 0;
     for (int i = 0; i < o.file_count; i++) {
@@ -1110,10 +1238,19 @@ int main(int argc, char **argv) {
             if (!selected(&o, s->name)) continue;
             if (o.turntable) {
                 ok = render_turntable(&rn, &o, f, s, &u, items);
-                if (ok && o.video) ok = make_videos(&o, &rn, s, false);
+                if (ok && o.video) ok = make_videos(&o, &rn, s);
                 items += o.turntable;
             } else {
-                if (in_shard(&o, items)) ok = render_scene(&rn, &o, f, s, &u);
+                if (in_shard(&o, items)) {
+                    char *png = sc_format("%s/%s.png", o.out_dir, s->name);
+                    ok = png != NULL;
+                    if (!ok) fprintf(stderr, "sgapi-render: out of memory\n");
+                    if (ok && !already_done(&rn, &o, png, s->width, s->height)) {
+                        ok = render_scene(&rn, &o, f, s, &u);
+                        if (ok) bl_done(&rn.log, png + rn.out_dir_len + 1, -1.0, false);
+                    }
+                    free(png);
+                }
                 items++;
             }
         }
@@ -1123,6 +1260,13 @@ int main(int argc, char **argv) {
     status = o.compare_dir ? regression_finish(&o, &rn, argc, argv) : 0;
 done:
     pg_hide(&rn.bar);
+    if (rn.frames) {
+        /* After a failure: what was written before it is on disk, and counted. */
+        fw_drain(rn.frames);
+        fw_collect(rn.frames, frame_done, &rn);
+    }
+    if (rn.log_open) bl_close(&rn.log, status);
+    fc_buffer_free(&rn.check);
     fw_stop(rn.frames);
     sc_png_writer_destroy(rn.png);
     sgDestroyDevice(rn.dev); /* also destroys the cached pipelines */
