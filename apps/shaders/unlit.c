@@ -39,13 +39,16 @@ SGS_STAGE static void unlit_vertex(sgVertexBatch *b, const void *uniforms) {
 
 SGS_STAGE static void unlit_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
+    b->discard = 0;
+    if (u[0] == 0.0f) { /* the vertex colour alone: no texture to sample */
+        memcpy(b->color, b->varying, sizeof b->color);
+        return;
+    }
     float texel[4][SG_SHADER_LANES];
     sgSample(b, 0, b->varying[4], b->varying[5], texel);
-    const float on = u[0] != 0.0f ? 1.0f : 0.0f, off = 1.0f - on;
     for (int c = 0; c < 4; c++)
         SGS_SIMD for (int i = 0; i < SG_SHADER_LANES; i++) b->color[c][i] =
-            b->varying[c][i] * (texel[c][i] * on + off);
-    b->discard = 0;
+            b->varying[c][i] * texel[c][i];
 }
 
 /* The twin: the same product (the reference gives world_view and proj so that proj * world_view *
@@ -73,8 +76,7 @@ static const char unlit_glsl_fragment[] =
     "layout(location = 1) in vec2 v_st;\n"
     "layout(location = 0) out vec4 o_color;\n"
     "void main() {\n"
-    "    float on = u[0] != 0.0 ? 1.0 : 0.0, off = 1.0 - on;\n"
-    "    o_color = v_color * (texture(sg_textures[0], v_st) * on + off);\n"
+    "    o_color = u[0] != 0.0 ? v_color * texture(sg_textures[0], v_st) : v_color;\n"
     "}\n";
 
 const sgShaderInfo sg_shader_unlit = {

@@ -64,10 +64,10 @@ LANE_CLONES static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, i
         const sg_vf v = s->flat >> k & 1 ? zero + a : (a + ax * dx + ay * dy) * w;
         memcpy(b.varying[k], &v, sizeof v);
     }
-    if (s->varying_count < SG_MAX_VARYINGS)
-        memset(b.varying[s->varying_count], 0,
-               (size_t)(SG_MAX_VARYINGS - s->varying_count) * sizeof b.varying[0]);
-    memset(b.color, 0, sizeof b.color);
+    /* Vector stores, not a call of memset: a tile is a few hundred cycles in all. */
+    for (int k = s->varying_count; k < SG_MAX_VARYINGS; k++)
+        memcpy(b.varying[k], &zero, sizeof zero);
+    for (int ch = 0; ch < 4; ch++) memcpy(b.color[ch], &zero, sizeof zero);
     s->fragment(&b, s->uniforms);
     sg_vi p = {0};
     for (int ch = 0; ch < 4; ch++) {
