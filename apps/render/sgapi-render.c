@@ -83,6 +83,7 @@ typedef struct options {
     bool quiet;                /* --quiet: no progress bar */
     bool strict;               /* --strict: an unknown key in a scene file is an error */
     bool no_write;             /* --no-write: render and read back, write nothing */
+    int ground_truth;          /* --ground-truth N: N x N samples a pixel, box-filtered; 0: off */
     int writers;   /* --writers: threads writing turntable frames; 0: the rendering thread; -1:
                       default */
     int png_level; /* --png-level; -1: the run's default */
@@ -136,6 +137,11 @@ static void usage(FILE *f) {
                "                  are, but repeated rows and runs of one colour) to 12\n"
                "                  (smallest); default 6 for still images, 0 for turntable\n"
                "                  frames\n"
+               "  --ground-truth N\n"
+               "                  the ground truth: render each scene at N times its width and\n"
+               "                  height (8 is the usual N; one sample, bilinear textures, no\n"
+               "                  mipmaps) and box-filter it down, N x N samples a pixel, into\n"
+               "                  DIR/<scene name>.png like a plain render\n"
                "  --no-write      render and read each image back, but write no file (to time\n"
                "                  the rendering alone against a run that writes)\n"
                "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
@@ -210,6 +216,9 @@ static int check_combination(const options *o) {
                   : o->up >= 0 ? "--up needs --turntable"
                   : o->video   ? "--video needs --turntable: a video of which frames?"
                                : "--assemble needs --turntable N and --video";
+    else if (o->ground_truth && (o->turntable || o->depth_only))
+        problem = o->turntable ? "--ground-truth renders still images, not turntables"
+                               : "--ground-truth renders colour: drop --depth-only";
     else if (o->turntable && (o->frames_given || o->compare_dir || o->depth_only))
         problem = o->frames_given
                       ? "--frames times still images; a turntable renders each frame once"
@@ -275,7 +284,8 @@ static int parse_args(int argc, char **argv, options *o) {
             !strcmp(a, "--video") || !strcmp(a, "--fps") || !strcmp(a, "--video-width") ||
             !strcmp(a, "--png-level") || !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
             !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size") ||
-            !strcmp(a, "--shaders") || !strcmp(a, "--progress-file");
+            !strcmp(a, "--shaders") || !strcmp(a, "--progress-file") ||
+            !strcmp(a, "--ground-truth");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -429,6 +439,14 @@ static int parse_args(int argc, char **argv, options *o) {
             }
         } else if (!strcmp(a, "--depth-only")) {
             o->depth_only = true;
+        } else if (!strcmp(a, "--ground-truth")) {
+            if (!sc_parse_int(value, 1, 64, &o->ground_truth)) {
+                fprintf(stderr,
+                        "sgapi-render: --ground-truth needs a whole number from 1 to 64 (samples "
+                        "a side of each pixel), not '%s'\n",
+                        value);
+                return 2;
+            }
         } else if (!strcmp(a, "--scene")) {
             o->scenes[o->scene_count++] = value;
         } else if (!strcmp(a, "--compare")) {
@@ -570,6 +588,48 @@ static bool compare_scene(run *rn, const options *o, const sc_file *f, const sc_
     return ok;
 }
 
+/* The scenes as the ground truth renders them: n times as wide and high, textures bilinear
+ * (sampled exactly where a pixel's samples fall, nothing averaged beforehand). False (reported):
+ * a scene would pass the largest image side. */
+static bool ground_truth_scenes(sc_file *files, int count, int n) {
+    for (int i = 0; i < count; i++)
+        for (size_t k = 0; k < files[i].scene_count; k++) {
+            sc_scene *s = &files[i].scenes[k];
+            if ((int64_t)s->width * n > SC_MAX_IMAGE_SIZE ||
+                (int64_t)s->height * n > SC_MAX_IMAGE_SIZE) {
+                fprintf(stderr,
+                        "sgapi-render: %s: scene '%s' is %d x %d: --ground-truth %d would render "
+                        "it at %lld x %lld, over the largest image side %d\n",
+                        files[i].path, s->name, s->width, s->height, n, (long long)s->width * n,
+                        (long long)s->height * n, SC_MAX_IMAGE_SIZE);
+                return false;
+            }
+            s->width *= n;
+            s->height *= n;
+            for (size_t d = 0; d < s->draw_count; d++) s->draws[d].filter = SC_FILTER_BILINEAR;
+        }
+    return true;
+}
+
+/* Averages each n x n block of the RGBA8 image of `width` pixels a row into one pixel of a w x h
+ * image written over its start, each channel rounded to nearest: the ground truth's filter. */
+static void box_filter(unsigned char *pixels, int width, int n, int w, int h) {
+    const uint32_t count = (uint32_t)n * (uint32_t)n;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint32_t sum[4] = {0, 0, 0, 0};
+            for (int j = 0; j < n; j++) {
+                const unsigned char *row =
+                    pixels + ((size_t)(y * n + j) * (size_t)width + (size_t)x * (size_t)n) * 4;
+                for (int i = 0; i < n * 4; i++) sum[i & 3] += row[i];
+            }
+            /* Written behind every block still to be read: row y of the output ends before
+             * input row y n + 1 starts. */
+            unsigned char *out = pixels + ((size_t)y * (size_t)w + (size_t)x) * 4;
+            for (int k = 0; k < 4; k++) out[k] = (unsigned char)((sum[k] + count / 2) / count);
+        }
+}
+
 /* Renders one scene frames times, writes its PNG and prints its median time per frame. */
 static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_scene *s,
                          const ss_uploads *u) {
@@ -618,6 +678,14 @@ static bool render_scene(run *rn, const options *o, const sc_file *f, const sc_s
     if (r != SG_OK) {
         sg_fail(dev, r, "scene '%s': sgReadImage2D", s->name);
         goto done;
+    }
+    /* The ground truth: the N x N samples of each pixel averaged, the image N times smaller. */
+    sc_scene small = *s;
+    if (o->ground_truth > 1) {
+        small.width = s->width / o->ground_truth;
+        small.height = s->height / o->ground_truth;
+        box_filter(pixels, s->width, o->ground_truth, small.width, small.height);
+        s = &small;
     }
     sc_msg err = {0};
     if (!o->no_write && !sc_png_writer_write(rn->png, png, s->width, s->height, pixels, &err)) {
@@ -1075,6 +1143,7 @@ int main(int argc, char **argv) {
         goto done;
     }
     rn.shaders = shaders;
+    if (o.ground_truth > 1 && !ground_truth_scenes(files, loaded, o.ground_truth)) goto done;
     status = 1;
 
     /* Each name is one output file: two selected scenes of one name would overwrite each other. */
