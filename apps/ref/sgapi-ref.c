@@ -139,7 +139,8 @@ typedef struct texture {
 
 typedef struct pipeline_entry {
     uint32_t key;
-    int twin; /* index into ref.twins, or -1: the fixed stages */
+    int twin;    /* index into ref.twins, or -1: the fixed stages */
+    int samples; /* of the pass it draws in */
     VkPipeline pipeline;
 } pipeline_entry;
 
@@ -175,6 +176,10 @@ typedef struct ref {
     VkDeviceSize draw_stride;       /* bytes between draws in a scene's uniform buffer */
     VkSampler samplers[4];          /* [filter bilinear?][wrap clamp?] */
     VkRenderPass render_pass;
+    /* The same with 4 samples a pixel: multisampled colour and depth, the colour resolved into
+     * a one-sample image at the pass's end. */
+    VkRenderPass render_pass_ms;
+    int samples;             /* the scene being rendered: 1 or 4 */
     VkRenderPass depth_pass; /* the shadow map's: depth only, left ready for sampling */
     pipeline_entry pipelines[MAX_PIPELINES];
     int pipeline_count;
@@ -476,6 +481,22 @@ static bool create_shaders_and_layouts(ref *r) {
                                   .pSubpasses = &sub};
     VK_CHECK(r, vkCreateRenderPass(r->device, &rpi, NULL, &r->render_pass));
 
+    /* 4 samples a pixel: the multisampled attachments are not stored; the colour is resolved
+     * (the average of the samples) into attachment 2, which is read back. */
+    VkAttachmentDescription att_ms[3] = {att[0], att[1], att[0]};
+    att_ms[0].samples = att_ms[1].samples = VK_SAMPLE_COUNT_4_BIT;
+    att_ms[0].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att_ms[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    att_ms[2].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    VkAttachmentReference rref = {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub_ms = sub;
+    sub_ms.pResolveAttachments = &rref;
+    VkRenderPassCreateInfo rpi_ms = rpi;
+    rpi_ms.attachmentCount = 3;
+    rpi_ms.pAttachments = att_ms;
+    rpi_ms.pSubpasses = &sub_ms;
+    VK_CHECK(r, vkCreateRenderPass(r->device, &rpi_ms, NULL, &r->render_pass_ms));
+
     /* The shadow map's pass: cleared to 1.0, stored, and left in the layout the scene's pass
      * samples it in, its depth writes made visible to those reads. */
     VkAttachmentDescription map = att[1];
@@ -677,8 +698,10 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
     if (kind == DRAW_CASTER) textured = false;
     if (kind == DRAW_CASTER) twin = -1;
     uint32_t key = pipeline_key(d, textured, kind, lines);
+    const int samples = kind == DRAW_CASTER ? 1 : r->samples; /* the shadow map has one */
     for (int i = 0; i < r->pipeline_count; i++)
-        if (r->pipelines[i].key == key && r->pipelines[i].twin == twin) {
+        if (r->pipelines[i].key == key && r->pipelines[i].twin == twin &&
+            r->pipelines[i].samples == samples) {
             *out = r->pipelines[i].pipeline;
             return true;
         }
@@ -788,7 +811,7 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
         .lineWidth = 1.0f};
     VkPipelineMultisampleStateCreateInfo ms = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
-        .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
+        .rasterizationSamples = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT};
     /* Casters: the nearest depth wins, whatever the draw's own depth state. */
     VkPipelineDepthStencilStateCreateInfo ds = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
@@ -829,8 +852,11 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
         .pColorBlendState = &cb,
         .pDynamicState = &dy,
         .layout = twin >= 0 ? r->layout_twin : layout_of(r, textured, kind),
-        .renderPass = kind == DRAW_CASTER ? r->depth_pass : r->render_pass};
+        .renderPass = kind == DRAW_CASTER ? r->depth_pass
+                      : samples == 4          ? r->render_pass_ms
+                                              : r->render_pass};
     VK_CHECK(r, vkCreateGraphicsPipelines(r->device, VK_NULL_HANDLE, 1, &gpi, NULL, out));
+    r->pipelines[r->pipeline_count].samples = samples;
     r->pipelines[r->pipeline_count].key = key;
     r->pipelines[r->pipeline_count].twin = twin;
     r->pipelines[r->pipeline_count].pipeline = *out;
@@ -864,15 +890,16 @@ static void destroy_buffer(ref *r, buffer *b) {
     memset(b, 0, sizeof *b);
 }
 
-static bool create_image(ref *r, int w, int h, VkFormat format, VkImageUsageFlags usage,
-                         VkImageAspectFlags aspect, texture *t) {
+/* An image of `samples` (1 or 4) samples a pixel. */
+static bool create_image_ms(ref *r, int w, int h, int samples, VkFormat format,
+                            VkImageUsageFlags usage, VkImageAspectFlags aspect, texture *t) {
     VkImageCreateInfo ici = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
                              .imageType = VK_IMAGE_TYPE_2D,
                              .format = format,
                              .extent = {(uint32_t)w, (uint32_t)h, 1},
                              .mipLevels = 1,
                              .arrayLayers = 1,
-                             .samples = VK_SAMPLE_COUNT_1_BIT,
+                             .samples = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                              .tiling = VK_IMAGE_TILING_OPTIMAL,
                              .usage = usage,
                              .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
@@ -893,6 +920,11 @@ static bool create_image(ref *r, int w, int h, VkFormat format, VkImageUsageFlag
                                  .subresourceRange = {aspect, 0, 1, 0, 1}};
     VK_CHECK(r, vkCreateImageView(r->device, &vci, NULL, &t->view));
     return true;
+}
+
+static bool create_image(ref *r, int w, int h, VkFormat format, VkImageUsageFlags usage,
+                         VkImageAspectFlags aspect, texture *t) {
+    return create_image_ms(r, w, h, 1, format, usage, aspect, t);
 }
 
 static void destroy_image(ref *r, texture *t) {
@@ -1220,15 +1252,16 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
                          const buffer *sorted, const shadow_pass *sh) {
     if (!begin_commands(r)) return false;
     if (s->has_shadow && !record_shadow(r, f, s, u, sh, color_set)) return false;
-    VkClearValue clear[2];
+    VkClearValue clear[3];
     memcpy(clear[0].color.float32, s->clear_color, sizeof s->clear_color);
     clear[1].depthStencil.depth = 1.0f;
     clear[1].depthStencil.stencil = 0;
+    clear[2] = clear[0]; /* the resolve target's, unused */
     VkRenderPassBeginInfo rbi = {.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
-                                 .renderPass = r->render_pass,
+                                 .renderPass = r->samples == 4 ? r->render_pass_ms : r->render_pass,
                                  .framebuffer = fb,
                                  .renderArea = {{0, 0}, {(uint32_t)s->width, (uint32_t)s->height}},
-                                 .clearValueCount = 2,
+                                 .clearValueCount = r->samples == 4 ? 3 : 2,
                                  .pClearValues = clear};
     vkCmdBeginRenderPass(r->cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
     VkViewport vp = {0, 0, (float)s->width, (float)s->height, 0.0f, 1.0f};
@@ -1449,8 +1482,10 @@ static bool prepare_twin_sets(ref *r, const sc_scene *s, const uploads *u, VkDes
 static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          const char *out_dir, int frames) {
     shadow_pass sh = {0};
-    texture color = {0}, depth = {0};
+    texture color = {0}, depth = {0}, color_ms = {0};
     buffer readback = {0}, blocks = {0}, uniforms = {0};
+    r->samples = s->samples == 4 ? 4 : 1;
+    const bool ms = r->samples == 4;
     VkFramebuffer fb = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet color_set = VK_NULL_HANDLE;
@@ -1464,16 +1499,19 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
          create_image(r, s->width, s->height, VK_FORMAT_R8G8B8A8_UNORM,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                       VK_IMAGE_ASPECT_COLOR_BIT, &color) &&
-         create_image(r, s->width, s->height, VK_FORMAT_D32_SFLOAT,
-                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
-                      &depth) &&
+         (!ms || create_image_ms(r, s->width, s->height, 4, VK_FORMAT_R8G8B8A8_UNORM,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                                 &color_ms)) &&
+         create_image_ms(r, s->width, s->height, r->samples, VK_FORMAT_D32_SFLOAT,
+                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                         &depth) &&
          create_buffer(r, (VkDeviceSize)s->width * s->height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        &readback);
     if (ok) {
-        VkImageView views[2] = {color.view, depth.view};
+        VkImageView views[3] = {ms ? color_ms.view : color.view, depth.view, color.view};
         VkFramebufferCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO,
-                                       .renderPass = r->render_pass,
-                                       .attachmentCount = 2,
+                                       .renderPass = ms ? r->render_pass_ms : r->render_pass,
+                                       .attachmentCount = ms ? 3 : 2,
                                        .pAttachments = views,
                                        .width = (uint32_t)s->width,
                                        .height = (uint32_t)s->height,
@@ -1586,6 +1624,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     destroy_buffer(r, &uniforms);
     for (size_t i = 0; sorted && i < s->draw_count; i++) destroy_buffer(r, &sorted[i]);
     destroy_image(r, &color);
+    destroy_image(r, &color_ms);
     destroy_image(r, &depth);
     destroy_shadow(r, &sh);
     free(sets);
@@ -1614,6 +1653,7 @@ static void destroy_ref(ref *r) {
         for (int i = 0; i < r->pipeline_count; i++)
             vkDestroyPipeline(r->device, r->pipelines[i].pipeline, NULL);
         if (r->render_pass) vkDestroyRenderPass(r->device, r->render_pass, NULL);
+        if (r->render_pass_ms) vkDestroyRenderPass(r->device, r->render_pass_ms, NULL);
         if (r->depth_pass) vkDestroyRenderPass(r->device, r->depth_pass, NULL);
         for (int i = 0; i < 4; i++)
             if (r->samplers[i]) vkDestroySampler(r->device, r->samplers[i], NULL);
@@ -1643,6 +1683,8 @@ static void usage(FILE *f) {
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     lavapipe's raster threads (sets LP_NUM_THREADS)\n"
+               "  --samples N     samples a pixel, 1 or 4, for every scene (default: each\n"
+               "                  scene's \"samples\")\n"
                "  --shaders LIB   also know the shaders of that shader library (a shared object\n"
                "                  exporting sgapi_shader_library; repeatable); their GLSL twins\n"
                "                  render the scenes' shader draws\n"
@@ -1693,6 +1735,7 @@ int main(int argc, char **argv) {
     const char **libs = calloc((size_t)argc, sizeof *libs);
     int nfiles = 0, nonly = 0, nlibs = 0, frames = 1;
     bool strict = false;
+    int samples = 0; /* --samples: every scene's (0: as the scenes say) */
     if (!files || !only || !libs) return 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -1705,6 +1748,11 @@ int main(int argc, char **argv) {
         } else if (!strcmp(a, "--frames") && more) {
             if (!sc_parse_int(argv[++i], 1, 100000, &frames)) {
                 fprintf(stderr, "sgapi-ref: --frames wants 1..100000, got '%s'\n", argv[i]);
+                return 2;
+            }
+        } else if (!strcmp(a, "--samples") && more) {
+            if (!sc_parse_samples(argv[++i], &samples)) {
+                fprintf(stderr, "sgapi-ref: --samples wants 1 or 4, got '%s'\n", argv[i]);
                 return 2;
             }
         } else if (!strcmp(a, "--strict")) {
@@ -1783,6 +1831,7 @@ int main(int argc, char **argv) {
         sc_file f;
         status = load_file(files[fi], shaders, &f);
         if (status) break;
+        if (samples) sc_set_samples(&f, samples);
         if (!strict) sc_report_warnings(&f, "sgapi-ref", false);
         uploads u = {0};
         if (!upload_file(r, &f, &u)) {

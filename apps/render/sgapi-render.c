@@ -51,6 +51,7 @@ typedef struct options {
     int frames;
     bool frame_times; /* --frame-times: each frame's time to stderr (the first frame's own cost) */
     int threads;
+    int samples; /* --samples: every scene's samples a pixel (0: as the scenes say) */
     size_t bin_memory; /* --bin-memory: sgDeviceDesc.bin_memory_limit (0: the default) */
     sgSimd simd;
     const char **files;
@@ -99,6 +100,8 @@ static void usage(FILE *f) {
                "                  grows the device's storage to the scene's size)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     worker threads for the device (default 0: all cores)\n"
+               "  --samples N     samples a pixel, 1 or 4, for every scene (default: each\n"
+               "                  scene's \"samples\")\n"
                "  --bin-memory B  bytes of binned work a pass holds before it renders them and\n"
                "                  goes on (sgDeviceDesc.bin_memory_limit; default 0: 256 MiB;\n"
                "                  same images)\n"
@@ -250,7 +253,7 @@ static int parse_args(int argc, char **argv, options *o) {
             !strcmp(a, "--video") || !strcmp(a, "--fps") || !strcmp(a, "--video-width") ||
             !strcmp(a, "--png-level") || !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
             !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size") ||
-            !strcmp(a, "--shaders");
+            !strcmp(a, "--shaders") || !strcmp(a, "--samples");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -363,6 +366,11 @@ static int parse_args(int argc, char **argv, options *o) {
             o->no_write = true;
         } else if (!strcmp(a, "--frame-times")) {
             o->frame_times = true;
+        } else if (!strcmp(a, "--samples")) {
+            if (!sc_parse_samples(value, &o->samples)) {
+                fprintf(stderr, "sgapi-render: --samples needs 1 or 4, not '%s'\n", value);
+                return 2;
+            }
         } else if (!strcmp(a, "--threads")) {
             if (!sc_parse_int(value, 0, 4096, &o->threads)) {
                 fprintf(stderr, "sgapi-render: --threads needs a whole number >= 0, not '%s'\n",
@@ -948,6 +956,7 @@ int main(int argc, char **argv) {
             goto done;
         }
     }
+    for (int i = 0; o.samples && i < loaded; i++) sc_set_samples(&files[i], o.samples);
     /* Every file's warnings, then (with --strict) the verdict, before anything is rendered. */
     bool clean = true;
     for (int i = 0; i < loaded; i++)
