@@ -51,6 +51,7 @@
 #include "spv_color_vert.h"
 #include "spv_depth_frag.h"
 #include "spv_depth_vert.h"
+#include "spv_resolve_comp.h"
 #include "spv_flat_geom.h"
 #include "spv_lit_flat_frag.h"
 #include "spv_lit_flat_texture_frag.h"
@@ -99,6 +100,7 @@ enum {
     SH_SPLIT_SHADOW_FRAG,
     SH_DEPTH_VERT = SH_SPLIT_SHADOW_FRAG + 4,
     SH_DEPTH_FRAG,
+    SH_RESOLVE_COMP, /* a 4-sample colour image averaged into the readback buffer */
     SH_COUNT
 };
 
@@ -179,7 +181,10 @@ typedef struct ref {
     /* The same with 4 samples a pixel: multisampled colour and depth, the colour resolved into
      * a one-sample image at the pass's end. */
     VkRenderPass render_pass_ms;
-    int samples;             /* the scene being rendered: 1 or 4 */
+    int samples;                              /* the scene being rendered: 1 or 4 */
+    VkDescriptorSetLayout resolve_set_layout; /* the 4-sample colour, the readback buffer */
+    VkPipelineLayout layout_resolve;
+    VkPipeline resolve;
     VkRenderPass depth_pass; /* the shadow map's: depth only, left ready for sampling */
     pipeline_entry pipelines[MAX_PIPELINES];
     int pipeline_count;
@@ -335,6 +340,7 @@ static bool create_shaders_and_layouts(ref *r) {
         size_t size;
     } spv[SH_COUNT] = {
         [SH_COLOR_VERT] = {spv_color_vert, sizeof spv_color_vert},
+        [SH_RESOLVE_COMP] = {spv_resolve_comp, sizeof spv_resolve_comp},
         [SH_COLOR_FRAG] = {spv_color_frag, sizeof spv_color_frag},
         [SH_TEXTURE_VERT] = {spv_texture_vert, sizeof spv_texture_vert},
         [SH_TEXTURE_FRAG] = {spv_texture_frag, sizeof spv_texture_frag},
@@ -481,21 +487,47 @@ static bool create_shaders_and_layouts(ref *r) {
                                   .pSubpasses = &sub};
     VK_CHECK(r, vkCreateRenderPass(r->device, &rpi, NULL, &r->render_pass));
 
-    /* 4 samples a pixel: the multisampled attachments are not stored; the colour is resolved
-     * (the average of the samples) into attachment 2, which is read back. */
-    VkAttachmentDescription att_ms[3] = {att[0], att[1], att[0]};
+    /* 4 samples a pixel: the colour is stored and left for the resolve's compute pass to read
+     * (create_resolve). */
+    VkAttachmentDescription att_ms[2] = {att[0], att[1]};
     att_ms[0].samples = att_ms[1].samples = VK_SAMPLE_COUNT_4_BIT;
-    att_ms[0].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att_ms[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    att_ms[2].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    VkAttachmentReference rref = {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkSubpassDescription sub_ms = sub;
-    sub_ms.pResolveAttachments = &rref;
+    att_ms[0].finalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    VkSubpassDependency to_resolve = {.srcSubpass = 0,
+                                      .dstSubpass = VK_SUBPASS_EXTERNAL,
+                                      .srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                      .dstStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                      .srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                      .dstAccessMask = VK_ACCESS_SHADER_READ_BIT};
     VkRenderPassCreateInfo rpi_ms = rpi;
-    rpi_ms.attachmentCount = 3;
     rpi_ms.pAttachments = att_ms;
-    rpi_ms.pSubpasses = &sub_ms;
+    rpi_ms.dependencyCount = 1;
+    rpi_ms.pDependencies = &to_resolve;
     VK_CHECK(r, vkCreateRenderPass(r->device, &rpi_ms, NULL, &r->render_pass_ms));
+
+    /* The resolve: the 4-sample colour (with any sampler: texelFetch) into the readback buffer. */
+    VkDescriptorSetLayoutBinding rb[2] = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}};
+    VkDescriptorSetLayoutCreateInfo rli = {.sType =
+                                               VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                           .bindingCount = 2,
+                                           .pBindings = rb};
+    VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &rli, NULL, &r->resolve_set_layout));
+    VkPushConstantRange rpc = {VK_SHADER_STAGE_COMPUTE_BIT, 0, 8};
+    VkPipelineLayoutCreateInfo rpli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                       .setLayoutCount = 1,
+                                       .pSetLayouts = &r->resolve_set_layout,
+                                       .pushConstantRangeCount = 1,
+                                       .pPushConstantRanges = &rpc};
+    VK_CHECK(r, vkCreatePipelineLayout(r->device, &rpli, NULL, &r->layout_resolve));
+    VkComputePipelineCreateInfo cpi = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = r->modules[SH_RESOLVE_COMP],
+                  .pName = "main"},
+        .layout = r->layout_resolve};
+    VK_CHECK(r, vkCreateComputePipelines(r->device, VK_NULL_HANDLE, 1, &cpi, NULL, &r->resolve));
 
     /* The shadow map's pass: cleared to 1.0, stored, and left in the layout the scene's pass
      * samples it in, its depth writes made visible to those reads. */
@@ -853,8 +885,8 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
         .pDynamicState = &dy,
         .layout = twin >= 0 ? r->layout_twin : layout_of(r, textured, kind),
         .renderPass = kind == DRAW_CASTER ? r->depth_pass
-                      : samples == 4          ? r->render_pass_ms
-                                              : r->render_pass};
+                      : samples == 4      ? r->render_pass_ms
+                                          : r->render_pass};
     VK_CHECK(r, vkCreateGraphicsPipelines(r->device, VK_NULL_HANDLE, 1, &gpi, NULL, out));
     r->pipelines[r->pipeline_count].samples = samples;
     r->pipelines[r->pipeline_count].key = key;
@@ -899,7 +931,8 @@ static bool create_image_ms(ref *r, int w, int h, int samples, VkFormat format,
                              .extent = {(uint32_t)w, (uint32_t)h, 1},
                              .mipLevels = 1,
                              .arrayLayers = 1,
-                             .samples = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
+                             .samples =
+                                 samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                              .tiling = VK_IMAGE_TILING_OPTIMAL,
                              .usage = usage,
                              .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
@@ -1249,19 +1282,18 @@ static bool record_draw(ref *r, const sc_file *f, const sc_scene *s, const uploa
 static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          VkFramebuffer fb, VkImage color, const buffer *readback,
                          VkDescriptorSet color_set, const VkDescriptorSet *sets,
-                         const buffer *sorted, const shadow_pass *sh) {
+                         const buffer *sorted, const shadow_pass *sh, VkDescriptorSet resolve_set) {
     if (!begin_commands(r)) return false;
     if (s->has_shadow && !record_shadow(r, f, s, u, sh, color_set)) return false;
-    VkClearValue clear[3];
+    VkClearValue clear[2];
     memcpy(clear[0].color.float32, s->clear_color, sizeof s->clear_color);
     clear[1].depthStencil.depth = 1.0f;
     clear[1].depthStencil.stencil = 0;
-    clear[2] = clear[0]; /* the resolve target's, unused */
     VkRenderPassBeginInfo rbi = {.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
                                  .renderPass = r->samples == 4 ? r->render_pass_ms : r->render_pass,
                                  .framebuffer = fb,
                                  .renderArea = {{0, 0}, {(uint32_t)s->width, (uint32_t)s->height}},
-                                 .clearValueCount = r->samples == 4 ? 3 : 2,
+                                 .clearValueCount = 2,
                                  .pClearValues = clear};
     vkCmdBeginRenderPass(r->cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
     VkViewport vp = {0, 0, (float)s->width, (float)s->height, 0.0f, 1.0f};
@@ -1280,6 +1312,22 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         }
     }
     vkCmdEndRenderPass(r->cmd);
+    if (resolve_set) { /* 4 samples: the compute pass writes the readback buffer */
+        vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->resolve);
+        vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->layout_resolve, 0, 1,
+                                &resolve_set, 0, NULL);
+        int32_t size[2] = {s->width, s->height};
+        vkCmdPushConstants(r->cmd, r->layout_resolve, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof size,
+                           size);
+        vkCmdDispatch(r->cmd, (uint32_t)(s->width + 7) / 8, (uint32_t)(s->height + 7) / 8, 1);
+        VkMemoryBarrier host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+                                .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
+        vkCmdPipelineBarrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host, 0, NULL, 0, NULL);
+        VK_CHECK(r, vkEndCommandBuffer(r->cmd));
+        return true;
+    }
     VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                               .imageExtent = {(uint32_t)s->width, (uint32_t)s->height, 1}};
     vkCmdCopyImageToBuffer(r->cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback->buffer, 1,
@@ -1479,6 +1527,41 @@ static bool prepare_twin_sets(ref *r, const sc_scene *s, const uploads *u, VkDes
     return true;
 }
 
+/* The resolve's descriptor set for a scene of 4 samples: its colour image, its readback. */
+static bool create_resolve(ref *r, const sc_scene *s, const texture *color_ms,
+                           const buffer *readback, VkDescriptorPool *pool, VkDescriptorSet *set) {
+    VkDescriptorPoolSize ps[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+    VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                      .maxSets = 1,
+                                      .poolSizeCount = 2,
+                                      .pPoolSizes = ps};
+    VK_CHECK(r, vkCreateDescriptorPool(r->device, &dpi, NULL, pool));
+    VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                       .descriptorPool = *pool,
+                                       .descriptorSetCount = 1,
+                                       .pSetLayouts = &r->resolve_set_layout};
+    VK_CHECK(r, vkAllocateDescriptorSets(r->device, &dai, set));
+    VkDescriptorImageInfo ii = {r->samplers[0], color_ms->view,
+                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorBufferInfo bi = {readback->buffer, 0,
+                                 (VkDeviceSize)s->width * (VkDeviceSize)s->height * 4};
+    VkWriteDescriptorSet w[2] = {{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .dstSet = *set,
+                                  .dstBinding = 0,
+                                  .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                  .pImageInfo = &ii},
+                                 {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .dstSet = *set,
+                                  .dstBinding = 1,
+                                  .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                  .pBufferInfo = &bi}};
+    vkUpdateDescriptorSets(r->device, 2, w, 0, NULL);
+    return true;
+}
+
 static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          const char *out_dir, int frames) {
     shadow_pass sh = {0};
@@ -1486,6 +1569,8 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     buffer readback = {0}, blocks = {0}, uniforms = {0};
     r->samples = s->samples == 4 ? 4 : 1;
     const bool ms = r->samples == 4;
+    VkDescriptorPool resolve_pool = VK_NULL_HANDLE;
+    VkDescriptorSet resolve_set = VK_NULL_HANDLE;
     VkFramebuffer fb = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet color_set = VK_NULL_HANDLE;
@@ -1500,18 +1585,19 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                       VK_IMAGE_ASPECT_COLOR_BIT, &color) &&
          (!ms || create_image_ms(r, s->width, s->height, 4, VK_FORMAT_R8G8B8A8_UNORM,
-                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
-                                 &color_ms)) &&
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                 VK_IMAGE_ASPECT_COLOR_BIT, &color_ms)) &&
          create_image_ms(r, s->width, s->height, r->samples, VK_FORMAT_D32_SFLOAT,
                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
                          &depth) &&
-         create_buffer(r, (VkDeviceSize)s->width * s->height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+         create_buffer(r, (VkDeviceSize)s->width * s->height * 4,
+                       VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        &readback);
     if (ok) {
-        VkImageView views[3] = {ms ? color_ms.view : color.view, depth.view, color.view};
+        VkImageView views[2] = {ms ? color_ms.view : color.view, depth.view};
         VkFramebufferCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO,
                                        .renderPass = ms ? r->render_pass_ms : r->render_pass,
-                                       .attachmentCount = ms ? 3 : 2,
+                                       .attachmentCount = 2,
                                        .pAttachments = views,
                                        .width = (uint32_t)s->width,
                                        .height = (uint32_t)s->height,
@@ -1593,7 +1679,9 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         }
     }
     ok = ok && prepare_twin_sets(r, s, u, pool, &uniforms, sets);
-    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, color_set, sets, sorted, &sh);
+    ok = ok && (!ms || create_resolve(r, s, &color_ms, &readback, &resolve_pool, &resolve_set));
+    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, color_set, sets, sorted, &sh,
+                            resolve_set);
     for (int i = 0; ok && i < frames; i++) {
         double t0 = now_ms();
         ok = submit_and_wait(r);
@@ -1618,6 +1706,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         }
     }
     if (pool) vkDestroyDescriptorPool(r->device, pool, NULL);
+    if (resolve_pool) vkDestroyDescriptorPool(r->device, resolve_pool, NULL);
     if (fb) vkDestroyFramebuffer(r->device, fb, NULL);
     destroy_buffer(r, &readback);
     destroy_buffer(r, &blocks);
@@ -1654,6 +1743,10 @@ static void destroy_ref(ref *r) {
             vkDestroyPipeline(r->device, r->pipelines[i].pipeline, NULL);
         if (r->render_pass) vkDestroyRenderPass(r->device, r->render_pass, NULL);
         if (r->render_pass_ms) vkDestroyRenderPass(r->device, r->render_pass_ms, NULL);
+        if (r->resolve) vkDestroyPipeline(r->device, r->resolve, NULL);
+        if (r->layout_resolve) vkDestroyPipelineLayout(r->device, r->layout_resolve, NULL);
+        if (r->resolve_set_layout)
+            vkDestroyDescriptorSetLayout(r->device, r->resolve_set_layout, NULL);
         if (r->depth_pass) vkDestroyRenderPass(r->device, r->depth_pass, NULL);
         for (int i = 0; i < 4; i++)
             if (r->samplers[i]) vkDestroySampler(r->device, r->samplers[i], NULL);

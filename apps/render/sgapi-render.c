@@ -51,7 +51,7 @@ typedef struct options {
     int frames;
     bool frame_times; /* --frame-times: each frame's time to stderr (the first frame's own cost) */
     int threads;
-    int samples; /* --samples: every scene's samples a pixel (0: as the scenes say) */
+    int samples;       /* --samples: every scene's samples a pixel (0: as the scenes say) */
     size_t bin_memory; /* --bin-memory: sgDeviceDesc.bin_memory_limit (0: the default) */
     sgSimd simd;
     const char **files;

@@ -88,9 +88,10 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     }
     const sg_image *size = color ? color : depth;
     if (pass->samples != 0 && pass->samples != 1 && pass->samples != 4)
-        return sg_error(dev, SG_ERROR_INVALID_VALUE,
-                        "sgBeginRenderPass: samples = %d; a pass takes 1 (or 0) or 4 samples a pixel",
-                        pass->samples);
+        return sg_error(
+            dev, SG_ERROR_INVALID_VALUE,
+            "sgBeginRenderPass: samples = %d; a pass takes 1 (or 0) or 4 samples a pixel",
+            pass->samples);
     if ((int)pass->depth_store < SG_STORE_DEFAULT || pass->depth_store > SG_STORE_DONT_CARE)
         return sg_error(dev, SG_ERROR_INVALID_ENUM,
                         "sgBeginRenderPass: depth_store %d is not an sgStoreOp",

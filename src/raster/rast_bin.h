@@ -77,7 +77,7 @@ typedef struct sg_bin_pass {
     uint32_t *msaa_color;
     float *msaa_depth;
     bool msaa_load, msaa_store;
-    void *stage_times;    /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
+    void *stage_times; /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 
 /** Renders bin `index` of the pass into its target images. */

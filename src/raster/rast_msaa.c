@@ -86,7 +86,8 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
                 while (!left[first]) first++;
                 const uint32_t id = b->ids[first][base + __builtin_ctz(left[first])];
                 uint32_t m[NS], u = 0;
-                for (int k = 0; k < NS; k++) u |= m[k] = left[k] ? same_id(b->ids[k] + base, id) : 0;
+                for (int k = 0; k < NS; k++)
+                    u |= m[k] = left[k] ? same_id(b->ids[k] + base, id) : 0;
                 const sg_tri *t = &p->binner->tris[id - 1];
                 const sg_draw_state *d = &p->draws[t->draw];
                 _Alignas(64) uint32_t src[SG_TILE_PIXELS];
@@ -97,7 +98,8 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
                     any |= left[k] &= ~m[k];
                 }
             }
-            for (int k = 0; k < NS; k++) memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
+            for (int k = 0; k < NS; k++)
+                memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
         }
         for (int k = 0; k < NS; k++) b->touched[k][word] = 0;
     }
@@ -127,7 +129,8 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
             const int base = tile * SG_TILE_PIXELS;
             uint32_t m[NS], u = 0;
             for (int k = 0; k < NS; k++) u |= m[k] = same_id(b->ids[k] + base, id);
-            for (int k = 0; k < NS; k++) memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
+            for (int k = 0; k < NS; k++)
+                memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
             if (!u) continue;
             _Alignas(64) uint32_t src[SG_TILE_PIXELS];
             uint32_t keep = u;
@@ -217,8 +220,7 @@ static void end_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int in
 static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index,
                    const bool shaders_in_place) {
     const sg_bin *bin = &p->binner->bins[index];
-    const int discards =
-        p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
+    const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
     memset(b->ids, 0, sizeof b->ids);
     memset(b->touched, 0, sizeof b->touched);
     for (int k = 0; k < NS; k++)
@@ -276,7 +278,8 @@ void sg_rast_bin_msaa(const sg_bin_pass *p, int index) {
     v.depth = p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)y0 * v.pitch) + x0 : NULL;
     if (!bin->count && !p->msaa_load && !p->msaa_store) {
         /* Nothing drawn here: every sample holds the load or clear, and so does their average. */
-        if (v.color && !p->load_color) sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
+        if (v.color && !p->load_color)
+            sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
         if (v.depth && p->store_depth && !p->load_depth) {
             uint32_t bits;
             memcpy(&bits, &p->clear_depth, 4);
