@@ -276,7 +276,10 @@ static void frame(script *s, int frame_no) {
     sgPassDesc mp = {.color = s->color,
                      .depth = s->depth,
                      .clear_color = {0.1f, 0.2f, 0.3f, 1},
-                     .depth_store = s->limit ? SG_STORE_DONT_CARE : SG_STORE_DEFAULT};
+                     .depth_store = s->limit ? SG_STORE_DONT_CARE : SG_STORE_DEFAULT,
+                     /* The third frame multisampled: its flushes keep the samples in buffers of
+                      * the device, more allocation points. */
+                     .samples = frame_no == 2 ? 4 : 1};
     DO(sgBeginRenderPass(s->dev, &mp));
     s->open = mp;
     sgDrawParams dp = {.texture = s->tex, .shadow = &shadow};
@@ -449,8 +452,8 @@ static void run(script *s) {
     pd.shader = (sgShaderDesc){shader_vs, shader_fs, 8, 0, 1};
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->shader));
 
-    /* Two frames: the second draws into the arrays the first grew. In between, a geom and a
-     * pipeline are destroyed and made again (a slot reused). */
+    /* Three frames (the third with 4 samples a pixel): the second draws into the arrays the first
+     * grew. In between, a geom and a pipeline are destroyed and made again (a slot reused). */
     frame_checked(s, 0);
     if (s->stopped) return;
     DO(sgDestroyGeom(s->dev, s->tri_g));
@@ -461,6 +464,8 @@ static void run(script *s) {
     pd = depth_on;
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->opaque));
     frame_checked(s, 1);
+    if (s->stopped) return;
+    frame_checked(s, 2);
     if (s->stopped) return;
     DO(sgReadImage2D(s->dev, s->color, s->image, 0));
 }

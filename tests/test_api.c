@@ -1101,6 +1101,13 @@ static void pass_begin_errors(void **state) {
         p.clear_depth = bad_values[i];
         BEGIN_FAILS(SG_ERROR_INVALID_VALUE);
     }
+    /* Samples a pixel: 0, 1 or 4, nothing else. */
+    const int bad_samples[] = {-1, 2, 3, 5, 8, 16, INT32_MIN};
+    for (size_t i = 0; i < sizeof bad_samples / sizeof bad_samples[0]; i++) {
+        p = good;
+        p.samples = bad_samples[i];
+        BEGIN_FAILS(SG_ERROR_INVALID_VALUE);
+    }
 #undef BEGIN_FAILS
 
     /* None of the failed Begins cleared or loaded anything. */

@@ -114,7 +114,7 @@ static void mark(const void *ctx, const sg_tri *t, int x0, int y0, uint32_t mask
         }
 }
 
-static const sg_setup_params PARAMS = {W, H, 0, 0, W, H, SG_CULL_NONE, SG_FRONT_FACE_CCW, 0,
+static const sg_setup_params PARAMS = {W, H, 0, 0, W, H, SG_CULL_NONE, SG_FRONT_FACE_CCW, 0, 0,
                                        0, 0, 0, 0, 0, 0};
 
 static void drawn(sg_walk_fn walk, const sg_svert s[2], uint8_t out[H][W]) {

@@ -87,6 +87,7 @@ typedef struct options {
     int frames, warmup, threads;
     int rounds;  /* --rounds: measurements of each scene, in turn; the median is kept */
     sgSimd simd; /* SG_SIMD_DEFAULT: the best the CPU runs */
+    int samples; /* --samples: every scene's samples a pixel, sgapi-ref's too (0: the scenes') */
     bool quick, pareto;
     bool strict;              /* --strict: an unknown key in a scene file is an error */
     const char *csv;          /* NULL: no CSV */
@@ -109,6 +110,8 @@ static void usage(FILE *f) {
             "  --rounds R      measure each scene R times, lavapipe and sgapi in turn, and keep\n"
             "                  each side's median (default 1, at most %d)\n"
             "  --threads T     the multi-threaded measurements' thread count (default: all cores)\n"
+            "  --samples N     samples a pixel, 1 or 4, for every scene, sgapi's and lavapipe's\n"
+            "                  (default: each scene's \"samples\")\n"
             "  --simd SET      sgapi's instruction set: scalar, sse2, avx2, avx512 or neon\n"
             "                  (default: the best this CPU runs)\n"
             "  --csv FILE      also write the table as CSV\n"
@@ -174,7 +177,8 @@ static int parse_args(int argc, char **argv, options *o) {
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool takes_value = !strcmp(a, "--frames") || !strcmp(a, "--rounds") ||
                            !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--csv") ||
-                           !strcmp(a, "--plot") || !strcmp(a, "--ref") || !strcmp(a, "--shaders");
+                           !strcmp(a, "--plot") || !strcmp(a, "--ref") || !strcmp(a, "--shaders") ||
+                           !strcmp(a, "--samples");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -200,6 +204,11 @@ static int parse_args(int argc, char **argv, options *o) {
             if (!sc_parse_int(value, 1, MAX_THREADS, &o->threads)) {
                 fprintf(stderr, "sgapi-bench: --threads needs a whole number in 1..%d, not '%s'\n",
                         MAX_THREADS, value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--samples")) {
+            if (!sc_parse_samples(value, &o->samples)) {
+                fprintf(stderr, "sgapi-bench: --samples needs 1 or 4, not '%s'\n", value);
                 return 2;
             }
         } else if (!strcmp(a, "--simd")) {
@@ -411,14 +420,15 @@ static char *find_ref(const char *argv0) {
  * "NAME  X ms/frame ..." that sgapi-ref prints; its image is left in tmpdir/NAME.png. */
 static bool run_lavapipe(const options *o, const char *ref, const char *file, const char *scene,
                          int threads, const char *tmpdir, double *ms) {
-    char frames_s[16], threads_s[16];
+    char frames_s[16], threads_s[16], samples_s[16];
     sc_msg err = {0};
+    snprintf(samples_s, sizeof samples_s, "%d", o->samples);
     snprintf(frames_s, sizeof frames_s, "%d", o->frames);
     snprintf(threads_s, sizeof threads_s, "%d", threads);
     const char *fixed[] = {ref,   file,        "--frames", frames_s, "--scene",
                            scene, "--threads", threads_s,  "-o",     tmpdir};
     enum { FIXED = sizeof fixed / sizeof fixed[0] };
-    char **argv = calloc(FIXED + 2 * (size_t)o->shader_lib_count + 1, sizeof *argv);
+    char **argv = calloc(FIXED + 2 * (size_t)o->shader_lib_count + 3, sizeof *argv);
     if (!argv) {
         fprintf(stderr, "sgapi-bench: out of memory\n");
         return false;
@@ -427,6 +437,10 @@ static bool run_lavapipe(const options *o, const char *ref, const char *file, co
     for (int i = 0; i < o->shader_lib_count; i++) {
         argv[FIXED + 2 * i] = "--shaders";
         argv[FIXED + 2 * i + 1] = (char *)o->shader_libs[i];
+    }
+    if (o->samples) {
+        argv[FIXED + 2 * o->shader_lib_count] = "--samples";
+        argv[FIXED + 2 * o->shader_lib_count + 1] = samples_s;
     }
     char *out;
     int status;
@@ -981,6 +995,7 @@ int main(int argc, char **argv) {
             goto done;
         }
         count += files[loaded].scene_count;
+        if (o.samples) sc_set_samples(&files[loaded], o.samples);
     }
     bool clean = true;
     for (int i = 0; i < loaded; i++)

@@ -6,6 +6,7 @@
 #define _POSIX_C_SOURCE 200809L /* stat */
 
 #include "scene.h"
+#include "cli.h"
 #include "scene_keys.h"
 #include "shadow.h"
 
@@ -132,6 +133,16 @@ static bool get_int(ctx *c, const loc *l, const cJSON *obj, const char *key, int
         return fail(c, l, "'%s' must be an integer in %d..%d", key, lo, hi);
     }
     *out = (int)d;
+    return true;
+}
+
+/* "samples": 1 or 4 (sgPassDesc.samples); *out is left as it is when the key is absent. */
+static bool get_samples(ctx *c, const loc *l, const cJSON *obj, int *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "samples");
+    if (!v) return true;
+    if (!cJSON_IsNumber(v) || (v->valuedouble != 1.0 && v->valuedouble != 4.0))
+        return fail(c, l, "'samples' must be 1 or 4 (samples a pixel)");
+    *out = (int)v->valuedouble;
     return true;
 }
 
@@ -864,6 +875,7 @@ typedef struct defaults {
     int width, height;
     bool has_width, has_height;
     float clear_color[4];
+    int samples;
     float ambient[3];
     int light_count;
     sc_light lights[SC_MAX_LIGHTS];
@@ -901,6 +913,8 @@ static bool parse_scene(ctx *c, int index, const cJSON *v, const defaults *def, 
                     has_w ? "height" : "width");
     memcpy(s->clear_color, def->clear_color, sizeof s->clear_color);
     if (!get_floats(c, &l, v, "clear_color", 4, 0.0, 1.0, s->clear_color, &present)) return false;
+    s->samples = def->samples;
+    if (!get_samples(c, &l, v, &s->samples)) return false;
     /* A scene's "lights" replaces the top level's list as a whole. */
     memcpy(s->ambient, def->ambient, sizeof s->ambient);
     memcpy(s->lights, def->lights, sizeof s->lights);
@@ -959,7 +973,9 @@ static bool parse_root(ctx *c, const cJSON *root) {
         !get_int(c, &none, root, "height", 1, SC_MAX_IMAGE_SIZE, &def.height, &def.has_height))
         return false;
     bool present;
-    if (!get_floats(c, &none, root, "clear_color", 4, 0.0, 1.0, def.clear_color, &present) ||
+    def.samples = 1;
+    if (!get_samples(c, &none, root, &def.samples) ||
+        !get_floats(c, &none, root, "clear_color", 4, 0.0, 1.0, def.clear_color, &present) ||
         !parse_lighting(c, &none, root, def.ambient, def.lights, &def.light_count) ||
         !parse_shadow(c, &none, root, &def.has_shadow, &def.shadow))
         return false;
@@ -1052,4 +1068,15 @@ void sc_free(sc_file *file) {
     free(file->warnings);
     free(file->path);
     memset(file, 0, sizeof *file);
+}
+
+void sc_set_samples(sc_file *file, int samples) {
+    for (size_t i = 0; i < file->scene_count; i++) file->scenes[i].samples = samples;
+}
+
+bool sc_parse_samples(const char *s, int *out) {
+    int n = 0;
+    if (!sc_parse_int(s, 1, 4, &n) || (n != 1 && n != 4)) return false;
+    *out = n;
+    return true;
 }

@@ -145,6 +145,7 @@ typedef struct sc_scene {
     char *name;           /* [A-Za-z0-9_.-]+, unique in the file */
     int width, height;    /* 1 .. SC_MAX_IMAGE_SIZE */
     float clear_color[4]; /* r, g, b, a in [0, 1] */
+    int samples;          /* "samples": 1 or 4 a pixel (sgPassDesc.samples); default 1 */
     sc_draw *draws;       /* in order; may be empty (the image is only cleared) */
     size_t draw_count;
     float ambient[3]; /* r, g, b of the scene's ambient light, each finite and >= 0; default 0 */
@@ -177,6 +178,10 @@ bool sc_shader_name_valid(const char *s);
 /** Loads a scene file and every mesh and texture it names; on failure *out is zeroed. Every
  *  mesh has normals: a mesh without them gets smooth ones (sgu_compute_normals). */
 bool sc_load(const char *path, sc_file *out, sc_msg *err);
+/** Sets every scene's samples a pixel (a --samples override: 1 or 4). */
+void sc_set_samples(sc_file *file, int samples);
+/** Parses a --samples value (1 or 4); false: anything else. */
+bool sc_parse_samples(const char *s, int *out);
 /** Parses scene JSON text; path names it in messages and relative paths start at its folder. */
 bool sc_parse(const char *path, const char *json, size_t len, sc_file *out, sc_msg *err);
 /** Frees what one draw holds on the heap (its shader name and uniforms), leaving those fields

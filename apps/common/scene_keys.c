@@ -12,10 +12,10 @@
 
 /* The keys each object may hold (docs/scene-format.md). A light may hold the keys of either type:
  * the other type's are ignored, as documented. */
-static const char *const root_keys[] = {"scenes",  "width",  "height", "clear_color",
-                                        "ambient", "lights", "shadow", NULL};
+static const char *const root_keys[] = {"scenes", "width",  "height",  "clear_color", "ambient",
+                                        "lights", "shadow", "samples", NULL};
 static const char *const scene_keys[] = {"name",   "width",  "height", "clear_color", "ambient",
-                                         "lights", "shadow", "draws",  NULL};
+                                         "lights", "shadow", "draws",  "samples",     NULL};
 static const char *const draw_keys[] = {"mesh",
                                         "texture",
                                         "mode",

@@ -277,6 +277,7 @@ bool ss_create_targets(const char *prog, sgDevice *dev, const sc_scene *s, sgIma
     pass->depth_load = SG_LOAD_DEFAULT;     /* clears to 1.0, the far plane */
     pass->depth_store = SG_STORE_DONT_CARE; /* nothing reads the depth after the frame */
     memcpy(pass->clear_color, s->clear_color, sizeof pass->clear_color);
+    pass->samples = s->samples;
     return true;
 }
 

@@ -51,6 +51,7 @@
 #include "spv_color_vert.h"
 #include "spv_depth_frag.h"
 #include "spv_depth_vert.h"
+#include "spv_resolve_comp.h"
 #include "spv_flat_geom.h"
 #include "spv_lit_flat_frag.h"
 #include "spv_lit_flat_texture_frag.h"
@@ -99,6 +100,7 @@ enum {
     SH_SPLIT_SHADOW_FRAG,
     SH_DEPTH_VERT = SH_SPLIT_SHADOW_FRAG + 4,
     SH_DEPTH_FRAG,
+    SH_RESOLVE_COMP, /* a 4-sample colour image averaged into the readback buffer */
     SH_COUNT
 };
 
@@ -139,7 +141,8 @@ typedef struct texture {
 
 typedef struct pipeline_entry {
     uint32_t key;
-    int twin; /* index into ref.twins, or -1: the fixed stages */
+    int twin;    /* index into ref.twins, or -1: the fixed stages */
+    int samples; /* of the pass it draws in */
     VkPipeline pipeline;
 } pipeline_entry;
 
@@ -175,6 +178,13 @@ typedef struct ref {
     VkDeviceSize draw_stride;       /* bytes between draws in a scene's uniform buffer */
     VkSampler samplers[4];          /* [filter bilinear?][wrap clamp?] */
     VkRenderPass render_pass;
+    /* The same with 4 samples a pixel: multisampled colour and depth, the colour resolved into
+     * a one-sample image at the pass's end. */
+    VkRenderPass render_pass_ms;
+    int samples;                              /* the scene being rendered: 1 or 4 */
+    VkDescriptorSetLayout resolve_set_layout; /* the 4-sample colour, the readback buffer */
+    VkPipelineLayout layout_resolve;
+    VkPipeline resolve;
     VkRenderPass depth_pass; /* the shadow map's: depth only, left ready for sampling */
     pipeline_entry pipelines[MAX_PIPELINES];
     int pipeline_count;
@@ -330,6 +340,7 @@ static bool create_shaders_and_layouts(ref *r) {
         size_t size;
     } spv[SH_COUNT] = {
         [SH_COLOR_VERT] = {spv_color_vert, sizeof spv_color_vert},
+        [SH_RESOLVE_COMP] = {spv_resolve_comp, sizeof spv_resolve_comp},
         [SH_COLOR_FRAG] = {spv_color_frag, sizeof spv_color_frag},
         [SH_TEXTURE_VERT] = {spv_texture_vert, sizeof spv_texture_vert},
         [SH_TEXTURE_FRAG] = {spv_texture_frag, sizeof spv_texture_frag},
@@ -475,6 +486,48 @@ static bool create_shaders_and_layouts(ref *r) {
                                   .subpassCount = 1,
                                   .pSubpasses = &sub};
     VK_CHECK(r, vkCreateRenderPass(r->device, &rpi, NULL, &r->render_pass));
+
+    /* 4 samples a pixel: the colour is stored and left for the resolve's compute pass to read
+     * (create_resolve). */
+    VkAttachmentDescription att_ms[2] = {att[0], att[1]};
+    att_ms[0].samples = att_ms[1].samples = VK_SAMPLE_COUNT_4_BIT;
+    att_ms[0].finalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    VkSubpassDependency to_resolve = {.srcSubpass = 0,
+                                      .dstSubpass = VK_SUBPASS_EXTERNAL,
+                                      .srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                      .dstStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                      .srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                      .dstAccessMask = VK_ACCESS_SHADER_READ_BIT};
+    VkRenderPassCreateInfo rpi_ms = rpi;
+    rpi_ms.pAttachments = att_ms;
+    rpi_ms.dependencyCount = 1;
+    rpi_ms.pDependencies = &to_resolve;
+    VK_CHECK(r, vkCreateRenderPass(r->device, &rpi_ms, NULL, &r->render_pass_ms));
+
+    /* The resolve: the 4-sample colour (with any sampler: texelFetch) into the readback buffer. */
+    VkDescriptorSetLayoutBinding rb[2] = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}};
+    VkDescriptorSetLayoutCreateInfo rli = {.sType =
+                                               VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                           .bindingCount = 2,
+                                           .pBindings = rb};
+    VK_CHECK(r, vkCreateDescriptorSetLayout(r->device, &rli, NULL, &r->resolve_set_layout));
+    VkPushConstantRange rpc = {VK_SHADER_STAGE_COMPUTE_BIT, 0, 8};
+    VkPipelineLayoutCreateInfo rpli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                       .setLayoutCount = 1,
+                                       .pSetLayouts = &r->resolve_set_layout,
+                                       .pushConstantRangeCount = 1,
+                                       .pPushConstantRanges = &rpc};
+    VK_CHECK(r, vkCreatePipelineLayout(r->device, &rpli, NULL, &r->layout_resolve));
+    VkComputePipelineCreateInfo cpi = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = r->modules[SH_RESOLVE_COMP],
+                  .pName = "main"},
+        .layout = r->layout_resolve};
+    VK_CHECK(r, vkCreateComputePipelines(r->device, VK_NULL_HANDLE, 1, &cpi, NULL, &r->resolve));
 
     /* The shadow map's pass: cleared to 1.0, stored, and left in the layout the scene's pass
      * samples it in, its depth writes made visible to those reads. */
@@ -677,8 +730,10 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
     if (kind == DRAW_CASTER) textured = false;
     if (kind == DRAW_CASTER) twin = -1;
     uint32_t key = pipeline_key(d, textured, kind, lines);
+    const int samples = kind == DRAW_CASTER ? 1 : r->samples; /* the shadow map has one */
     for (int i = 0; i < r->pipeline_count; i++)
-        if (r->pipelines[i].key == key && r->pipelines[i].twin == twin) {
+        if (r->pipelines[i].key == key && r->pipelines[i].twin == twin &&
+            r->pipelines[i].samples == samples) {
             *out = r->pipelines[i].pipeline;
             return true;
         }
@@ -788,7 +843,7 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
         .lineWidth = 1.0f};
     VkPipelineMultisampleStateCreateInfo ms = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
-        .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
+        .rasterizationSamples = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT};
     /* Casters: the nearest depth wins, whatever the draw's own depth state. */
     VkPipelineDepthStencilStateCreateInfo ds = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
@@ -829,8 +884,11 @@ static bool get_pipeline(ref *r, const sc_draw *d, bool textured, draw_kind kind
         .pColorBlendState = &cb,
         .pDynamicState = &dy,
         .layout = twin >= 0 ? r->layout_twin : layout_of(r, textured, kind),
-        .renderPass = kind == DRAW_CASTER ? r->depth_pass : r->render_pass};
+        .renderPass = kind == DRAW_CASTER ? r->depth_pass
+                      : samples == 4      ? r->render_pass_ms
+                                          : r->render_pass};
     VK_CHECK(r, vkCreateGraphicsPipelines(r->device, VK_NULL_HANDLE, 1, &gpi, NULL, out));
+    r->pipelines[r->pipeline_count].samples = samples;
     r->pipelines[r->pipeline_count].key = key;
     r->pipelines[r->pipeline_count].twin = twin;
     r->pipelines[r->pipeline_count].pipeline = *out;
@@ -864,15 +922,17 @@ static void destroy_buffer(ref *r, buffer *b) {
     memset(b, 0, sizeof *b);
 }
 
-static bool create_image(ref *r, int w, int h, VkFormat format, VkImageUsageFlags usage,
-                         VkImageAspectFlags aspect, texture *t) {
+/* An image of `samples` (1 or 4) samples a pixel. */
+static bool create_image_ms(ref *r, int w, int h, int samples, VkFormat format,
+                            VkImageUsageFlags usage, VkImageAspectFlags aspect, texture *t) {
     VkImageCreateInfo ici = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
                              .imageType = VK_IMAGE_TYPE_2D,
                              .format = format,
                              .extent = {(uint32_t)w, (uint32_t)h, 1},
                              .mipLevels = 1,
                              .arrayLayers = 1,
-                             .samples = VK_SAMPLE_COUNT_1_BIT,
+                             .samples =
+                                 samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                              .tiling = VK_IMAGE_TILING_OPTIMAL,
                              .usage = usage,
                              .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
@@ -893,6 +953,11 @@ static bool create_image(ref *r, int w, int h, VkFormat format, VkImageUsageFlag
                                  .subresourceRange = {aspect, 0, 1, 0, 1}};
     VK_CHECK(r, vkCreateImageView(r->device, &vci, NULL, &t->view));
     return true;
+}
+
+static bool create_image(ref *r, int w, int h, VkFormat format, VkImageUsageFlags usage,
+                         VkImageAspectFlags aspect, texture *t) {
+    return create_image_ms(r, w, h, 1, format, usage, aspect, t);
 }
 
 static void destroy_image(ref *r, texture *t) {
@@ -1217,7 +1282,7 @@ static bool record_draw(ref *r, const sc_file *f, const sc_scene *s, const uploa
 static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          VkFramebuffer fb, VkImage color, const buffer *readback,
                          VkDescriptorSet color_set, const VkDescriptorSet *sets,
-                         const buffer *sorted, const shadow_pass *sh) {
+                         const buffer *sorted, const shadow_pass *sh, VkDescriptorSet resolve_set) {
     if (!begin_commands(r)) return false;
     if (s->has_shadow && !record_shadow(r, f, s, u, sh, color_set)) return false;
     VkClearValue clear[2];
@@ -1225,7 +1290,7 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     clear[1].depthStencil.depth = 1.0f;
     clear[1].depthStencil.stencil = 0;
     VkRenderPassBeginInfo rbi = {.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
-                                 .renderPass = r->render_pass,
+                                 .renderPass = r->samples == 4 ? r->render_pass_ms : r->render_pass,
                                  .framebuffer = fb,
                                  .renderArea = {{0, 0}, {(uint32_t)s->width, (uint32_t)s->height}},
                                  .clearValueCount = 2,
@@ -1247,6 +1312,22 @@ static bool record_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         }
     }
     vkCmdEndRenderPass(r->cmd);
+    if (resolve_set) { /* 4 samples: the compute pass writes the readback buffer */
+        vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->resolve);
+        vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->layout_resolve, 0, 1,
+                                &resolve_set, 0, NULL);
+        int32_t size[2] = {s->width, s->height};
+        vkCmdPushConstants(r->cmd, r->layout_resolve, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof size,
+                           size);
+        vkCmdDispatch(r->cmd, (uint32_t)(s->width + 7) / 8, (uint32_t)(s->height + 7) / 8, 1);
+        VkMemoryBarrier host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+                                .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
+        vkCmdPipelineBarrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host, 0, NULL, 0, NULL);
+        VK_CHECK(r, vkEndCommandBuffer(r->cmd));
+        return true;
+    }
     VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                               .imageExtent = {(uint32_t)s->width, (uint32_t)s->height, 1}};
     vkCmdCopyImageToBuffer(r->cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback->buffer, 1,
@@ -1446,11 +1527,50 @@ static bool prepare_twin_sets(ref *r, const sc_scene *s, const uploads *u, VkDes
     return true;
 }
 
+/* The resolve's descriptor set for a scene of 4 samples: its colour image, its readback. */
+static bool create_resolve(ref *r, const sc_scene *s, const texture *color_ms,
+                           const buffer *readback, VkDescriptorPool *pool, VkDescriptorSet *set) {
+    VkDescriptorPoolSize ps[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+    VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                      .maxSets = 1,
+                                      .poolSizeCount = 2,
+                                      .pPoolSizes = ps};
+    VK_CHECK(r, vkCreateDescriptorPool(r->device, &dpi, NULL, pool));
+    VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                       .descriptorPool = *pool,
+                                       .descriptorSetCount = 1,
+                                       .pSetLayouts = &r->resolve_set_layout};
+    VK_CHECK(r, vkAllocateDescriptorSets(r->device, &dai, set));
+    VkDescriptorImageInfo ii = {r->samplers[0], color_ms->view,
+                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorBufferInfo bi = {readback->buffer, 0,
+                                 (VkDeviceSize)s->width * (VkDeviceSize)s->height * 4};
+    VkWriteDescriptorSet w[2] = {{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .dstSet = *set,
+                                  .dstBinding = 0,
+                                  .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                  .pImageInfo = &ii},
+                                 {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .dstSet = *set,
+                                  .dstBinding = 1,
+                                  .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                  .pBufferInfo = &bi}};
+    vkUpdateDescriptorSets(r->device, 2, w, 0, NULL);
+    return true;
+}
+
 static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uploads *u,
                          const char *out_dir, int frames) {
     shadow_pass sh = {0};
-    texture color = {0}, depth = {0};
+    texture color = {0}, depth = {0}, color_ms = {0};
     buffer readback = {0}, blocks = {0}, uniforms = {0};
+    r->samples = s->samples == 4 ? 4 : 1;
+    const bool ms = r->samples == 4;
+    VkDescriptorPool resolve_pool = VK_NULL_HANDLE;
+    VkDescriptorSet resolve_set = VK_NULL_HANDLE;
     VkFramebuffer fb = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet color_set = VK_NULL_HANDLE;
@@ -1464,15 +1584,19 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
          create_image(r, s->width, s->height, VK_FORMAT_R8G8B8A8_UNORM,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                       VK_IMAGE_ASPECT_COLOR_BIT, &color) &&
-         create_image(r, s->width, s->height, VK_FORMAT_D32_SFLOAT,
-                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
-                      &depth) &&
-         create_buffer(r, (VkDeviceSize)s->width * s->height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+         (!ms || create_image_ms(r, s->width, s->height, 4, VK_FORMAT_R8G8B8A8_UNORM,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                 VK_IMAGE_ASPECT_COLOR_BIT, &color_ms)) &&
+         create_image_ms(r, s->width, s->height, r->samples, VK_FORMAT_D32_SFLOAT,
+                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                         &depth) &&
+         create_buffer(r, (VkDeviceSize)s->width * s->height * 4,
+                       VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        &readback);
     if (ok) {
-        VkImageView views[2] = {color.view, depth.view};
+        VkImageView views[2] = {ms ? color_ms.view : color.view, depth.view};
         VkFramebufferCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO,
-                                       .renderPass = r->render_pass,
+                                       .renderPass = ms ? r->render_pass_ms : r->render_pass,
                                        .attachmentCount = 2,
                                        .pAttachments = views,
                                        .width = (uint32_t)s->width,
@@ -1555,7 +1679,9 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         }
     }
     ok = ok && prepare_twin_sets(r, s, u, pool, &uniforms, sets);
-    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, color_set, sets, sorted, &sh);
+    ok = ok && (!ms || create_resolve(r, s, &color_ms, &readback, &resolve_pool, &resolve_set));
+    ok = ok && record_scene(r, f, s, u, fb, color.image, &readback, color_set, sets, sorted, &sh,
+                            resolve_set);
     for (int i = 0; ok && i < frames; i++) {
         double t0 = now_ms();
         ok = submit_and_wait(r);
@@ -1580,12 +1706,14 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
         }
     }
     if (pool) vkDestroyDescriptorPool(r->device, pool, NULL);
+    if (resolve_pool) vkDestroyDescriptorPool(r->device, resolve_pool, NULL);
     if (fb) vkDestroyFramebuffer(r->device, fb, NULL);
     destroy_buffer(r, &readback);
     destroy_buffer(r, &blocks);
     destroy_buffer(r, &uniforms);
     for (size_t i = 0; sorted && i < s->draw_count; i++) destroy_buffer(r, &sorted[i]);
     destroy_image(r, &color);
+    destroy_image(r, &color_ms);
     destroy_image(r, &depth);
     destroy_shadow(r, &sh);
     free(sets);
@@ -1614,6 +1742,11 @@ static void destroy_ref(ref *r) {
         for (int i = 0; i < r->pipeline_count; i++)
             vkDestroyPipeline(r->device, r->pipelines[i].pipeline, NULL);
         if (r->render_pass) vkDestroyRenderPass(r->device, r->render_pass, NULL);
+        if (r->render_pass_ms) vkDestroyRenderPass(r->device, r->render_pass_ms, NULL);
+        if (r->resolve) vkDestroyPipeline(r->device, r->resolve, NULL);
+        if (r->layout_resolve) vkDestroyPipelineLayout(r->device, r->layout_resolve, NULL);
+        if (r->resolve_set_layout)
+            vkDestroyDescriptorSetLayout(r->device, r->resolve_set_layout, NULL);
         if (r->depth_pass) vkDestroyRenderPass(r->device, r->depth_pass, NULL);
         for (int i = 0; i < 4; i++)
             if (r->samplers[i]) vkDestroySampler(r->device, r->samplers[i], NULL);
@@ -1643,6 +1776,8 @@ static void usage(FILE *f) {
                "  --frames N      render each scene N times and print the median (default 1)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     lavapipe's raster threads (sets LP_NUM_THREADS)\n"
+               "  --samples N     samples a pixel, 1 or 4, for every scene (default: each\n"
+               "                  scene's \"samples\")\n"
                "  --shaders LIB   also know the shaders of that shader library (a shared object\n"
                "                  exporting sgapi_shader_library; repeatable); their GLSL twins\n"
                "                  render the scenes' shader draws\n"
@@ -1693,6 +1828,7 @@ int main(int argc, char **argv) {
     const char **libs = calloc((size_t)argc, sizeof *libs);
     int nfiles = 0, nonly = 0, nlibs = 0, frames = 1;
     bool strict = false;
+    int samples = 0; /* --samples: every scene's (0: as the scenes say) */
     if (!files || !only || !libs) return 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -1705,6 +1841,11 @@ int main(int argc, char **argv) {
         } else if (!strcmp(a, "--frames") && more) {
             if (!sc_parse_int(argv[++i], 1, 100000, &frames)) {
                 fprintf(stderr, "sgapi-ref: --frames wants 1..100000, got '%s'\n", argv[i]);
+                return 2;
+            }
+        } else if (!strcmp(a, "--samples") && more) {
+            if (!sc_parse_samples(argv[++i], &samples)) {
+                fprintf(stderr, "sgapi-ref: --samples wants 1 or 4, got '%s'\n", argv[i]);
                 return 2;
             }
         } else if (!strcmp(a, "--strict")) {
@@ -1780,6 +1921,7 @@ int main(int argc, char **argv) {
         sc_file f;
         status = load_file(files[fi], shaders, &f);
         if (status) break;
+        if (samples) sc_set_samples(&f, samples);
         if (!strict) sc_report_warnings(&f, "sgapi-ref", false);
         uploads u = {0};
         if (!upload_file(r, &f, &u)) {

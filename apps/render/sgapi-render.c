@@ -55,6 +55,7 @@ typedef struct options {
     int frames;
     bool frame_times; /* --frame-times: each frame's time to stderr (the first frame's own cost) */
     int threads;
+    int samples;       /* --samples: every scene's samples a pixel (0: as the scenes say) */
     size_t bin_memory; /* --bin-memory: sgDeviceDesc.bin_memory_limit (0: the default) */
     sgSimd simd;
     const char **files;
@@ -107,6 +108,8 @@ static void usage(FILE *f) {
                "                  grows the device's storage to the scene's size)\n"
                "  --scene NAME    render only scenes of that name (repeatable)\n"
                "  --threads T     worker threads for the device (default 0: all cores)\n"
+               "  --samples N     samples a pixel, 1 or 4, for every scene (default: each\n"
+               "                  scene's \"samples\")\n"
                "  --bin-memory B  bytes of binned work a pass holds before it renders them and\n"
                "                  goes on (sgDeviceDesc.bin_memory_limit; default 0: 256 MiB;\n"
                "                  same images)\n"
@@ -216,9 +219,10 @@ static int check_combination(const options *o) {
                   : o->up >= 0 ? "--up needs --turntable"
                   : o->video   ? "--video needs --turntable: a video of which frames?"
                                : "--assemble needs --turntable N and --video";
-    else if (o->ground_truth && (o->turntable || o->depth_only))
-        problem = o->turntable ? "--ground-truth renders still images, not turntables"
-                               : "--ground-truth renders colour: drop --depth-only";
+    else if (o->ground_truth && (o->turntable || o->depth_only || o->samples))
+        problem = o->turntable    ? "--ground-truth renders still images, not turntables"
+                  : o->depth_only ? "--ground-truth renders colour: drop --depth-only"
+                                  : "--ground-truth takes one sample a pixel: drop --samples";
     else if (o->turntable && (o->frames_given || o->compare_dir || o->depth_only))
         problem = o->frames_given
                       ? "--frames times still images; a turntable renders each frame once"
@@ -285,7 +289,7 @@ static int parse_args(int argc, char **argv, options *o) {
             !strcmp(a, "--png-level") || !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
             !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size") ||
             !strcmp(a, "--shaders") || !strcmp(a, "--progress-file") ||
-            !strcmp(a, "--ground-truth");
+            !strcmp(a, "--ground-truth") || !strcmp(a, "--samples");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -403,6 +407,11 @@ static int parse_args(int argc, char **argv, options *o) {
             o->no_write = true;
         } else if (!strcmp(a, "--frame-times")) {
             o->frame_times = true;
+        } else if (!strcmp(a, "--samples")) {
+            if (!sc_parse_samples(value, &o->samples)) {
+                fprintf(stderr, "sgapi-render: --samples needs 1 or 4, not '%s'\n", value);
+                return 2;
+            }
         } else if (!strcmp(a, "--threads")) {
             if (!sc_parse_int(value, 0, 4096, &o->threads)) {
                 fprintf(stderr, "sgapi-render: --threads needs a whole number >= 0, not '%s'\n",
@@ -606,6 +615,7 @@ static bool ground_truth_scenes(sc_file *files, int count, int n) {
             }
             s->width *= n;
             s->height *= n;
+            s->samples = 1;
             for (size_t d = 0; d < s->draw_count; d++) s->draws[d].filter = SC_FILTER_BILINEAR;
         }
     return true;
@@ -1126,6 +1136,7 @@ int main(int argc, char **argv) {
             goto done;
         }
     }
+    for (int i = 0; o.samples && i < loaded; i++) sc_set_samples(&files[i], o.samples);
     /* Every file's warnings, then (with --strict) the verdict, before anything is rendered. */
     bool clean = true;
     for (int i = 0; i < loaded; i++)

@@ -35,6 +35,7 @@ typedef struct options {
     int frames;               /* --frames N: render N frames, print the rate and quit; 0: run */
     bool print_fps;           /* --print-fps: the rate once a second on stdout */
     bool strict;              /* --strict: an unknown key in the scene file is an error */
+    int samples;              /* --samples: every scene's samples a pixel (0: the scenes') */
     const char *save_dir;     /* --save-dir: where F12 writes frame-NNNN.png */
     const char **shader_libs; /* --shaders: shader libraries, in order */
     int shader_lib_count;
@@ -98,6 +99,7 @@ static void usage(FILE *f) {
                "  --frames N      render N frames, print frames per second, quit (a benchmark)\n"
                "  --print-fps     print frames per second once a second\n"
                "  --shaders LIB.so  load the shaders of a shader library (repeatable)\n"
+               "  --samples N     samples a pixel, 1 or 4, for every scene (default: the scene's)\n"
                "  --strict        an unknown key in the scene file is an error (exit 1, nothing\n"
                "                  shown), not a warning\n"
                "Mouse:\n"
@@ -557,7 +559,8 @@ static int parse_args(int argc, char **argv, options *o) {
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool takes = !strcmp(a, "--scene") || !strcmp(a, "--size") || !strcmp(a, "--threads") ||
-                     !strcmp(a, "--save-dir") || !strcmp(a, "--frames") || !strcmp(a, "--shaders");
+                     !strcmp(a, "--save-dir") || !strcmp(a, "--frames") ||
+                     !strcmp(a, "--shaders") || !strcmp(a, "--samples");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -582,6 +585,11 @@ static int parse_args(int argc, char **argv, options *o) {
         } else if (!strcmp(a, "--threads")) {
             if (!sc_parse_int(value, 0, 1024, &o->threads)) {
                 fprintf(stderr, PROG ": --threads needs 0..1024, not '%s'\n", value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--samples")) {
+            if (!sc_parse_samples(value, &o->samples)) {
+                fprintf(stderr, PROG ": --samples needs 1 or 4, not '%s'\n", value);
                 return 2;
             }
         } else if (!strcmp(a, "--frames")) {
@@ -644,6 +652,7 @@ static bool load(viewer *v, const options *o) {
         sc_free(&v->file);
         return false;
     }
+    if (o->samples) sc_set_samples(&v->file, o->samples);
     size_t k = 0;
     if (o->scene) {
         while (k < v->file.scene_count && strcmp(v->file.scenes[k].name, o->scene)) k++;

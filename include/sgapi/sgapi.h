@@ -398,6 +398,11 @@ typedef struct sgPassDesc {
     float clear_color[4];  /* r, g, b, a in [0, 1] */
     float clear_depth;     /* used when depth_load is SG_LOAD_CLEAR, in [0, 1] */
     sgStoreOp depth_store; /* whether the depth target receives the pass's depth */
+    /* Samples a pixel: 0 or 1 (one, at the pixel centre) or 4 (Vulkan's standard 4x positions;
+     * coverage, depth test and blending per sample, shading once per pixel and triangle at the
+     * centre; the colour target receives the samples' average rounded to nearest and the depth
+     * target sample 0, at sgEndRenderPass). Other counts: SG_ERROR_INVALID_VALUE. */
+    int samples;
 } sgPassDesc;
 
 /* An RGBA colour, each channel in [0, 1]. */

@@ -244,6 +244,8 @@ void sgDestroyDevice(sgDevice *dev) {
     sg_free(dev, dev->fe_counts);
     sg_free(dev, dev->fe_ranges);
     sg_free(dev, dev->flush_depth);
+    sg_free(dev, dev->msaa_color);
+    sg_free(dev, dev->msaa_depth);
     sg_free(dev, dev->sort_scratch);
     sg_free(dev, dev->uniforms);
     sg_free(dev, dev->lit);

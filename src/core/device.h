@@ -94,6 +94,10 @@ struct sgDevice {
     size_t bin_memory_limit; /* bytes of binned work before a flush (sgDeviceDesc) */
     float *flush_depth;      /* the depth between flushes of a pass that does not store it */
     size_t flush_depth_capacity;
+    /* A multisampled pass's samples between flushes (sg_bin_pass.msaa_color), kept and grown. */
+    uint32_t *msaa_color;
+    float *msaa_depth;
+    size_t msaa_color_capacity, msaa_depth_capacity; /* in samples */
     size_t draw_first;             /* the open draw's first triangle in the binner */
     bool draw_flushed;             /* a flush rendered some of the open draw's triangles */
     size_t room_tris, room_listed; /* bin_slot's next look at the budget (draw.c) */

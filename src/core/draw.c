@@ -586,7 +586,8 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
                                 pso->desc.depth.bias_constant,
                                 pso->desc.depth.bias_slope,
                                 1,
-                                depth_only ? 0 : sh->flat_varyings};
+                                depth_only ? 0 : sh->flat_varyings,
+                                dev->pass.samples};
     if (params->sort == SG_SORT_BACK_TO_FRONT &&
         !sort_primitives(dev, geom, params->world_view, &a))
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
@@ -630,6 +631,9 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     ds->shade_fn = pso->shade_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
+    ds->vis_fn = pso->depth_fn;
+    ds->test_fn = dev->pass.samples > 1 ? sg_depth_select(ds->compare, false, dev->isa) : NULL;
+    ds->blend = pso->desc.blend == SG_BLEND_ALPHA;
     dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_shader = true;
     int instances = params->instance_count ? params->instance_count : 1;
@@ -856,6 +860,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     a.setup.sec_end = split ? nattr : 0;
     a.setup.bias_constant = pso->desc.depth.bias_constant;
     a.setup.bias_slope = pso->desc.depth.bias_slope;
+    a.setup.samples = dev->pass.samples;
     if (vattr) {
         a.vattr = dev->lit;
         a.vstride = vstride;
@@ -885,6 +890,9 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     ds->ctx = ctx;
     ds->shader_in_place = NULL;
     ds->compare = pso->desc.depth.compare;
+    ds->vis_fn = pso->depth_fn;
+    ds->test_fn = dev->pass.samples > 1 ? sg_depth_select(ds->compare, false, dev->isa) : NULL;
+    ds->blend = pso->desc.blend == SG_BLEND_ALPHA;
     ds->in_place = put_lines || (!depth_only && pso->desc.blend == SG_BLEND_ALPHA);
     dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_pair |= ds->shade2_fn != NULL;

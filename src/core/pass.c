@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "raster/rast_msaa.h"
 #include "raster/shade.h"
 
 static bool unit_range(float v) {
@@ -86,6 +87,11 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                             depth->width, depth->height, color->width, color->height);
     }
     const sg_image *size = color ? color : depth;
+    if (pass->samples != 0 && pass->samples != 1 && pass->samples != 4)
+        return sg_error(
+            dev, SG_ERROR_INVALID_VALUE,
+            "sgBeginRenderPass: samples = %d; a pass takes 1 (or 0) or 4 samples a pixel",
+            pass->samples);
     if ((int)pass->depth_store < SG_STORE_DEFAULT || pass->depth_store > SG_STORE_DONT_CARE)
         return sg_error(dev, SG_ERROR_INVALID_ENUM,
                         "sgBeginRenderPass: depth_store %d is not an sgStoreOp",
@@ -136,6 +142,7 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
                                    sg_to_unorm8(c[3]));
     p->clear_depth = pass->depth_load == SG_LOAD_CLEAR ? pass->clear_depth : 1.0f;
     p->store_depth = pass->depth_store != SG_STORE_DONT_CARE;
+    p->samples = pass->samples == 4 ? 4 : 1;
     p->fb = dev->isa == SG_ISA_AVX512 ? &sg_fb_ops_avx512
             : dev->isa == SG_ISA_AVX2 ? &sg_fb_ops_avx2
                                       : &sg_fb_ops_portable;
@@ -188,8 +195,42 @@ static void render_bins(sgDevice *dev) {
     }
 }
 
+/* Grows a sample buffer of the device to n samples; false: out of memory (nothing changed). */
+static bool msaa_room(sgDevice *dev, void **buf, size_t *capacity, size_t n) {
+    if (n <= *capacity) return true;
+    void *b = sg_alloc(dev, n * 4);
+    if (!b) return false;
+    sg_free(dev, *buf);
+    *buf = b;
+    *capacity = n;
+    return true;
+}
+
+/* A flush of a multisampled pass: the bins keep their samples in the device's buffers, and the
+ * targets are written only when the pass ends (a resolve cannot be undone). */
+static bool flush_msaa(sgDevice *dev) {
+    sg_bin_pass *p = &dev->pass;
+    const size_t n = (size_t)dev->binner.bins_x * (size_t)dev->binner.bins_y * SG_MSAA_BIN_SAMPLES;
+    if (p->color && !msaa_room(dev, (void **)&dev->msaa_color, &dev->msaa_color_capacity, n))
+        return false;
+    if (p->depth && !msaa_room(dev, (void **)&dev->msaa_depth, &dev->msaa_depth_capacity, n))
+        return false;
+    p->msaa_color = dev->msaa_color;
+    p->msaa_depth = dev->msaa_depth;
+    p->msaa_store = true;
+    render_bins(dev);
+    p->msaa_store = false;
+    p->msaa_load = true;
+    dev->pass_tris += dev->binner.tri_count;
+    sg_binner_clear(&dev->binner);
+    dev->room_tris = dev->room_listed = 0;
+    dev->flushes++;
+    return true;
+}
+
 bool sg_pass_flush(sgDevice *dev) {
     sg_bin_pass *p = &dev->pass;
+    if (p->samples > 1) return flush_msaa(dev);
     /* A bin goes on from what the flush leaves in the targets. A depth target the pass does not
      * store keeps its contents, so the depth goes on in a scratch image of the device. */
     if (p->depth && !dev->pass_depth_store && p->depth != dev->flush_depth) {

@@ -62,10 +62,13 @@ bool sg_setup_bounds(const sg_setup_params *p, sg_svert s[3], int64_t area, cons
         if (s[i].y > ymax) ymax = s[i].y;
     }
     const int64_t one = SG_SUBPIXEL_ONE, half = SG_SUBPIXEL_ONE / 2;
-    int64_t minx = ((int64_t)xmin - half + one - 1) >> SG_SUBPIXEL_BITS;
-    int64_t maxx = ((int64_t)xmax - half) >> SG_SUBPIXEL_BITS;
-    int64_t miny = ((int64_t)ymin - half + one - 1) >> SG_SUBPIXEL_BITS;
-    int64_t maxy = ((int64_t)ymax - half) >> SG_SUBPIXEL_BITS;
+    /* With 4 samples a pixel is reachable when one of its samples, at 32 .. 224 / 256 of the
+     * pixel in x and in y (rast_msaa.h), lies within [min, max]. */
+    const int64_t lo = p->samples > 1 ? 32 : half, hi = p->samples > 1 ? 224 : half;
+    int64_t minx = ((int64_t)xmin - hi + one - 1) >> SG_SUBPIXEL_BITS;
+    int64_t maxx = ((int64_t)xmax - lo) >> SG_SUBPIXEL_BITS;
+    int64_t miny = ((int64_t)ymin - hi + one - 1) >> SG_SUBPIXEL_BITS;
+    int64_t maxy = ((int64_t)ymax - lo) >> SG_SUBPIXEL_BITS;
     out->rect_cut =
         minx < p->rect_x0 || miny < p->rect_y0 || maxx > p->rect_x1 - 1 || maxy > p->rect_y1 - 1;
     if (minx < p->rect_x0) minx = p->rect_x0;

@@ -36,6 +36,9 @@ typedef struct sg_setup_params {
      * (the value every vertex of the primitive carries: assembly copies the first vertex's). */
     int shader;
     uint32_t flat_mask;
+    /* Samples a pixel of the pass (0 or 1: the centre; 4: the pixel bounds reach every pixel one
+     * of whose samples may be covered, rast_msaa.h). */
+    int samples;
 } sg_setup_params;
 
 /* Attributes an sg_tri holds; a draw that interpolates more keeps the rest in an sg_tri_ext (the

@@ -7,6 +7,7 @@
 #include "core/stage_times.h"
 #include "raster/depth.h"
 #include "raster/framebuffer.h"
+#include "raster/rast_msaa.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -374,6 +375,10 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
 }
 
 void sg_rast_bin(const sg_bin_pass *p, int index) {
+    if (p->samples > 1) { /* its own path: this one stays as it is */
+        sg_rast_bin_msaa(p, index);
+        return;
+    }
     const sg_binner *b = p->binner;
     const sg_bin *bin = &b->bins[index];
     bin_view v;

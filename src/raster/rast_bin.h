@@ -36,6 +36,11 @@ typedef struct sg_draw_state {
     /* Shader draws: the raster function shading in place, for a bin redone because a fragment
      * was discarded (ctx.shader.fragment set). */
     sg_raster_fn shader_in_place;
+    /* Multisampled passes only (rast_msaa.c): the plain visibility function of the draw's depth
+     * state (ids and depth, per sample), the same without depth write (a depth test for the draws
+     * shaded in place), and whether the draw blends. */
+    sg_raster_fn vis_fn, test_fn;
+    bool blend;
 } sg_draw_state;
 
 /* Stages of a pass whose wall time a build with SGAPI_STAGE_TIMES adds up (stage_times.h). */
@@ -64,7 +69,15 @@ typedef struct sg_bin_pass {
     bool any_shader;      /* some draw has a fragment stage (sgShaderDesc) */
     int *shader_discards; /* tiles whose fragment stage discarded (shade_shader.h), all bins */
     const sg_fb_ops *fb;  /* the bin's fills, for the device's instruction set */
-    void *stage_times;    /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
+    /* Multisampled passes (samples 4, rast_msaa.h): the samples of every bin between flushes,
+     * bin after bin (colour and depth, SG_MSAA_BIN_SAMPLES each; NULL until a flush needs them),
+     * whether bins start from them (a flush came before) and whether they store into them (a
+     * flush, which then leaves the targets alone). */
+    int samples;
+    uint32_t *msaa_color;
+    float *msaa_depth;
+    bool msaa_load, msaa_store;
+    void *stage_times; /* sg_stage_times, in SGAPI_STAGE_TIMES builds */
 } sg_bin_pass;
 
 /** Renders bin `index` of the pass into its target images. */

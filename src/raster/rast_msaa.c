@@ -1,0 +1,295 @@
+/* rast_msaa.c - one screen bin of a multisampled render pass (see rast_msaa.h). */
+#include "raster/rast_msaa.h"
+
+#include <string.h>
+
+#include "raster/blend.h"
+#include "raster/framebuffer.h"
+#include "raster/shade_shader.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+enum {
+    BIN_TILES = SG_BIN_SIZE / SG_TILE,
+    BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE,
+    TOUCH_WORDS = BIN_TILES * BIN_TILES / 64,
+    NS = SG_MSAA_SAMPLES
+};
+
+void sg_msaa_sample_tri(const sg_tri *t, int k, sg_tri *out) {
+    *out = *t;
+    if (t->line) return;
+    /* edge_dx and edge_dy are whole pixels' steps, multiples of 256: a 1/256 step is exact. */
+    const int64_t ox = sg_msaa_offset_x(k), oy = sg_msaa_offset_y(k);
+    for (int i = 0; i < 3; i++)
+        out->edge[i] = t->edge[i] + ox * (t->edge_dx[i] / SG_SUBPIXEL_ONE) +
+                       oy * (t->edge_dy[i] / SG_SUBPIXEL_ONE);
+    out->z = t->z + t->z_dx * ((float)ox / (float)SG_SUBPIXEL_ONE) +
+             t->z_dy * ((float)oy / (float)SG_SUBPIXEL_ONE);
+}
+
+/* A bin's samples: plane k holds sample k of every pixel, tiled like a one-sample bin, so that
+ * each plane is what the visibility functions expect. */
+typedef struct msaa_bin {
+    _Alignas(64) uint32_t color[NS][BIN_PIXELS];
+    _Alignas(64) float depth[NS][BIN_PIXELS];
+    _Alignas(64) uint32_t ids[NS][BIN_PIXELS];
+    uint64_t touched[NS][TOUCH_WORDS];
+    sg_vis_ctx vis[NS];
+    int x0, y0; /* the bin's top-left pixel */
+} msaa_bin;
+
+/* Mask of the pixels of a tile (16 ids) that see triangle `id`. */
+static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
+#if defined(__SSE2__)
+    __m128i v = _mm_set1_epi32((int32_t)id);
+    uint32_t mask = 0;
+    for (int j = 0; j < 4; j++) {
+        __m128i row = _mm_load_si128((const __m128i *)(const void *)(ids + 4 * j));
+        mask |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(row, v))) << (4 * j);
+    }
+    return mask;
+#else
+    uint32_t mask = 0;
+    for (int i = 0; i < SG_TILE_PIXELS; i++) mask |= (uint32_t)(ids[i] == id) << i;
+    return mask;
+#endif
+}
+
+/* src's pixels of `mask` into dst. */
+static inline void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+    if (mask == 0xffffu) {
+        memcpy(dst, src, SG_TILE_PIXELS * sizeof *dst);
+        return;
+    }
+    for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
+}
+
+/* Shades the ids the samples hold: per tile, each triangle seen by some sample once, for the
+ * pixels where one of its samples sees it, at the pixel centre, its colour then written to those
+ * samples. The ids are set back to 0 and the tiles to unreached. */
+static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
+    for (int word = 0; word < TOUCH_WORDS; word++) {
+        uint64_t reached = 0;
+        for (int k = 0; k < NS; k++) reached |= b->touched[k][word];
+        for (; reached; reached &= reached - 1) {
+            const int tile = word * 64 + __builtin_ctzll(reached);
+            const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
+            const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
+            const int base = tile * SG_TILE_PIXELS;
+            uint32_t left[NS], any = 0;
+            for (int k = 0; k < NS; k++) any |= left[k] = ~same_id(b->ids[k] + base, 0) & 0xffffu;
+            while (any) {
+                int first = 0;
+                while (!left[first]) first++;
+                const uint32_t id = b->ids[first][base + __builtin_ctz(left[first])];
+                uint32_t m[NS], u = 0;
+                for (int k = 0; k < NS; k++)
+                    u |= m[k] = left[k] ? same_id(b->ids[k] + base, id) : 0;
+                const sg_tri *t = &p->binner->tris[id - 1];
+                const sg_draw_state *d = &p->draws[t->draw];
+                _Alignas(64) uint32_t src[SG_TILE_PIXELS];
+                d->shade_fn(&d->ctx, t, px, py, u, src);
+                any = 0;
+                for (int k = 0; k < NS; k++) {
+                    put_masked(b->color[k] + base, src, m[k]);
+                    any |= left[k] &= ~m[k];
+                }
+            }
+            for (int k = 0; k < NS; k++)
+                memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
+        }
+        for (int k = 0; k < NS; k++) b->touched[k][word] = 0;
+    }
+}
+
+/* A triangle shaded in place (a blend, or a shader draw whose fragments may discard): each
+ * sample's depth test without write (its ids mark the passing samples), then per tile one
+ * shading of the pixels with a passing sample, then each passing sample's depth (when the draw
+ * writes it) and colour, blended or put, where the fragment was not discarded. The ids planes
+ * hold nothing else here (shade_ids ran before) and are left empty. */
+static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
+                     const sg_draw_state *d, uint32_t id) {
+    for (int k = 0; k < NS; k++) {
+        b->vis[k].id = id;
+        b->vis[k].compare = d->compare;
+        d->test_fn(&st[k], b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, &b->vis[k]);
+    }
+    (void)p;
+    const bool shader = d->ctx.shader.fragment != NULL;
+    for (int word = 0; word < TOUCH_WORDS; word++) {
+        uint64_t reached = 0;
+        for (int k = 0; k < NS; k++) reached |= b->touched[k][word];
+        for (; reached; reached &= reached - 1) {
+            const int tile = word * 64 + __builtin_ctzll(reached);
+            const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
+            const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
+            const int base = tile * SG_TILE_PIXELS;
+            uint32_t m[NS], u = 0;
+            for (int k = 0; k < NS; k++) u |= m[k] = same_id(b->ids[k] + base, id);
+            for (int k = 0; k < NS; k++)
+                memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
+            if (!u) continue;
+            _Alignas(64) uint32_t src[SG_TILE_PIXELS];
+            uint32_t keep = u;
+            if (shader)
+                keep = sg_shader_fragments(&d->ctx, t, px, py, u, src);
+            else
+                d->shade_fn(&d->ctx, t, px, py, u, src);
+            for (int k = 0; k < NS; k++) {
+                uint32_t mk = m[k] & keep;
+                if (d->writes_depth && b->vis[k].depth) {
+                    const float ox = (float)(px - st[k].minx), oy = (float)(py - st[k].miny);
+                    for (uint32_t left = mk; left; left &= left - 1) {
+                        int bit = __builtin_ctz(left);
+                        b->depth[k][base + bit] =
+                            sg_tri_depth(&st[k], ox + (float)(bit & 3), oy + (float)(bit >> 2));
+                    }
+                }
+                uint32_t *dst = b->color[k] + base;
+                if (d->blend)
+                    for (; mk; mk &= mk - 1) {
+                        int bit = __builtin_ctz(mk);
+                        dst[bit] = sg_blend_rgba8(src[bit], dst[bit]);
+                    }
+                else
+                    put_masked(dst, src, mk);
+            }
+        }
+        for (int k = 0; k < NS; k++) b->touched[k][word] = 0;
+    }
+}
+
+/* Where a bin's pixels are in the target images. */
+typedef struct bin_view {
+    int w, h;
+    size_t pitch; /* of both targets: width * 4 bytes */
+    uint8_t *color;
+    float *depth; /* NULL without a depth target */
+} bin_view;
+
+/* The bin's samples from the pass's load or clear, or from the sample buffers after a flush. */
+static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index) {
+    const size_t at = (size_t)index * SG_MSAA_BIN_SAMPLES;
+    if (v->color) {
+        if (p->msaa_load) {
+            memcpy(b->color, p->msaa_color + at, sizeof b->color);
+        } else if (p->load_color) {
+            sg_tile_from_linear_rgba8(b->color[0], v->color, v->pitch, v->w, v->h, BIN_TILES);
+            for (int k = 1; k < NS; k++) memcpy(b->color[k], b->color[0], sizeof b->color[0]);
+        } else {
+            p->fb->fill_color(b->color[0], (size_t)NS * BIN_PIXELS, p->clear_color);
+        }
+    }
+    if (v->depth) {
+        if (p->msaa_load) {
+            memcpy(b->depth, p->msaa_depth + at, sizeof b->depth);
+        } else if (p->load_depth) {
+            sg_tile_from_linear_f32(b->depth[0], v->depth, v->pitch, v->w, v->h, BIN_TILES);
+            for (int k = 1; k < NS; k++) memcpy(b->depth[k], b->depth[0], sizeof b->depth[0]);
+        } else {
+            p->fb->fill_depth(b->depth[0], (size_t)NS * BIN_PIXELS, p->clear_depth);
+        }
+    }
+}
+
+/* The bin's samples kept for the rest of the pass (a flush), or resolved into the targets: the
+ * colour's average, sample 0's depth. */
+static void end_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index) {
+    const size_t at = (size_t)index * SG_MSAA_BIN_SAMPLES;
+    if (p->msaa_store) {
+        if (v->color) memcpy(p->msaa_color + at, b->color, sizeof b->color);
+        if (v->depth) memcpy(p->msaa_depth + at, b->depth, sizeof b->depth);
+        return;
+    }
+    if (v->color) {
+        uint32_t *c0 = b->color[0];
+        const uint32_t *c1 = b->color[1], *c2 = b->color[2], *c3 = b->color[3];
+        for (int i = 0; i < BIN_PIXELS; i++) c0[i] = sg_msaa_average(c0[i], c1[i], c2[i], c3[i]);
+        sg_tile_to_linear_rgba8(v->color, v->pitch, c0, v->w, v->h, BIN_TILES);
+    }
+    if (v->depth && p->store_depth)
+        sg_tile_to_linear_f32(v->depth, v->pitch, b->depth[0], v->w, v->h, BIN_TILES);
+}
+
+/* The bin's triangles in submission order; with shaders_in_place every shader draw is shaded in
+ * place (a fragment was discarded: what visibility first found behind it is unknown). False:
+ * a shader draw discarded while shaded visibility first, and the bin must be redone so. */
+static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index,
+                   const bool shaders_in_place) {
+    const sg_bin *bin = &p->binner->bins[index];
+    const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
+    memset(b->ids, 0, sizeof b->ids);
+    memset(b->touched, 0, sizeof b->touched);
+    for (int k = 0; k < NS; k++)
+        b->vis[k] = (sg_vis_ctx){v->depth ? b->depth[k] : NULL,
+                                 b->ids[k],
+                                 b->touched[k],
+                                 b->x0,
+                                 b->y0,
+                                 0,
+                                 SG_COMPARE_ALWAYS,
+                                 NULL,
+                                 NULL,
+                                 NULL,
+                                 NULL};
+    start_bin(p, v, b, index);
+    const bool depth_only = v->color == NULL;
+    bool pending = false; /* the ids hold triangles not shaded yet */
+    sg_tri st[NS];
+    for (uint32_t i = 0; i < bin->count; i++) {
+        const uint32_t ti = bin->tris[i];
+        const sg_tri *t = &p->binner->tris[ti];
+        const sg_draw_state *d = &p->draws[t->draw];
+        for (int k = 0; k < NS; k++) sg_msaa_sample_tri(t, k, &st[k]);
+        const bool shader = d->ctx.shader.fragment != NULL;
+        if (!depth_only && (d->blend || (shader && (d->in_place || shaders_in_place)))) {
+            if (pending) shade_ids(p, b);
+            pending = false;
+            in_place(p, b, t, st, d, ti + 1);
+            continue;
+        }
+        for (int k = 0; k < NS; k++) {
+            b->vis[k].id = ti + 1;
+            b->vis[k].compare = d->compare;
+            d->vis_fn(&st[k], b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, &b->vis[k]);
+        }
+        pending = !depth_only;
+    }
+    if (pending) shade_ids(p, b);
+    if (!shaders_in_place && p->any_shader &&
+        __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) != discards)
+        return false;
+    end_bin(p, v, b, index);
+    return true;
+}
+
+void sg_rast_bin_msaa(const sg_bin_pass *p, int index) {
+    const sg_binner *bn = p->binner;
+    const sg_bin *bin = &bn->bins[index];
+    const int x0 = (index % bn->bins_x) << SG_BIN_SHIFT, y0 = (index / bn->bins_x) << SG_BIN_SHIFT;
+    bin_view v;
+    v.w = p->width - x0 < SG_BIN_SIZE ? p->width - x0 : SG_BIN_SIZE;
+    v.h = p->height - y0 < SG_BIN_SIZE ? p->height - y0 : SG_BIN_SIZE;
+    v.pitch = (size_t)p->width * 4;
+    v.color = p->color ? p->color + (size_t)y0 * v.pitch + (size_t)x0 * 4 : NULL;
+    v.depth = p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)y0 * v.pitch) + x0 : NULL;
+    if (!bin->count && !p->msaa_load && !p->msaa_store) {
+        /* Nothing drawn here: every sample holds the load or clear, and so does their average. */
+        if (v.color && !p->load_color)
+            sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
+        if (v.depth && p->store_depth && !p->load_depth) {
+            uint32_t bits;
+            memcpy(&bits, &p->clear_depth, 4);
+            sg_fill_linear_u32(v.depth, v.pitch, v.w, v.h, bits);
+        }
+        return;
+    }
+    /* 192 KB of samples and ids: the same stack for every bin of the thread. */
+    msaa_bin b;
+    b.x0 = x0;
+    b.y0 = y0;
+    if (!render(p, &v, &b, index, false)) render(p, &v, &b, index, true);
+}
