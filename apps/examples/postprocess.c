@@ -123,7 +123,7 @@ static void filter_direct(const post_uniforms *u, const uint8_t *in, uint8_t *ou
 #define CHECK(call)                                                                                \
     do {                                                                                           \
         sgResult r_ = (call);                                                                      \
-        if (r_ != SG_OK) {                                                                    \
+        if (r_ != SG_OK) {                                                                         \
             fprintf(stderr, "postprocess: %s: %s (%s)\n", #call, sgResultName(r_),                 \
                     sgGetLastError(dev));                                                          \
             goto done;                                                                             \
@@ -157,9 +157,12 @@ int main(int argc, char **argv) {
         &(sgGeomDesc){.vertex_count = 4, .positions = pos, .index_count = 6, .indices = quad_idx},
         &screen));
     sgImage2D image, result, depth;
-    CHECK(sgCreateImage2D(dev, &(sgImage2DDesc){W, H, SG_FORMAT_RGBA8_UNORM, NULL}, &image));
-    CHECK(sgCreateImage2D(dev, &(sgImage2DDesc){W, H, SG_FORMAT_RGBA8_UNORM, NULL}, &result));
-    CHECK(sgCreateImage2D(dev, &(sgImage2DDesc){W, H, SG_FORMAT_D32_FLOAT, NULL}, &depth));
+    CHECK(sgCreateImage2D(
+        dev, &(sgImage2DDesc){.width = W, .height = H, .format = SG_FORMAT_RGBA8_UNORM}, &image));
+    CHECK(sgCreateImage2D(
+        dev, &(sgImage2DDesc){.width = W, .height = H, .format = SG_FORMAT_RGBA8_UNORM}, &result));
+    CHECK(sgCreateImage2D(
+        dev, &(sgImage2DDesc){.width = W, .height = H, .format = SG_FORMAT_D32_FLOAT}, &depth));
 
     sgPipelineStateObject scene_pso, post_pso;
     CHECK(sgCreatePipelineStateObject(

@@ -8,6 +8,7 @@
 
 #include "raster/blend.h"
 #include "raster/blend_walk.h"
+#include "tex/mip.h"
 
 /* Lane i's pixel offset from the tile's top-left pixel. */
 static const float LANE_X[SG_SHADER_LANES] = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
@@ -185,6 +186,25 @@ static float sample_depth(const sg_shader_tex *tx, float s, float t, bool biline
            (v[1][0] * (1.0f - fx) + v[1][1] * fx) * fy;
 }
 
+/* sgSample of a mipmapped pipeline on an RGBA8 texture: each 2 x 2 quad of lanes (a tile's lanes
+ * are its pixels, row by row) takes its levels from its own differences of u and v, as the fixed
+ * shading does (shade_mip.c). */
+static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s,
+                       const float u[SG_SHADER_LANES], const float v[SG_SHADER_LANES],
+                       float rgba[4][SG_SHADER_LANES]) {
+    const int linear = s->mipmap == SG_MIPMAP_LINEAR;
+    for (int q = 0; q < 4; q++) {
+        const int l0 = (q & 1) * 2 + (q >> 1) * 8; /* the quad's top-left lane */
+        const sg_mip_pick p = sg_mip_select(tx->mips, u[l0 + 1] - u[l0], v[l0 + 1] - v[l0],
+                                            u[l0 + 4] - u[l0], v[l0 + 4] - v[l0], linear);
+        for (int j = 0; j < 4; j++) {
+            const int i = l0 + (j & 1) + (j >> 1) * 4;
+            sg_texel e = sg_sample_mip(tx->mips, p, u[i], v[i], s->bilinear, s->repeat);
+            for (int k = 0; k < 4; k++) rgba[k][i] = (float)e.c[k] / 255.0f;
+        }
+    }
+}
+
 void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
               const float v[SG_SHADER_LANES], float rgba[4][SG_SHADER_LANES]) {
     const sg_shade_ctx *c = b && b->internal ? b->internal : NULL;
@@ -192,6 +212,10 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
         c && slot >= 0 && slot < SG_MAX_DRAW_TEXTURES && c->shader.textures[slot].data
             ? &c->shader.textures[slot]
             : NULL;
+    if (tx && !tx->depth && c->shader.mipmap > SG_MIPMAP_NONE && tx->mips) {
+        sample_mip(tx, &c->shader, u, v, rgba);
+        return;
+    }
     for (int i = 0; i < SG_SHADER_LANES; i++) {
         if (!tx) {
             rgba[0][i] = rgba[1][i] = rgba[2][i] = 0.0f;
