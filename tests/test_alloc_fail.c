@@ -159,9 +159,10 @@ typedef struct script {
     const mesh *ball, *big; /* big: enough triangles for the front end to run on all threads */
     int threads;
     sgDevice *dev;
-    sgImage2D color, depth, tex, shadow_map;
+    sgImage2D color, depth, tex, shadow_map, mip_tex;
     sgGeom ball_g, ref_g, floor_g, lines_g, tri_g, big_g;
-    sgPipelineStateObject opaque, textured, blend, flat, gouraud, phong, wire, caster, line, shader;
+    sgPipelineStateObject opaque, textured, blend, flat, gouraud, phong, wire, caster, line, shader,
+        mipped;
     uint8_t image[W * H * 4];
     int failures;    /* checks that failed */
     int oom_seen;    /* calls that returned SG_ERROR_OUT_OF_MEMORY */
@@ -287,6 +288,10 @@ static void frame(script *s, int frame_no) {
     translate(dp.world_view, 1, 0, 0, -7);
     DO(sgDraw(s->dev, s->textured, s->floor_g, &dp));
     dp.shadow = NULL;
+    /* The floor again, mipmapped (trilinear) and blended over itself. */
+    dp.texture = s->mip_tex;
+    DO(sgDraw(s->dev, s->mipped, s->floor_g, &dp));
+    dp.texture = s->tex;
     /* Lit balls in each mode, the Phong ones receiving the shadow; many draws grow the arrays. */
     const sgPipelineStateObject lit[3] = {s->flat, s->gouraud, s->phong};
     for (int i = 0; i < 24; i++) {
@@ -364,6 +369,11 @@ static void run(script *s) {
     DO(sgCreateImage2D(s->dev, &zd, &s->depth));
     DO(sgCreateImage2D(s->dev, &td, &s->tex));
     DO(sgCreateImage2D(s->dev, &md, &s->shadow_map));
+    /* A mipmapped texture: its levels in the allocation of level 0, made again by an upload. */
+    sgImage2DDesc mtd = td;
+    mtd.mip_levels = SG_MIP_LEVELS_ALL;
+    DO(sgCreateImage2D(s->dev, &mtd, &s->mip_tex));
+    DO(sgUploadImage2D(s->dev, s->mip_tex, texels, 0));
 
     const mesh *b = s->ball;
     const sgGeomDesc bd = {.vertex_count = b->nv,
@@ -430,6 +440,10 @@ static void run(script *s) {
     pd.filter = SG_FILTER_BILINEAR;
     pd.cull = SG_CULL_NONE;
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->textured));
+    pd.mipmap = SG_MIPMAP_LINEAR;
+    pd.filter = SG_FILTER_BILINEAR;
+    pd.blend = SG_BLEND_ALPHA;
+    DO(sgCreatePipelineStateObject(s->dev, &pd, &s->mipped));
     pd = (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS_EQUAL}, .blend = SG_BLEND_ALPHA};
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->blend));
     pd = depth_on;
@@ -482,7 +496,7 @@ static void teardown(script *s) {
             !(r == SG_ERROR_OUT_OF_MEMORY && strstr(sgGetLastError(s->dev), "The pass is closed")))
             check(s, 0, __LINE__, "sgEndRenderPass", sgGetLastError(s->dev));
     }
-    const sgImage2D im[] = {s->color, s->depth, s->tex, s->shadow_map};
+    const sgImage2D im[] = {s->color, s->depth, s->tex, s->shadow_map, s->mip_tex};
     for (size_t i = 0; i < sizeof im / sizeof *im; i++)
         if (im[i].id && sgDestroyImage2D(s->dev, im[i]) != SG_OK)
             check(s, 0, __LINE__, "sgDestroyImage2D", sgGetLastError(s->dev));
@@ -490,8 +504,9 @@ static void teardown(script *s) {
     for (size_t i = 0; i < sizeof g / sizeof *g; i++)
         if (g[i].id && sgDestroyGeom(s->dev, g[i]) != SG_OK)
             check(s, 0, __LINE__, "sgDestroyGeom", sgGetLastError(s->dev));
-    const sgPipelineStateObject p[] = {s->opaque, s->textured, s->blend,  s->flat, s->gouraud,
-                                       s->phong,  s->wire,     s->caster, s->line, s->shader};
+    const sgPipelineStateObject p[] = {s->opaque,  s->textured, s->blend, s->flat,
+                                       s->gouraud, s->phong,    s->wire,  s->caster,
+                                       s->line,    s->shader,   s->mipped};
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         if (p[i].id && sgDestroyPipelineStateObject(s->dev, p[i]) != SG_OK)
             check(s, 0, __LINE__, "sgDestroyPipelineStateObject", sgGetLastError(s->dev));

@@ -584,6 +584,45 @@ static void image_create_errors(void **state) {
     assert_int_equal(img.id, 0);
     assert_int_equal(LIVE(f), live);
 
+    /* Mipmap levels: negative, more than the chain has (8 x 3 has 4), or on a depth image. */
+    const int bad_levels[] = {-1, -2, 5, 16, 1 << 30};
+    for (size_t i = 0; i < sizeof bad_levels / sizeof *bad_levels; i++) {
+        d = (sgImage2DDesc){
+            .width = 8, .height = 3, .format = SG_FORMAT_RGBA8_UNORM, .mip_levels = bad_levels[i]};
+        img.id = 0xdeadbeefu;
+        assert_err(f, SG_ERROR_INVALID_COUNT, "sgCreateImage2D", sgCreateImage2D(f->dev, &d, &img));
+        assert_int_equal(img.id, 0);
+        assert_non_null(strstr(sgGetLastError(f->dev), "mip_levels"));
+    }
+    d = (sgImage2DDesc){.width = 8, .height = 8, .format = SG_FORMAT_D32_FLOAT, .mip_levels = 2};
+    assert_err(f, SG_ERROR_FORMAT_MISMATCH, "sgCreateImage2D", sgCreateImage2D(f->dev, &d, &img));
+    assert_int_equal(LIVE(f), live);
+    /* 0 and 1: one level; SG_MIP_LEVELS_ALL: the chain; n: n levels. Level storage that cannot
+     * be allocated leaves the device as it was. */
+    const int levels_in[] = {0, 1, 4, SG_MIP_LEVELS_ALL, 2};
+    const int levels_out[] = {1, 1, 4, 4, 2};
+    for (size_t i = 0; i < 5; i++) {
+        d = (sgImage2DDesc){
+            .width = 8, .height = 3, .format = SG_FORMAT_RGBA8_UNORM, .mip_levels = levels_in[i]};
+        assert_ok(f, sgCreateImage2D(f->dev, &d, &img));
+        int n = 0;
+        assert_ok(f, sgGetImage2DLevels(f->dev, img, &n));
+        assert_int_equal(n, levels_out[i]);
+        assert_ok(f, sgDestroyImage2D(f->dev, img));
+    }
+    d = (sgImage2DDesc){.width = 64,
+                        .height = 64,
+                        .format = SG_FORMAT_RGBA8_UNORM,
+                        .mip_levels = SG_MIP_LEVELS_ALL};
+    f->mem.budget = 0;
+    assert_err(f, SG_ERROR_OUT_OF_MEMORY, "sgCreateImage2D", sgCreateImage2D(f->dev, &d, &img));
+    f->mem.budget = -1;
+    assert_int_equal(LIVE(f), live);
+    assert_ok(f, sgCreateImage2D(f->dev, &d, &img));
+    assert_ok(f, sgDestroyImage2D(f->dev, img));
+    assert_err(f, SG_ERROR_INVALID_HANDLE, "sgGetImage2DLevels",
+               sgGetImage2DLevels(f->dev, (sgImage2D){0}, NULL));
+
     /* The largest side is allowed. */
     sgImage2D wide = make_image(f, SG_MAX_IMAGE_SIZE, 1, SG_FORMAT_RGBA8_UNORM, NULL);
     sgImage2D tall = make_image(f, 1, SG_MAX_IMAGE_SIZE, SG_FORMAT_D32_FLOAT, NULL);
@@ -855,6 +894,12 @@ static void pso_create_errors(void **state) {
     PSO_FAILS(SG_ERROR_INVALID_ENUM, "filter");
     d = (sgPipelineDesc){.filter = (sgFilter)(SG_FILTER_BILINEAR + 1)};
     PSO_FAILS(SG_ERROR_INVALID_ENUM, "filter");
+    d = (sgPipelineDesc){.mipmap = (sgMipmap)-1};
+    PSO_FAILS(SG_ERROR_INVALID_ENUM, "mipmap");
+    d = (sgPipelineDesc){.mipmap = (sgMipmap)(SG_MIPMAP_LINEAR + 1)};
+    PSO_FAILS(SG_ERROR_INVALID_ENUM, "mipmap");
+    d = (sgPipelineDesc){.mipmap = SG_MIPMAP_LINEAR, .lighting = SG_LIGHTING_PHONG};
+    PSO_FAILS(SG_ERROR_UNSUPPORTED, "mipmap");
     d = (sgPipelineDesc){.wrap = (sgWrap)-1};
     PSO_FAILS(SG_ERROR_INVALID_ENUM, "wrap");
     d = (sgPipelineDesc){.wrap = (sgWrap)(SG_WRAP_CLAMP_TO_EDGE + 1)};

@@ -2,7 +2,11 @@
  */
 #include "test_common.h"
 
+#include "tex/mip.h"
+#include "tex/mipgen.h"
 #include "tex/sample.h"
+
+#include <stdlib.h>
 
 /* 2x2 texture, uploaded top row first: top row (10, 20), bottom row (30, 40) in red. */
 static const uint8_t texels[16] = {10, 0, 0, 255, 20, 0, 0, 255, 30, 0, 0, 255, 40, 0, 0, 255};
@@ -53,12 +57,78 @@ static void nonfinite_coordinates_stay_in_bounds(void **state) {
             }
 }
 
+/* The mean of the texels of level-above block (x0 .. x0 + nx - 1) x (y0 .. y0 + ny - 1), rounded
+ * half up: the definition of docs/api.md, written out for each case of a side. */
+static uint8_t box(const uint8_t *src, int sw, int x0, int nx, int y0, int ny, int k) {
+    unsigned sum = 0;
+    for (int y = y0; y < y0 + ny; y++)
+        for (int x = x0; x < x0 + nx; x++) sum += src[(y * sw + x) * 4 + k];
+    unsigned n = (unsigned)(nx * ny);
+    return (uint8_t)((sum + n / 2) / n);
+}
+
+static void mip_generator_matches_the_formula(void **state) {
+    (void)state;
+    const int sizes[][2] = {{8, 8}, {7, 5}, {1, 9}, {6, 1}, {3, 3}, {2, 7}, {1, 1}, {13, 4}};
+    srand(45);
+    for (size_t c = 0; c < sizeof sizes / sizeof *sizes; c++) {
+        const int sw = sizes[c][0], sh = sizes[c][1];
+        uint8_t src[13 * 9 * 4], dst[7 * 5 * 4];
+        for (int i = 0; i < sw * sh * 4; i++) src[i] = (uint8_t)(rand() & 255);
+        sg_mip_generate(src, sw, sh, dst);
+        const int dw = sw > 1 ? sw / 2 : 1, dh = sh > 1 ? sh / 2 : 1;
+        for (int y = 0; y < dh; y++)
+            for (int x = 0; x < dw; x++) {
+                /* Columns 2x, 2x + 1; a side of 1 its one texel; an odd side's last block takes
+                 * the left-over texel too. */
+                int nx = sw == 1 ? 1 : (sw % 2 && x == dw - 1 ? 3 : 2);
+                int ny = sh == 1 ? 1 : (sh % 2 && y == dh - 1 ? 3 : 2);
+                for (int k = 0; k < 4; k++)
+                    assert_int_equal(
+                        dst[(y * dw + x) * 4 + k],
+                        box(src, sw, sw == 1 ? 0 : 2 * x, nx, sh == 1 ? 0 : 2 * y, ny, k));
+            }
+    }
+    /* Halves round up: (10 + 11 + 10 + 11) / 4 = 10.5 gives 11. */
+    const uint8_t two[16] = {10, 0, 0, 0, 11, 0, 0, 0, 10, 0, 0, 0, 11, 0, 0, 0};
+    uint8_t one[4];
+    sg_mip_generate(two, 2, 2, one);
+    assert_int_equal(one[0], 11);
+    assert_int_equal(sg_mip_chain_length(256, 256), 9);
+    assert_int_equal(sg_mip_chain_length(5, 1), 3);
+    assert_int_equal(sg_mip_chain_length(16384, 1), 15);
+}
+
+static void mip_level_of_detail(void **state) {
+    (void)state;
+    sg_mip_chain m = {.levels = 5};
+    m.level[0] = (sg_texview){texels, 16, 16};
+    /* rho = 4 texels a pixel: level 2 exactly; trilinear level 2 with weight 0. */
+    sg_mip_pick p = sg_mip_select(&m, 4.0f / 16, 0, 0, 4.0f / 16, 0);
+    assert_int_equal(p.level0, 2);
+    p = sg_mip_select(&m, 4.0f / 16, 0, 0, 4.0f / 16, 1);
+    assert_true(p.level0 == 2 && p.level1 == 3 && p.f == 0);
+    /* Nearest rounds log2 rho at rho = sqrt 2 powers: 2.8 -> 1 (log2 1.49), 2.9 -> 2 (1.54). */
+    assert_int_equal(sg_mip_select(&m, 2.8f / 16, 0, 0, 0, 0).level0, 1);
+    assert_int_equal(sg_mip_select(&m, 2.9f / 16, 0, 0, 0, 0).level0, 2);
+    /* Linear: lod = (exponent - 1 + mantissa) / 2 of rho^2 = 6: (2 - 1 + 1.5) / 2 = 1.25. */
+    p = sg_mip_select(&m, 0, 0, sqrtf(6.0f) / 16, 0, 1);
+    assert_true(p.level0 == 1 && p.level1 == 2 && p.f == 64);
+    /* Magnification and beyond the chain clamp; the larger of the x and y steps counts. */
+    assert_int_equal(sg_mip_select(&m, 0.1f / 16, 0, 0, 0.1f / 16, 1).level0, 0);
+    p = sg_mip_select(&m, 1000.0f / 16, 0, 0, 0, 1);
+    assert_true(p.level0 == 4 && p.level1 == 4 && p.f == 0);
+    assert_int_equal(sg_mip_select(&m, 1.0f / 16, 0, 0, 8.0f / 16, 0).level0, 3);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(t_zero_is_the_bottom_row),
         cmocka_unit_test(bilinear_weights),
         cmocka_unit_test(repeat_wraps_across_the_edge),
         cmocka_unit_test(nonfinite_coordinates_stay_in_bounds),
+        cmocka_unit_test(mip_generator_matches_the_formula),
+        cmocka_unit_test(mip_level_of_detail),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -567,6 +567,7 @@ static void scene_defaults(void **state) {
     assert_int_equal(d->texture, -1);
     assert_int_equal(d->mode, SC_MODE_VERTEX_COLOR);
     assert_int_equal(d->filter, SC_FILTER_BILINEAR);
+    assert_int_equal(d->mipmap, SC_MIPMAP_NONE);
     assert_int_equal(d->wrap, SC_WRAP_REPEAT);
     assert_int_equal(d->cull, SC_CULL_NONE);
     assert_int_equal(d->front_face, SC_FRONT_FACE_CCW);
@@ -600,6 +601,7 @@ static void scene_overrides(void **state) {
             "{\"name\": \"b.2-x\", \"width\": 10, \"height\": 20,"
             " \"clear_color\": [0.5, 0.25, 1, 0], \"draws\": ["
             "  {\"mesh\": \"tri.obj\", \"texture\": \"red.png\", \"filter\": \"nearest\","
+            "   \"mipmap\": \"linear\","
             "   \"wrap\": \"clamp\", \"cull\": \"back\", \"front_face\": \"cw\","
             "   \"depth_compare\": \"greater_equal\", \"depth_write\": false,"
             "   \"worldView\": [2,0,0,0, 0,2,0,0, 0,0,2,0, 0,0,0,1], \"proj\": " IDENTITY "},"
@@ -628,6 +630,11 @@ static void scene_overrides(void **state) {
     assert_int_equal(d->texture, 0);
     assert_int_equal(d->mode, SC_MODE_TEXTURE); /* implied by the texture */
     assert_int_equal(d->filter, SC_FILTER_NEAREST);
+    assert_int_equal(d->mipmap, SC_MIPMAP_LINEAR);
+    assert_true(sc_texture_mipmapped(&f, 0)); /* a draw samples it with mipmaps: its chain */
+    sc_mipmap m;
+    assert_true(sc_mipmap_from_name("nearest", &m) && m == SC_MIPMAP_NEAREST);
+    assert_false(sc_mipmap_from_name("trilinear", &m));
     assert_int_equal(d->wrap, SC_WRAP_CLAMP);
     assert_int_equal(d->cull, SC_CULL_BACK);
     assert_int_equal(d->front_face, SC_FRONT_FACE_CW);

@@ -939,6 +939,18 @@ static void build_plane(mesh *m) {
     }
 }
 
+/* The ground as one quad with texcoords 0..16: a texture repeated 16 times each way, for floors
+ * stretched far toward the horizon (mipmaps.json). */
+static void build_floor_long(mesh *m) {
+    enum { R = 16 };
+    int n = mesh_vn(m, v3(0, 1, 0));
+    int a = mesh_v(m, v3(-1, 0, -1), WHITE), b = mesh_v(m, v3(1, 0, -1), WHITE);
+    int c = mesh_v(m, v3(-1, 0, 1), WHITE), d = mesh_v(m, v3(1, 0, 1), WHITE);
+    int ta = mesh_vt(m, 0, R), tb = mesh_vt(m, R, R), tc = mesh_vt(m, 0, 0), td = mesh_vt(m, R, 0);
+    /* Near left, near right, far right, far left: counter-clockwise seen from above. */
+    mesh_face(m, 4, (corner[]){{c, tc, n}, {d, td, n}, {b, tb, n}, {a, ta, n}});
+}
+
 /* Square pyramid: base [-1, 1]^2 at y = -1, apex at y = 1. Five shared corners with their own
  * colours, one normal per face (so faces use the v//vn form). */
 static void build_pyramid(mesh *m) {
@@ -2548,6 +2560,11 @@ static int write_assets(const char *out, char **path) {
         {A_PLANE,
          "Ground [-1, 1]^2 at y = 0, 4 x 4 quads, facing up, texcoords 0..4.",
          build_plane,
+         {0, 1, 0}},
+        {"assets/floor_long.obj",
+         "Ground [-1, 1]^2 at y = 0, one quad facing up, texcoords 0..16 (a texture repeated 16 "
+         "times each way), for floors that recede far (mipmaps.json).",
+         build_floor_long,
          {0, 1, 0}},
         {A_PYRAMID,
          "Square pyramid, base y = -1, apex y = 1; outward counter-clockwise faces.",

@@ -96,6 +96,7 @@ typedef struct options {
     const char **shader_libs; /* --shaders: shader libraries, given to sgapi-ref too */
     int shader_lib_count;
     const sc_shaders *shaders; /* the shaders scene files may name, once loaded */
+    const char *mipmap; /* --mipmap: every draw's mode (given to sgapi-ref too); NULL: none */
 } options;
 
 static void usage(FILE *f) {
@@ -115,6 +116,8 @@ static void usage(FILE *f) {
             "  --simd SET      sgapi's instruction set: scalar, sse2, avx2, avx512 or neon\n"
             "                  (default: the best this CPU runs)\n"
             "  --csv FILE      also write the table as CSV\n"
+            "  --mipmap MODE     every draw's \"mipmap\" (none, nearest, linear), for sgapi and\n"
+            "                    sgapi-ref alike, whatever the scenes say\n"
             "  --shaders LIB.so  load the shaders of a shader library (repeatable; sgapi-ref\n"
             "                  gets the same)\n"
             "  --pareto        also measure every setting (default, nearest filter) at T threads:\n"
@@ -178,7 +181,7 @@ static int parse_args(int argc, char **argv, options *o) {
         bool takes_value = !strcmp(a, "--frames") || !strcmp(a, "--rounds") ||
                            !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--csv") ||
                            !strcmp(a, "--plot") || !strcmp(a, "--ref") || !strcmp(a, "--shaders") ||
-                           !strcmp(a, "--samples");
+                           !strcmp(a, "--samples") || !strcmp(a, "--mipmap");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -226,6 +229,14 @@ static int parse_args(int argc, char **argv, options *o) {
             o->ref = value;
         } else if (!strcmp(a, "--shaders")) {
             o->shader_libs[o->shader_lib_count++] = value;
+        } else if (!strcmp(a, "--mipmap")) {
+            sc_mipmap m;
+            if (!sc_mipmap_from_name(value, &m)) {
+                fprintf(stderr, "sgapi-bench: --mipmap needs none, nearest or linear, not '%s'\n",
+                        value);
+                return 2;
+            }
+            o->mipmap = value;
         } else if (!strcmp(a, "--pareto")) {
             o->pareto = true;
         } else if (!strcmp(a, "--quick")) {
@@ -428,7 +439,7 @@ static bool run_lavapipe(const options *o, const char *ref, const char *file, co
     const char *fixed[] = {ref,   file,        "--frames", frames_s, "--scene",
                            scene, "--threads", threads_s,  "-o",     tmpdir};
     enum { FIXED = sizeof fixed / sizeof fixed[0] };
-    char **argv = calloc(FIXED + 2 * (size_t)o->shader_lib_count + 3, sizeof *argv);
+    char **argv = calloc(FIXED + 2 * (size_t)o->shader_lib_count + 5, sizeof *argv);
     if (!argv) {
         fprintf(stderr, "sgapi-bench: out of memory\n");
         return false;
@@ -438,9 +449,14 @@ static bool run_lavapipe(const options *o, const char *ref, const char *file, co
         argv[FIXED + 2 * i] = "--shaders";
         argv[FIXED + 2 * i + 1] = (char *)o->shader_libs[i];
     }
+    int extra = FIXED + 2 * o->shader_lib_count;
     if (o->samples) {
-        argv[FIXED + 2 * o->shader_lib_count] = "--samples";
-        argv[FIXED + 2 * o->shader_lib_count + 1] = samples_s;
+        argv[extra++] = "--samples";
+        argv[extra++] = samples_s;
+    }
+    if (o->mipmap) {
+        argv[extra++] = "--mipmap";
+        argv[extra++] = (char *)o->mipmap;
     }
     char *out;
     int status;
@@ -997,6 +1013,9 @@ int main(int argc, char **argv) {
         count += files[loaded].scene_count;
         if (o.samples) sc_set_samples(&files[loaded], o.samples);
     }
+    sc_mipmap forced;
+    if (o.mipmap && sc_mipmap_from_name(o.mipmap, &forced))
+        for (int i = 0; i < loaded; i++) sc_override_mipmap(&files[i], forced);
     bool clean = true;
     for (int i = 0; i < loaded; i++)
         clean &= sc_report_warnings(&files[i], "sgapi-bench", o.strict);

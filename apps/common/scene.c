@@ -212,6 +212,10 @@ static const enum_name modes[] = {
     {"vertex_color", SC_MODE_VERTEX_COLOR}, {"texture", SC_MODE_TEXTURE}, {NULL, 0}};
 static const enum_name filters[] = {
     {"bilinear", SC_FILTER_BILINEAR}, {"nearest", SC_FILTER_NEAREST}, {NULL, 0}};
+static const enum_name mipmaps[] = {{"none", SC_MIPMAP_NONE},
+                                    {"nearest", SC_MIPMAP_NEAREST},
+                                    {"linear", SC_MIPMAP_LINEAR},
+                                    {NULL, 0}};
 static const enum_name wraps[] = {{"repeat", SC_WRAP_REPEAT}, {"clamp", SC_WRAP_CLAMP}, {NULL, 0}};
 static const enum_name culls[] = {
     {"none", SC_CULL_NONE}, {"back", SC_CULL_BACK}, {"front", SC_CULL_FRONT}, {NULL, 0}};
@@ -735,9 +739,10 @@ static bool parse_draw_fields(ctx *c, const loc *l, const cJSON *v, sc_draw *d) 
     int filter = SC_FILTER_BILINEAR, wrap = SC_WRAP_REPEAT, cull = SC_CULL_NONE;
     int front = SC_FRONT_FACE_CCW, compare = SC_COMPARE_LESS;
     int blend = SC_BLEND_OPAQUE, sort = SC_SORT_NONE, lighting = SC_LIGHTING_NONE;
-    int polygon_mode = SC_POLYGON_MODE_FILL;
+    int polygon_mode = SC_POLYGON_MODE_FILL, mipmap = SC_MIPMAP_NONE;
     if (!get_enum(c, l, v, "mode", modes, &mode) ||
         !get_enum(c, l, v, "filter", filters, &filter) ||
+        !get_enum(c, l, v, "mipmap", mipmaps, &mipmap) ||
         !get_enum(c, l, v, "wrap", wraps, &wrap) || !get_enum(c, l, v, "cull", culls, &cull) ||
         !get_enum(c, l, v, "front_face", front_faces, &front) ||
         !get_enum(c, l, v, "depth_compare", compares, &compare) ||
@@ -747,6 +752,7 @@ static bool parse_draw_fields(ctx *c, const loc *l, const cJSON *v, sc_draw *d) 
         return false;
     d->mode = (sc_mode)mode;
     d->filter = (sc_filter)filter;
+    d->mipmap = (sc_mipmap)mipmap;
     d->wrap = (sc_wrap)wrap;
     d->cull = (sc_cull)cull;
     d->front_face = (sc_front_face)front;
@@ -1079,4 +1085,30 @@ bool sc_parse_samples(const char *s, int *out) {
     if (!sc_parse_int(s, 1, 4, &n) || (n != 1 && n != 4)) return false;
     *out = n;
     return true;
+}
+
+bool sc_mipmap_from_name(const char *name, sc_mipmap *out) {
+    for (const enum_name *e = mipmaps; e->name; e++)
+        if (!strcmp(e->name, name)) {
+            *out = (sc_mipmap)e->value;
+            return true;
+        }
+    return false;
+}
+
+void sc_override_mipmap(sc_file *f, sc_mipmap mode) {
+    for (size_t i = 0; i < f->scene_count; i++)
+        for (size_t j = 0; j < f->scenes[i].draw_count; j++) f->scenes[i].draws[j].mipmap = mode;
+}
+
+bool sc_texture_mipmapped(const sc_file *f, size_t texture) {
+    for (size_t i = 0; i < f->scene_count; i++)
+        for (size_t j = 0; j < f->scenes[i].draw_count; j++) {
+            const sc_draw *d = &f->scenes[i].draws[j];
+            if (d->mipmap == SC_MIPMAP_NONE) continue;
+            if (d->texture == (int)texture) return true;
+            for (int k = 0; k < d->shader_texture_count; k++)
+                if (d->shader_textures[k] == (int)texture) return true;
+        }
+    return false;
 }

@@ -27,6 +27,8 @@ typedef enum sc_mode {
 
 typedef enum sc_filter { SC_FILTER_BILINEAR, SC_FILTER_NEAREST } sc_filter;
 typedef enum sc_wrap { SC_WRAP_REPEAT, SC_WRAP_CLAMP } sc_wrap;
+/* "mipmap": how a textured draw picks among its texture's mipmap levels (docs/scene-format.md). */
+typedef enum sc_mipmap { SC_MIPMAP_NONE, SC_MIPMAP_NEAREST, SC_MIPMAP_LINEAR } sc_mipmap;
 typedef enum sc_cull { SC_CULL_NONE, SC_CULL_BACK, SC_CULL_FRONT } sc_cull;
 typedef enum sc_front_face { SC_FRONT_FACE_CCW, SC_FRONT_FACE_CW } sc_front_face;
 
@@ -113,6 +115,7 @@ typedef struct sc_draw {
     sc_mode mode;
     sc_filter filter;
     sc_wrap wrap;
+    sc_mipmap mipmap; /* the textures it samples get their full chain of levels when not NONE */
     sc_cull cull;
     sc_front_face front_face;
     sc_compare depth_compare;
@@ -192,5 +195,14 @@ void sc_free(sc_file *file);
 
 /** Builds the heightmap grid mesh of an image (see docs/scene-format.md); needs 2x2 pixels. */
 bool sc_heightmap_mesh(const sc_image *image, float height_scale, sc_mesh *out, sc_msg *err);
+
+/** The mode a "mipmap" value or a --mipmap argument names ("none", "nearest", "linear"); false
+ *  when it names none. */
+bool sc_mipmap_from_name(const char *name, sc_mipmap *out);
+/** Whether a draw of the file samples texture `texture` (an index into textures) with mipmaps:
+ *  it then gets its full chain of levels. */
+bool sc_texture_mipmapped(const sc_file *f, size_t texture);
+/** Sets every draw's "mipmap" to mode (the apps' --mipmap overrides every scene). */
+void sc_override_mipmap(sc_file *f, sc_mipmap mode);
 
 #endif

@@ -16,31 +16,12 @@ static const char *const root_keys[] = {"scenes", "width",  "height",  "clear_co
                                         "lights", "shadow", "samples", NULL};
 static const char *const scene_keys[] = {"name",   "width",  "height", "clear_color", "ambient",
                                          "lights", "shadow", "draws",  "samples",     NULL};
-static const char *const draw_keys[] = {"mesh",
-                                        "texture",
-                                        "mode",
-                                        "filter",
-                                        "wrap",
-                                        "cull",
-                                        "front_face",
-                                        "depth_compare",
-                                        "depth_write",
-                                        "blend",
-                                        "color",
-                                        "sort",
-                                        "lighting",
-                                        "specular",
-                                        "shininess",
-                                        "casts_shadow",
-                                        "receives_shadow",
-                                        "polygon_mode",
-                                        "worldView",
-                                        "proj",
-                                        "shader",
-                                        "uniforms",
-                                        "textures",
-                                        "instances",
-                                        NULL};
+static const char *const draw_keys[] = {
+    "mesh",         "texture",    "mode",          "filter",      "mipmap",       "wrap",
+    "cull",         "front_face", "depth_compare", "depth_write", "blend",        "color",
+    "sort",         "lighting",   "specular",      "shininess",   "casts_shadow", "receives_shadow",
+    "polygon_mode", "worldView",  "proj",          "shader",      "uniforms",     "textures",
+    "instances",    NULL};
 /* A mesh object is a heightmap or a shape (with the parameters of every shape). */
 static const char *const mesh_keys[] = {"heightmap", "height_scale", "shape",       "size",
                                         "radius",    "height",       "tube_radius", "segments",

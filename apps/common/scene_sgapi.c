@@ -31,6 +31,12 @@ static const sgLightingMode lighting_map[] = {
     [SC_LIGHTING_PHONG] = SG_LIGHTING_PHONG,
 };
 
+static const sgMipmap mipmap_map[] = {
+    [SC_MIPMAP_NONE] = SG_MIPMAP_NONE,
+    [SC_MIPMAP_NEAREST] = SG_MIPMAP_NEAREST,
+    [SC_MIPMAP_LINEAR] = SG_MIPMAP_LINEAR,
+};
+
 bool ss_pipeline_desc(const char *prog, const sc_file *f, const sc_draw *d,
                       const sc_shaders *shaders, sgPipelineDesc *out) {
     sgPipelineDesc p;
@@ -46,6 +52,7 @@ bool ss_pipeline_desc(const char *prog, const sc_file *f, const sc_draw *d,
         p.shader = info->desc;
         p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
         p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
+        p.mipmap = mipmap_map[d->mipmap];
     } else {
         /* A texture draw without a texture is drawn with its vertex colours: the OpenGL
          * reference binds an incomplete texture there, which disables texturing. */
@@ -56,6 +63,7 @@ bool ss_pipeline_desc(const char *prog, const sc_file *f, const sc_draw *d,
         if (textured) {
             p.filter = d->filter == SC_FILTER_NEAREST ? SG_FILTER_NEAREST : SG_FILTER_BILINEAR;
             p.wrap = d->wrap == SC_WRAP_CLAMP ? SG_WRAP_CLAMP_TO_EDGE : SG_WRAP_REPEAT;
+            p.mipmap = mipmap_map[d->mipmap];
         }
         p.lighting = lighting_map[d->lighting];
     }
@@ -100,7 +108,7 @@ static bool same_desc(const sgPipelineDesc *a, const sgPipelineDesc *b) {
            a->depth.write == b->depth.write && a->depth.bias_constant == b->depth.bias_constant &&
            a->depth.bias_slope == b->depth.bias_slope && a->cull == b->cull &&
            a->front_face == b->front_face && a->blend == b->blend && a->lighting == b->lighting &&
-           a->polygon_mode == b->polygon_mode;
+           a->polygon_mode == b->polygon_mode && a->mipmap == b->mipmap;
 }
 
 bool ss_get_pso(const char *prog, sgDevice *dev, ss_pso_cache *c, const sgPipelineDesc *desc,
@@ -137,7 +145,8 @@ void ss_pso_cache_free(ss_pso_cache *c) {
 }
 
 int ss_pipeline_pool_size(const sc_file *files, int file_count, int settings) {
-    /* ss_pipeline_desc has 5 colour sources (vertex colour; texture x 2 filters x 2 wraps) x
+    /* ss_pipeline_desc has 13 colour sources (vertex colour; texture x 2 filters x 2 wraps x 3
+     * mipmap modes) x
      * 8 compares x 2 depth writes x 3 culls x 2 front faces x 2 blends x 4 lighting modes x
      * 2 polygon modes; a file may use fewer states than it has draws. A shadow's casters take at
      * most 3 culls x 2 front faces x 2 polygon modes with the scene's depth bias. */
@@ -155,7 +164,7 @@ int ss_pipeline_pool_size(const sc_file *files, int file_count, int settings) {
             if (s->has_shadow) casters += s->draw_count < 12 ? s->draw_count : 12;
         }
     }
-    const uint64_t states = 5 * 8 * 2 * 3 * 2 * 2 * 4 * 2, limit = 65535;
+    const uint64_t states = 13 * 8 * 2 * 3 * 2 * 2 * 4 * 2, limit = 65535;
     uint64_t n = (draws < states ? draws : states) * (uint64_t)(settings > 0 ? settings : 1);
     n += casters + shader_draws * (uint64_t)(settings > 0 ? settings : 1);
     return n < 64 ? 64 : n > limit ? (int)limit : (int)n;
@@ -245,7 +254,11 @@ bool ss_upload(const char *prog, sgDevice *dev, const sc_file *f, ss_uploads *u)
     if (!make_tangents(prog, f, u)) return false;
     for (size_t i = 0; i < f->texture_count; i++) {
         const sc_image *t = &f->textures[i];
-        sgImage2DDesc desc = {t->width, t->height, SG_FORMAT_RGBA8_UNORM, t->pixels};
+        sgImage2DDesc desc = {.width = t->width,
+                              .height = t->height,
+                              .format = SG_FORMAT_RGBA8_UNORM,
+                              .data = t->pixels,
+                              .mip_levels = sc_texture_mipmapped(f, i) ? SG_MIP_LEVELS_ALL : 1};
         sgResult r = sgCreateImage2D(dev, &desc, &u->images[i]);
         if (r != SG_OK) return ss_fail(prog, dev, r, "texture '%s'", f->texture_sources[i]);
         u->image_count++;
@@ -264,8 +277,8 @@ bool ss_upload(const char *prog, sgDevice *dev, const sc_file *f, ss_uploads *u)
 
 bool ss_create_targets(const char *prog, sgDevice *dev, const sc_scene *s, sgImage2D *color,
                        sgImage2D *depth, sgPassDesc *pass) {
-    sgImage2DDesc cd = {s->width, s->height, SG_FORMAT_RGBA8_UNORM, NULL};
-    sgImage2DDesc dd = {s->width, s->height, SG_FORMAT_D32_FLOAT, NULL};
+    sgImage2DDesc cd = {.width = s->width, .height = s->height, .format = SG_FORMAT_RGBA8_UNORM};
+    sgImage2DDesc dd = {.width = s->width, .height = s->height, .format = SG_FORMAT_D32_FLOAT};
     sgResult r = sgCreateImage2D(dev, &cd, color);
     if (r != SG_OK) return ss_fail(prog, dev, r, "scene '%s': colour target", s->name);
     r = sgCreateImage2D(dev, &dd, depth);
@@ -310,7 +323,7 @@ bool ss_create_shadow(const char *prog, sgDevice *dev, ss_pso_cache *cache, cons
         return false;
     }
     int size = s->shadow.size;
-    sgImage2DDesc md = {size, size, SG_FORMAT_D32_FLOAT, NULL};
+    sgImage2DDesc md = {.width = size, .height = size, .format = SG_FORMAT_D32_FLOAT};
     sgResult r = sgCreateImage2D(dev, &md, &out->map);
     if (r != SG_OK) {
         ss_destroy_shadow(dev, out);

@@ -157,9 +157,12 @@ int main(int argc, char **argv) {
         &(sgGeomDesc){.vertex_count = 4, .positions = pos, .index_count = 6, .indices = quad_idx},
         &screen));
     sgImage2D image, result, depth;
-    CHECK(sgCreateImage2D(dev, &(sgImage2DDesc){W, H, SG_FORMAT_RGBA8_UNORM, NULL}, &image));
-    CHECK(sgCreateImage2D(dev, &(sgImage2DDesc){W, H, SG_FORMAT_RGBA8_UNORM, NULL}, &result));
-    CHECK(sgCreateImage2D(dev, &(sgImage2DDesc){W, H, SG_FORMAT_D32_FLOAT, NULL}, &depth));
+    CHECK(sgCreateImage2D(
+        dev, &(sgImage2DDesc){.width = W, .height = H, .format = SG_FORMAT_RGBA8_UNORM}, &image));
+    CHECK(sgCreateImage2D(
+        dev, &(sgImage2DDesc){.width = W, .height = H, .format = SG_FORMAT_RGBA8_UNORM}, &result));
+    CHECK(sgCreateImage2D(
+        dev, &(sgImage2DDesc){.width = W, .height = H, .format = SG_FORMAT_D32_FLOAT}, &depth));
 
     sgPipelineStateObject scene_pso, post_pso;
     CHECK(sgCreatePipelineStateObject(

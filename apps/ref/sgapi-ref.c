@@ -176,7 +176,7 @@ typedef struct ref {
     VkPipelineLayout layout_color, layout_texture;
     VkPipelineLayout layout_shadow; /* sets 0, 1 and 2: a receiver, textured or not */
     VkDeviceSize draw_stride;       /* bytes between draws in a scene's uniform buffer */
-    VkSampler samplers[4];          /* [filter bilinear?][wrap clamp?] */
+    VkSampler samplers[12]; /* [mipmap none, nearest, linear][filter bilinear?][wrap clamp?] */
     VkRenderPass render_pass;
     /* The same with 4 samples a pixel: multisampled colour and depth, the colour resolved into
      * a one-sample image at the pass's end. */
@@ -441,22 +441,28 @@ static bool create_shaders_and_layouts(ref *r) {
     pli.pSetLayouts = &r->twin_set_layout;
     pli.pPushConstantRanges = &twin_pcr;
     VK_CHECK(r, vkCreatePipelineLayout(r->device, &pli, NULL, &r->layout_twin));
-    for (int f = 0; f < 2; f++)
-        for (int w = 0; w < 2; w++) {
-            VkSamplerAddressMode am =
-                w ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE : VK_SAMPLER_ADDRESS_MODE_REPEAT;
-            VkFilter filter = f ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
-            /* One level, so no mipmapping whatever the minification. */
-            VkSamplerCreateInfo sci = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                                       .magFilter = filter,
-                                       .minFilter = filter,
-                                       .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
-                                       .addressModeU = am,
-                                       .addressModeV = am,
-                                       .addressModeW = am,
-                                       .maxLod = 0.0f};
-            VK_CHECK(r, vkCreateSampler(r->device, &sci, NULL, &r->samplers[f * 2 + w]));
-        }
+    for (int m = 0; m < 3; m++)
+        for (int f = 0; f < 2; f++)
+            for (int w = 0; w < 2; w++) {
+                VkSamplerAddressMode am =
+                    w ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE : VK_SAMPLER_ADDRESS_MODE_REPEAT;
+                VkFilter filter = f ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+                /* Without mipmaps maxLod 0: level 0 whatever the minification. With them no
+                 * clamp but the view's levels (sgapi's rule; it also keeps lavapipe on the LOD
+                 * code docs/accuracy.md describes, which a maxLod below its limit leaves). */
+                VkSamplerCreateInfo sci = {
+                    .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                    .magFilter = filter,
+                    .minFilter = filter,
+                    .mipmapMode = m == SC_MIPMAP_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR
+                                                        : VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                    .addressModeU = am,
+                    .addressModeV = am,
+                    .addressModeW = am,
+                    .maxLod = m == SC_MIPMAP_NONE ? 0.0f : VK_LOD_CLAMP_NONE};
+                VK_CHECK(r,
+                         vkCreateSampler(r->device, &sci, NULL, &r->samplers[m * 4 + f * 2 + w]));
+            }
     VkAttachmentDescription att[2] = {
         {.format = VK_FORMAT_R8G8B8A8_UNORM,
          .samples = VK_SAMPLE_COUNT_1_BIT,
@@ -922,14 +928,14 @@ static void destroy_buffer(ref *r, buffer *b) {
     memset(b, 0, sizeof *b);
 }
 
-/* An image of `samples` (1 or 4) samples a pixel. */
-static bool create_image_ms(ref *r, int w, int h, int samples, VkFormat format,
-                            VkImageUsageFlags usage, VkImageAspectFlags aspect, texture *t) {
+/* An image of `levels` mip levels and `samples` (1 or 4) samples a pixel. */
+static bool create_image_full(ref *r, int w, int h, int levels, int samples, VkFormat format,
+                              VkImageUsageFlags usage, VkImageAspectFlags aspect, texture *t) {
     VkImageCreateInfo ici = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
                              .imageType = VK_IMAGE_TYPE_2D,
                              .format = format,
                              .extent = {(uint32_t)w, (uint32_t)h, 1},
-                             .mipLevels = 1,
+                             .mipLevels = (uint32_t)levels,
                              .arrayLayers = 1,
                              .samples =
                                  samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
@@ -950,14 +956,19 @@ static bool create_image_ms(ref *r, int w, int h, int samples, VkFormat format,
                                  .image = t->image,
                                  .viewType = VK_IMAGE_VIEW_TYPE_2D,
                                  .format = format,
-                                 .subresourceRange = {aspect, 0, 1, 0, 1}};
+                                 .subresourceRange = {aspect, 0, (uint32_t)levels, 0, 1}};
     VK_CHECK(r, vkCreateImageView(r->device, &vci, NULL, &t->view));
     return true;
 }
 
-static bool create_image(ref *r, int w, int h, VkFormat format, VkImageUsageFlags usage,
+static bool create_image(ref *r, int w, int h, int levels, VkFormat format, VkImageUsageFlags usage,
                          VkImageAspectFlags aspect, texture *t) {
-    return create_image_ms(r, w, h, 1, format, usage, aspect, t);
+    return create_image_full(r, w, h, levels, 1, format, usage, aspect, t);
+}
+
+static bool create_image_ms(ref *r, int w, int h, int samples, VkFormat format,
+                            VkImageUsageFlags usage, VkImageAspectFlags aspect, texture *t) {
+    return create_image_full(r, w, h, 1, samples, format, usage, aspect, t);
 }
 
 static void destroy_image(ref *r, texture *t) {
@@ -984,9 +995,9 @@ static bool submit_and_wait(ref *r) {
     return true;
 }
 
-static void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
-                    VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src,
-                    VkPipelineStageFlags dst) {
+static void barrier_levels(VkCommandBuffer cmd, VkImage image, uint32_t levels, VkImageLayout from,
+                           VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access,
+                           VkPipelineStageFlags src, VkPipelineStageFlags dst) {
     VkImageMemoryBarrier b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
                               .srcAccessMask = src_access,
                               .dstAccessMask = dst_access,
@@ -995,37 +1006,63 @@ static void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkIm
                               .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
                               .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
                               .image = image,
-                              .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+                              .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, 1}};
     vkCmdPipelineBarrier(cmd, src, dst, 0, 0, NULL, 0, NULL, 1, &b);
 }
 
 /* Uploads an RGBA8 texture (top row first) with its rows reversed, so that image row 0 is the
- * bottom row as displayed and t = 0 samples it, as in OpenGL and sgapi. */
-static bool upload_texture(ref *r, const sc_image *img, texture *t) {
-    if (!create_image(r, img->width, img->height, VK_FORMAT_R8G8B8A8_UNORM,
+ * bottom row as displayed and t = 0 samples it, as in OpenGL and sgapi; mipmapped, with its full
+ * chain of levels as sgapi makes them (sgu_generate_mip_level), each reversed the same way, so
+ * that both sample the same texels. */
+static bool upload_texture(ref *r, const sc_image *img, bool mipmapped, texture *t) {
+    const int levels = mipmapped ? sgu_mip_level_count(img->width, img->height) : 1;
+    if (!create_image(r, img->width, img->height, levels, VK_FORMAT_R8G8B8A8_UNORM,
                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                       VK_IMAGE_ASPECT_COLOR_BIT, t))
         return false;
-    size_t row = (size_t)img->width * 4;
+    /* Level k at offset[k] of the staging buffer, top row first in top, then reversed. */
+    size_t offset[SG_MAX_MIP_LEVELS + 1], total = 0;
+    int w = img->width, h = img->height;
+    for (int k = 0; k < levels; k++) {
+        offset[k] = total;
+        total += (size_t)w * (size_t)h * 4;
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    uint8_t *top = malloc(total);
     buffer staging = {0};
-    if (!create_buffer(r, row * (size_t)img->height, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging))
+    if (!top) return fail(r, "out of memory for a texture's levels");
+    if (!create_buffer(r, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &staging)) {
+        free(top);
         return false;
-    for (int y = 0; y < img->height; y++)
-        memcpy((uint8_t *)staging.mapped + (size_t)y * row,
-               img->pixels + (size_t)(img->height - 1 - y) * row, row);
+    }
+    memcpy(top, img->pixels, (size_t)img->width * (size_t)img->height * 4);
+    VkBufferImageCopy copies[SG_MAX_MIP_LEVELS];
+    w = img->width;
+    h = img->height;
+    for (int k = 0; k < levels; k++) {
+        if (k > 0) sgu_generate_mip_level(top + offset[k - 1], w, h, top + offset[k], &w, &h);
+        size_t row = (size_t)w * 4;
+        for (int y = 0; y < h; y++)
+            memcpy((uint8_t *)staging.mapped + offset[k] + (size_t)y * row,
+                   top + offset[k] + (size_t)(h - 1 - y) * row, row);
+        copies[k] =
+            (VkBufferImageCopy){.bufferOffset = offset[k],
+                                .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, (uint32_t)k, 0, 1},
+                                .imageExtent = {(uint32_t)w, (uint32_t)h, 1}};
+    }
+    free(top);
     bool ok = begin_commands(r);
     if (ok) {
-        barrier(r->cmd, t->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                0, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
-                VK_PIPELINE_STAGE_TRANSFER_BIT);
-        VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                                  .imageExtent = {(uint32_t)img->width, (uint32_t)img->height, 1}};
+        barrier_levels(r->cmd, t->image, (uint32_t)levels, VK_IMAGE_LAYOUT_UNDEFINED,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
         vkCmdCopyBufferToImage(r->cmd, staging.buffer, t->image,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-        barrier(r->cmd, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
-                VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, (uint32_t)levels, copies);
+        barrier_levels(r->cmd, t->image, (uint32_t)levels, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
         ok = vkEndCommandBuffer(r->cmd) == VK_SUCCESS && submit_and_wait(r);
     }
     destroy_buffer(r, &staging);
@@ -1105,7 +1142,8 @@ static bool upload_file(ref *r, const sc_file *f, uploads *u) {
         }
     }
     for (size_t i = 0; i < f->texture_count; i++) {
-        if (!upload_texture(r, &f->textures[i], &u->textures[i])) return false;
+        if (!upload_texture(r, &f->textures[i], sc_texture_mipmapped(f, i), &u->textures[i]))
+            return false;
         u->texture_count = i + 1;
     }
     return true;
@@ -1447,7 +1485,7 @@ static bool create_shadow(ref *r, const sc_file *f, const sc_scene *s, shadow_pa
     for (int i = 0; i < 16; i++) sh->proj[i] = (float)proj[i];
     sc_mat4_mul_to_float(proj, view, sh->matrix);
     int size = s->shadow.size;
-    if (!create_image(r, size, size, VK_FORMAT_D32_SFLOAT,
+    if (!create_image(r, size, size, 1, VK_FORMAT_D32_SFLOAT,
                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                       VK_IMAGE_ASPECT_DEPTH_BIT, &sh->map))
         return false;
@@ -1499,8 +1537,9 @@ static bool prepare_twin_sets(ref *r, const sc_scene *s, const uploads *u, VkDes
         if (vkAllocateDescriptorSets(r->device, &dai, &sets[i]) != VK_SUCCESS)
             return fail(r, "vkAllocateDescriptorSets failed");
         VkDescriptorBufferInfo bi = {.buffer = uniforms->buffer, .offset = offset, .range = range};
-        VkSampler sampler = r->samplers[(d->filter == SC_FILTER_BILINEAR ? 2 : 0) +
-                                        (d->wrap == SC_WRAP_CLAMP ? 1 : 0)];
+        VkSampler sampler =
+            r->samplers[(int)d->mipmap * 4 + (d->filter == SC_FILTER_BILINEAR ? 2 : 0) +
+                        (d->wrap == SC_WRAP_CLAMP ? 1 : 0)];
         VkDescriptorImageInfo ii[TWIN_TEXTURES];
         for (int k = 0; k < TWIN_TEXTURES; k++) {
             bool bound = k < d->shader_texture_count;
@@ -1581,7 +1620,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
     if (!ok) fail(r, "out of memory");
     ok = ok && create_shadow(r, f, s, &sh) && prepare_draws(r, f, s, &sh, &blocks, sorted);
     ok = ok &&
-         create_image(r, s->width, s->height, VK_FORMAT_R8G8B8A8_UNORM,
+         create_image(r, s->width, s->height, 1, VK_FORMAT_R8G8B8A8_UNORM,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                       VK_IMAGE_ASPECT_COLOR_BIT, &color) &&
          (!ms || create_image_ms(r, s->width, s->height, 4, VK_FORMAT_R8G8B8A8_UNORM,
@@ -1665,11 +1704,12 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
             ok = vkAllocateDescriptorSets(r->device, &dai, &sets[i]) == VK_SUCCESS ||
                  fail(r, "vkAllocateDescriptorSets failed");
             if (!ok) break;
-            VkDescriptorImageInfo ii = {.sampler =
-                                            r->samplers[(d->filter == SC_FILTER_BILINEAR ? 2 : 0) +
-                                                        (d->wrap == SC_WRAP_CLAMP ? 1 : 0)],
-                                        .imageView = u->textures[d->texture].view,
-                                        .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            VkDescriptorImageInfo ii = {
+                .sampler =
+                    r->samplers[(int)d->mipmap * 4 + (d->filter == SC_FILTER_BILINEAR ? 2 : 0) +
+                                (d->wrap == SC_WRAP_CLAMP ? 1 : 0)],
+                .imageView = u->textures[d->texture].view,
+                .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
             VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                       .dstSet = sets[i],
                                       .descriptorCount = 1,
@@ -1726,7 +1766,7 @@ static bool render_scene(ref *r, const sc_file *f, const sc_scene *s, const uplo
 static bool create_blank(ref *r) {
     unsigned char black[4] = {0, 0, 0, 255};
     sc_image img = {.width = 1, .height = 1, .pixels = black};
-    return upload_texture(r, &img, &r->blank);
+    return upload_texture(r, &img, false, &r->blank);
 }
 
 static void destroy_ref(ref *r) {
@@ -1748,7 +1788,7 @@ static void destroy_ref(ref *r) {
         if (r->resolve_set_layout)
             vkDestroyDescriptorSetLayout(r->device, r->resolve_set_layout, NULL);
         if (r->depth_pass) vkDestroyRenderPass(r->device, r->depth_pass, NULL);
-        for (int i = 0; i < 4; i++)
+        for (int i = 0; i < 12; i++)
             if (r->samplers[i]) vkDestroySampler(r->device, r->samplers[i], NULL);
         for (int i = 0; i < SH_COUNT; i++)
             if (r->modules[i]) vkDestroyShaderModule(r->device, r->modules[i], NULL);
@@ -1778,6 +1818,8 @@ static void usage(FILE *f) {
                "  --threads T     lavapipe's raster threads (sets LP_NUM_THREADS)\n"
                "  --samples N     samples a pixel, 1 or 4, for every scene (default: each\n"
                "                  scene's \"samples\")\n"
+               "  --mipmap MODE   every draw's \"mipmap\" (none, nearest, linear), whatever the\n"
+               "                  scenes say\n"
                "  --shaders LIB   also know the shaders of that shader library (a shared object\n"
                "                  exporting sgapi_shader_library; repeatable); their GLSL twins\n"
                "                  render the scenes' shader draws\n"
@@ -1807,7 +1849,7 @@ static bool make_dir(const char *path) {
 
 /* Loads a scene file and checks its shader draws against the known shaders; on failure prints
  * why and returns the exit status (1: the file, 2: a shader draw), else 0. */
-static int load_file(const char *path, const sc_shaders *shaders, sc_file *f) {
+static int load_file(const char *path, const sc_shaders *shaders, int mipmap, sc_file *f) {
     sc_msg err = {0};
     int status = 0;
     if (!sc_load(path, f, &err)) {
@@ -1815,6 +1857,8 @@ static int load_file(const char *path, const sc_shaders *shaders, sc_file *f) {
     } else if (!sc_shaders_check(shaders, f, &err)) {
         sc_free(f);
         status = 2;
+    } else if (mipmap >= 0) {
+        sc_override_mipmap(f, (sc_mipmap)mipmap); /* --mipmap: every draw's, whatever it says */
     }
     if (status) fprintf(stderr, "sgapi-ref: %s\n", sc_msg_text(&err));
     sc_msg_free(&err);
@@ -1826,7 +1870,7 @@ int main(int argc, char **argv) {
     const char **files = calloc((size_t)argc, sizeof *files);
     const char **only = calloc((size_t)argc, sizeof *only);
     const char **libs = calloc((size_t)argc, sizeof *libs);
-    int nfiles = 0, nonly = 0, nlibs = 0, frames = 1;
+    int nfiles = 0, nonly = 0, nlibs = 0, frames = 1, mipmap = -1;
     bool strict = false;
     int samples = 0; /* --samples: every scene's (0: as the scenes say) */
     if (!files || !only || !libs) return 1;
@@ -1854,6 +1898,14 @@ int main(int argc, char **argv) {
             only[nonly++] = argv[++i];
         } else if (!strcmp(a, "--shaders") && more) {
             libs[nlibs++] = argv[++i];
+        } else if (!strcmp(a, "--mipmap") && more) {
+            sc_mipmap m;
+            if (!sc_mipmap_from_name(argv[++i], &m)) {
+                fprintf(stderr, "sgapi-ref: --mipmap wants none, nearest or linear, got '%s'\n",
+                        argv[i]);
+                return 2;
+            }
+            mipmap = (int)m;
         } else if (!strcmp(a, "--threads") && more) {
             int threads;
             if (!sc_parse_int(argv[++i], 0, 1024, &threads)) {
@@ -1887,7 +1939,7 @@ int main(int argc, char **argv) {
      * stops the run before the first is rendered. */
     for (int fi = 0; fi < nfiles; fi++) {
         sc_file f;
-        int bad = load_file(files[fi], shaders, &f);
+        int bad = load_file(files[fi], shaders, mipmap, &f);
         if (bad) {
             sc_shaders_close(shaders);
             return bad;
@@ -1919,7 +1971,7 @@ int main(int argc, char **argv) {
     }
     for (int fi = 0; fi < nfiles && !status; fi++) {
         sc_file f;
-        status = load_file(files[fi], shaders, &f);
+        status = load_file(files[fi], shaders, mipmap, &f);
         if (status) break;
         if (samples) sc_set_samples(&f, samples);
         if (!strict) sc_report_warnings(&f, "sgapi-ref", false);

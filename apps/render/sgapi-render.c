@@ -91,6 +91,7 @@ typedef struct options {
     int model_width, model_height; /* --size: of the images of model files */
     const char **shader_libs;      /* --shaders: shader libraries to load, in order */
     int shader_lib_count;
+    int mipmap; /* --mipmap: an sc_mipmap every draw takes; -1: as the scenes say */
 } options;
 
 static void usage(FILE *f) {
@@ -100,6 +101,8 @@ static void usage(FILE *f) {
                "is a scene of its own named after the file (DIR/<stem>.png): the camera framed\n"
                "on the model's bounding sphere, a default light, its colours and textures.\n"
                "  --size WxH      image size of model files (default 1024x768)\n"
+               "  --mipmap MODE   every draw's \"mipmap\" (none, nearest, linear), whatever the\n"
+               "                  scenes say\n"
                "  --shaders LIB.so  load the shaders of a shader library (repeatable): scene\n"
                "                  files name them with \"shader\" (docs/scene-format.md)\n"
                "  -o DIR          output folder, created if missing (required)\n"
@@ -268,6 +271,7 @@ static int parse_args(int argc, char **argv, options *o) {
     o->shard_count = 1;
     o->fps = 25;
     o->png_level = -1;
+    o->mipmap = -1;
     o->files = calloc((size_t)argc, sizeof *o->files);
     o->scenes = calloc((size_t)argc, sizeof *o->scenes);
     o->shader_libs = calloc((size_t)argc, sizeof *o->shader_libs);
@@ -289,7 +293,7 @@ static int parse_args(int argc, char **argv, options *o) {
             !strcmp(a, "--png-level") || !strcmp(a, "--writers") || !strcmp(a, "--thresholds") ||
             !strcmp(a, "--junit") || !strcmp(a, "--report") || !strcmp(a, "--size") ||
             !strcmp(a, "--shaders") || !strcmp(a, "--progress-file") ||
-            !strcmp(a, "--ground-truth") || !strcmp(a, "--samples");
+            !strcmp(a, "--ground-truth") || !strcmp(a, "--samples") || !strcmp(a, "--mipmap");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -302,6 +306,14 @@ static int parse_args(int argc, char **argv, options *o) {
             o->out_dir = value;
         } else if (!strcmp(a, "--shaders")) {
             o->shader_libs[o->shader_lib_count++] = value;
+        } else if (!strcmp(a, "--mipmap")) {
+            sc_mipmap m;
+            if (!sc_mipmap_from_name(value, &m)) {
+                fprintf(stderr, "sgapi-render: --mipmap needs none, nearest or linear, not '%s'\n",
+                        value);
+                return 2;
+            }
+            o->mipmap = (int)m;
         } else if (!strcmp(a, "--size")) {
             char w[16], h[16];
             const char *x = strchr(value, 'x');
@@ -1137,6 +1149,8 @@ int main(int argc, char **argv) {
         }
     }
     for (int i = 0; o.samples && i < loaded; i++) sc_set_samples(&files[i], o.samples);
+    if (o.mipmap >= 0)
+        for (int i = 0; i < loaded; i++) sc_override_mipmap(&files[i], (sc_mipmap)o.mipmap);
     /* Every file's warnings, then (with --strict) the verdict, before anything is rendered. */
     bool clean = true;
     for (int i = 0; i < loaded; i++)

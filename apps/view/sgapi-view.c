@@ -39,6 +39,7 @@ typedef struct options {
     const char *save_dir;     /* --save-dir: where F12 writes frame-NNNN.png */
     const char **shader_libs; /* --shaders: shader libraries, in order */
     int shader_lib_count;
+    int mipmap; /* --mipmap: an sc_mipmap every draw takes; -1: as the scene says */
 } options;
 
 /* The camera, on top of the scene's view space: orbit angles about the target, a dolly along
@@ -98,6 +99,8 @@ static void usage(FILE *f) {
                "  --save-dir DIR  where F12 saves frames (default .): DIR/frame-0001.png ...\n"
                "  --frames N      render N frames, print frames per second, quit (a benchmark)\n"
                "  --print-fps     print frames per second once a second\n"
+               "  --mipmap MODE   every draw's \"mipmap\" (none, nearest, linear), whatever the\n"
+               "                  scene says\n"
                "  --shaders LIB.so  load the shaders of a shader library (repeatable)\n"
                "  --samples N     samples a pixel, 1 or 4, for every scene (default: the scene's)\n"
                "  --strict        an unknown key in the scene file is an error (exit 1, nothing\n"
@@ -556,11 +559,12 @@ static int parse_args(int argc, char **argv, options *o) {
     o->files = calloc((size_t)argc, sizeof *o->files);
     o->shader_libs = calloc((size_t)argc, sizeof *o->shader_libs);
     if (!o->files || !o->shader_libs) return 2;
+    o->mipmap = -1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
         bool takes = !strcmp(a, "--scene") || !strcmp(a, "--size") || !strcmp(a, "--threads") ||
                      !strcmp(a, "--save-dir") || !strcmp(a, "--frames") ||
-                     !strcmp(a, "--shaders") || !strcmp(a, "--samples");
+                     !strcmp(a, "--shaders") || !strcmp(a, "--samples") || !strcmp(a, "--mipmap");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -601,6 +605,13 @@ static int parse_args(int argc, char **argv, options *o) {
             o->save_dir = value;
         } else if (!strcmp(a, "--shaders")) {
             o->shader_libs[o->shader_lib_count++] = value;
+        } else if (!strcmp(a, "--mipmap")) {
+            sc_mipmap m;
+            if (!sc_mipmap_from_name(value, &m)) {
+                fprintf(stderr, PROG ": --mipmap needs none, nearest or linear, not '%s'\n", value);
+                return 2;
+            }
+            o->mipmap = (int)m;
         } else if (!strcmp(a, "--print-fps")) {
             o->print_fps = true;
             continue;
@@ -653,6 +664,7 @@ static bool load(viewer *v, const options *o) {
         return false;
     }
     if (o->samples) sc_set_samples(&v->file, o->samples);
+    if (o->mipmap >= 0) sc_override_mipmap(&v->file, (sc_mipmap)o->mipmap);
     size_t k = 0;
     if (o->scene) {
         while (k < v->file.scene_count && strcmp(v->file.scenes[k].name, o->scene)) k++;

@@ -161,7 +161,17 @@ typedef struct sgImage2DDesc {
     sgFormat format;   /* required */
     /* Optional initial contents, top row first; row pitch = width * pixel size. NULL: zeros. */
     const void *data;
+    /* Mipmap levels (docs/api.md, "Mipmaps"): 0 or 1, one level; SG_MIP_LEVELS_ALL, the chain down
+     * to 1 x 1; n, the first n levels of that chain. Level k is max(1, width >> k) x
+     * max(1, height >> k); creating and uploading fill level 0 and make the others from it with
+     * a 2 x 2 box filter. RGBA8 only; negative or longer than the chain: SG_ERROR_INVALID_COUNT. */
+    int mip_levels;
 } sgImage2DDesc;
+
+/* sgImage2DDesc.mip_levels: every level down to 1 x 1. */
+#define SG_MIP_LEVELS_ALL 0x7fffffff
+/* Most levels an image has (a side of SG_MAX_IMAGE_SIZE). */
+#define SG_MAX_MIP_LEVELS 15
 
 /** Creates a 2D image; its storage is owned by the device. */
 SGAPI_API sgResult sgCreateImage2D(sgDevice *device, const sgImage2DDesc *desc,
@@ -173,6 +183,8 @@ SGAPI_API sgResult sgUploadImage2D(sgDevice *device, sgImage2D image, const void
                                    size_t row_pitch);
 /** Copies all pixels out, top row first; row_pitch 0 means tightly packed. */
 SGAPI_API sgResult sgReadImage2D(sgDevice *device, sgImage2D image, void *dst, size_t row_pitch);
+/** Reports how many mipmap levels an image has (1 when it has none but level 0). */
+SGAPI_API sgResult sgGetImage2DLevels(sgDevice *device, sgImage2D image, int *levels);
 /** Reports an image's size and format; any out pointer may be NULL. */
 SGAPI_API sgResult sgGetImage2DInfo(sgDevice *device, sgImage2D image, int *width, int *height,
                                     sgFormat *format);
@@ -293,6 +305,15 @@ typedef enum sgWrap {
     SG_WRAP_CLAMP_TO_EDGE,
 } sgWrap;
 
+/* How a pipeline picks among a texture's mipmap levels (docs/api.md, "Mipmaps"). The level of
+ * detail comes from each 2 x 2 pixel quad's texel-coordinate derivatives, as in Vulkan. */
+typedef enum sgMipmap {
+    SG_MIPMAP_DEFAULT = 0, /* none */
+    SG_MIPMAP_NONE,        /* level 0 only: the pipeline's filter, as without mipmaps */
+    SG_MIPMAP_NEAREST,     /* the nearest level, sampled with the pipeline's filter */
+    SG_MIPMAP_LINEAR,      /* the two nearest levels, each with the filter, blended (trilinear) */
+} sgMipmap;
+
 typedef enum sgCompare {
     SG_COMPARE_DEFAULT = 0, /* always: no depth test */
     SG_COMPARE_NEVER,
@@ -366,6 +387,10 @@ typedef struct sgPipelineDesc {
     /* Programmable stages (both NULL: the fixed shading above). With them, shade and lighting
      * stay at their defaults; filter and wrap apply to the draw's textures. */
     sgShaderDesc shader;
+    /* Mipmapping of the textures SG_SHADE_TEXTURE_MODULATE and sgSample read; a texture of one
+     * level samples that level. Not with SG_LIGHTING_PHONG nor with a shadow map received
+     * (SG_ERROR_UNSUPPORTED). */
+    sgMipmap mipmap;
 } sgPipelineDesc;
 
 /** Creates an immutable pipeline state object and selects the code specialised for its state. */
@@ -487,8 +512,10 @@ SGAPI_API sgResult sgDraw(sgDevice *device, sgPipelineStateObject pso, sgGeom ge
 SGAPI_API sgResult sgEndRenderPass(sgDevice *device, const sgPassDesc *pass);
 
 /** In a fragment stage: the draw's texture in `slot` at (u[i], v[i]) for each lane, with the
- *  pipeline's filter and wrap (v = 0 the bottom row; a depth image gives (d, d, d, 1)); slots
- *  past the bound textures give (0, 0, 0, 1). */
+ *  pipeline's filter, wrap and mipmap (v = 0 the bottom row; a depth image gives (d, d, d, 1),
+ *  from level 0); slots past the bound textures give (0, 0, 0, 1). With mipmaps, each 2 x 2
+ *  quad of lanes (lanes 0 1 4 5, 2 3 6 7, 8 9 12 13, 10 11 14 15) takes its level of detail
+ *  from the differences of u and v between its lanes, as a GPU's implicit derivatives. */
 SGAPI_API void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
                         const float v[SG_SHADER_LANES], float rgba[4][SG_SHADER_LANES]);
 

@@ -134,6 +134,16 @@ int sgu_shape_build(const sguShapeDesc *desc, float *positions, float *normals, 
  *  plane; 0, or -1 for another name. */
 int sgu_shape_from_name(const char *name, sguShape *out);
 
+/** The number of mipmap levels of a width x height image's full chain, down to 1 x 1 (what
+ *  sgImage2DDesc.mip_levels = SG_MIP_LEVELS_ALL gives); -1 for a side below 1. */
+int sgu_mip_level_count(int width, int height);
+/** The mipmap level below src (width x height RGBA8, tightly packed, top row first), exactly as
+ *  sgapi makes it (docs/api.md, "Mipmaps"), into dst (max(1, width / 2) x max(1, height / 2)
+ *  texels, whose sides go to dst_width and dst_height when not NULL); 0, or -1 on bad
+ *  arguments. */
+int sgu_generate_mip_level(const uint8_t *src, int width, int height, uint8_t *dst, int *dst_width,
+                           int *dst_height);
+
 #ifdef __cplusplus
 }
 #endif

@@ -25,6 +25,7 @@ typedef struct sg_image {
     uint8_t *data;     /* linear, top row first, 64-byte aligned */
     void *block;       /* the allocation holding data */
     uint32_t pass_use; /* serial of the last pass a draw sampled it in */
+    sg_mip_chain mips; /* its levels, level 0 at data (sgImage2DDesc.mip_levels) */
 } sg_image;
 
 typedef struct sg_geom {

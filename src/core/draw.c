@@ -539,8 +539,8 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
             return sg_error(dev, SG_ERROR_IN_USE,
                             "sgDraw: params->textures[%d] 0x%08x is a target of the open pass", k,
                             h.id);
-        st->textures[k] =
-            (sg_shader_tex){img->data, img->width, img->height, img->format == SG_FORMAT_D32_FLOAT};
+        st->textures[k] = (sg_shader_tex){img->data, img->width, img->height,
+                                          img->format == SG_FORMAT_D32_FLOAT, &img->mips};
     }
     if (!grow_vertex_arenas(dev, (size_t)geom->vertex_count))
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %d vertices",
@@ -565,6 +565,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     st->flat = sh->flat_varyings;
     st->bilinear = pso->desc.filter == SG_FILTER_BILINEAR;
     st->repeat = pso->desc.wrap == SG_WRAP_REPEAT;
+    st->mipmap = pso->desc.mipmap;
     st->pso = pso_h.id;
 
     const int width = dev->pass.width, height = dev->pass.height;
@@ -740,8 +741,13 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         ctx.tex.texels = tex->data;
         ctx.tex.width = tex->width;
         ctx.tex.height = tex->height;
+        ctx.mips = &tex->mips;
     }
     sg_image *smap = NULL;
+    if (params->shadow && pso->desc.mipmap != SG_MIPMAP_NONE && tex)
+        return sg_error(dev, SG_ERROR_UNSUPPORTED,
+                        "sgDraw: a mipmapped pipeline's draw receives a shadow map; this version "
+                        "shades shadow receivers without mipmaps (use SG_MIPMAP_NONE)");
     if (params->shadow) {
         const sgShadow *sh = params->shadow;
         smap = sg_lookup_image(dev, sh->map);

@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "tex/mipgen.h"
+
 /* Both formats are 4 bytes a pixel: RGBA8, or one float. */
 static size_t format_size(sgFormat f) {
     (void)f;
@@ -23,6 +25,37 @@ void sg_image_release(sgDevice *dev, sg_image *img) {
  * of a target are then whole lines of its own, never shared with the neighbouring bin that
  * another thread writes. */
 enum { DATA_ALIGN = 64 };
+
+/* Bytes from the start of level 0 to level k: each level starts on a cache line of its own. */
+static size_t level_offset(int w, int h, int k) {
+    size_t off = 0;
+    for (int i = 0; i < k; i++) {
+        off += ((size_t)w * (size_t)h * 4 + DATA_ALIGN - 1) & ~(size_t)(DATA_ALIGN - 1);
+        w = sg_mip_next_side(w);
+        h = sg_mip_next_side(h);
+    }
+    return off;
+}
+
+/* Points the image's chain at its levels (level 0 at data). */
+static void set_chain(sg_image *img, int levels) {
+    int w = img->width, h = img->height;
+    img->mips.levels = levels;
+    for (int k = 0; k < levels; k++) {
+        img->mips.level[k] =
+            (sg_texview){img->data + level_offset(img->width, img->height, k), w, h};
+        w = sg_mip_next_side(w);
+        h = sg_mip_next_side(h);
+    }
+}
+
+/* Makes levels 1.. from level 0. */
+static void generate_levels(sg_image *img) {
+    for (int k = 1; k < img->mips.levels; k++) {
+        const sg_texview *a = &img->mips.level[k - 1];
+        sg_mip_generate(a->texels, a->width, a->height, (uint8_t *)img->mips.level[k].texels);
+    }
+}
 
 static bool is_pass_target(const sgDevice *dev, sgImage2D h) {
     return dev->in_pass && (dev->pass_color.id == h.id || dev->pass_depth.id == h.id);
@@ -49,12 +82,27 @@ sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *ou
         return sg_error(dev, SG_ERROR_INVALID_SIZE,
                         "sgCreateImage2D: size %dx%d is outside 1..%d in each dimension",
                         desc->width, desc->height, SG_MAX_IMAGE_SIZE);
+    const int chain = sg_mip_chain_length(desc->width, desc->height);
+    if (desc->mip_levels < 0 || (desc->mip_levels > chain && desc->mip_levels != SG_MIP_LEVELS_ALL))
+        return sg_error(dev, SG_ERROR_INVALID_COUNT,
+                        "sgCreateImage2D: mip_levels = %d; a %dx%d image has 1..%d levels (0 or "
+                        "1: one, SG_MIP_LEVELS_ALL: all %d)",
+                        desc->mip_levels, desc->width, desc->height, chain, chain);
+    const int levels = desc->mip_levels == SG_MIP_LEVELS_ALL ? chain
+                       : desc->mip_levels > 1                ? desc->mip_levels
+                                                             : 1;
+    if (levels > 1 && desc->format != SG_FORMAT_RGBA8_UNORM)
+        return sg_error(dev, SG_ERROR_FORMAT_MISMATCH,
+                        "sgCreateImage2D: mip_levels = %d on a D32_FLOAT image; only RGBA8_UNORM "
+                        "images have mipmap levels",
+                        desc->mip_levels);
     size_t ps = format_size(desc->format);
     size_t bytes = (size_t)desc->width * (size_t)desc->height * ps;
-    uint8_t *block = sg_alloc(dev, bytes + DATA_ALIGN - 1);
+    const size_t all = levels > 1 ? level_offset(desc->width, desc->height, levels) : bytes;
+    uint8_t *block = sg_alloc(dev, all + DATA_ALIGN - 1);
     if (!block)
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgCreateImage2D: out of memory (%zu bytes)",
-                        bytes);
+                        all);
     uint8_t *data = block + (-(uintptr_t)block & (DATA_ALIGN - 1));
     uint32_t id = sg_acquire(dev, &dev->image_pool, "sgCreateImage2D", "image_pool_size");
     if (!id) {
@@ -73,6 +121,11 @@ sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *ou
     img->block = block;
     img->data = data;
     img->pass_use = 0;
+    set_chain(img, levels);
+    if (desc->data)
+        generate_levels(img);
+    else
+        memset(data + bytes, 0, all - bytes);
     out->id = id;
     return SG_OK;
 }
@@ -127,6 +180,7 @@ static sgResult transfer(sgDevice *dev, const char *fn, sgImage2D h, const void 
         else
             memcpy((uint8_t *)dst + (size_t)y * pitch, pixels, row);
     }
+    if (src) generate_levels(img);
     return SG_OK;
 }
 
@@ -138,6 +192,17 @@ sgResult sgUploadImage2D(sgDevice *dev, sgImage2D h, const void *data, size_t ro
 sgResult sgReadImage2D(sgDevice *dev, sgImage2D h, void *dst, size_t row_pitch) {
     if (!dev) return SG_ERROR_NULL_POINTER;
     return transfer(dev, "sgReadImage2D", h, NULL, dst, row_pitch);
+}
+
+sgResult sgGetImage2DLevels(sgDevice *dev, sgImage2D h, int *levels) {
+    if (!dev) return SG_ERROR_NULL_POINTER;
+    sg_image *img = sg_lookup_image(dev, h);
+    if (!img)
+        return sg_error(dev, SG_ERROR_INVALID_HANDLE,
+                        "sgGetImage2DLevels: image id 0x%08x is not a live image", h.id);
+    if (!levels) return sg_error(dev, SG_ERROR_NULL_POINTER, "sgGetImage2DLevels: levels is NULL");
+    *levels = img->mips.levels;
+    return SG_OK;
 }
 
 sgResult sgGetImage2DInfo(sgDevice *dev, sgImage2D h, int *width, int *height, sgFormat *format) {

@@ -31,6 +31,14 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     CHECK_ENUM(blend, SG_BLEND_DEFAULT, SG_BLEND_ALPHA, "sgBlend")
     CHECK_ENUM(lighting, SG_LIGHTING_DEFAULT, SG_LIGHTING_PHONG, "sgLightingMode")
     CHECK_ENUM(polygon_mode, SG_POLYGON_MODE_DEFAULT, SG_POLYGON_MODE_LINE, "sgPolygonMode")
+    CHECK_ENUM(mipmap, SG_MIPMAP_DEFAULT, SG_MIPMAP_LINEAR, "sgMipmap")
+    if (desc->mipmap > SG_MIPMAP_NONE && desc->lighting == SG_LIGHTING_PHONG)
+        return sg_error(
+            dev, SG_ERROR_UNSUPPORTED,
+            "sgCreatePipelineStateObject: mipmap = %d with SG_LIGHTING_PHONG: per-pixel "
+            "lighting samples its texture without mipmaps in this version; use "
+            "SG_MIPMAP_NONE, or flat or Gouraud lighting",
+            (int)desc->mipmap);
     if (!isfinite(desc->depth.bias_constant) || !isfinite(desc->depth.bias_slope))
         return sg_error(dev, SG_ERROR_INVALID_VALUE,
                         "sgCreatePipelineStateObject: depth.bias_constant = %g, depth.bias_slope = "
@@ -81,6 +89,7 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     if (!d->blend) d->blend = SG_BLEND_OPAQUE;
     if (!d->lighting) d->lighting = SG_LIGHTING_NONE;
     if (!d->polygon_mode) d->polygon_mode = SG_POLYGON_MODE_FILL;
+    if (!d->mipmap) d->mipmap = SG_MIPMAP_NONE;
     const bool lit = d->lighting != SG_LIGHTING_NONE;
     /* Opaque draws find the visible triangle first; blended ones blend as they go (blend.h),
      * with the unlit shading inlined where the instruction set allows. */
@@ -124,6 +133,21 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
      * material and a shadow map keep them visibility first (sgDraw), and so do wireframes. */
     if (d->blend == SG_BLEND_OPAQUE && d->lighting != SG_LIGHTING_PHONG)
         p.raster_line = sg_put_select(variant, d->depth.compare, d->depth.write, dev->isa);
+    /* Mipmapped texturing has its own shading (shade_mip.c), called from the generic in-place
+     * blend; lines go visibility first, as that shading is not inlined in the line raster. */
+    const bool mip = d->mipmap != SG_MIPMAP_NONE && d->shade == SG_SHADE_TEXTURE_MODULATE;
+    if (mip && !shader) {
+        p.shade_fn = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, false);
+        p.shade_sec = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, true);
+        p.shade2_fn = p.shade2_sec = NULL;
+        p.runs_fn = p.runs_sec = NULL;
+        p.raster_line = NULL;
+        if (d->blend == SG_BLEND_ALPHA) {
+            p.raster_fn = sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa);
+            if (p.raster_pass)
+                p.raster_pass = sg_blend_select(-1, SG_COMPARE_ALWAYS, false, dev->isa);
+        }
+    }
     p.nattr = sg_shade_attr_count(d->shade);
     if (shader) { /* visibility first, or in place when blended (and when seen discarding) */
         p.shader = true;

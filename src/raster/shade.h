@@ -27,6 +27,7 @@ typedef struct sg_shader_tex {
     const uint8_t *data; /* NULL: not bound */
     int width, height;
     bool depth;
+    const sg_mip_chain *mips; /* its levels (RGBA8) */
 } sg_shader_tex;
 
 /* What a shader draw's fragment stage needs (shade_shader.c). */
@@ -37,6 +38,7 @@ typedef struct sg_shader_state {
     int varying_count;
     uint32_t flat; /* flat varyings: taken as they are, not divided by 1/w */
     bool bilinear, repeat;
+    sgMipmap mipmap; /* the pipeline's, resolved (NONE, NEAREST or LINEAR) */
     sg_shader_tex textures[SG_MAX_DRAW_TEXTURES];
     uint32_t pso; /* the pipeline's handle: told when the draw discards (pass.c) */
     /* Set, atomically, by the bins when a fragment of the draw was discarded; and the pass's
@@ -46,9 +48,10 @@ typedef struct sg_shader_state {
 } sg_shader_state;
 
 typedef struct sg_shade_ctx {
-    sg_texview tex;        /* bound texture, when the pipeline samples one */
-    sg_lights lights;      /* the draw's lights and material (SG_LIGHTING_PHONG) */
-    sg_shadow_view shadow; /* the shadow map the draw receives (shadow.h) */
+    sg_texview tex;           /* bound texture, when the pipeline samples one */
+    const sg_mip_chain *mips; /* its levels, when the pipeline is mipmapped (shade_mip.c) */
+    sg_lights lights;         /* the draw's lights and material (SG_LIGHTING_PHONG) */
+    sg_shadow_view shadow;    /* the shadow map the draw receives (shadow.h) */
     /* The pass's triangles and their extensions (NULL when it has none), set when the pass
      * ends: a lit triangle t's attributes beyond SG_TRI_ATTRS are at ext + (t - tris). */
     const sg_tri *tris;
@@ -122,6 +125,10 @@ sg_shade_fn sg_shade_phong_scalar(int index);
 sg_shade_fn sg_shade_phong_avx2(int index);
 sg_shade_fn sg_shade_phong_avx512(int index);
 sg_shade_fn sg_shade_phong_neon(int index);
+/** The textured shading of a mipmapped pipeline (mipmap NEAREST or LINEAR; shade_mip.c), with
+ *  the secondary colour of flat and Gouraud lighting when sec; one portable function for every
+ *  instruction set. */
+sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
 /** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,

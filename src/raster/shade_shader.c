@@ -5,6 +5,7 @@
 
 #include "raster/blend.h"
 #include "raster/blend_walk.h"
+#include "tex/mip.h"
 
 /* 16 lanes as one value (GCC vector types): the fragment stage's setup and conversion and
  * sgSample's RGBA8 path. Each operation is the scalar one in every lane, in the same order. */
@@ -310,6 +311,25 @@ LANE_CLONES static void sample_rgba8(const sg_shader_tex *tx, bool bilinear, boo
     }
 }
 
+/* sgSample of a mipmapped pipeline on an RGBA8 texture: each 2 x 2 quad of lanes (a tile's lanes
+ * are its pixels, row by row) takes its levels from its own differences of u and v, as the fixed
+ * shading does (shade_mip.c). */
+static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s,
+                       const float u[SG_SHADER_LANES], const float v[SG_SHADER_LANES],
+                       float rgba[4][SG_SHADER_LANES]) {
+    const int linear = s->mipmap == SG_MIPMAP_LINEAR;
+    for (int q = 0; q < 4; q++) {
+        const int l0 = (q & 1) * 2 + (q >> 1) * 8; /* the quad's top-left lane */
+        const sg_mip_pick p = sg_mip_select(tx->mips, u[l0 + 1] - u[l0], v[l0 + 1] - v[l0],
+                                            u[l0 + 4] - u[l0], v[l0 + 4] - v[l0], linear);
+        for (int j = 0; j < 4; j++) {
+            const int i = l0 + (j & 1) + (j >> 1) * 4;
+            sg_texel e = sg_sample_mip(tx->mips, p, u[i], v[i], s->bilinear, s->repeat);
+            for (int k = 0; k < 4; k++) rgba[k][i] = (float)e.c[k] / 255.0f;
+        }
+    }
+}
+
 void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
               const float v[SG_SHADER_LANES], float rgba[4][SG_SHADER_LANES]) {
     const sg_shade_ctx *c = b && b->internal ? b->internal : NULL;
@@ -317,6 +337,10 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
         c && slot >= 0 && slot < SG_MAX_DRAW_TEXTURES && c->shader.textures[slot].data
             ? &c->shader.textures[slot]
             : NULL;
+    if (tx && !tx->depth && c->shader.mipmap > SG_MIPMAP_NONE && tx->mips) {
+        sample_mip(tx, &c->shader, u, v, rgba);
+        return;
+    }
     if (tx && !tx->depth) {
         sample_rgba8(tx, c->shader.bilinear, c->shader.repeat, u, v, rgba);
         return;

@@ -13,10 +13,21 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "sgapi/sgapi.h"
+
 typedef struct sg_texview {
     const uint8_t *texels; /* RGBA8, top row first */
     int width, height;
 } sg_texview;
+
+/* An image's mipmap levels (level 0 included): each RGBA8, top row first, 64-byte aligned, in one
+ * block, level k max(1, width >> k) x max(1, height >> k). Held by the image; draws point at it,
+ * which the open pass keeps alive and unchanged (an image a draw samples cannot be uploaded to
+ * or destroyed before sgEndRenderPass). */
+typedef struct sg_mip_chain {
+    int levels; /* 1 .. SG_MAX_MIP_LEVELS */
+    sg_texview level[SG_MAX_MIP_LEVELS];
+} sg_mip_chain;
 
 typedef struct sg_texel {
     int32_t c[4]; /* 0 .. 255 */
