@@ -222,10 +222,11 @@ static int check_combination(const options *o) {
                   : o->up >= 0 ? "--up needs --turntable"
                   : o->video   ? "--video needs --turntable: a video of which frames?"
                                : "--assemble needs --turntable N and --video";
-    else if (o->ground_truth && (o->turntable || o->depth_only || o->samples))
+    else if (o->ground_truth && (o->turntable || o->depth_only || o->samples || o->mipmap >= 0))
         problem = o->turntable    ? "--ground-truth renders still images, not turntables"
                   : o->depth_only ? "--ground-truth renders colour: drop --depth-only"
-                                  : "--ground-truth takes one sample a pixel: drop --samples";
+                  : o->samples    ? "--ground-truth takes one sample a pixel: drop --samples"
+                               : "--ground-truth samples textures without mipmaps: drop --mipmap";
     else if (o->turntable && (o->frames_given || o->compare_dir || o->depth_only))
         problem = o->frames_given
                       ? "--frames times still images; a turntable renders each frame once"
@@ -628,7 +629,10 @@ static bool ground_truth_scenes(sc_file *files, int count, int n) {
             s->width *= n;
             s->height *= n;
             s->samples = 1;
-            for (size_t d = 0; d < s->draw_count; d++) s->draws[d].filter = SC_FILTER_BILINEAR;
+            for (size_t d = 0; d < s->draw_count; d++) {
+                s->draws[d].filter = SC_FILTER_BILINEAR;
+                s->draws[d].mipmap = SC_MIPMAP_NONE;
+            }
         }
     return true;
 }
