@@ -11,6 +11,11 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
+#endif
 
 #include "raster/rast_tile.h"
 #include "raster/shade.h"
@@ -114,6 +119,30 @@ sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write);
 sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write);
 /** The NEON LESS functions (depth_neon.c); NULL off AArch64. */
 sg_raster_fn sg_depth_less_neon(bool depth_write);
+
+/** Mask of the pixels of a tile (16 ids) that see triangle `id`. */
+static inline uint32_t sg_tile_same_id(const uint32_t *ids, uint32_t id) {
+#if defined(__SSE2__)
+    __m128i v = _mm_set1_epi32((int32_t)id);
+    uint32_t mask = 0;
+    for (int j = 0; j < 4; j++) {
+        __m128i row = _mm_load_si128((const __m128i *)(const void *)(ids + 4 * j));
+        mask |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(row, v))) << (4 * j);
+    }
+    return mask;
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+    const uint32x4_t v = vdupq_n_u32(id), place = {1, 2, 4, 8};
+    uint32x4_t bits = vdupq_n_u32(0);
+    for (int j = 0; j < 4; j++) /* each row's bits shifted to its place; they are disjoint */
+        bits = vorrq_u32(bits, vshlq_u32(vandq_u32(vceqq_u32(vld1q_u32(ids + 4 * j), v), place),
+                                         vdupq_n_s32(4 * j)));
+    return vaddvq_u32(bits);
+#else
+    uint32_t mask = 0;
+    for (int i = 0; i < SG_TILE_PIXELS; i++) mask |= (uint32_t)(ids[i] == id) << i;
+    return mask;
+#endif
+}
 
 /** Offset of the tile holding pixel (x, y) in a bin's buffers, relative to the bin's origin. */
 static inline int sg_bin_tile_offset(int x, int y) {

@@ -17,30 +17,6 @@
 
 enum { BIN_TILES = SG_BIN_SIZE / SG_TILE, BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE };
 
-/* Mask of the pixels of a tile (16 ids) that see triangle `id`. */
-static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
-#if defined(__SSE2__)
-    __m128i v = _mm_set1_epi32((int32_t)id);
-    uint32_t mask = 0;
-    for (int j = 0; j < 4; j++) {
-        __m128i row = _mm_load_si128((const __m128i *)(const void *)(ids + 4 * j));
-        mask |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(row, v))) << (4 * j);
-    }
-    return mask;
-#elif defined(__aarch64__) && defined(__ARM_NEON)
-    const uint32x4_t v = vdupq_n_u32(id), place = {1, 2, 4, 8};
-    uint32x4_t bits = vdupq_n_u32(0);
-    for (int j = 0; j < 4; j++) /* each row's bits shifted to its place; they are disjoint */
-        bits = vorrq_u32(bits, vshlq_u32(vandq_u32(vceqq_u32(vld1q_u32(ids + 4 * j), v), place),
-                                         vdupq_n_s32(4 * j)));
-    return vaddvq_u32(bits);
-#else
-    uint32_t mask = 0;
-    for (int i = 0; i < SG_TILE_PIXELS; i++) mask |= (uint32_t)(ids[i] == id) << i;
-    return mask;
-#endif
-}
-
 /* Runs of partly covered tiles waiting to be shaded, grouped by triangle so that a draw with a
  * runs function (sg_shade_runs_fn) packs each triangle's pixels from several tiles into full
  * vectors: small triangles cover most of their tiles partly. A group per triangle id, found by
@@ -132,14 +108,14 @@ static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *
                                                              int y0, uint32_t *color) {
     uint32_t left = 0xffffu;
     if (ids[0]) { /* the first pixel's triangle first: often the tile's only one */
-        uint32_t mask = same_id(ids, ids[0]);
+        uint32_t mask = sg_tile_same_id(ids, ids[0]);
         shade_run(p, s, ids[0], tile, x0, y0, mask, color);
         left &= ~mask;
         if (!left) return;
     }
-    left &= ~same_id(ids, 0);
+    left &= ~sg_tile_same_id(ids, 0);
     while (left) {
-        uint32_t id = ids[__builtin_ctz(left)], mask = same_id(ids, id);
+        uint32_t id = ids[__builtin_ctz(left)], mask = sg_tile_same_id(ids, id);
         shade_run(p, s, id, tile, x0, y0, mask, color);
         left &= ~mask;
     }
@@ -151,7 +127,8 @@ static inline const sg_draw_state *pair_draw(const sg_bin_pass *p, const uint32_
                                              int next) {
     const uint32_t *a = ids + tile * SG_TILE_PIXELS, *b = ids + next * SG_TILE_PIXELS;
     const uint32_t id = a[0];
-    if (!id || b[0] != id || same_id(a, id) != 0xffffu || same_id(b, id) != 0xffffu) return NULL;
+    if (!id || b[0] != id || sg_tile_same_id(a, id) != 0xffffu || sg_tile_same_id(b, id) != 0xffffu)
+        return NULL;
     const sg_draw_state *d = &p->draws[p->binner->tris[id - 1].draw];
     return d->shade2_fn ? d : NULL;
 }

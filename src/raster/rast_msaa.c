@@ -41,23 +41,6 @@ typedef struct msaa_bin {
     int x0, y0; /* the bin's top-left pixel */
 } msaa_bin;
 
-/* Mask of the pixels of a tile (16 ids) that see triangle `id`. */
-static inline uint32_t same_id(const uint32_t *ids, uint32_t id) {
-#if defined(__SSE2__)
-    __m128i v = _mm_set1_epi32((int32_t)id);
-    uint32_t mask = 0;
-    for (int j = 0; j < 4; j++) {
-        __m128i row = _mm_load_si128((const __m128i *)(const void *)(ids + 4 * j));
-        mask |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(row, v))) << (4 * j);
-    }
-    return mask;
-#else
-    uint32_t mask = 0;
-    for (int i = 0; i < SG_TILE_PIXELS; i++) mask |= (uint32_t)(ids[i] == id) << i;
-    return mask;
-#endif
-}
-
 /* src's pixels of `mask` into dst. */
 static inline void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
     if (mask == 0xffffu) {
@@ -80,14 +63,15 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
             const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
             const int base = tile * SG_TILE_PIXELS;
             uint32_t left[NS], any = 0;
-            for (int k = 0; k < NS; k++) any |= left[k] = ~same_id(b->ids[k] + base, 0) & 0xffffu;
+            for (int k = 0; k < NS; k++)
+                any |= left[k] = ~sg_tile_same_id(b->ids[k] + base, 0) & 0xffffu;
             while (any) {
                 int first = 0;
                 while (!left[first]) first++;
                 const uint32_t id = b->ids[first][base + __builtin_ctz(left[first])];
                 uint32_t m[NS], u = 0;
                 for (int k = 0; k < NS; k++)
-                    u |= m[k] = left[k] ? same_id(b->ids[k] + base, id) : 0;
+                    u |= m[k] = left[k] ? sg_tile_same_id(b->ids[k] + base, id) : 0;
                 const sg_tri *t = &p->binner->tris[id - 1];
                 const sg_draw_state *d = &p->draws[t->draw];
                 _Alignas(64) uint32_t src[SG_TILE_PIXELS];
@@ -128,7 +112,7 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
             const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
             const int base = tile * SG_TILE_PIXELS;
             uint32_t m[NS], u = 0;
-            for (int k = 0; k < NS; k++) u |= m[k] = same_id(b->ids[k] + base, id);
+            for (int k = 0; k < NS; k++) u |= m[k] = sg_tile_same_id(b->ids[k] + base, id);
             for (int k = 0; k < NS; k++)
                 memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
             if (!u) continue;
