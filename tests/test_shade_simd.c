@@ -11,6 +11,7 @@
  */
 #define _DEFAULT_SOURCE /* mmap, MAP_ANONYMOUS */
 #include "test_common.h"
+#include "test_rng.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -32,30 +33,6 @@ enum { CASES_PER_FLAT = 70000, VARIANTS = 5, FLATS = 3 };
 static const char *const variant_names[VARIANTS] = {
     "vertex colour", "nearest repeat", "nearest clamp", "bilinear repeat", "bilinear clamp"};
 static const char *const flat_names[FLATS] = {"NONE", "COLOR", "WHITE"};
-
-/* splitmix64: deterministic, the same cases on every run and platform. */
-typedef struct rng {
-    uint64_t s;
-} rng;
-
-static uint64_t next(rng *g) {
-    uint64_t z = (g->s += 0x9e3779b97f4a7c15u);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
-    return z ^ (z >> 31);
-}
-
-static int irange(rng *g, int lo, int hi) { /* lo .. hi inclusive */
-    return lo + (int)(next(g) % (uint64_t)(hi - lo + 1));
-}
-
-static float frange(rng *g, float lo, float hi) {
-    return lo + (hi - lo) * (float)(next(g) >> 40) * (1.0f / 16777216.0f);
-}
-
-static int chance(rng *g, int percent) {
-    return irange(g, 0, 99) < percent;
-}
 
 /* A float of any kind: special values, extremes, or random bits (denormals, NaN payloads). */
 static float wild(rng *g) {

@@ -7,6 +7,7 @@
  * first vertex, so both whole vectors and the scalar remainder are compared.
  */
 #include "test_common.h"
+#include "test_rng.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -18,30 +19,6 @@
 #include "raster/shade.h"
 
 enum { CASES = 6000, MAX_VERTS = 80 };
-
-/* splitmix64: deterministic, the same cases on every run and platform. */
-typedef struct rng {
-    uint64_t s;
-} rng;
-
-static uint64_t next(rng *g) {
-    uint64_t z = (g->s += 0x9e3779b97f4a7c15u);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
-    return z ^ (z >> 31);
-}
-
-static int irange(rng *g, int lo, int hi) { /* lo .. hi inclusive */
-    return lo + (int)(next(g) % (uint64_t)(hi - lo + 1));
-}
-
-static float frange(rng *g, float lo, float hi) {
-    return lo + (hi - lo) * (float)(next(g) >> 40) * (1.0f / 16777216.0f);
-}
-
-static int chance(rng *g, int percent) {
-    return irange(g, 0, 99) < percent;
-}
 
 /* Mostly an ordinary value in [lo, hi]; rarely an extreme or one that is not finite. */
 static float value(rng *g, float lo, float hi) {
