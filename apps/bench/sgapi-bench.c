@@ -2,6 +2,8 @@
  *
  *   sgapi-bench SCENE.json... [--frames N] [--rounds R] [--threads T] [--simd SET]
  *               [--csv FILE] [--pareto [--plot OUT.png]] [--quick] [--ref PATH]
+ *   sgapi-bench SCENE.json... --quality [--ground-truth N] [--scene NAME]... [--csv FILE]
+ *               [--plot OUT.png] [--frames N | --quick] [--threads T]
  *
  * For every scene of the files it measures:
  *   - sgapi's steady-state time per frame at 1 and at T threads (one device per thread count):
@@ -23,6 +25,12 @@
  * --pareto also measures, at T threads, each setting of the `settings` table below and prints
  * its time and error per scene, writes pareto.csv, and plots time against PSNR with gnuplot when
  * it is installed.
+ *
+ * --quality measures instead, at T threads, every quality setting (1 and 4 samples x mipmap none,
+ * nearest, linear) for sgapi and for lavapipe, each against the scene's ground truth (rendered
+ * once per scene by sgapi-render --ground-truth N, found beside this program): time per frame,
+ * PSNR and % of pixels over 8/255. It prints a markdown table, writes quality.csv (or --csv FILE)
+ * and plots each scene's time against PSNR with its frontier (quality.png, or --plot OUT.png).
  *
  * Example: sgapi-bench scenes/default.json --csv bench.csv
  * --quick (2 frames, no warm-up) only checks that everything runs; its times mean nothing.
@@ -51,14 +59,16 @@
 #include "scene.h"
 #include "scene_keys.h"
 
-#define WARMUP_FRAMES 3
-#define MIN_FRAMES    20     /* fewer gives no steady-state median */
-#define FRAMES        100    /* the default: a median that a busy moment moves little */
-#define MAX_FRAMES    100000 /* sgapi-ref's limit */
-#define QUICK_FRAMES  2
-#define MAX_ROUNDS    25
-#define MAX_THREADS   1024 /* sgapi-ref's limit */
-#define FLOOR_SIZE    1024
+#define WARMUP_FRAMES    3
+#define MIN_FRAMES       20     /* fewer gives no steady-state median */
+#define FRAMES           100    /* the default: a median that a busy moment moves little */
+#define MAX_FRAMES       100000 /* sgapi-ref's limit */
+#define QUICK_FRAMES     2
+#define MAX_ROUNDS       25
+#define MAX_THREADS      1024 /* sgapi-ref's limit */
+#define FLOOR_SIZE       1024
+#define GROUND_TRUTH     8  /* --ground-truth's default: 64 samples a pixel */
+#define MAX_GROUND_TRUTH 64 /* sgapi-render's limit */
 
 /* ---- settings of --pareto -------------------------------------------------------------------- */
 
@@ -79,6 +89,23 @@ static const setting settings[] = {
 };
 #define SETTING_COUNT ((int)(sizeof settings / sizeof settings[0]))
 
+/* ---- settings of --quality ------------------------------------------------------------------- */
+
+/* A quality setting: samples a pixel and every draw's mipmap mode, for sgapi and lavapipe alike. */
+typedef struct quality_setting {
+    int samples;
+    sc_mipmap mipmap;
+    const char *mipmap_name; /* as --mipmap takes it */
+} quality_setting;
+
+static const quality_setting quality_settings[] = {
+    {1, SC_MIPMAP_NONE, "none"}, /* must stay first: the gains are measured from it */
+    {1, SC_MIPMAP_NEAREST, "nearest"}, {1, SC_MIPMAP_LINEAR, "linear"}, {4, SC_MIPMAP_NONE, "none"},
+    {4, SC_MIPMAP_NEAREST, "nearest"}, {4, SC_MIPMAP_LINEAR, "linear"},
+};
+#define QUALITY_COUNT ((int)(sizeof quality_settings / sizeof quality_settings[0]))
+static const char *const renderer_names[2] = {"sgapi", "lavapipe"};
+
 /* ---- options --------------------------------------------------------------------------------- */
 
 typedef struct options {
@@ -97,6 +124,10 @@ typedef struct options {
     int shader_lib_count;
     const sc_shaders *shaders; /* the shaders scene files may name, once loaded */
     const char *mipmap; /* --mipmap: every draw's mode (given to sgapi-ref too); NULL: none */
+    bool quality;       /* --quality: every quality setting against the ground truth */
+    int ground_truth;   /* --ground-truth N: the ground truth's samples a side (0: not given) */
+    const char **scene_names; /* --scene: only these scenes (none given: every scene) */
+    int scene_name_count;
 } options;
 
 static void usage(FILE *f) {
@@ -123,14 +154,24 @@ static void usage(FILE *f) {
             "  --pareto        also measure every setting (default, nearest filter) at T threads:\n"
             "                  print a second table, write pareto.csv (beside --csv FILE, or in\n"
             "                  the current folder) and plot it when gnuplot is installed\n"
-            "  --plot OUT.png  with --pareto: the plot's file (default pareto.png)\n"
+            "  --plot OUT.png  with --pareto or --quality: the plot's file (default pareto.png,\n"
+            "                  quality.png)\n"
+            "  --quality       instead of the table above, measure at T threads every quality\n"
+            "                  setting (samples 1 and 4 x mipmap none, nearest, linear) for sgapi\n"
+            "                  and lavapipe: time per frame and error against each scene's ground\n"
+            "                  truth (sgapi-render --ground-truth N, found beside sgapi-bench);\n"
+            "                  print a table, write quality.csv (or --csv FILE) and plot it\n"
+            "  --ground-truth N  with --quality: N x N samples a pixel for the ground truth, 2 to\n"
+            "                  %d (default %d)\n"
+            "  --scene NAME    measure only this scene (repeatable; default: every scene)\n"
             "  --quick         %d frames, no warm-up: checks that everything runs; the times mean\n"
             "                  nothing\n"
             "  --ref PATH      the sgapi-ref program (default: the one beside sgapi-bench)\n"
             "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
             "                  measured), not a warning\n"
             "  -h, --help      show this help\n",
-            FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, FRAMES, WARMUP_FRAMES, MAX_ROUNDS, QUICK_FRAMES);
+            FLOOR_SIZE, FLOOR_SIZE, MIN_FRAMES, FRAMES, WARMUP_FRAMES, MAX_ROUNDS, MAX_GROUND_TRUTH,
+            GROUND_TRUTH, QUICK_FRAMES);
 }
 
 static int default_threads(void) {
@@ -171,7 +212,8 @@ static int parse_args(int argc, char **argv, options *o) {
     o->threads = default_threads();
     o->files = calloc((size_t)argc, sizeof *o->files);
     o->shader_libs = calloc((size_t)argc, sizeof *o->shader_libs);
-    if (!o->files || !o->shader_libs) {
+    o->scene_names = calloc((size_t)argc, sizeof *o->scene_names);
+    if (!o->files || !o->shader_libs || !o->scene_names) {
         fprintf(stderr, "sgapi-bench: out of memory\n");
         return 2;
     }
@@ -181,7 +223,8 @@ static int parse_args(int argc, char **argv, options *o) {
         bool takes_value = !strcmp(a, "--frames") || !strcmp(a, "--rounds") ||
                            !strcmp(a, "--threads") || !strcmp(a, "--simd") || !strcmp(a, "--csv") ||
                            !strcmp(a, "--plot") || !strcmp(a, "--ref") || !strcmp(a, "--shaders") ||
-                           !strcmp(a, "--samples") || !strcmp(a, "--mipmap");
+                           !strcmp(a, "--samples") || !strcmp(a, "--mipmap") ||
+                           !strcmp(a, "--ground-truth") || !strcmp(a, "--scene");
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
             return 1;
@@ -237,6 +280,18 @@ static int parse_args(int argc, char **argv, options *o) {
                 return 2;
             }
             o->mipmap = value;
+        } else if (!strcmp(a, "--ground-truth")) {
+            if (!sc_parse_int(value, 2, MAX_GROUND_TRUTH, &o->ground_truth)) {
+                fprintf(stderr,
+                        "sgapi-bench: --ground-truth needs a whole number from 2 to %d (samples "
+                        "a side of each pixel), not '%s'\n",
+                        MAX_GROUND_TRUTH, value);
+                return 2;
+            }
+        } else if (!strcmp(a, "--scene")) {
+            o->scene_names[o->scene_name_count++] = value;
+        } else if (!strcmp(a, "--quality")) {
+            o->quality = true;
         } else if (!strcmp(a, "--pareto")) {
             o->pareto = true;
         } else if (!strcmp(a, "--quick")) {
@@ -260,10 +315,24 @@ static int parse_args(int argc, char **argv, options *o) {
         fprintf(stderr, "sgapi-bench: --quick and --frames exclude each other\n");
         return 2;
     }
-    if (o->plot && !o->pareto) {
-        fprintf(stderr, "sgapi-bench: --plot only works with --pareto\n");
+    if (o->plot && !o->pareto && !o->quality) {
+        fprintf(stderr, "sgapi-bench: --plot only works with --pareto or --quality\n");
         return 2;
     }
+    const char *problem = NULL;
+    if (o->ground_truth && !o->quality)
+        problem = "--ground-truth only works with --quality";
+    else if (o->quality && o->pareto)
+        problem = "--quality and --pareto exclude each other: run them one after the other";
+    else if (o->quality && o->samples)
+        problem = "--quality measures 1 and 4 samples itself: drop --samples";
+    else if (o->quality && o->mipmap)
+        problem = "--quality measures every mipmap mode itself: drop --mipmap";
+    if (problem) {
+        fprintf(stderr, "sgapi-bench: %s\n", problem);
+        return 2;
+    }
+    if (o->quality && !o->ground_truth) o->ground_truth = GROUND_TRUTH;
     if (o->quick) {
         o->frames = QUICK_FRAMES;
         o->warmup = 0;
@@ -399,8 +468,9 @@ static int run_child(char *const argv[], char **out, int *status, sc_msg *err) {
     return 0;
 }
 
-/* sgapi-ref beside this program: the two are built into, and installed to, the same folder. */
-static char *find_ref(const char *argv0) {
+/* A program beside this one (sgapi-ref, sgapi-render): they are built into, and installed to, the
+ * same folder. */
+static char *find_sibling(const char *argv0, const char *name) {
     /* This program's path, in a buffer grown until it holds it whole. */
     char *self = NULL;
     for (size_t cap = 256; cap <= ((size_t)1 << 20); cap *= 2) {
@@ -412,28 +482,29 @@ static char *find_ref(const char *argv0) {
         if ((size_t)n < cap) {
             self[n] = '\0';
             char *dir = dir_of(self);
-            char *ref = dir ? concat3(dir, "/", "sgapi-ref") : NULL;
+            char *path = dir ? concat3(dir, "/", name) : NULL;
             free(dir);
             free(self);
-            return ref;
+            return path;
         }
     }
     free(self);
-    if (!strchr(argv0, '/'))
-        return concat3("sgapi-ref", "", ""); /* found through PATH, as this program was */
+    if (!strchr(argv0, '/')) return concat3(name, "", ""); /* through PATH, as this program was */
     char *dir = dir_of(argv0);
-    char *ref = dir ? concat3(dir, "/", "sgapi-ref") : NULL;
+    char *path = dir ? concat3(dir, "/", name) : NULL;
     free(dir);
-    return ref;
+    return path;
 }
 
 /* lavapipe's median time per frame of one scene at `threads` raster threads, read from the line
- * "NAME  X ms/frame ..." that sgapi-ref prints; its image is left in tmpdir/NAME.png. */
+ * "NAME  X ms/frame ..." that sgapi-ref prints; its image is left in tmpdir/NAME.png. samples
+ * (0: the scene's) and mipmap (NULL: the scene's) are handed to sgapi-ref. */
 static bool run_lavapipe(const options *o, const char *ref, const char *file, const char *scene,
-                         int threads, const char *tmpdir, double *ms) {
+                         int threads, const char *tmpdir, int samples, const char *mipmap,
+                         double *ms) {
     char frames_s[16], threads_s[16], samples_s[16];
     sc_msg err = {0};
-    snprintf(samples_s, sizeof samples_s, "%d", o->samples);
+    snprintf(samples_s, sizeof samples_s, "%d", samples);
     snprintf(frames_s, sizeof frames_s, "%d", o->frames);
     snprintf(threads_s, sizeof threads_s, "%d", threads);
     const char *fixed[] = {ref,   file,        "--frames", frames_s, "--scene",
@@ -450,13 +521,13 @@ static bool run_lavapipe(const options *o, const char *ref, const char *file, co
         argv[FIXED + 2 * i + 1] = (char *)o->shader_libs[i];
     }
     int extra = FIXED + 2 * o->shader_lib_count;
-    if (o->samples) {
+    if (samples) {
         argv[extra++] = "--samples";
         argv[extra++] = samples_s;
     }
-    if (o->mipmap) {
+    if (mipmap) {
         argv[extra++] = "--mipmap";
-        argv[extra++] = (char *)o->mipmap;
+        argv[extra++] = (char *)mipmap;
     }
     char *out;
     int status;
@@ -567,11 +638,16 @@ done:
 /* Everything measured of one scene. Index [0] of the pairs is 1 thread, [1] T threads. */
 typedef struct result {
     const char *file; /* as given */
+    int file_index;   /* into the loaded files */
     const sc_scene *scene;
     double sg_ms[2], lp_ms[2];
     sc_image lp_image;                   /* lavapipe's, until every setting is compared with it */
     double setting_ms[SETTING_COUNT];    /* sgapi at T threads; [0] is sg_ms[1] */
     sc_diff setting_diff[SETTING_COUNT]; /* against lp_image; [0] is the main table's */
+    /* --quality: [0] sgapi, [1] lavapipe, at T threads, each against the ground truth */
+    sc_image truth;
+    double quality_ms[2][QUALITY_COUNT];
+    sc_diff quality_diff[2][QUALITY_COUNT];
 } result;
 
 /* Runs lavapipe on one scene at 1 and T threads and keeps its image. */
@@ -586,11 +662,13 @@ static bool measure_lavapipe(const options *o, const char *ref, const char *tmpd
         return false;
     }
     /* lavapipe draws the same image at any thread count: the last run's is kept. */
-    bool ok = run_lavapipe(o, ref, x->file, s->name, 1, tmpdir, &x->lp_ms[0]);
+    bool ok =
+        run_lavapipe(o, ref, x->file, s->name, 1, tmpdir, o->samples, o->mipmap, &x->lp_ms[0]);
     if (ok && o->threads == 1)
         x->lp_ms[1] = x->lp_ms[0];
     else if (ok)
-        ok = run_lavapipe(o, ref, x->file, s->name, o->threads, tmpdir, &x->lp_ms[1]);
+        ok = run_lavapipe(o, ref, x->file, s->name, o->threads, tmpdir, o->samples, o->mipmap,
+                          &x->lp_ms[1]);
     sc_msg err = {0};
     if (ok && load_image && !sc_image_load(path, &x->lp_image, &err)) {
         fprintf(stderr, "sgapi-bench: lavapipe's image of '%s': %s\n", s->name, err.text);
@@ -608,13 +686,17 @@ static bool measure_lavapipe(const options *o, const char *ref, const char *tmpd
     return true;
 }
 
+/* A device for the files, with room for `upload_sets` uploads of a file at once and pipelines for
+ * `settings` settings of each draw. */
 static bool create_device(int threads, sgSimd simd, const sc_file *files, int file_count,
-                          sgDevice **dev) {
+                          int upload_sets, int settings, sgDevice **dev) {
     size_t images = 0, geoms = 0;
     for (int i = 0; i < file_count; i++) {
         if (files[i].texture_count > images) images = files[i].texture_count;
         if (ss_geom_count(&files[i]) > geoms) geoms = ss_geom_count(&files[i]);
     }
+    images *= (size_t)upload_sets;
+    geoms *= (size_t)upload_sets;
     /* Pools for the largest file (its textures plus the two targets and a shadow map) and for
      * every pipeline the draws and shadows can need in every setting. */
     if (images > 65535 - 3 || geoms > 65535) {
@@ -627,7 +709,7 @@ static bool create_device(int threads, sgSimd simd, const sc_file *files, int fi
     dd.simd = simd;
     if (images + 3 > 256) dd.image_pool_size = (int)images + 3;
     if (geoms > 1024) dd.geom_pool_size = (int)geoms;
-    dd.pipeline_pool_size = ss_pipeline_pool_size(files, file_count, SETTING_COUNT);
+    dd.pipeline_pool_size = ss_pipeline_pool_size(files, file_count, settings);
     sgResult r = sgCreateDevice(&dd, dev);
     if (r != SG_OK)
         return sg_fail(NULL, r, "sgCreateDevice with %d thread(s), --simd %s", threads,
@@ -689,20 +771,21 @@ static bool measure_sgapi(const options *o, side *sd, const sc_file *f, result *
  * the four times of a scene are taken close together (a shared machine's speed drifts over a
  * run, and a ratio should not take that drift). Then the floor at both thread counts. */
 static bool measure_all(const options *o, const char *ref, const char *tmpdir, const sc_file *files,
-                        result *res, double floor_ms[2]) {
+                        result *res, size_t count, double floor_ms[2]) {
     side sides[2] = {{.threads = 1}, {.threads = o->threads}};
     int nsides = o->threads == 1 ? 1 : 2;
     bool ok = true;
     for (int k = 0; ok && k < nsides; k++)
-        ok = create_device(sides[k].threads, o->simd, files, o->file_count, &sides[k].dev);
-    size_t first = 0; /* the first result of the current file */
+        ok = create_device(sides[k].threads, o->simd, files, o->file_count, 1, SETTING_COUNT,
+                           &sides[k].dev);
     for (int fi = 0; ok && fi < o->file_count; fi++) {
         const sc_file *f = &files[fi];
         fprintf(stderr, "sgapi-bench: %s: lavapipe and sgapi, scene by scene...\n", f->path);
         for (int k = 0; ok && k < nsides; k++)
             ok = ss_upload(PROG, sides[k].dev, f, &sides[k].uploads);
-        for (size_t si = 0; ok && si < f->scene_count; si++) {
-            result *x = &res[first + si];
+        for (size_t i = 0; ok && i < count; i++) {
+            result *x = &res[i];
+            if (x->file_index != fi) continue;
             double lp[2][MAX_ROUNDS], sg[2][MAX_ROUNDS];
             for (int r = 0; ok && r < o->rounds; r++) {
                 /* the images are compared in the first round */
@@ -723,7 +806,6 @@ static bool measure_all(const options *o, const char *ref, const char *tmpdir, c
         }
         for (int k = 0; k < nsides; k++)
             if (sides[k].dev) ss_destroy_uploads(sides[k].dev, &sides[k].uploads);
-        first += f->scene_count;
     }
     /* No draws: neither a file nor the uploads are looked at. */
     sc_scene empty = {.name = "floor", .width = FLOOR_SIZE, .height = FLOOR_SIZE};
@@ -826,6 +908,351 @@ static double psnr_y(double psnr, double inf_y) {
     return isfinite(psnr) ? psnr : inf_y;
 }
 
+/* ---- --quality ------------------------------------------------------------------------------- */
+
+/* Loads tmpdir/NAME.png, which a child program wrote, into *img and removes the file; `whose`
+ * names the image in messages. The image must be the scene's size. */
+static bool take_image(const char *tmpdir, const sc_scene *s, const char *whose, sc_image *img) {
+    char *path = sc_format("%s/%s.png", tmpdir, s->name);
+    if (!path) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return false;
+    }
+    sc_msg err = {0};
+    bool ok = sc_image_load(path, img, &err);
+    if (!ok) fprintf(stderr, "sgapi-bench: %s image of '%s': %s\n", whose, s->name, err.text);
+    sc_msg_free(&err);
+    remove(path); /* so the temporary folder is empty at the end, whatever happened */
+    free(path);
+    if (ok && (img->width != s->width || img->height != s->height)) {
+        fprintf(stderr, "sgapi-bench: %s image of '%s' is %dx%d, the scene %dx%d\n", whose, s->name,
+                img->width, img->height, s->width, s->height);
+        sc_image_free(img);
+        ok = false;
+    }
+    return ok;
+}
+
+/* The ground truth of one scene, drawn by sgapi-render --ground-truth N into x->truth. */
+static bool render_truth(const options *o, const char *render, const char *tmpdir, result *x) {
+    char n_s[16], threads_s[16];
+    snprintf(n_s, sizeof n_s, "%d", o->ground_truth);
+    snprintf(threads_s, sizeof threads_s, "%d", o->threads);
+    const char *fixed[] = {render,           x->file, "--scene",   x->scene->name,
+                           "--ground-truth", n_s,     "--threads", threads_s,
+                           "--frames",       "1",     "-o",        tmpdir};
+    enum { FIXED = sizeof fixed / sizeof fixed[0] };
+    char **argv = calloc(FIXED + 2 * (size_t)o->shader_lib_count + 1, sizeof *argv);
+    if (!argv) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return false;
+    }
+    for (int i = 0; i < FIXED; i++) argv[i] = (char *)fixed[i];
+    for (int i = 0; i < o->shader_lib_count; i++) {
+        argv[FIXED + 2 * i] = "--shaders";
+        argv[FIXED + 2 * i + 1] = (char *)o->shader_libs[i];
+    }
+    char *out = NULL;
+    int status = 0;
+    sc_msg err = {0};
+    int run = run_child(argv, &out, &status, &err);
+    free(argv);
+    free(out);
+    if (run != 0) {
+        fprintf(stderr,
+                "sgapi-bench: %s\nsgapi-bench: --quality needs sgapi-render beside sgapi-bench for "
+                "the ground truth\n",
+                err.text);
+        sc_msg_free(&err);
+        return false;
+    }
+    if (status != 0) {
+        fprintf(stderr,
+                "sgapi-bench: %s failed (exit status %d) on the ground truth of scene '%s' of "
+                "%s%s\n",
+                render, status, x->scene->name, x->file,
+                status == 1 || status == 2 ? " (its own message is above)" : "");
+        return false;
+    }
+    return take_image(tmpdir, x->scene, "the ground truth's", &x->truth);
+}
+
+/* Every scene chosen, one at a time: its ground truth, then each quality setting, lavapipe and
+ * sgapi back to back at T threads (--rounds R: R times in turn, the medians kept). sgapi's device
+ * holds each file twice, its textures with one level and with their chains, as sgapi-render
+ * uploads them for a scene without and with mipmaps. */
+static bool measure_quality(const options *o, const char *ref, const char *render,
+                            const char *tmpdir, sc_file *files, result *res, size_t count) {
+    side sd = {.threads = o->threads};
+    ss_uploads up[2]; /* [0] textures of one level, [1] with their chains */
+    memset(up, 0, sizeof up);
+    unsigned char *pixels = NULL;
+    bool ok =
+        create_device(o->threads, o->simd, files, o->file_count, 2, QUALITY_COUNT + 1, &sd.dev);
+    for (int fi = 0; ok && fi < o->file_count; fi++) {
+        sc_file *f = &files[fi];
+        bool used = false;
+        for (size_t i = 0; i < count; i++) used |= res[i].file_index == fi;
+        if (!used) continue;
+        fprintf(stderr,
+                "sgapi-bench: %s: the ground truth, then lavapipe and sgapi, setting by "
+                "setting...\n",
+                f->path);
+        sc_override_mipmap(f, SC_MIPMAP_NONE);
+        ok = ss_upload(PROG, sd.dev, f, &up[0]);
+        sc_override_mipmap(f, SC_MIPMAP_LINEAR);
+        ok = ok && ss_upload(PROG, sd.dev, f, &up[1]);
+        for (size_t i = 0; ok && i < count; i++) {
+            result *x = &res[i];
+            const sc_scene *s = x->scene;
+            if (x->file_index != fi) continue;
+            ok = render_truth(o, render, tmpdir, x);
+            unsigned char *grown =
+                ok ? realloc(pixels, (size_t)s->width * (size_t)s->height * 4) : NULL;
+            if (ok && !grown) {
+                fprintf(stderr, "sgapi-bench: out of memory\n");
+                ok = false;
+            }
+            if (grown) pixels = grown;
+            unsigned char bg[4];
+            for (int c = 0; c < 4; c++) bg[c] = (unsigned char)lroundf(s->clear_color[c] * 255.0f);
+            double t[2][QUALITY_COUNT][MAX_ROUNDS];
+            for (int r = 0; ok && r < o->rounds; r++)
+                for (int k = 0; ok && k < QUALITY_COUNT; k++) {
+                    const quality_setting *q = &quality_settings[k];
+                    ok = run_lavapipe(o, ref, x->file, s->name, o->threads, tmpdir, q->samples,
+                                      q->mipmap_name, &t[1][k][r]);
+                    sc_image lp = {0};
+                    /* the images are compared in the first round */
+                    if (ok && r == 0 && (ok = take_image(tmpdir, s, "lavapipe's", &lp)))
+                        x->quality_diff[1][k] = sc_image_diff(lp.pixels, x->truth.pixels, s->width,
+                                                              s->height, bg, NULL);
+                    sc_image_free(&lp);
+                    if (!ok) break;
+                    char *left = sc_format("%s/%s.png", tmpdir, s->name);
+                    if (left) remove(left); /* a later round's image, not looked at */
+                    free(left);
+                    sc_set_samples(f, q->samples);
+                    sc_override_mipmap(f, q->mipmap);
+                    ok = measure_scene(sd.dev, &sd.cache, f, s, &up[q->mipmap != SC_MIPMAP_NONE],
+                                       &settings[0], o, &t[0][k][r], r == 0 ? pixels : NULL);
+                    if (!ok)
+                        fprintf(stderr, "sgapi-bench: in %s, scene '%s', %d sample(s), mipmap %s\n",
+                                f->path, s->name, q->samples, q->mipmap_name);
+                    else if (r == 0)
+                        x->quality_diff[0][k] =
+                            sc_image_diff(pixels, x->truth.pixels, s->width, s->height, bg, NULL);
+                }
+            for (int side_k = 0; ok && side_k < 2; side_k++)
+                for (int k = 0; k < QUALITY_COUNT; k++)
+                    x->quality_ms[side_k][k] = ss_median(t[side_k][k], o->rounds);
+        }
+        for (int k = 0; k < 2; k++) ss_destroy_uploads(sd.dev, &up[k]);
+    }
+    free(pixels);
+    side_close(&sd);
+    return ok;
+}
+
+/* Whether setting k of renderer r lies on its scene's frontier: no other point of the scene (either
+ * renderer) is at least as fast and at least as close to the ground truth, and better in one. */
+static bool on_frontier(const result *x, int r, int k) {
+    double ms = x->quality_ms[r][k], db = x->quality_diff[r][k].psnr_db;
+    for (int r2 = 0; r2 < 2; r2++)
+        for (int k2 = 0; k2 < QUALITY_COUNT; k2++) {
+            double ms2 = x->quality_ms[r2][k2], db2 = x->quality_diff[r2][k2].psnr_db;
+            if ((r2 != r || k2 != k) && ms2 <= ms && db2 >= db && (ms2 < ms || db2 > db))
+                return false;
+        }
+    return true;
+}
+
+/* PSNR gain of setting k over the scene's first setting (1 sample, no mipmaps), same renderer. */
+static double quality_gain(const result *x, int r, int k) {
+    return x->quality_diff[r][k].psnr_db - x->quality_diff[r][0].psnr_db;
+}
+
+static void print_quality(const options *o, const result *res, size_t count) {
+    int t = o->threads;
+    printf("| scene | samples | mipmap | sgapi %dt ms | lavapipe %dt ms | sgapi PSNR dB | "
+           "lavapipe PSNR dB | sgapi gain dB | lavapipe gain dB | sgapi %% > 8/255 | "
+           "lavapipe %% > 8/255 | frontier |\n",
+           t, t);
+    printf("| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n");
+    for (size_t i = 0; i < count; i++) {
+        const result *x = &res[i];
+        for (int k = 0; k < QUALITY_COUNT; k++) {
+            bool f0 = on_frontier(x, 0, k), f1 = on_frontier(x, 1, k);
+            printf(
+                "| %s | %d | %s | %.3f | %.3f | %.2f | %.2f | %+.2f | %+.2f | %.3f | %.3f | %s |\n",
+                x->scene->name, quality_settings[k].samples, quality_settings[k].mipmap_name,
+                x->quality_ms[0][k], x->quality_ms[1][k], x->quality_diff[0][k].psnr_db,
+                x->quality_diff[1][k].psnr_db, quality_gain(x, 0, k), quality_gain(x, 1, k),
+                x->quality_diff[0][k].pct_over[1], x->quality_diff[1][k].pct_over[1],
+                f0 && f1 ? "both"
+                : f0     ? "sgapi"
+                : f1     ? "lavapipe"
+                         : "");
+        }
+    }
+    printf(
+        "\nerror against each scene's ground truth (sgapi-render --ground-truth %d: %d samples a "
+        "pixel, bilinear, no mipmaps); gain: PSNR over the same renderer's 1 sample, no "
+        "mipmaps; frontier: no other point of the scene is both as fast and as close\n"
+        "sgapi's instruction set: %s\n",
+        o->ground_truth, o->ground_truth * o->ground_truth, simd_name(o->simd));
+    if (o->rounds > 1)
+        printf("each time: the median of %d rounds, lavapipe and sgapi in turn, each the median of "
+               "%d frames\n",
+               o->rounds, o->frames);
+}
+
+static void write_quality_csv(FILE *f, const result *res, size_t count) {
+    fprintf(f, "scene,renderer,samples,mipmap,ms,psnr_db,pct_over_8,gain_db,frontier\n");
+    for (size_t i = 0; i < count; i++)
+        for (int r = 0; r < 2; r++)
+            for (int k = 0; k < QUALITY_COUNT; k++) {
+                const result *x = &res[i];
+                fprintf(f, "%s,%s,%d,%s,%.3f,%.2f,%.4f,%.2f,%d\n", x->scene->name,
+                        renderer_names[r], quality_settings[k].samples,
+                        quality_settings[k].mipmap_name, x->quality_ms[r][k],
+                        x->quality_diff[r][k].psnr_db, x->quality_diff[r][k].pct_over[1],
+                        quality_gain(x, r, k), on_frontier(x, r, k) ? 1 : 0);
+            }
+}
+
+/* Runs gnuplot on a script; a missing gnuplot is reported and skipped, as the figures are in the
+ * CSV anyway. */
+static bool run_gnuplot(const char *script, const char *out, const char *csv) {
+    char *argv[] = {"gnuplot", (char *)script, NULL};
+    char *gp_out = NULL;
+    sc_msg err = {0};
+    int status = 0;
+    bool ok = true;
+    int e = run_child(argv, &gp_out, &status, &err);
+    if (e == ENOENT) {
+        fprintf(stderr, "sgapi-bench: gnuplot is not installed: no plot (the figures are in %s)\n",
+                csv);
+    } else if (e != 0) {
+        fprintf(stderr, "sgapi-bench: %s\n", err.text);
+        ok = false;
+    } else if (status != 0) {
+        fprintf(stderr, "sgapi-bench: gnuplot failed (exit status %d) drawing %s\n", status, out);
+        ok = false;
+    } else {
+        fprintf(stderr, "sgapi-bench: wrote %s\n", out);
+    }
+    sc_msg_free(&err);
+    free(gp_out);
+    return ok;
+}
+
+/* Whether settings j and k of renderer r gave the scene the same error (as good as the same
+ * image: its PSNR and share of pixels over 8/255 to the last bit). */
+static bool same_image(const result *x, int r, int j, int k) {
+    const sc_diff *a = &x->quality_diff[r][j], *b = &x->quality_diff[r][k];
+    return a->psnr_db == b->psnr_db && a->pct_over[1] == b->pct_over[1] &&
+           a->mean_abs_error == b->mean_abs_error;
+}
+
+/* One panel a scene: time against PSNR for each setting of each renderer, the frontier joined. */
+static bool plot_quality(const options *o, const result *res, size_t count, const char *tmpdir,
+                         const char *csv) {
+    const char *out = o->plot ? o->plot : "quality.png";
+    int cols = count > 1 ? 2 : 1, rows = (int)((count + (size_t)cols - 1) / (size_t)cols);
+    char *script = concat3(tmpdir, "/quality.gp", "");
+    FILE *f = script ? fopen(script, "w") : NULL;
+    if (!f) {
+        fprintf(stderr, "sgapi-bench: cannot write the gnuplot script: %s\n",
+                script ? strerror(errno) : "out of memory");
+        free(script);
+        return false;
+    }
+    static const char *const colour[2] = {"#1f6fb4", "#c8322a"};
+    fprintf(f, "set terminal png size %d,%d noenhanced\nset output ",
+            800 * cols + (cols == 1) * 100, 560 * rows + 40);
+    gp_string(f, out);
+    fprintf(f,
+            "\nset multiplot layout %d,%d title 'Which setting? Time per frame at %d thread%s "
+            "against PSNR vs the %dx%d ground truth: up and left is better'\n"
+            "set xlabel 'ms per frame (median, log scale)'\n"
+            "set ylabel 'PSNR against the ground truth, dB'\n"
+            "set logscale x\nset grid\nset key bottom right box opaque font ',9'\n"
+            "set offsets graph 0.06, graph 0.3, graph 0.1, graph 0.1\n",
+            rows, cols, o->threads, o->threads == 1 ? "" : "s", o->ground_truth, o->ground_truth);
+    for (size_t i = 0; i < count; i++) {
+        const result *x = &res[i];
+        double top = 0;
+        for (int r = 0; r < 2; r++)
+            for (int k = 0; k < QUALITY_COUNT; k++)
+                if (isfinite(x->quality_diff[r][k].psnr_db) && x->quality_diff[r][k].psnr_db > top)
+                    top = x->quality_diff[r][k].psnr_db;
+        double inf_y = ceil(top / 10) * 10 + 10;
+        fprintf(f, "set title ");
+        gp_string(f, x->scene->name);
+        fprintf(f, "\n");
+        for (int r = 0; r < 2; r++) {
+            fprintf(f, "$r%d << EOD\n", r);
+            for (int k = 0; k < QUALITY_COUNT; k++) {
+                /* Settings that give the same image (mipmaps on an untextured scene) share one
+                 * point and one label, written at the first of them. */
+                bool repeat = false;
+                for (int j = 0; j < k && !repeat; j++) repeat = same_image(x, r, j, k);
+                fprintf(f, "\"");
+                for (int j = k; j < QUALITY_COUNT && !repeat; j++)
+                    if (j == k)
+                        fprintf(f, "%dx %s", quality_settings[j].samples,
+                                quality_settings[j].mipmap_name);
+                    else if (same_image(x, r, k, j) &&
+                             quality_settings[j].samples == quality_settings[k].samples)
+                        fprintf(f, "/%s", quality_settings[j].mipmap_name);
+                    else if (same_image(x, r, k, j))
+                        fprintf(f, ", %dx %s", quality_settings[j].samples,
+                                quality_settings[j].mipmap_name);
+                fprintf(f, "\" %.6g %.6g\n", x->quality_ms[r][k],
+                        psnr_y(x->quality_diff[r][k].psnr_db, inf_y));
+            }
+            fprintf(f, "EOD\n");
+        }
+        /* The frontier, fastest first: its points are ordered by time and by PSNR alike. */
+        fprintf(f, "$frontier << EOD\n");
+        bool done[2][QUALITY_COUNT] = {{false}};
+        for (;;) {
+            int br = -1, bk = -1;
+            for (int r = 0; r < 2; r++)
+                for (int k = 0; k < QUALITY_COUNT; k++)
+                    if (!done[r][k] && on_frontier(x, r, k) &&
+                        (br < 0 || x->quality_ms[r][k] < x->quality_ms[br][bk])) {
+                        br = r;
+                        bk = k;
+                    }
+            if (br < 0) break;
+            done[br][bk] = true;
+            fprintf(f, "%.6g %.6g\n", x->quality_ms[br][bk],
+                    psnr_y(x->quality_diff[br][bk].psnr_db, inf_y));
+        }
+        fprintf(f, "EOD\nplot $frontier using 1:2 with lines lw 2 dt 2 lc rgb 'gray30' "
+                   "title 'frontier'");
+        for (int r = 0; r < 2; r++)
+            fprintf(f,
+                    ", \\\n  $r%d using 2:3 with points pt %d ps 1.6 lc rgb '%s' title '%s', \\\n"
+                    "  $r%d using 2:3:1 with labels %s offset char %s font ',8' tc rgb '%s' "
+                    "notitle",
+                    r, r == 0 ? 7 : 5, colour[r], renderer_names[r], r, r == 0 ? "left" : "right",
+                    r == 0 ? "0.9, 0.5" : "-0.9, -0.5", colour[r]);
+        fprintf(f, "\n");
+    }
+    fprintf(f, "unset multiplot\n");
+    bool ok = fclose(f) == 0;
+    if (!ok)
+        fprintf(stderr, "sgapi-bench: cannot write the gnuplot script: %s\n", strerror(errno));
+    else
+        ok = run_gnuplot(script, out, csv);
+    remove(script);
+    free(script);
+    return ok;
+}
+
 /* Plots time against PSNR, one point per scene and setting, with gnuplot; a missing gnuplot is
  * reported and skipped, as the figures are in pareto.csv anyway. */
 static bool plot_pareto(const options *o, const result *res, size_t count, const char *tmpdir) {
@@ -903,25 +1330,7 @@ static bool plot_pareto(const options *o, const result *res, size_t count, const
         free(script);
         return false;
     }
-    char *argv[] = {"gnuplot", script, NULL};
-    char *gp_out = NULL;
-    sc_msg err = {0};
-    int status = 0;
-    int e = run_child(argv, &gp_out, &status, &err);
-    if (e == ENOENT) {
-        fprintf(stderr, "sgapi-bench: gnuplot is not installed: no plot (the figures are in "
-                        "pareto.csv)\n");
-    } else if (e != 0) {
-        fprintf(stderr, "sgapi-bench: %s\n", err.text);
-        ok = false;
-    } else if (status != 0) {
-        fprintf(stderr, "sgapi-bench: gnuplot failed (exit status %d) drawing %s\n", status, out);
-        ok = false;
-    } else {
-        fprintf(stderr, "sgapi-bench: wrote %s\n", out);
-    }
-    sc_msg_free(&err);
-    free(gp_out);
+    ok = run_gnuplot(script, out, "pareto.csv");
     remove(script);
     free(script);
     return ok;
@@ -951,6 +1360,7 @@ int main(int argc, char **argv) {
     if (status) {
         free(o.files);
         free(o.shader_libs);
+        free(o.scene_names);
         return status == 1 ? 0 : 2;
     }
     status = 1;
@@ -959,11 +1369,11 @@ int main(int argc, char **argv) {
     size_t count = 0;
     int loaded = 0;
     sc_shaders *shaders = NULL;
-    char *ref = NULL, *pareto_path = NULL, *tmpdir = NULL;
+    char *ref = NULL, *render = NULL, *pareto_path = NULL, *tmpdir = NULL;
     FILE *csv = NULL, *pareto_csv = NULL;
     double floor_ms[2] = {0, 0};
 
-    ref = o.ref ? concat3(o.ref, "", "") : find_ref(argv[0]);
+    ref = o.ref ? concat3(o.ref, "", "") : find_sibling(argv[0], "sgapi-ref");
     if (!ref) {
         fprintf(stderr, "sgapi-bench: out of memory\n");
         goto done;
@@ -975,6 +1385,22 @@ int main(int argc, char **argv) {
                 "with --ref PATH\n",
                 ref, strerror(errno));
         goto done;
+    }
+    if (o.quality) {
+        render = find_sibling(argv[0], "sgapi-render");
+        if (!render) {
+            fprintf(stderr, "sgapi-bench: out of memory\n");
+            goto done;
+        }
+        if (strchr(render, '/') && access(render, X_OK) != 0) {
+            fprintf(stderr,
+                    "sgapi-bench: cannot run %s: %s\n"
+                    "sgapi-bench: --quality needs sgapi-render beside sgapi-bench for the ground "
+                    "truth\n",
+                    render, strerror(errno));
+            goto done;
+        }
+        if (!o.csv) o.csv = "quality.csv";
     }
     if (o.pareto) {
         char *dir = o.csv ? dir_of(o.csv) : NULL;
@@ -1036,11 +1462,46 @@ int main(int argc, char **argv) {
         fprintf(stderr, "sgapi-bench: out of memory\n");
         goto done;
     }
-    for (int i = 0, n = 0; i < o.file_count; i++)
-        for (size_t j = 0; j < files[i].scene_count; j++, n++) {
-            res[n].file = o.files[i];
-            res[n].scene = &files[i].scenes[j];
+    /* The scenes to measure: every one, or those --scene names, in file order. */
+    count = 0;
+    for (int i = 0; i < o.file_count; i++)
+        for (size_t j = 0; j < files[i].scene_count; j++) {
+            bool chosen = o.scene_name_count == 0;
+            for (int k = 0; k < o.scene_name_count && !chosen; k++)
+                chosen = !strcmp(o.scene_names[k], files[i].scenes[j].name);
+            if (!chosen) continue;
+            res[count].file = o.files[i];
+            res[count].file_index = i;
+            res[count].scene = &files[i].scenes[j];
+            count++;
         }
+    for (int k = 0; k < o.scene_name_count; k++) {
+        bool found = false;
+        for (size_t i = 0; i < count && !found; i++)
+            found = !strcmp(o.scene_names[k], res[i].scene->name);
+        if (!found) {
+            fprintf(stderr, "sgapi-bench: --scene %s: no scene of that name in the files given\n",
+                    o.scene_names[k]);
+            status = 2;
+            goto done;
+        }
+    }
+    /* The ground truth's size is checked before minutes of measuring, as sgapi-render would. */
+    for (size_t i = 0; o.quality && i < count; i++) {
+        const sc_scene *s = res[i].scene;
+        if ((int64_t)s->width * o.ground_truth > SC_MAX_IMAGE_SIZE ||
+            (int64_t)s->height * o.ground_truth > SC_MAX_IMAGE_SIZE) {
+            fprintf(stderr,
+                    "sgapi-bench: %s: scene '%s' is %d x %d: its ground truth at --ground-truth "
+                    "%d would be %lld x %lld, over the largest image side %d: give a smaller "
+                    "--ground-truth\n",
+                    res[i].file, s->name, s->width, s->height, o.ground_truth,
+                    (long long)s->width * o.ground_truth, (long long)s->height * o.ground_truth,
+                    SC_MAX_IMAGE_SIZE);
+            status = 2;
+            goto done;
+        }
+    }
 
     /* sgapi-ref writes its images here; they are read back and removed scene by scene. */
     const char *tmp = getenv("TMPDIR");
@@ -1056,7 +1517,21 @@ int main(int argc, char **argv) {
         fprintf(stderr, "sgapi-bench: --quick: %d frames, no warm-up: the times mean nothing\n",
                 o.frames);
 
-    if (!measure_all(&o, ref, tmpdir, files, res, floor_ms)) goto done;
+    if (o.quality) {
+        if (!measure_quality(&o, ref, render, tmpdir, files, res, count)) goto done;
+        print_quality(&o, res, count);
+        write_quality_csv(csv, res, count);
+        fflush(stdout);
+        status = 0;
+        if (close_output(csv, o.csv, true))
+            fprintf(stderr, "sgapi-bench: wrote %s\n", o.csv);
+        else
+            status = 1;
+        csv = NULL;
+        if (!plot_quality(&o, res, count, tmpdir, o.csv)) status = 1;
+        goto done;
+    }
+    if (!measure_all(&o, ref, tmpdir, files, res, count, floor_ms)) goto done;
 
     print_table(&o, res, count, floor_ms);
     if (csv) write_csv(csv, res, count);
@@ -1080,15 +1555,20 @@ done:
     close_output(csv, o.csv, false);
     close_output(pareto_csv, pareto_path, false);
     if (tmpdir) rmdir(tmpdir);
-    for (size_t i = 0; res && i < count; i++) sc_image_free(&res[i].lp_image);
+    for (size_t i = 0; res && i < count; i++) {
+        sc_image_free(&res[i].lp_image);
+        sc_image_free(&res[i].truth);
+    }
     for (int i = 0; i < loaded; i++) sc_free(&files[i]);
     free(files);
     free(res);
     free(tmpdir);
     free(pareto_path);
     free(ref);
+    free(render);
     sc_shaders_close(shaders);
     free(o.files);
     free(o.shader_libs);
+    free(o.scene_names);
     return status;
 }
