@@ -155,7 +155,7 @@ static void test_ids(void **state) {
     p.uniform_size = sizeof u;
     p.instance_count = 2; /* the second on top of the first: it wins where LESS_EQUAL passes */
     sgPipelineDesc sd = {.shader = {vs_basic, fs_ids, 6, 1u << 4, 0},
-                         .depth = {SG_COMPARE_LESS_EQUAL, true}};
+                         .depth = {.compare = SG_COMPARE_LESS_EQUAL, .write = true}};
     static uint8_t img[W * H * 4];
     target t = begin(dev);
     assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
@@ -182,10 +182,11 @@ static void render_discard(int threads, sgSimd simd, bool with_front, uint8_t *o
                      SG_OK);
     sgGeom back = quad(dev, 0.8f), front = quad(dev, 0.2f), middle = quad(dev, 0.5f);
     sgDrawParams p = params();
-    sgPipelineStateObject fixed = test_pso(dev, (sgPipelineDesc){.depth = {SG_COMPARE_LESS, true}});
+    sgPipelineStateObject fixed =
+        test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
     sgPipelineStateObject checker =
         test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0},
-                                       .depth = {SG_COMPARE_LESS, true}});
+                                       .depth = {.compare = SG_COMPARE_LESS, .write = true}});
     for (int frame = 0; frame < 2; frame++) { /* the second frame starts in place */
         target t = begin(dev);
         assert_int_equal(sgDraw(dev, fixed, back, &p), SG_OK);
