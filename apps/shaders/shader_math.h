@@ -23,8 +23,16 @@
  * chosen when the program starts: 16 lanes fill one AVX-512 register. Lane-wise IEEE operations
  * without fused multiply-add give the same bits in every copy. (Not under the sanitizers, whose
  * builds need no speed.) */
+/* A sanitizer's runtime is not up yet when the program's start runs the copies' resolvers (gcc
+ * says so with __SANITIZE_*, clang with __has_feature). */
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
+    __has_feature(memory_sanitizer)
+#define SG_UNDER_SANITIZER 1
+#endif
+#endif
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
-    !defined(__SANITIZE_THREAD__)
+    !defined(__SANITIZE_THREAD__) && !defined(SG_UNDER_SANITIZER)
 #define SGS_STAGE __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 #else
 #define SGS_STAGE
