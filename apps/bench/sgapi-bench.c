@@ -496,6 +496,22 @@ static char *find_sibling(const char *argv0, const char *name) {
     return path;
 }
 
+/* A child's argument vector: the n arguments of fixed, then --shaders and each library, then room
+ * for `spare` more (and the closing NULL); NULL (reported) when out of memory. Freed with free. */
+static char **child_argv(const options *o, const char *const *fixed, size_t n, size_t spare) {
+    char **argv = calloc(n + 2 * (size_t)o->shader_lib_count + spare + 1, sizeof *argv);
+    if (!argv) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return NULL;
+    }
+    for (size_t i = 0; i < n; i++) argv[i] = (char *)fixed[i];
+    for (int i = 0; i < o->shader_lib_count; i++) {
+        argv[n + 2 * (size_t)i] = "--shaders";
+        argv[n + 2 * (size_t)i + 1] = (char *)o->shader_libs[i];
+    }
+    return argv;
+}
+
 /* lavapipe's median time per frame of one scene at `threads` raster threads, read from the line
  * "NAME  X ms/frame ..." that sgapi-ref prints; its image is left in tmpdir/NAME.png. samples
  * (0: the scene's) and mipmap (NULL: the scene's) are handed to sgapi-ref. */
@@ -510,16 +526,8 @@ static bool run_lavapipe(const options *o, const char *ref, const char *file, co
     const char *fixed[] = {ref,   file,        "--frames", frames_s, "--scene",
                            scene, "--threads", threads_s,  "-o",     tmpdir};
     enum { FIXED = sizeof fixed / sizeof fixed[0] };
-    char **argv = calloc(FIXED + 2 * (size_t)o->shader_lib_count + 5, sizeof *argv);
-    if (!argv) {
-        fprintf(stderr, "sgapi-bench: out of memory\n");
-        return false;
-    }
-    for (int i = 0; i < FIXED; i++) argv[i] = (char *)fixed[i];
-    for (int i = 0; i < o->shader_lib_count; i++) {
-        argv[FIXED + 2 * i] = "--shaders";
-        argv[FIXED + 2 * i + 1] = (char *)o->shader_libs[i];
-    }
+    char **argv = child_argv(o, fixed, FIXED, 4);
+    if (!argv) return false;
     int extra = FIXED + 2 * o->shader_lib_count;
     if (samples) {
         argv[extra++] = "--samples";
@@ -942,16 +950,8 @@ static bool render_truth(const options *o, const char *render, const char *tmpdi
                            "--ground-truth", n_s,     "--threads", threads_s,
                            "--frames",       "1",     "-o",        tmpdir};
     enum { FIXED = sizeof fixed / sizeof fixed[0] };
-    char **argv = calloc(FIXED + 2 * (size_t)o->shader_lib_count + 1, sizeof *argv);
-    if (!argv) {
-        fprintf(stderr, "sgapi-bench: out of memory\n");
-        return false;
-    }
-    for (int i = 0; i < FIXED; i++) argv[i] = (char *)fixed[i];
-    for (int i = 0; i < o->shader_lib_count; i++) {
-        argv[FIXED + 2 * i] = "--shaders";
-        argv[FIXED + 2 * i + 1] = (char *)o->shader_libs[i];
-    }
+    char **argv = child_argv(o, fixed, FIXED, 0);
+    if (!argv) return false;
     char *out = NULL;
     int status = 0;
     sc_msg err = {0};
