@@ -60,23 +60,25 @@ submit() { # DIR [sbatch options of the array...]
     dir=$1
     shift
     mkdir -p "$dir/logs"
-    jobid=$(cd "$dir" && sbatch --parsable "$@" "$scripts/render-turntable.sbatch")
+    jobid=$(cd "$dir" && sbatch --parsable "$@" "$scripts/render-turntable.sbatch" "$scene")
     assemble=$(cd "$dir" && sbatch --parsable --dependency=afterok:"$jobid" \
-        "$scripts/assemble-turntable.sbatch")
+        "$scripts/assemble-turntable.sbatch" "$scene")
 }
 
 # ---- the turntable of two scenes: 4 tasks on Slurm against the same 4 shards run locally ----
 # SLURM_TEST_FRAMES: frames of the turn (48; docs/scale-out.md times 240).
-export SGAPI_RENDER="$render" SCENES="$src/scenes/shadows.json" TURNTABLE=${SLURM_TEST_FRAMES:-48} \
+# The scene file goes to the scripts as an argument: the checkout's path may hold spaces.
+scene="$src/scenes/shadows.json"
+export SGAPI_RENDER="$render" TURNTABLE=${SLURM_TEST_FRAMES:-48} \
     OPTIONS="--up 0 --scene shadow_teapots --scene shadow_point --png-level 1 --video-width 256"
 # shellcheck disable=SC2086
 local_run() { # OUT: the docs' loop without a scheduler, one thread a shard
     for i in 0 1 2 3; do
-        "$render" $SCENES -o "$1" --turntable $TURNTABLE $OPTIONS --threads 1 --quiet \
+        "$render" "$scene" -o "$1" --turntable $TURNTABLE $OPTIONS --threads 1 --quiet \
             --shard $i/4 >"$1.$i.out" &
     done
     wait
-    "$render" $SCENES -o "$1" --turntable $TURNTABLE $OPTIONS --video gif,mp4 --assemble \
+    "$render" "$scene" -o "$1" --turntable $TURNTABLE $OPTIONS --video gif,mp4 --assemble \
         >"$1.assemble.out"
     for i in 0 1 2 3; do
         tail -n 1 "$1.$i.out" | grep -q '^done: ' || fail "local shard $i: $(cat "$1.$i.out")"
@@ -118,7 +120,7 @@ done
 # Slower frames (PNG level 9), so that the tasks are caught while they run.
 export TURNTABLE=12 OPTIONS="--up 0 --scene shadow_teapots --scene shadow_point --png-level 9"
 # shellcheck disable=SC2086
-"$render" $SCENES -o "$work/ref" --turntable $TURNTABLE $OPTIONS --quiet >/dev/null
+"$render" "$scene" -o "$work/ref" --turntable $TURNTABLE $OPTIONS --quiet >/dev/null
 OUT=$work/fault/tt submit "$work/fault" --array=0-3 --cpus-per-task=1
 pid=$(wait_frames "$work/fault/logs/turntable-1.jsonl" 2)
 kill -KILL "$pid"
@@ -142,7 +144,7 @@ done
 [ $missing -gt 0 ] || fail "the faults left no frame missing"
 set +e
 # shellcheck disable=SC2086
-"$render" $SCENES -o "$work/fault/tt" --turntable $TURNTABLE $OPTIONS --video gif --assemble \
+"$render" "$scene" -o "$work/fault/tt" --turntable $TURNTABLE $OPTIONS --video gif --assemble \
     >/dev/null 2>"$work/fault/assemble.err"
 rc=$?
 set -e
@@ -168,7 +170,7 @@ done
 [ $rendered -eq $missing ] || fail "the re-run rendered $rendered frames, $missing were missing"
 find "$work/fault/tt" -name '*.part' | grep -q . && fail "files left half-written"
 # shellcheck disable=SC2086
-"$render" $SCENES -o "$work/ref" --turntable $TURNTABLE $OPTIONS --video gif,mp4 --assemble \
+"$render" "$scene" -o "$work/ref" --turntable $TURNTABLE $OPTIONS --video gif,mp4 --assemble \
     >/dev/null
 diff -r "$work/ref" "$work/fault/tt" || fail "the run after the faults differs"
 echo "faults: the two indices submitted again rendered only the $missing missing frames;" \
@@ -210,8 +212,9 @@ EOF
 "$render" "$work"/scenes/*.json -o "$work/local/batch" --quiet >/dev/null
 mkdir -p "$work/batch/logs"
 # 5 tasks for 4 shards: task 4 asks for shard 4/4 and fails alone.
-jobid=$(cd "$work/batch" && SCENES="$work/scenes/*.json" TURNTABLE= OPTIONS= OUT="$work/batch/out" \
-    SHARDS=4 sbatch --parsable --array=0-4 --cpus-per-task=1 "$scripts/render-turntable.sbatch")
+jobid=$(cd "$work/batch" && TURNTABLE= OPTIONS= OUT="$work/batch/out" SHARDS=4 \
+    sbatch --parsable --array=0-4 --cpus-per-task=1 "$scripts/render-turntable.sbatch" \
+    "$work"/scenes/*.json)
 wait_jobs "$jobid"
 for i in 0 1 2 3; do
     [ "$(state "$jobid" $i)" = COMPLETED ] || fail "batch task $i: $(state "$jobid" $i)"
@@ -226,9 +229,9 @@ diff -r "$work/local/batch" "$work/batch/out" || fail "the batch's images differ
 echo "batch: 300 scene files in 4 tasks, images byte-identical; task 4 of 5 failed alone:" \
     "$(grep "4/4" "$work/batch/logs/turntable-${jobid}_4.out")"
 # A task given a scene file that is not there fails, naming it, and writes nothing.
-jobid=$(cd "$work/batch" && SCENES="$work/scenes/s00*.json $work/scenes/gone.json" TURNTABLE= \
-    OPTIONS= OUT="$work/batch/out2" SHARDS=4 sbatch --parsable --array=3 --cpus-per-task=1 \
-    "$scripts/render-turntable.sbatch")
+jobid=$(cd "$work/batch" && TURNTABLE= OPTIONS= OUT="$work/batch/out2" SHARDS=4 \
+    sbatch --parsable --array=3 --cpus-per-task=1 "$scripts/render-turntable.sbatch" \
+    "$work"/scenes/s00*.json "$work/scenes/gone.json")
 wait_jobs "$jobid"
 [ "$(state "$jobid" 3)" = FAILED ] || fail "the task with a missing file: $(state "$jobid" 3)"
 grep -q "gone.json" "$work/batch/logs/turntable-${jobid}_3.out" ||
