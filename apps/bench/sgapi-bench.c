@@ -1354,6 +1354,21 @@ static bool close_output(FILE *f, const char *path, bool keep) {
     return ok;
 }
 
+/* Whether the program at path (from find_sibling or --ref; NULL: out of memory) can be run:
+ * false, reported with what and the hint, when it names a file that is not executable. */
+static bool runnable(const char *path, const char *what, const char *hint) {
+    if (!path) {
+        fprintf(stderr, "sgapi-bench: out of memory\n");
+        return false;
+    }
+    if (strchr(path, '/') && access(path, X_OK) != 0) {
+        fprintf(stderr, "sgapi-bench: cannot run %s%s: %s\nsgapi-bench: %s\n", what, path,
+                strerror(errno), hint);
+        return false;
+    }
+    return true;
+}
+
 int main(int argc, char **argv) {
     options o = {0};
     int status = parse_args(argc, argv, &o);
@@ -1374,32 +1389,15 @@ int main(int argc, char **argv) {
     double floor_ms[2] = {0, 0};
 
     ref = o.ref ? concat3(o.ref, "", "") : find_sibling(argv[0], "sgapi-ref");
-    if (!ref) {
-        fprintf(stderr, "sgapi-bench: out of memory\n");
+    if (!runnable(ref, "the lavapipe reference ",
+                  "build sgapi-ref (it needs the Vulkan loader and glslang) or name it with "
+                  "--ref PATH"))
         goto done;
-    }
-    if (strchr(ref, '/') && access(ref, X_OK) != 0) {
-        fprintf(stderr,
-                "sgapi-bench: cannot run the lavapipe reference %s: %s\n"
-                "sgapi-bench: build sgapi-ref (it needs the Vulkan loader and glslang) or name it "
-                "with --ref PATH\n",
-                ref, strerror(errno));
-        goto done;
-    }
     if (o.quality) {
         render = find_sibling(argv[0], "sgapi-render");
-        if (!render) {
-            fprintf(stderr, "sgapi-bench: out of memory\n");
+        if (!runnable(render, "",
+                      "--quality needs sgapi-render beside sgapi-bench for the ground truth"))
             goto done;
-        }
-        if (strchr(render, '/') && access(render, X_OK) != 0) {
-            fprintf(stderr,
-                    "sgapi-bench: cannot run %s: %s\n"
-                    "sgapi-bench: --quality needs sgapi-render beside sgapi-bench for the ground "
-                    "truth\n",
-                    render, strerror(errno));
-            goto done;
-        }
         if (!o.csv) o.csv = "quality.csv";
     }
     if (o.pareto) {
