@@ -6,7 +6,7 @@
  * (getrusage) must stay within the geometry's own size (the geoms' copies of their arrays; the
  * program's are freed once copied) + the device's bin_memory_limit + 64 MiB (targets, vertex
  * arenas, code). Before the limit, the parallel front end's reservations grew with the draws.
- *   test_scale_memory [BIN_MEMORY_LIMIT]   (0 or none: the default limit)
+ *   test_scale_memory [BIN_MEMORY_LIMIT]   (0 or none: the default limit, 32 MiB at 1024 x 1024)
  * Prints the figures; exit 1 past the bound. */
 #include <stdint.h>
 #include <stdio.h>
@@ -44,7 +44,11 @@ int main(int argc, char **argv) {
     sgDevice *dev = NULL;
     sgResult r = sgCreateDevice(&dd, &dev);
     if (r != SG_OK) return fail(NULL, r, "sgCreateDevice");
-    const size_t budget = limit ? limit : SG_DEFAULT_BIN_MEMORY_LIMIT;
+    /* The default limit of a SIZE x SIZE pass (sgDeviceDesc.bin_memory_limit). */
+    size_t budget = (size_t)SIZE * SIZE * SG_BIN_MEMORY_PER_PIXEL;
+    if (budget > SG_DEFAULT_BIN_MEMORY_LIMIT) budget = SG_DEFAULT_BIN_MEMORY_LIMIT;
+    if (budget < SG_MIN_DEFAULT_BIN_MEMORY) budget = SG_MIN_DEFAULT_BIN_MEMORY;
+    if (limit) budget = limit;
 
     sguShapeDesc sd = {
         .shape = SGU_SHAPE_UV_SPHERE, .segments = 1024, .rings = 1024, .radius = 0.3f};

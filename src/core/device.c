@@ -33,6 +33,11 @@ static void default_free(void *ptr, void *user) {
     free(ptr);
 }
 
+static void *default_resize(void *ptr, size_t size, void *user) {
+    (void)user;
+    return realloc(ptr, size);
+}
+
 void *sg_alloc(sgDevice *dev, size_t size) {
     return size ? dev->allocator.alloc(size, dev->allocator.user_data) : NULL;
 }
@@ -208,8 +213,11 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
     }
     dev->binner.alloc = dev->allocator.alloc;
     dev->binner.free = dev->allocator.free;
+    /* A user's allocator has no resize: its storage grows by copying (and flushing, draw.c). */
+    dev->binner.resize = dev->allocator.alloc == default_alloc ? default_resize : NULL;
     dev->binner.user = dev->allocator.user_data;
     dev->bin_memory_limit = d.bin_memory_limit ? d.bin_memory_limit : SG_DEFAULT_BIN_MEMORY_LIMIT;
+    dev->bin_memory_auto = !d.bin_memory_limit;
     dev->binner.memory_limit = dev->bin_memory_limit;
     if (dev->thread_count > 1) {
         dev->threads = sg_alloc(dev, (size_t)(dev->thread_count - 1) * sizeof *dev->threads);

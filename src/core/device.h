@@ -93,6 +93,7 @@ struct sgDevice {
     /* A draw ran out of memory after a flush had rendered part of it: the pass can only end. */
     bool pass_failed;
     size_t bin_memory_limit; /* bytes of binned work before a flush (sgDeviceDesc) */
+    bool bin_memory_auto;    /* bin_memory_limit was 0: each pass sets it from its target */
     float *flush_depth;      /* the depth between flushes of a pass that does not store it */
     size_t flush_depth_capacity;
     /* A multisampled pass's samples between flushes (sg_bin_pass.msaa_color), kept and grown. */

@@ -16,7 +16,7 @@
 
 /* Above this, the pass's triangles are not copied to grow their storage: what is binned is
  * rendered first (a flush), and the storage then grows empty. Only the first frames of a large
- * scene grow, once each size. */
+ * scene grow, once each size. Storage that can be resized in place (bin.h, resize) just grows. */
 enum { GROW_COPY_BYTES = 4 << 20 };
 
 /* Makes way for n more triangles: when they would take the pass's binned work past the device's
@@ -33,7 +33,8 @@ static bool room_for(sgDevice *dev, size_t n) {
     }
     size_t tb = sg_binner_tri_bytes(b);
     bool over = sg_binner_bytes(b) + n * (tb + sizeof(uint32_t)) > dev->bin_memory_limit;
-    bool copy = b->tri_count + n > b->tri_capacity && b->tri_count * tb > GROW_COPY_BYTES;
+    bool copy =
+        !b->resize && b->tri_count + n > b->tri_capacity && b->tri_count * tb > GROW_COPY_BYTES;
     if (!over && !copy) return true;
     if (!sg_pass_flush(dev)) {
         b->out_of_memory = true;

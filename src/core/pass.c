@@ -154,6 +154,15 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     dev->uniforms_used = 0;
     dev->shader_discards = 0;
     p->shader_discards = &dev->shader_discards;
+    if (dev->bin_memory_auto) { /* sgDeviceDesc.bin_memory_limit 0: from the target's size */
+        size_t pixels = (size_t)p->width * (size_t)p->height;
+        size_t limit = pixels > SG_DEFAULT_BIN_MEMORY_LIMIT / SG_BIN_MEMORY_PER_PIXEL
+                           ? SG_DEFAULT_BIN_MEMORY_LIMIT
+                           : pixels * SG_BIN_MEMORY_PER_PIXEL;
+        dev->bin_memory_limit =
+            limit > SG_MIN_DEFAULT_BIN_MEMORY ? limit : SG_MIN_DEFAULT_BIN_MEMORY;
+        dev->binner.memory_limit = dev->bin_memory_limit;
+    }
     dev->room_tris = dev->room_listed = 0; /* bin_slot looks at the budget first */
     dev->pass_failed = false;
     dev->pass_tris = 0;

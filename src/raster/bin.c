@@ -6,6 +6,8 @@
 
 #include <string.h>
 
+enum { LAZY_BYTES = 1 << 20 };
+
 /* Grows an array to hold `need` elements of `size` bytes, doubling, keeping its first `used`;
  * false when out of memory. */
 static bool grow(sg_binner *b, void **ptr, size_t *capacity, size_t need, size_t used,
@@ -16,7 +18,18 @@ static bool grow(sg_binner *b, void **ptr, size_t *capacity, size_t need, size_t
     /* The triangles' storage stays within the pass's memory budget (bin.h, memory_limit). */
     if (ptr == (void **)&b->tris && b->memory_limit) {
         size_t most = b->memory_limit / sg_binner_tri_bytes(b);
+        /* Past LAZY_BYTES, storage the C library gives (resize) grows once to the whole budget:
+         * so large a block is mapped, not taken from the heap, and its pages are touched only as
+         * triangles are stored, so a big pass neither copies nor touches its storage twice. */
+        if (b->resize && cap * size > LAZY_BYTES) cap = most;
         if (cap > most) cap = most > need ? most : need;
+    }
+    if (b->resize && *ptr) {
+        void *p = b->resize(*ptr, cap * size, b->user);
+        if (!p) return false;
+        *ptr = p;
+        *capacity = cap;
+        return true;
     }
     void *p = b->alloc(cap * size, b->user);
     if (!p) return false;

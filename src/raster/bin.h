@@ -21,6 +21,10 @@ typedef struct sg_bin {
 typedef struct sg_binner {
     void *(*alloc)(size_t size, void *user);
     void (*free)(void *ptr, void *user);
+    /* Optional (NULL: alloc, copy, free): grows a block keeping its contents. The C library's
+     * realloc moves a large block's pages instead of copying them, so the storage of a big pass
+     * grows without copying what is binned or touching its pages twice. */
+    void *(*resize)(void *ptr, size_t size, void *user);
     void *user;
     sg_tri *tris;
     size_t tri_count, tri_capacity;
