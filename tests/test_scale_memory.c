@@ -1,12 +1,13 @@
 /* test_scale_memory.c - peak memory of a 10 M-triangle frame.
  *
  * Five UV spheres of 1024 x 1024 segments and rings (2 M triangles each), Gouraud-lit, back faces
- * culled, side by side in one 1024 x 1024 pass, rendered twice (the first frame grows the
- * device's storage, the second reuses it) at 2 threads. The process's peak resident set
- * (getrusage) must stay within the geometry's own size (the geoms' copies of their arrays; the
- * program's are freed once copied) + the device's bin_memory_limit + 64 MiB (targets, vertex
- * arenas, code). Before the limit, the parallel front end's reservations grew with the draws.
- *   test_scale_memory [BIN_MEMORY_LIMIT]   (0 or none: the default limit, 32 MiB at 1024 x 1024)
+ * culled, side by side in one 1024 x 1024 pass, rendered four times at 2 threads: the first frame
+ * bins 32 MiB before it flushes, the next ones twice as much each, until the pass fits. The
+ * process's peak resident set (getrusage) must stay within the geometry's own size (the geoms'
+ * copies of their arrays; the program's are freed once copied) + the device's bin_memory_limit +
+ * 64 MiB (targets, vertex arenas, code). Before the limit, the parallel front end's reservations
+ * grew with the draws.
+ *   test_scale_memory [BIN_MEMORY_LIMIT]   (0 or none: the default limit)
  * Prints the figures; exit 1 past the bound. */
 #include <stdint.h>
 #include <stdio.h>
@@ -44,11 +45,7 @@ int main(int argc, char **argv) {
     sgDevice *dev = NULL;
     sgResult r = sgCreateDevice(&dd, &dev);
     if (r != SG_OK) return fail(NULL, r, "sgCreateDevice");
-    /* The default limit of a SIZE x SIZE pass (sgDeviceDesc.bin_memory_limit). */
-    size_t budget = (size_t)SIZE * SIZE * SG_BIN_MEMORY_PER_PIXEL;
-    if (budget > SG_DEFAULT_BIN_MEMORY_LIMIT) budget = SG_DEFAULT_BIN_MEMORY_LIMIT;
-    if (budget < SG_MIN_DEFAULT_BIN_MEMORY) budget = SG_MIN_DEFAULT_BIN_MEMORY;
-    if (limit) budget = limit;
+    const size_t budget = limit ? limit : SG_DEFAULT_BIN_MEMORY_LIMIT;
 
     sguShapeDesc sd = {
         .shape = SGU_SHAPE_UV_SPHERE, .segments = 1024, .rings = 1024, .radius = 0.3f};
@@ -97,7 +94,7 @@ int main(int argc, char **argv) {
                        .depth = depth,
                        .clear_color = {0.1f, 0.12f, 0.16f, 1},
                        .depth_store = SG_STORE_DONT_CARE};
-    for (int frame = 0; frame < 2; frame++) {
+    for (int frame = 0; frame < 4; frame++) {
         if ((r = sgBeginRenderPass(dev, &pass)) != SG_OK) return fail(dev, r, "begin");
         for (int i = 0; i < SPHERES; i++) {
             sgDrawParams dp = {.lighting = &lights};

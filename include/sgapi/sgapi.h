@@ -131,20 +131,15 @@ typedef struct sgDeviceDesc {
     void (*log)(sgResult result, const char *message, void *user_data);
     void *log_user_data;
     /* Bytes of a pass's binned work (set-up triangles and their bin lists) before what is binned
-     * is rendered and the pass goes on, same image; 0: SG_BIN_MEMORY_PER_PIXEL bytes a pixel of
-     * the pass's target, at least SG_MIN_DEFAULT_BIN_MEMORY and at most
-     * SG_DEFAULT_BIN_MEMORY_LIMIT. Less than one triangle's records is SG_ERROR_INVALID_VALUE. */
+     * is rendered and the pass goes on, same image; 0: SG_DEFAULT_BIN_MEMORY_LIMIT. Less than one
+     * triangle's records is SG_ERROR_INVALID_VALUE. A pass may render its binned work sooner
+     * (same image): it first bins 32 bytes a target pixel, at least 32 MiB, and a pass that had
+     * to flush lets the next ones bin twice as much, up to this limit. */
     size_t bin_memory_limit;
 } sgDeviceDesc;
 
-/* The most a pass bins when sgDeviceDesc.bin_memory_limit is 0: 256 MiB. */
+/* The default sgDeviceDesc.bin_memory_limit: 256 MiB. */
 #define SG_DEFAULT_BIN_MEMORY_LIMIT ((size_t)256 << 20)
-/* The least a pass bins when bin_memory_limit is 0: 32 MiB. Binned work rendered while it is
- * still in the caches, and a big first frame that touches less new memory. */
-#define SG_MIN_DEFAULT_BIN_MEMORY ((size_t)32 << 20)
-/* Binned bytes a target pixel when bin_memory_limit is 0: a flush costs about one pass over the
- * target, so a large target bins more before it flushes. */
-#define SG_BIN_MEMORY_PER_PIXEL 32
 
 /** Creates a device; desc may be NULL for all defaults. */
 SGAPI_API sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device);

@@ -217,7 +217,6 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
     dev->binner.resize = dev->allocator.alloc == default_alloc ? default_resize : NULL;
     dev->binner.user = dev->allocator.user_data;
     dev->bin_memory_limit = d.bin_memory_limit ? d.bin_memory_limit : SG_DEFAULT_BIN_MEMORY_LIMIT;
-    dev->bin_memory_auto = !d.bin_memory_limit;
     dev->binner.memory_limit = dev->bin_memory_limit;
     if (dev->thread_count > 1) {
         dev->threads = sg_alloc(dev, (size_t)(dev->thread_count - 1) * sizeof *dev->threads);

@@ -93,8 +93,11 @@ struct sgDevice {
     /* A draw ran out of memory after a flush had rendered part of it: the pass can only end. */
     bool pass_failed;
     size_t bin_memory_limit; /* bytes of binned work before a flush (sgDeviceDesc) */
-    bool bin_memory_auto;    /* bin_memory_limit was 0: each pass sets it from its target */
-    float *flush_depth;      /* the depth between flushes of a pass that does not store it */
+    /* Binned bytes at which the open pass flushes, at most bin_memory_limit, and what the next
+     * passes start from (pass.c, sgBeginRenderPass). */
+    size_t bin_flush_at, bin_working;
+    uint64_t pass_first_flush; /* `flushes` when the open pass began */
+    float *flush_depth;        /* the depth between flushes of a pass that does not store it */
     size_t flush_depth_capacity;
     /* A multisampled pass's samples between flushes (sg_bin_pass.msaa_color), kept and grown. */
     uint32_t *msaa_color;

@@ -27,12 +27,12 @@ enum { GROW_COPY_BYTES = 4 << 20 };
 static bool room_for(sgDevice *dev, size_t n) {
     sg_binner *b = &dev->binner;
     if (!b->tri_count) {
-        size_t want = dev->most_tris, most = dev->bin_memory_limit / sg_binner_tri_bytes(b);
+        size_t want = dev->most_tris, most = dev->bin_flush_at / sg_binner_tri_bytes(b);
         if (want > most) want = most;
         return b->tri_capacity >= want || sg_binner_grow(b, want);
     }
     size_t tb = sg_binner_tri_bytes(b);
-    bool over = sg_binner_bytes(b) + n * (tb + sizeof(uint32_t)) > dev->bin_memory_limit;
+    bool over = sg_binner_bytes(b) + n * (tb + sizeof(uint32_t)) > dev->bin_flush_at;
     bool copy =
         !b->resize && b->tri_count + n > b->tri_capacity && b->tri_count * tb > GROW_COPY_BYTES;
     if (!over && !copy) return true;
@@ -61,7 +61,7 @@ static sg_tri *bin_slot(void *user, sg_tri_ext **ext) {
     }
     if (b->out_of_memory || !room_for(dev, 1) || !sg_binner_reserve(b, 1)) return NULL;
     size_t used = sg_binner_bytes(b);
-    size_t left = dev->bin_memory_limit > used ? dev->bin_memory_limit - used : 0;
+    size_t left = dev->bin_flush_at > used ? dev->bin_flush_at - used : 0;
     size_t tris = left / 2 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
     if (tris > b->tri_capacity - b->tri_count) tris = b->tri_capacity - b->tri_count;
     dev->room_tris = b->tri_count + tris; /* tris 0: look again at the next triangle */
@@ -263,7 +263,7 @@ static bool assemble_parallel(sgDevice *dev, const sg_assembly *a) {
     if (dev->thread_count < 2 || prims * tris_per < FE_MIN_TRIANGLES) return false;
     int n = 4 * dev->thread_count < FE_MAX_CHUNKS ? 4 * dev->thread_count : FE_MAX_CHUNKS;
     const sg_binner *b = &dev->binner;
-    size_t slots = dev->bin_memory_limit / 4 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
+    size_t slots = dev->bin_flush_at / 4 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
     size_t margin = (size_t)n * FE_BLOCK * (size_t)tris_per;
     for (int p = 0; p < prims && !b->out_of_memory;) {
         size_t fit = slots > margin ? (slots - margin) / (size_t)tris_per : 0;

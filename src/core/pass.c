@@ -10,6 +10,10 @@
 #include "raster/rast_msaa.h"
 #include "raster/shade.h"
 
+/* Where a pass's binned work starts (sgBeginRenderPass): bytes a target pixel, and the least. */
+enum { BIN_START_PER_PIXEL = 32 };
+#define BIN_START_MIN ((size_t)32 << 20)
+
 static bool unit_range(float v) {
     return v >= 0.0f && v <= 1.0f;
 } /* false for NaN */
@@ -154,15 +158,19 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     dev->uniforms_used = 0;
     dev->shader_discards = 0;
     p->shader_discards = &dev->shader_discards;
-    if (dev->bin_memory_auto) { /* sgDeviceDesc.bin_memory_limit 0: from the target's size */
-        size_t pixels = (size_t)p->width * (size_t)p->height;
-        size_t limit = pixels > SG_DEFAULT_BIN_MEMORY_LIMIT / SG_BIN_MEMORY_PER_PIXEL
-                           ? SG_DEFAULT_BIN_MEMORY_LIMIT
-                           : pixels * SG_BIN_MEMORY_PER_PIXEL;
-        dev->bin_memory_limit =
-            limit > SG_MIN_DEFAULT_BIN_MEMORY ? limit : SG_MIN_DEFAULT_BIN_MEMORY;
-        dev->binner.memory_limit = dev->bin_memory_limit;
-    }
+    /* The binned work a pass holds before it flushes starts small, so that a large scene's first
+     * frame touches little new memory, and doubles each time a pass had to flush, up to the
+     * device's limit: a scene that keeps being drawn reaches its size in a few frames, each of
+     * its bytes faulted in once, and then does not flush. A flush costs about one pass over the
+     * target, so a larger target starts larger. */
+    const size_t pixels = (size_t)p->width * (size_t)p->height;
+    size_t start = pixels > dev->bin_memory_limit / BIN_START_PER_PIXEL
+                       ? dev->bin_memory_limit
+                       : pixels * BIN_START_PER_PIXEL;
+    start = start > BIN_START_MIN ? start : BIN_START_MIN;
+    start = start > dev->bin_working ? start : dev->bin_working;
+    dev->bin_flush_at = start < dev->bin_memory_limit ? start : dev->bin_memory_limit;
+    dev->pass_first_flush = dev->flushes;
     dev->room_tris = dev->room_listed = 0; /* bin_slot looks at the budget first */
     dev->pass_failed = false;
     dev->pass_tris = 0;
@@ -280,6 +288,10 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     if (!failed) render_bins(dev);
     dev->in_pass = false;
     dev->pass_failed = false;
+    if (!failed && dev->flushes != dev->pass_first_flush &&
+        dev->bin_flush_at < dev->bin_memory_limit)
+        dev->bin_working = dev->bin_flush_at < dev->bin_memory_limit / 2 ? 2 * dev->bin_flush_at
+                                                                         : dev->bin_memory_limit;
     if (dev->pass_tris + dev->binner.tri_count > dev->most_tris)
         dev->most_tris = dev->pass_tris + dev->binner.tri_count;
     dev->pass_color.id = 0;
