@@ -170,6 +170,7 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     start = start > BIN_START_MIN ? start : BIN_START_MIN;
     start = start > dev->bin_working ? start : dev->bin_working;
     dev->bin_flush_at = start < dev->bin_memory_limit ? start : dev->bin_memory_limit;
+    dev->binner.memory_limit = dev->bin_flush_at; /* the storage grows with it */
     dev->pass_first_flush = dev->flushes;
     dev->room_tris = dev->room_listed = 0; /* bin_slot looks at the budget first */
     dev->pass_failed = false;
