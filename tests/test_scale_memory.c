@@ -2,7 +2,7 @@
  *
  * Five UV spheres of 1024 x 1024 segments and rings (2 M triangles each), Gouraud-lit, back faces
  * culled, side by side in one 1024 x 1024 pass, rendered four times at 2 threads: the first frame
- * bins 32 MiB before it flushes, the next ones twice as much each, until the pass fits. The
+ * bins 32 MiB before it flushes, the next ones up to the limit. The
  * process's peak resident set (getrusage) must stay within the geometry's own size (the geoms'
  * copies of their arrays; the program's are freed once copied) + the device's bin_memory_limit +
  * 64 MiB (targets, vertex arenas, code). Before the limit, the parallel front end's reservations

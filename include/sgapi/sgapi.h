@@ -133,8 +133,8 @@ typedef struct sgDeviceDesc {
     /* Bytes of a pass's binned work (set-up triangles and their bin lists) before what is binned
      * is rendered and the pass goes on, same image; 0: SG_DEFAULT_BIN_MEMORY_LIMIT. Less than one
      * triangle's records is SG_ERROR_INVALID_VALUE. A pass may render its binned work sooner
-     * (same image): it first bins 32 bytes a target pixel, at least 32 MiB, and a pass that had
-     * to flush lets the next ones bin twice as much, up to this limit. */
+     * (same image): a device first bins 32 bytes a target pixel (at least 32 MiB), and up to
+     * this limit once a pass had to flush. */
     size_t bin_memory_limit;
 } sgDeviceDesc;
 

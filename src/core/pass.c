@@ -159,9 +159,10 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     dev->shader_discards = 0;
     p->shader_discards = &dev->shader_discards;
     /* The binned work a pass holds before it flushes starts small, so that a large scene's first
-     * frame touches little new memory, and doubles each time a pass had to flush, up to the
-     * device's limit: a scene that keeps being drawn reaches its size in a few frames, each of
-     * its bytes faulted in once, and then does not flush. A flush costs about one pass over the
+     * frame touches little new memory, and is the device's limit once a pass had to flush: a
+     * scene that keeps being drawn grows to its size in its second frame, each of its bytes
+     * faulted in once, and then does not flush. (Doubling at each flushing pass spread the
+     * growth over three frames that cost more in all.) A flush costs about one pass over the
      * target, so a larger target starts larger. */
     const size_t pixels = (size_t)p->width * (size_t)p->height;
     size_t start = pixels > dev->bin_memory_limit / BIN_START_PER_PIXEL
@@ -289,10 +290,7 @@ sgResult sgEndRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     if (!failed) render_bins(dev);
     dev->in_pass = false;
     dev->pass_failed = false;
-    if (!failed && dev->flushes != dev->pass_first_flush &&
-        dev->bin_flush_at < dev->bin_memory_limit)
-        dev->bin_working = dev->bin_flush_at < dev->bin_memory_limit / 2 ? 2 * dev->bin_flush_at
-                                                                         : dev->bin_memory_limit;
+    if (!failed && dev->flushes != dev->pass_first_flush) dev->bin_working = dev->bin_memory_limit;
     if (dev->pass_tris + dev->binner.tri_count > dev->most_tris)
         dev->most_tris = dev->pass_tris + dev->binner.tri_count;
     dev->pass_color.id = 0;
