@@ -95,8 +95,10 @@ static void make_case(rng *g, lit_case *c) {
     l->split = chance(g, 40) ? 1 + irange(g, 0, in.light_count - 1) : 0;
     if (l->split)
         l->stride = c->lights.has_specular ? SG_LIT_SPLIT_END : SG_LIT_SPLIT_SEC;
-    else
-        l->stride = c->lights.has_specular ? SG_LIT_SEC + 3 : SG_LIT_SEC;
+    else if (c->lights.has_specular)
+        l->stride = SG_LIT_SEC + 3;
+    else /* an untextured draw stores its colour alone */
+        l->stride = !l->texcoords && chance(g, 50) ? SG_LIT_ST : SG_LIT_SEC;
 }
 
 /* The scalar path's output and flags against fn's, sentinel-filled, for one case. */

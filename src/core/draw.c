@@ -812,7 +812,10 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         vstride = lighting == SG_LIGHTING_PHONG ? SG_LIT_NRM + 3
                   : lighting == SG_LIGHTING_FLAT || lighting == SG_LIGHTING_NONE || spec
                       ? SG_LIT_SEC + 3
-                      : SG_LIT_SEC;
+                  /* Gouraud: the colour, and the texcoords when it samples (16 bytes a vertex
+                   * less to write and read on an untextured mesh) */
+                  : textured ? SG_LIT_SEC
+                             : SG_LIT_ST;
         nattr = lighting == SG_LIGHTING_PHONG  ? SG_LIT_NRM + 3
                 : lighting == SG_LIGHTING_NONE ? SG_LIT_POS + 3
                 : spec                         ? SG_LIT_SEC + 3

@@ -148,8 +148,10 @@ void sg_vertex_lit_attributes(const sg_vertex_lit *l, int first, int count, floa
             for (int k = 0; k < 4; k++) base[k] *= l->tint[k];
         sg_mat4_transform(v, m, l->positions + (size_t)i * 4);
         for (int k = 0; k < 3; k++) P[k] = v[3] != 1.0f ? v[k] / v[3] : v[k];
-        o[SG_LIT_ST] = l->texcoords ? l->texcoords[(size_t)i * 2] : 0.0f;
-        o[SG_LIT_ST + 1] = l->texcoords ? l->texcoords[(size_t)i * 2 + 1] : 0.0f;
+        if (l->stride > SG_LIT_ST) { /* an untextured Gouraud draw stores its colour alone */
+            o[SG_LIT_ST] = l->texcoords ? l->texcoords[(size_t)i * 2] : 0.0f;
+            o[SG_LIT_ST + 1] = l->texcoords ? l->texcoords[(size_t)i * 2 + 1] : 0.0f;
+        }
         float n[3] = {0.0f, 0.0f, 0.0f};
         if (l->mode == SG_LIGHTING_GOURAUD || l->mode == SG_LIGHTING_PHONG) {
             const float *src = l->normals + (size_t)i * 3;

@@ -31,6 +31,8 @@ static inline __attribute__((always_inline)) void vl_store(const float (*res)[VL
                                                            uint8_t *ok, int stride) {
     if (stride == SG_LIT_SEC)
         vl_store_as(res, out, ok, SG_LIT_SEC);
+    else if (stride == SG_LIT_ST)
+        vl_store_as(res, out, ok, SG_LIT_ST);
     else if (stride == SG_LIT_SEC + 3)
         vl_store_as(res, out, ok, SG_LIT_SEC + 3);
     else
