@@ -5,7 +5,9 @@
 #include "tex/mip.h"
 #include "tex/mipgen.h"
 #include "tex/sample.h"
+#include "tex/sample16.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 /* 2x2 texture, uploaded top row first: top row (10, 20), bottom row (30, 40) in red. */
@@ -121,6 +123,59 @@ static void mip_level_of_detail(void **state) {
     assert_int_equal(sg_mip_select(&m, 1.0f / 16, 0, 0, 8.0f / 16, 0).level0, 3);
 }
 
+/* A coordinate for the 16-lane test: mostly in and near [0, 1], sometimes far, huge, NaN or
+ * infinite. */
+static float any_coordinate(void) {
+    const int r = rand() % 40;
+    if (r == 0) return NAN;
+    if (r == 1) return (rand() & 1) ? INFINITY : -INFINITY;
+    if (r == 2) return (float)(rand() - RAND_MAX / 2) * 1e4f;
+    if (r == 3) return 3e9f * ((rand() & 1) ? 1.0f : -1.0f);
+    return (float)rand() / (float)RAND_MAX * 3.0f - 1.0f;
+}
+
+/* sg_sample16 and sg_sample16_mip give each lane exactly what sg_sample and sg_sample_mip give. */
+static void sixteen_lanes_match_the_scalar_sampler(void **state) {
+    (void)state;
+    enum { W = 13, H = 6 };
+    static uint8_t chain[2 * W * H * 4];
+    srand(16);
+    for (size_t i = 0; i < sizeof chain; i++) chain[i] = (uint8_t)(rand() & 255);
+    sg_mip_chain m = {.levels = 4};
+    const uint8_t *at = chain;
+    for (int l = 0; l < m.levels; l++) { /* random texels stand for each level */
+        const int w = W >> l > 1 ? W >> l : 1, h = H >> l > 1 ? H >> l : 1;
+        m.level[l] = (sg_texview){at, w, h};
+        at += (size_t)w * (size_t)h * 4;
+    }
+    for (int round = 0; round < 4000; round++) {
+        const bool bilinear = round & 1, repeat = round >> 1 & 1;
+        float s[SG_SHADER_LANES], t[SG_SHADER_LANES];
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            s[i] = any_coordinate();
+            t[i] = any_coordinate();
+        }
+        int32_t got[4][SG_SHADER_LANES];
+        sg_sample16(m.level[0].texels, W, H, bilinear, repeat, s, t, got);
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            const sg_texel want = sg_sample(&m.level[0], s[i], t[i], bilinear, repeat);
+            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
+        }
+        sg_mip_pick pick[4];
+        for (int q = 0; q < 4; q++) {
+            const int l0 = rand() % m.levels;
+            const bool two = l0 + 1 < m.levels && rand() % 3;
+            pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
+        }
+        sg_sample16_mip(&m, pick, bilinear, repeat, s, t, got);
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
+            const sg_texel want = sg_sample_mip(&m, p, s[i], t[i], bilinear, repeat);
+            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
+        }
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(t_zero_is_the_bottom_row),
@@ -129,6 +184,7 @@ int main(void) {
         cmocka_unit_test(nonfinite_coordinates_stay_in_bounds),
         cmocka_unit_test(mip_generator_matches_the_formula),
         cmocka_unit_test(mip_level_of_detail),
+        cmocka_unit_test(sixteen_lanes_match_the_scalar_sampler),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

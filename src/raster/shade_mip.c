@@ -3,15 +3,17 @@
  *
  * A pipeline without mipmaps never runs this file: its shading keeps the functions of shade.c and
  * its SIMD twins. Here the level of detail needs each 2 x 2 quad's texture coordinates at all four
- * pixels, covered or not (a GPU's helper pixels), so a tile is shaded quad by quad: the four
- * coordinates from the same planes and in the same IEEE operations as shade.c, the quad's levels
- * from their differences (tex/mip.h), then the covered pixels sampled and coloured as shade.c
- * colours them. One portable body serves every instruction set, so all give the same bytes.
+ * pixels, covered or not (a GPU's helper pixels), so a tile's 16 coordinates are made first, from
+ * the same planes and in the same IEEE operations as shade.c, then each quad's levels from their
+ * differences (tex/mip.h), then the 16 lookups at once (tex/sample16.c), and the covered pixels
+ * are coloured as shade.c colours them. One portable body serves every instruction set, so all
+ * give the same bytes.
  */
 #include "raster/shade.h"
 
 #include "raster/framebuffer.h"
 #include "tex/mip.h"
+#include "tex/sample16.h"
 
 static inline __attribute__((always_inline)) void
 shade_mip(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask, uint32_t *dst,
@@ -21,47 +23,50 @@ shade_mip(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
     const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
     const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     const int flat = t->flat;
+    float s[SG_SHADER_LANES], u[SG_SHADER_LANES], w[SG_SHADER_LANES];
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        const float dx = ox + (float)(i & 3), dy = oy + (float)(i >> 2);
+        w[i] = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+        s[i] = (t->a[4] + t->a_dx[4] * dx + t->a_dy[4] * dy) * w[i];
+        u[i] = (t->a[5] + t->a_dx[5] * dx + t->a_dy[5] * dy) * w[i];
+    }
+    /* Quad q's pixels are bits base, base + 1, base + 4, base + 5 of the tile; a quad without a
+     * covered pixel takes a covered one's levels, so that it adds no level to read. */
+    sg_mip_pick pick[4];
+    int covered = -1;
     for (int q = 0; q < 4; q++) {
-        /* Quad q's pixels are bits base, base + 1, base + 4, base + 5 of the tile. */
         const int base = (q & 1) * 2 + (q >> 1) * 8;
-        const uint32_t qmask = mask & (0x33u << base);
-        if (!qmask) continue;
-        float s[4], u[4], w[4];
-        for (int i = 0; i < 4; i++) {
-            const int bit = base + (i & 1) + (i >> 1) * 4;
-            const float dx = ox + (float)(bit & 3), dy = oy + (float)(bit >> 2);
-            w[i] = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
-            s[i] = (t->a[4] + t->a_dx[4] * dx + t->a_dy[4] * dy) * w[i];
-            u[i] = (t->a[5] + t->a_dx[5] * dx + t->a_dy[5] * dy) * w[i];
+        if (!(mask & (0x33u << base))) continue;
+        pick[q] = sg_mip_select(m, s[base + 1] - s[base], u[base + 1] - u[base],
+                                s[base + 4] - s[base], u[base + 4] - u[base], linear);
+        covered = q;
+    }
+    if (covered < 0) return;
+    for (int q = 0; q < 4; q++)
+        if (!(mask & (0x33u << ((q & 1) * 2 + (q >> 1) * 8)))) pick[q] = pick[covered];
+    int32_t tx[4][SG_SHADER_LANES];
+    sg_sample16_mip(m, pick, bilinear, repeat, s, u, tx);
+    for (uint32_t left = mask & 0xffffu; left; left &= left - 1) {
+        const int bit = __builtin_ctz(left);
+        if (flat == SG_FLAT_WHITE && !sec) { /* 1 * texel / 255, back to unorm8: the texel */
+            dst[bit] = sg_pack_rgba8((uint32_t)tx[0][bit], (uint32_t)tx[1][bit],
+                                     (uint32_t)tx[2][bit], (uint32_t)tx[3][bit]);
+            continue;
         }
-        const sg_mip_pick p =
-            sg_mip_select(m, s[1] - s[0], u[1] - u[0], s[2] - s[0], u[2] - u[0], linear);
-        for (int i = 0; i < 4; i++) {
-            const int bit = base + (i & 1) + (i >> 1) * 4;
-            if (!(qmask >> bit & 1)) continue;
-            const float dx = ox + (float)(bit & 3), dy = oy + (float)(bit >> 2);
-            const sg_texel tx = sg_sample_mip(m, p, s[i], u[i], bilinear, repeat);
-            if (flat == SG_FLAT_WHITE && !sec) { /* 1 * texel / 255, back to unorm8: the texel */
-                dst[bit] = sg_pack_rgba8((uint32_t)tx.c[0], (uint32_t)tx.c[1], (uint32_t)tx.c[2],
-                                         (uint32_t)tx.c[3]);
-                continue;
-            }
-            float col[4];
-            for (int k = 0; k < 4; k++)
-                col[k] = flat != SG_FLAT_NONE
-                             ? t->color[k]
-                             : (t->a[k] + t->a_dx[k] * dx + t->a_dy[k] * dy) * w[i];
-            for (int k = 0; k < 4; k++) col[k] *= (float)tx.c[k] * (1.0f / 255.0f);
-            if (sec)
-                for (int k = 0; k < 3; k++)
-                    col[k] +=
-                        flat != SG_FLAT_NONE
-                            ? ext->a[e + k]
-                            : (ext->a[e + k] + ext->a_dx[e + k] * dx + ext->a_dy[e + k] * dy) *
-                                  w[i];
-            dst[bit] = sg_pack_rgba8(sg_to_unorm8(col[0]), sg_to_unorm8(col[1]),
-                                     sg_to_unorm8(col[2]), sg_to_unorm8(col[3]));
-        }
+        const float dx = ox + (float)(bit & 3), dy = oy + (float)(bit >> 2);
+        float col[4];
+        for (int k = 0; k < 4; k++)
+            col[k] = flat != SG_FLAT_NONE ? t->color[k]
+                                          : (t->a[k] + t->a_dx[k] * dx + t->a_dy[k] * dy) * w[bit];
+        for (int k = 0; k < 4; k++) col[k] *= (float)tx[k][bit] * (1.0f / 255.0f);
+        if (sec)
+            for (int k = 0; k < 3; k++)
+                col[k] +=
+                    flat != SG_FLAT_NONE
+                        ? ext->a[e + k]
+                        : (ext->a[e + k] + ext->a_dx[e + k] * dx + ext->a_dy[e + k] * dy) * w[bit];
+        dst[bit] = sg_pack_rgba8(sg_to_unorm8(col[0]), sg_to_unorm8(col[1]), sg_to_unorm8(col[2]),
+                                 sg_to_unorm8(col[3]));
     }
 }
 

@@ -5,32 +5,9 @@
 
 #include "raster/blend.h"
 #include "raster/blend_walk.h"
+#include "tex/lanes.h"
 #include "tex/mip.h"
-
-/* 16 lanes as one value (GCC vector types): the fragment stage's setup and conversion and
- * sgSample's RGBA8 path. Each operation is the scalar one in every lane, in the same order. */
-typedef float sg_vf __attribute__((vector_size(4 * SG_SHADER_LANES)));
-typedef int32_t sg_vi __attribute__((vector_size(4 * SG_SHADER_LANES)));
-
-#define SEL(m, a, b)  ((sg_vf)(((m) & (sg_vi)(a)) | (~(m) & (sg_vi)(b))))
-#define SELI(m, a, b) (((m) & (a)) | (~(m) & (b)))
-
-/* Copies for the baseline, AVX2 and AVX-512, chosen at start: the same bits in each (lane-wise
- * IEEE operations, no FMA). Not under the sanitizers, whose builds need no speed. */
-/* A sanitizer's runtime is not up yet when the program's start runs the copies' resolvers (gcc
- * says so with __SANITIZE_*, clang with __has_feature). */
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
-    __has_feature(memory_sanitizer)
-#define SG_UNDER_SANITIZER 1
-#endif
-#endif
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
-    !defined(__SANITIZE_THREAD__) && !defined(SG_UNDER_SANITIZER)
-#define LANE_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-#else
-#define LANE_CLONES
-#endif
+#include "tex/sample16.h"
 
 /* A tile through the fragment stage, into RGBA8 pixels px; returns the lanes discarded.
  *
@@ -183,137 +160,12 @@ static float sample_depth(const sg_shader_tex *tx, float s, float t, bool biline
            (v[1][0] * (1.0f - fx) + v[1][1] * fx) * fy;
 }
 
-/* ---- 16 lanes of an RGBA8 texture at once: what sg_sample computes per lane (tex/sample.h),
- * on GCC vector types. Every step is the same operation as the scalar one (float coordinates,
- * then integer indices, weights and sums), so each lane gets its bits. */
-
-/* Byte k of an RGBA8 texel read as one 32-bit word is channel k: its shift in the word. */
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-#define CHANNEL_SHIFT(k) (8 * (3 - (k)))
-#else
-#define CHANNEL_SHIFT(k) (8 * (k))
-#endif
-
-/* floorf, lane by lane: truncation corrected below 2^23 in magnitude; from there up every float
- * is an integer (and NaN and the infinities are their own floor). */
-#define VFLOOR(out, x)                                                                             \
-    do {                                                                                           \
-        const sg_vf x_ = (x);                                                                      \
-        const sg_vf t_ = __builtin_convertvector(__builtin_convertvector(x_, sg_vi), sg_vf);       \
-        const sg_vf f_ = SEL(t_ > x_, t_ - 1.0f, t_);                                              \
-        (out) = SEL((x_ < 8388608.0f) & (x_ > -8388608.0f), f_, x_);                               \
-    } while (0)
-
-/* The texel coordinate of s scaled by size (sg_texcoord_repeat / sg_texcoord_clamp). */
-#define VCOORD(out, s, size, repeat)                                                               \
-    do {                                                                                           \
-        const sg_vf s_ = (s);                                                                      \
-        if (repeat) {                                                                              \
-            sg_vf fl_;                                                                             \
-            VFLOOR(fl_, s_);                                                                       \
-            const sg_vf x_ = (s_ - fl_) * (size);                                                  \
-            (out) = SEL(x_ >= 0.0f, x_, zero);                                                     \
-        } else {                                                                                   \
-            sg_vf c_ = SEL(s_ >= -1.0f, s_, zero - 1.0f);                                          \
-            c_ = SEL(c_ > 2.0f, zero + 2.0f, c_);                                                  \
-            (out) = c_ * (size);                                                                   \
-        }                                                                                          \
-    } while (0)
-
-/* sg_wrap_index, lane by lane. */
-static inline __attribute__((always_inline)) void wrap16(int32_t *idx, int n, bool repeat) {
-    sg_vi i;
-    memcpy(&i, idx, sizeof i);
-    if (repeat) {
-        i = SELI(i < 0, i + n, i);
-        i = SELI(i >= n, i - n, i);
-    } else {
-        i = SELI(i < 0, i - i, i);
-        i = SELI(i >= n, i - i + (n - 1), i);
-    }
-    memcpy(idx, &i, sizeof i);
-}
-
-LANE_CLONES static void sample_rgba8(const sg_shader_tex *tx, bool bilinear, bool repeat,
-                                     const float *u, const float *v,
-                                     float rgba[4][SG_SHADER_LANES]) {
-    const int w = tx->width, h = tx->height;
-    const sg_vf zero = {0};
-    sg_vf s, t;
-    memcpy(&s, u, sizeof s);
-    memcpy(&t, v, sizeof t);
-    /* the texels of each lane: 1 (nearest) or 4, and the 8-bit weights of the 4 */
-    uint32_t texel[4][SG_SHADER_LANES];
-    sg_vi wt[4];
-    const uint32_t *const base = (const uint32_t *)(const void *)tx->data;
-    if (!bilinear) {
-        sg_vf x, y;
-        VCOORD(x, s, (float)w, repeat);
-        VCOORD(y, t, (float)h, repeat);
-        VFLOOR(x, x);
-        VFLOOR(y, y);
-        _Alignas(64) int32_t i[SG_SHADER_LANES], j[SG_SHADER_LANES];
-        const sg_vi iv = __builtin_convertvector(x, sg_vi), jv = __builtin_convertvector(y, sg_vi);
-        memcpy(i, &iv, sizeof i);
-        memcpy(j, &jv, sizeof j);
-        wrap16(i, w, repeat);
-        wrap16(j, h, repeat);
-        for (int l = 0; l < SG_SHADER_LANES; l++)
-            memcpy(&texel[0][l], base + (size_t)(h - 1 - j[l]) * (size_t)w + (size_t)i[l], 4);
-        for (int k = 0; k < 4; k++) {
-            sg_vi c;
-            memcpy(&c, texel[0], sizeof c);
-            c = (c >> CHANNEL_SHIFT(k)) & 255;
-            const sg_vf f = __builtin_convertvector(c, sg_vf) / 255.0f;
-            memcpy(rgba[k], &f, sizeof f);
-        }
-        return;
-    }
-    sg_vf x, y;
-    VCOORD(x, s, 256.0f * (float)w, repeat);
-    VCOORD(y, t, 256.0f * (float)h, repeat);
-    if (!repeat) { /* beyond one texel outside, clamp-to-edge reads the edge texel anyway */
-        const float xmax = 256.0f * (float)(w + 1), ymax = 256.0f * (float)(h + 1);
-        x = SEL(x < -256.0f, zero - 256.0f, SEL(x > xmax, zero + xmax, x));
-        y = SEL(y < -256.0f, zero - 256.0f, SEL(y > ymax, zero + ymax, y));
-    }
-    VFLOOR(x, x);
-    VFLOOR(y, y);
-    /* sg_bilinear_split */
-    const sg_vi xv = __builtin_convertvector(x, sg_vi) - 128 + 512,
-                yv = __builtin_convertvector(y, sg_vi) - 128 + 512;
-    const sg_vi fx = xv & 255, fy = yv & 255;
-    _Alignas(64) int32_t i0[SG_SHADER_LANES], j0[SG_SHADER_LANES], i1[SG_SHADER_LANES],
-        j1[SG_SHADER_LANES];
-    const sg_vi i0v = (xv >> 8) - 2, j0v = (yv >> 8) - 2, i1v = i0v + 1, j1v = j0v + 1;
-    memcpy(i0, &i0v, sizeof i0);
-    memcpy(j0, &j0v, sizeof j0);
-    memcpy(i1, &i1v, sizeof i1);
-    memcpy(j1, &j1v, sizeof j1);
-    wrap16(i1, w, repeat);
-    wrap16(j1, h, repeat);
-    wrap16(i0, w, repeat);
-    wrap16(j0, h, repeat);
-    for (int l = 0; l < SG_SHADER_LANES; l++) {
-        const uint32_t *r0 = base + (size_t)(h - 1 - j0[l]) * (size_t)w,
-                       *r1 = base + (size_t)(h - 1 - j1[l]) * (size_t)w;
-        memcpy(&texel[0][l], r0 + i0[l], 4);
-        memcpy(&texel[1][l], r0 + i1[l], 4);
-        memcpy(&texel[2][l], r1 + i0[l], 4);
-        memcpy(&texel[3][l], r1 + i1[l], 4);
-    }
-    wt[0] = (256 - fx) * (256 - fy);
-    wt[1] = fx * (256 - fy);
-    wt[2] = (256 - fx) * fy;
-    wt[3] = fx * fy;
-    sg_vi p[4];
-    for (int q = 0; q < 4; q++) memcpy(&p[q], texel[q], sizeof p[q]);
+/* Channels 0 .. 255 of 16 lanes to floats, as sgSample gives them. */
+static void texels_to_rgba(const int32_t texel[4][SG_SHADER_LANES],
+                           float rgba[4][SG_SHADER_LANES]) {
     for (int k = 0; k < 4; k++) {
-        const sg_vi c = (((p[0] >> CHANNEL_SHIFT(k)) & 255) * wt[0] +
-                         ((p[1] >> CHANNEL_SHIFT(k)) & 255) * wt[1] +
-                         ((p[2] >> CHANNEL_SHIFT(k)) & 255) * wt[2] +
-                         ((p[3] >> CHANNEL_SHIFT(k)) & 255) * wt[3] + 32768) >>
-                        16;
+        sg_vi c;
+        memcpy(&c, texel[k], sizeof c);
         const sg_vf f = __builtin_convertvector(c, sg_vf) / 255.0f;
         memcpy(rgba[k], &f, sizeof f);
     }
@@ -326,16 +178,15 @@ static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s,
                        const float u[SG_SHADER_LANES], const float v[SG_SHADER_LANES],
                        float rgba[4][SG_SHADER_LANES]) {
     const int linear = s->mipmap == SG_MIPMAP_LINEAR;
+    sg_mip_pick pick[4];
     for (int q = 0; q < 4; q++) {
         const int l0 = (q & 1) * 2 + (q >> 1) * 8; /* the quad's top-left lane */
-        const sg_mip_pick p = sg_mip_select(tx->mips, u[l0 + 1] - u[l0], v[l0 + 1] - v[l0],
-                                            u[l0 + 4] - u[l0], v[l0 + 4] - v[l0], linear);
-        for (int j = 0; j < 4; j++) {
-            const int i = l0 + (j & 1) + (j >> 1) * 4;
-            sg_texel e = sg_sample_mip(tx->mips, p, u[i], v[i], s->bilinear, s->repeat);
-            for (int k = 0; k < 4; k++) rgba[k][i] = (float)e.c[k] / 255.0f;
-        }
+        pick[q] = sg_mip_select(tx->mips, u[l0 + 1] - u[l0], v[l0 + 1] - v[l0], u[l0 + 4] - u[l0],
+                                v[l0 + 4] - v[l0], linear);
     }
+    int32_t texel[4][SG_SHADER_LANES];
+    sg_sample16_mip(tx->mips, pick, s->bilinear, s->repeat, u, v, texel);
+    texels_to_rgba(texel, rgba);
 }
 
 void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
@@ -350,7 +201,10 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
         return;
     }
     if (tx && !tx->depth) {
-        sample_rgba8(tx, c->shader.bilinear, c->shader.repeat, u, v, rgba);
+        int32_t texel[4][SG_SHADER_LANES];
+        sg_sample16(tx->data, tx->width, tx->height, c->shader.bilinear, c->shader.repeat, u, v,
+                    texel);
+        texels_to_rgba(texel, rgba);
         return;
     }
     for (int i = 0; i < SG_SHADER_LANES; i++) {

@@ -1,0 +1,84 @@
+/* lanes.h - 16 lanes as one value (GCC vector types), for the code that works on a whole 4 x 4
+ * tile at once: the fragment stage of shader pipelines (raster/shade_shader.c) and the 16-lane
+ * texture sampling (tex/sample16.c). Each operation is the scalar one in every lane, in the same
+ * order (no FMA anywhere in the library), so every lane gets the scalar code's bits. */
+#ifndef SG_LANES_H
+#define SG_LANES_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "sgapi/sgapi.h"
+
+typedef float sg_vf __attribute__((vector_size(4 * SG_SHADER_LANES)));
+typedef int32_t sg_vi __attribute__((vector_size(4 * SG_SHADER_LANES)));
+
+#define SEL(m, a, b)  ((sg_vf)(((m) & (sg_vi)(a)) | (~(m) & (sg_vi)(b))))
+#define SELI(m, a, b) (((m) & (a)) | (~(m) & (b)))
+
+/* Copies for the baseline, AVX2 and AVX-512, chosen at start: the same bits in each (lane-wise
+ * IEEE operations, no FMA). Not under the sanitizers, whose builds need no speed. */
+/* A sanitizer's runtime is not up yet when the program's start runs the copies' resolvers (gcc
+ * says so with __SANITIZE_*, clang with __has_feature). */
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
+    __has_feature(memory_sanitizer)
+#define SG_UNDER_SANITIZER 1
+#endif
+#endif
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
+    !defined(__SANITIZE_THREAD__) && !defined(SG_UNDER_SANITIZER)
+#define LANE_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define LANE_CLONES
+#endif
+
+/* Byte k of an RGBA8 texel read as one 32-bit word is channel k: its shift in the word. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#define CHANNEL_SHIFT(k) (8 * (3 - (k)))
+#else
+#define CHANNEL_SHIFT(k) (8 * (k))
+#endif
+
+/* floorf, lane by lane: truncation corrected below 2^23 in magnitude; from there up every float
+ * is an integer (and NaN and the infinities are their own floor). */
+#define VFLOOR(out, x)                                                                             \
+    do {                                                                                           \
+        const sg_vf x_ = (x);                                                                      \
+        const sg_vf t_ = __builtin_convertvector(__builtin_convertvector(x_, sg_vi), sg_vf);       \
+        const sg_vf f_ = SEL(t_ > x_, t_ - 1.0f, t_);                                              \
+        (out) = SEL((x_ < 8388608.0f) & (x_ > -8388608.0f), f_, x_);                               \
+    } while (0)
+
+/* The texel coordinate of s scaled by size (sg_texcoord_repeat / sg_texcoord_clamp). */
+#define VCOORD(out, s, size, repeat)                                                               \
+    do {                                                                                           \
+        const sg_vf s_ = (s);                                                                      \
+        if (repeat) {                                                                              \
+            sg_vf fl_;                                                                             \
+            VFLOOR(fl_, s_);                                                                       \
+            const sg_vf x_ = (s_ - fl_) * (size);                                                  \
+            (out) = SEL(x_ >= 0.0f, x_, zero);                                                     \
+        } else {                                                                                   \
+            sg_vf c_ = SEL(s_ >= -1.0f, s_, zero - 1.0f);                                          \
+            c_ = SEL(c_ > 2.0f, zero + 2.0f, c_);                                                  \
+            (out) = c_ * (size);                                                                   \
+        }                                                                                          \
+    } while (0)
+
+/* sg_wrap_index, lane by lane. */
+static inline __attribute__((always_inline)) void sg_wrap16(int32_t *idx, int n, bool repeat) {
+    sg_vi i;
+    memcpy(&i, idx, sizeof i);
+    if (repeat) {
+        i = SELI(i < 0, i + n, i);
+        i = SELI(i >= n, i - n, i);
+    } else {
+        i = SELI(i < 0, i - i, i);
+        i = SELI(i >= n, i - i + (n - 1), i);
+    }
+    memcpy(idx, &i, sizeof i);
+}
+
+#endif
