@@ -12,6 +12,7 @@
 #include "raster/shade.h"
 
 #include "raster/framebuffer.h"
+#include "tex/lanes.h"
 #include "tex/mip.h"
 #include "tex/sample16.h"
 
@@ -46,33 +47,48 @@ shade_mip(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
         if (!(mask & (0x33u << ((q & 1) * 2 + (q >> 1) * 8)))) pick[q] = pick[covered];
     int32_t tx[4][SG_SHADER_LANES];
     sg_sample16_mip(m, pick, bilinear, repeat, s, u, tx);
+    /* The colours of all 16 lanes on vectors, each step as shade.c takes it, then the covered
+     * pixels written. */
+    typedef uint32_t sg_vu __attribute__((vector_size(4 * SG_SHADER_LANES)));
+    sg_vi texel[4];
+    sg_vu px;
+    for (int k = 0; k < 4; k++) memcpy(&texel[k], tx[k], sizeof texel[k]);
+    if (flat == SG_FLAT_WHITE && !sec) { /* 1 * texel / 255, back to unorm8: the texel */
+        px = (sg_vu)texel[0] | (sg_vu)texel[1] << 8 | (sg_vu)texel[2] << 16 | (sg_vu)texel[3] << 24;
+    } else {
+        const sg_vf zero = {0}, lane = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
+                    row = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+        const sg_vf dx = ox + lane, dy = oy + row;
+        sg_vf wv;
+        memcpy(&wv, w, sizeof wv);
+        sg_vi ch[4];
+        for (int k = 0; k < 4; k++) {
+            sg_vf col = flat != SG_FLAT_NONE ? zero + t->color[k]
+                                             : (t->a[k] + t->a_dx[k] * dx + t->a_dy[k] * dy) * wv;
+            col *= __builtin_convertvector(texel[k], sg_vf) * (1.0f / 255.0f);
+            if (sec && k < 3)
+                col += flat != SG_FLAT_NONE
+                           ? zero + ext->a[e + k]
+                           : (ext->a[e + k] + ext->a_dx[e + k] * dx + ext->a_dy[e + k] * dy) * wv;
+            /* sg_to_unorm8: NaN and 0 or less give 0, 1 or more 255 (limited first, so that
+             * every lane converts in range) */
+            col = SEL(col > 0.0f, col, zero);
+            col = SEL(col >= 1.0f, zero + 1.0f, col);
+            ch[k] = __builtin_convertvector(col * 255.0f + 0.5f, sg_vi);
+        }
+        px = (sg_vu)ch[0] | (sg_vu)ch[1] << 8 | (sg_vu)ch[2] << 16 | (sg_vu)ch[3] << 24;
+    }
+    _Alignas(64) uint32_t out[SG_SHADER_LANES];
+    memcpy(out, &px, sizeof out);
     for (uint32_t left = mask & 0xffffu; left; left &= left - 1) {
         const int bit = __builtin_ctz(left);
-        if (flat == SG_FLAT_WHITE && !sec) { /* 1 * texel / 255, back to unorm8: the texel */
-            dst[bit] = sg_pack_rgba8((uint32_t)tx[0][bit], (uint32_t)tx[1][bit],
-                                     (uint32_t)tx[2][bit], (uint32_t)tx[3][bit]);
-            continue;
-        }
-        const float dx = ox + (float)(bit & 3), dy = oy + (float)(bit >> 2);
-        float col[4];
-        for (int k = 0; k < 4; k++)
-            col[k] = flat != SG_FLAT_NONE ? t->color[k]
-                                          : (t->a[k] + t->a_dx[k] * dx + t->a_dy[k] * dy) * w[bit];
-        for (int k = 0; k < 4; k++) col[k] *= (float)tx[k][bit] * (1.0f / 255.0f);
-        if (sec)
-            for (int k = 0; k < 3; k++)
-                col[k] +=
-                    flat != SG_FLAT_NONE
-                        ? ext->a[e + k]
-                        : (ext->a[e + k] + ext->a_dx[e + k] * dx + ext->a_dy[e + k] * dy) * w[bit];
-        dst[bit] = sg_pack_rgba8(sg_to_unorm8(col[0]), sg_to_unorm8(col[1]), sg_to_unorm8(col[2]),
-                                 sg_to_unorm8(col[3]));
+        dst[bit] = out[bit];
     }
 }
 
 #define SG_MIP_VARIANT(lin, bil, rep, sec)                                                         \
-    static void mip_##lin##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,   \
-                                         uint32_t m, uint32_t *dst) {                              \
+    LANE_CLONES static void mip_##lin##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t,       \
+                                                     int x0, int y0, uint32_t m, uint32_t *dst) {  \
         shade_mip(c, t, x0, y0, m, dst, lin, bil, rep, sec);                                       \
     }
 SG_MIP_VARIANT(0, 0, 0, 0)
