@@ -5,6 +5,7 @@
 #include "tex/mip.h"
 #include "tex/mipgen.h"
 #include "tex/sample.h"
+#include "raster/shade.h"
 #include "tex/sample16.h"
 
 #include <math.h>
@@ -134,7 +135,8 @@ static float any_coordinate(void) {
     return (float)rand() / (float)RAND_MAX * 3.0f - 1.0f;
 }
 
-/* sg_sample16 and sg_sample16_mip give each lane exactly what sg_sample and sg_sample_mip give. */
+/* sg_sample16 and sg_sample16_mip (both copies) give each lane exactly what sg_sample and
+ * sg_sample_mip give. */
 static void sixteen_lanes_match_the_scalar_sampler(void **state) {
     (void)state;
     enum { W = 13, H = 6 };
@@ -148,15 +150,17 @@ static void sixteen_lanes_match_the_scalar_sampler(void **state) {
         m.level[l] = (sg_texview){at, w, h};
         at += (size_t)w * (size_t)h * 4;
     }
-    for (int round = 0; round < 4000; round++) {
-        const bool bilinear = round & 1, repeat = round >> 1 & 1;
+    /* Both copies: the portable one, and the AVX-512 one where this CPU runs it. */
+    const int copies = sg_isa_runs(SG_ISA_AVX512) ? 2 : 1;
+    for (int round = 0; round < 4000 * copies; round++) {
+        const bool bilinear = round & 1, repeat = round >> 1 & 1, avx512 = round >= 4000;
         float s[SG_SHADER_LANES], t[SG_SHADER_LANES];
         for (int i = 0; i < SG_SHADER_LANES; i++) {
             s[i] = any_coordinate();
             t[i] = any_coordinate();
         }
         int32_t got[4][SG_SHADER_LANES];
-        sg_sample16(m.level[0].texels, W, H, bilinear, repeat, s, t, got);
+        sg_sample16(avx512, m.level[0].texels, W, H, bilinear, repeat, s, t, got);
         for (int i = 0; i < SG_SHADER_LANES; i++) {
             const sg_texel want = sg_sample(&m.level[0], s[i], t[i], bilinear, repeat);
             for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
@@ -167,7 +171,7 @@ static void sixteen_lanes_match_the_scalar_sampler(void **state) {
             const bool two = l0 + 1 < m.levels && rand() % 3;
             pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
         }
-        sg_sample16_mip(&m, pick, bilinear, repeat, s, t, got);
+        sg_sample16_mip(avx512, &m, pick, bilinear, repeat, s, t, got);
         for (int i = 0; i < SG_SHADER_LANES; i++) {
             const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
             const sg_texel want = sg_sample_mip(&m, p, s[i], t[i], bilinear, repeat);

@@ -565,6 +565,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     st->varying_count = nv;
     st->flat = sh->flat_varyings;
     st->bilinear = pso->desc.filter == SG_FILTER_BILINEAR;
+    st->avx512 = dev->isa == SG_ISA_AVX512;
     st->repeat = pso->desc.wrap == SG_WRAP_REPEAT;
     st->mipmap = pso->desc.mipmap;
     st->pso = pso_h.id;

@@ -137,8 +137,8 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
      * blend; lines go visibility first, as that shading is not inlined in the line raster. */
     const bool mip = d->mipmap != SG_MIPMAP_NONE && d->shade == SG_SHADE_TEXTURE_MODULATE;
     if (mip && !shader) {
-        p.shade_fn = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, false);
-        p.shade_sec = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, true);
+        p.shade_fn = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, false, dev->isa);
+        p.shade_sec = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, true, dev->isa);
         p.shade2_fn = p.shade2_sec = NULL;
         p.runs_fn = p.runs_sec = NULL;
         p.raster_line = NULL;

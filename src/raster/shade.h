@@ -38,6 +38,7 @@ typedef struct sg_shader_state {
     int varying_count;
     uint32_t flat; /* flat varyings: taken as they are, not divided by 1/w */
     bool bilinear, repeat;
+    bool avx512;     /* the device runs SG_ISA_AVX512: sgSample takes its AVX-512 copy */
     sgMipmap mipmap; /* the pipeline's, resolved (NONE, NEAREST or LINEAR) */
     sg_shader_tex textures[SG_MAX_DRAW_TEXTURES];
     uint32_t pso; /* the pipeline's handle: told when the draw discards (pass.c) */
@@ -128,7 +129,8 @@ sg_shade_fn sg_shade_phong_neon(int index);
 /** The textured shading of a mipmapped pipeline (mipmap NEAREST or LINEAR; shade_mip.c), with
  *  the secondary colour of flat and Gouraud lighting when sec; one portable function for every
  *  instruction set. */
-sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec);
+sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
+                                sg_isa isa);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
 /** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,

@@ -185,7 +185,7 @@ static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s,
                                 v[l0 + 4] - v[l0], linear);
     }
     int32_t texel[4][SG_SHADER_LANES];
-    sg_sample16_mip(tx->mips, pick, s->bilinear, s->repeat, u, v, texel);
+    sg_sample16_mip(s->avx512, tx->mips, pick, s->bilinear, s->repeat, u, v, texel);
     texels_to_rgba(texel, rgba);
 }
 
@@ -202,8 +202,8 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
     }
     if (tx && !tx->depth) {
         int32_t texel[4][SG_SHADER_LANES];
-        sg_sample16(tx->data, tx->width, tx->height, c->shader.bilinear, c->shader.repeat, u, v,
-                    texel);
+        sg_sample16(c->shader.avx512, tx->data, tx->width, tx->height, c->shader.bilinear,
+                    c->shader.repeat, u, v, texel);
         texels_to_rgba(texel, rgba);
         return;
     }

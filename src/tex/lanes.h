@@ -34,6 +34,18 @@ typedef int32_t sg_vi __attribute__((vector_size(4 * SG_SHADER_LANES)));
 #define LANE_CLONES
 #endif
 
+/* GCC (12) turns vector code into scalar code, lane by lane, before it makes a function's
+ * target_clones copies, and inside any function whose own target lacks 64-byte vectors (an
+ * always_inline helper included): the 16 lanes are one register only in code compiled for
+ * AVX-512 from the start. So the sampling code is compiled twice, the second copy a function of
+ * its own with this target, chosen by the device's instruction set. */
+#if defined(__x86_64__) && defined(__GNUC__)
+#define SG_LANES_AVX512      1
+#define SG_LANES_AVX512_ATTR __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
+#else
+#define SG_LANES_AVX512 0
+#endif
+
 /* Byte k of an RGBA8 texel read as one 32-bit word is channel k: its shift in the word. */
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
 #define CHANNEL_SHIFT(k) (8 * (3 - (k)))
@@ -67,18 +79,21 @@ typedef int32_t sg_vi __attribute__((vector_size(4 * SG_SHADER_LANES)));
         }                                                                                          \
     } while (0)
 
-/* sg_wrap_index, lane by lane. */
-static inline __attribute__((always_inline)) void sg_wrap16(int32_t *idx, int n, bool repeat) {
-    sg_vi i;
-    memcpy(&i, idx, sizeof i);
-    if (repeat) {
-        i = SELI(i < 0, i + n, i);
-        i = SELI(i >= n, i - n, i);
-    } else {
-        i = SELI(i < 0, i - i, i);
-        i = SELI(i >= n, i - i + (n - 1), i);
-    }
-    memcpy(idx, &i, sizeof i);
-}
+/* sg_wrap_index, lane by lane, on an array of 16 indices (a macro, not a function: see
+ * SG_LANES_AVX512_ATTR below). */
+#define SG_WRAP16(idx, n, repeat)                                                                  \
+    do {                                                                                           \
+        sg_vi i_;                                                                                  \
+        const int n_ = (n);                                                                        \
+        memcpy(&i_, (idx), sizeof i_);                                                             \
+        if (repeat) {                                                                              \
+            i_ = SELI(i_ < 0, i_ + n_, i_);                                                        \
+            i_ = SELI(i_ >= n_, i_ - n_, i_);                                                      \
+        } else {                                                                                   \
+            i_ = SELI(i_ < 0, i_ - i_, i_);                                                        \
+            i_ = SELI(i_ >= n_, i_ - i_ + (n_ - 1), i_);                                           \
+        }                                                                                          \
+        memcpy((idx), &i_, sizeof i_);                                                             \
+    } while (0)
 
 #endif

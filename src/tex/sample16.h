@@ -9,15 +9,57 @@
 
 #include "tex/mip.h"
 
+/* Each function in two copies: _portable, and _avx512 (x86-64 only, for a CPU that runs
+ * SG_ISA_AVX512); the inline dispatchers below take the choice, made once per draw. */
+#if defined(__x86_64__) && defined(__GNUC__)
+#define SG_SAMPLE16_AVX512 1
+#else
+#define SG_SAMPLE16_AVX512 0
+#endif
+
+#define SG_SAMPLE16_DECLARE(suffix)                                                                \
+    void sg_sample16_##suffix(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,     \
+                              const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],      \
+                              int32_t texel[4][SG_SHADER_LANES]);                                  \
+    void sg_sample16_mip_##suffix(const sg_mip_chain *m, const sg_mip_pick pick[4], bool bilinear, \
+                                  bool repeat, const float s[SG_SHADER_LANES],                     \
+                                  const float t[SG_SHADER_LANES],                                  \
+                                  int32_t texel[4][SG_SHADER_LANES]);
+SG_SAMPLE16_DECLARE(portable)
+#if SG_SAMPLE16_AVX512
+SG_SAMPLE16_DECLARE(avx512)
+#endif
+
 /** RGBA8 texels (top row first, width w, height h) at the 16 coordinates (s[i], t[i]): each
- *  lane's channels 0 .. 255 in texel[channel][lane], as sg_sample gives them. */
-void sg_sample16(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
-                 const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
-                 int32_t texel[4][SG_SHADER_LANES]);
+ *  lane's channels 0 .. 255 in texel[channel][lane], as sg_sample gives them; avx512: the CPU
+ *  runs SG_ISA_AVX512 (same bits). */
+static inline void sg_sample16(bool avx512, const uint8_t *texels, int w, int h, bool bilinear,
+                               bool repeat, const float s[SG_SHADER_LANES],
+                               const float t[SG_SHADER_LANES], int32_t texel[4][SG_SHADER_LANES]) {
+#if SG_SAMPLE16_AVX512
+    if (avx512) {
+        sg_sample16_avx512(texels, w, h, bilinear, repeat, s, t, texel);
+        return;
+    }
+#endif
+    (void)avx512;
+    sg_sample16_portable(texels, w, h, bilinear, repeat, s, t, texel);
+}
+
 /** The same from a mipmap chain, each quad q (lanes of its 2 x 2 block) with its levels pick[q],
  *  as sg_sample_mip gives them. */
-void sg_sample16_mip(const sg_mip_chain *m, const sg_mip_pick pick[4], bool bilinear, bool repeat,
-                     const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
-                     int32_t texel[4][SG_SHADER_LANES]);
+static inline void sg_sample16_mip(bool avx512, const sg_mip_chain *m, const sg_mip_pick pick[4],
+                                   bool bilinear, bool repeat, const float s[SG_SHADER_LANES],
+                                   const float t[SG_SHADER_LANES],
+                                   int32_t texel[4][SG_SHADER_LANES]) {
+#if SG_SAMPLE16_AVX512
+    if (avx512) {
+        sg_sample16_mip_avx512(m, pick, bilinear, repeat, s, t, texel);
+        return;
+    }
+#endif
+    (void)avx512;
+    sg_sample16_mip_portable(m, pick, bilinear, repeat, s, t, texel);
+}
 
 #endif

@@ -1,0 +1,102 @@
+/* shade_mip_body.h - the body of shade_mip.c, included there once for each instruction set it
+ * is compiled for: SG_LANES_FN(name) names this copy's functions and SG_LANES_ATTR gives their
+ * target (tex/lanes.h). No include guard: each inclusion makes a copy. */
+static inline __attribute__((always_inline)) SG_LANES_ATTR void
+SG_LANES_FN(shade_mip)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                       uint32_t *dst, const int linear, const int bilinear, const int repeat,
+                       const int sec) {
+    const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;
+    const sg_mip_chain *m = c->mips;
+    const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
+    const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
+    const int flat = t->flat;
+    float s[SG_SHADER_LANES], u[SG_SHADER_LANES], w[SG_SHADER_LANES];
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        const float dx = ox + (float)(i & 3), dy = oy + (float)(i >> 2);
+        w[i] = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+        s[i] = (t->a[4] + t->a_dx[4] * dx + t->a_dy[4] * dy) * w[i];
+        u[i] = (t->a[5] + t->a_dx[5] * dx + t->a_dy[5] * dy) * w[i];
+    }
+    /* Quad q's pixels are bits base, base + 1, base + 4, base + 5 of the tile; a quad without a
+     * covered pixel takes a covered one's levels, so that it adds no level to read. */
+    sg_mip_pick pick[4];
+    int covered = -1;
+    for (int q = 0; q < 4; q++) {
+        const int base = (q & 1) * 2 + (q >> 1) * 8;
+        if (!(mask & (0x33u << base))) continue;
+        pick[q] = sg_mip_select(m, s[base + 1] - s[base], u[base + 1] - u[base],
+                                s[base + 4] - s[base], u[base + 4] - u[base], linear);
+        covered = q;
+    }
+    if (covered < 0) return;
+    for (int q = 0; q < 4; q++)
+        if (!(mask & (0x33u << ((q & 1) * 2 + (q >> 1) * 8)))) pick[q] = pick[covered];
+    int32_t tx[4][SG_SHADER_LANES];
+    SG_LANES_FN(sg_sample16_mip)(m, pick, bilinear, repeat, s, u, tx);
+    /* The colours of all 16 lanes on vectors, each step as shade.c takes it, then the covered
+     * pixels written. */
+    typedef uint32_t sg_vu __attribute__((vector_size(4 * SG_SHADER_LANES)));
+    sg_vi texel[4];
+    sg_vu px;
+    for (int k = 0; k < 4; k++) memcpy(&texel[k], tx[k], sizeof texel[k]);
+    if (flat == SG_FLAT_WHITE && !sec) { /* 1 * texel / 255, back to unorm8: the texel */
+        px = (sg_vu)texel[0] | (sg_vu)texel[1] << 8 | (sg_vu)texel[2] << 16 | (sg_vu)texel[3] << 24;
+    } else {
+        const sg_vf zero = {0}, lane = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3},
+                    row = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+        const sg_vf dx = ox + lane, dy = oy + row;
+        sg_vf wv;
+        memcpy(&wv, w, sizeof wv);
+        sg_vi ch[4];
+        for (int k = 0; k < 4; k++) {
+            sg_vf col = flat != SG_FLAT_NONE ? zero + t->color[k]
+                                             : (t->a[k] + t->a_dx[k] * dx + t->a_dy[k] * dy) * wv;
+            col *= __builtin_convertvector(texel[k], sg_vf) * (1.0f / 255.0f);
+            if (sec && k < 3)
+                col += flat != SG_FLAT_NONE
+                           ? zero + ext->a[e + k]
+                           : (ext->a[e + k] + ext->a_dx[e + k] * dx + ext->a_dy[e + k] * dy) * wv;
+            /* sg_to_unorm8: NaN and 0 or less give 0, 1 or more 255 (limited first, so that
+             * every lane converts in range) */
+            col = SEL(col > 0.0f, col, zero);
+            col = SEL(col >= 1.0f, zero + 1.0f, col);
+            ch[k] = __builtin_convertvector(col * 255.0f + 0.5f, sg_vi);
+        }
+        px = (sg_vu)ch[0] | (sg_vu)ch[1] << 8 | (sg_vu)ch[2] << 16 | (sg_vu)ch[3] << 24;
+    }
+    _Alignas(64) uint32_t out[SG_SHADER_LANES];
+    memcpy(out, &px, sizeof out);
+    for (uint32_t left = mask & 0xffffu; left; left &= left - 1) {
+        const int bit = __builtin_ctz(left);
+        dst[bit] = out[bit];
+    }
+}
+
+#define SG_MIP_VARIANT(lin, bil, rep, sec)                                                         \
+    static SG_LANES_ATTR void SG_LANES_FN(mip_##lin##bil##rep##sec)(                               \
+        const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t m, uint32_t *dst) {       \
+        SG_LANES_FN(shade_mip)(c, t, x0, y0, m, dst, lin, bil, rep, sec);                          \
+    }
+SG_MIP_VARIANT(0, 0, 0, 0)
+SG_MIP_VARIANT(0, 0, 0, 1)
+SG_MIP_VARIANT(0, 0, 1, 0)
+SG_MIP_VARIANT(0, 0, 1, 1)
+SG_MIP_VARIANT(0, 1, 0, 0)
+SG_MIP_VARIANT(0, 1, 0, 1)
+SG_MIP_VARIANT(0, 1, 1, 0)
+SG_MIP_VARIANT(0, 1, 1, 1)
+SG_MIP_VARIANT(1, 0, 0, 0)
+SG_MIP_VARIANT(1, 0, 0, 1)
+SG_MIP_VARIANT(1, 0, 1, 0)
+SG_MIP_VARIANT(1, 0, 1, 1)
+SG_MIP_VARIANT(1, 1, 0, 0)
+SG_MIP_VARIANT(1, 1, 0, 1)
+SG_MIP_VARIANT(1, 1, 1, 0)
+SG_MIP_VARIANT(1, 1, 1, 1)
+#undef SG_MIP_VARIANT
+
+static const sg_shade_fn SG_LANES_FN(mip_table)[16] = {
+    SG_LANES_FN(mip_0000), SG_LANES_FN(mip_0001), SG_LANES_FN(mip_0010), SG_LANES_FN(mip_0011),
+    SG_LANES_FN(mip_0100), SG_LANES_FN(mip_0101), SG_LANES_FN(mip_0110), SG_LANES_FN(mip_0111),
+    SG_LANES_FN(mip_1000), SG_LANES_FN(mip_1001), SG_LANES_FN(mip_1010), SG_LANES_FN(mip_1011),
+    SG_LANES_FN(mip_1100), SG_LANES_FN(mip_1101), SG_LANES_FN(mip_1110), SG_LANES_FN(mip_1111)};
