@@ -83,7 +83,7 @@ static const char dissolve_glsl_fragment[] =
     "    sg_frag_color = vec4(c + (u3(3) - c) * e, 1.0);\n"
     "}\n";
 
-const sgShaderInfo sg_shader_dissolve = {
+const sgShaderInfo SGS_NAME(sg_shader_dissolve) = {
     .name = "dissolve",
     .desc = {.vertex = dissolve_vertex,
              .fragment = dissolve_fragment,

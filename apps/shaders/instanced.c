@@ -119,7 +119,7 @@ static const char instanced_glsl_fragment[] =
                                     "    sg_frag_color = vec4(v_color, 1.0);\n"
                                     "}\n";
 
-const sgShaderInfo sg_shader_instanced = {
+const sgShaderInfo SGS_NAME(sg_shader_instanced) = {
     .name = "instanced",
     .desc = {.vertex = instanced_vertex,
              .fragment = instanced_fragment,

@@ -79,7 +79,7 @@ static const char marble_glsl_fragment[] =
     "    sg_frag_color = vec4(light(v_pos, v_normal, base, 8, 11, 14, 17, 20), 1.0);\n"
     "}\n";
 
-const sgShaderInfo sg_shader_marble = {
+const sgShaderInfo SGS_NAME(sg_shader_marble) = {
     .name = "marble",
     .desc = {.vertex = marble_vertex,
              .fragment = marble_fragment,

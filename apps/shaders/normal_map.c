@@ -105,7 +105,7 @@ static const char normal_map_glsl_fragment[] =
     "    sg_frag_color = vec4(light(v_pos, n, base, 2, 5, 8, 11, 14), v_color.a);\n"
     "}\n";
 
-const sgShaderInfo sg_shader_normal_map = {
+const sgShaderInfo SGS_NAME(sg_shader_normal_map) = {
     .name = "normal_map",
     .desc = {.vertex = normal_map_vertex,
              .fragment = normal_map_fragment,

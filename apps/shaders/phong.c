@@ -55,7 +55,7 @@ static const char phong_glsl_fragment[] = SGS_GLSL_HEADER SGS_GLSL_LIGHT SGS_GLS
     "    sg_frag_color = vec4(c, v_base.a);\n"
     "}\n";
 
-const sgShaderInfo sg_shader_phong = {
+const sgShaderInfo SGS_NAME(sg_shader_phong) = {
     .name = "phong",
     .desc = {.vertex = phong_vertex,
              .fragment = phong_fragment,

@@ -32,10 +32,19 @@
 #endif
 #endif
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
-    !defined(__SANITIZE_THREAD__) && !defined(SG_UNDER_SANITIZER)
+    !defined(__SANITIZE_THREAD__) && !defined(SG_UNDER_SANITIZER) && !defined(SGS_AVX512)
 #define SGS_STAGE __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 #else
 #define SGS_STAGE
+#endif
+/* GCC lowers the vector code below lane by lane before it makes the copies above, wherever the
+ * function's own target lacks 64-byte vectors: so on a CPU with AVX-512 the built-in shaders run
+ * from a second compilation of their files for AVX-512 (SGS_AVX512, its shaders named
+ * <name>_avx512, library.c chooses), where 16 lanes are one register throughout. */
+#ifdef SGS_AVX512
+#define SGS_NAME(name) name##_avx512
+#else
+#define SGS_NAME(name) name
 #endif
 
 /* ---- 16 lanes as one value ---------------------------------------------------------------------

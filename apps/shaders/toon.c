@@ -82,7 +82,7 @@ static const char toon_glsl_fragment[] = SGS_GLSL_HEADER SGS_GLSL_U3 SGS_GLSL_OU
     "    sg_frag_color = vec4(c + (u3(12) - c) * rim, 1.0);\n"
     "}\n";
 
-const sgShaderInfo sg_shader_toon = {
+const sgShaderInfo SGS_NAME(sg_shader_toon) = {
     .name = "toon",
     .desc = {.vertex = toon_vertex,
              .fragment = toon_fragment,

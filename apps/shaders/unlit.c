@@ -79,7 +79,7 @@ static const char unlit_glsl_fragment[] =
     "    o_color = u[0] != 0.0 ? v_color * texture(sg_textures[0], v_st) : v_color;\n"
     "}\n";
 
-const sgShaderInfo sg_shader_unlit = {
+const sgShaderInfo SGS_NAME(sg_shader_unlit) = {
     .name = "unlit",
     .desc = {.vertex = unlit_vertex, .fragment = unlit_fragment, .varying_count = 6},
     .uniform_count = 1,

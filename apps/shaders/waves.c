@@ -85,7 +85,7 @@ static const char waves_glsl_fragment[] = SGS_GLSL_HEADER SGS_GLSL_LIGHT SGS_GLS
     "    sg_frag_color = vec4(light(v_pos, v_normal, v_base, 16, 19, 22, 25, 28), 1.0);\n"
     "}\n";
 
-const sgShaderInfo sg_shader_waves = {
+const sgShaderInfo SGS_NAME(sg_shader_waves) = {
     .name = "waves",
     .desc = {.vertex = waves_vertex,
              .fragment = waves_fragment,
