@@ -1,11 +1,15 @@
 /* sample16_body.h - the body of tex/sample16.c, included there once for each instruction set
  * it is compiled for: SG_LANES_FN(name) names this copy's functions and SG_LANES_ATTR gives their
  * target (lanes.h). No include guard: each inclusion makes a copy. */
-/* One level: every lane's four channels into out. */
+/* One level: every lane's four channels into out. (The coordinates come as arrays: a vector
+ * argument's calling convention differs between the copies.) */
 static inline __attribute__((always_inline)) SG_LANES_ATTR void
-SG_LANES_FN(texels16)(const uint8_t *texels, int w, int h, bool bilinear, bool repeat, sg_vf s,
-                      sg_vf t, sg_vi out[4]) {
+SG_LANES_FN(texels16)(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
+                      const float *sp, const float *tp, sg_vi out[4]) {
     const sg_vf zero = {0};
+    sg_vf s, t;
+    memcpy(&s, sp, sizeof s);
+    memcpy(&t, tp, sizeof t);
     /* the texels of each lane: 1 (nearest) or 4, and the 8-bit weights of the 4 */
     uint32_t texel[4][SG_SHADER_LANES];
     sg_vi wt[4];
@@ -83,11 +87,8 @@ SG_LANES_ATTR void SG_LANES_FN(sg_sample16)(const uint8_t *texels, int w, int h,
                                             bool repeat, const float s[SG_SHADER_LANES],
                                             const float t[SG_SHADER_LANES],
                                             int32_t texel[4][SG_SHADER_LANES]) {
-    sg_vf sv, tv;
-    memcpy(&sv, s, sizeof sv);
-    memcpy(&tv, t, sizeof tv);
     sg_vi c[4];
-    SG_LANES_FN(texels16)(texels, w, h, bilinear, repeat, sv, tv, c);
+    SG_LANES_FN(texels16)(texels, w, h, bilinear, repeat, s, t, c);
     for (int k = 0; k < 4; k++) memcpy(texel[k], &c[k], sizeof c[k]);
 }
 
@@ -98,9 +99,6 @@ SG_LANES_ATTR void SG_LANES_FN(sg_sample16_mip)(const sg_mip_chain *m, const sg_
                                                 const float s[SG_SHADER_LANES],
                                                 const float t[SG_SHADER_LANES],
                                                 int32_t texel[4][SG_SHADER_LANES]) {
-    sg_vf sv, tv;
-    memcpy(&sv, s, sizeof sv);
-    memcpy(&tv, t, sizeof tv);
     _Alignas(64) int32_t l0[SG_SHADER_LANES], l1[SG_SHADER_LANES], f[SG_SHADER_LANES];
     uint32_t want0 = 0, want1 = 0; /* the levels read, as bits */
     for (int i = 0; i < SG_SHADER_LANES; i++) {
@@ -119,7 +117,7 @@ SG_LANES_ATTR void SG_LANES_FN(sg_sample16_mip)(const sg_mip_chain *m, const sg_
         const int level = __builtin_ctz(want);
         const sg_texview *v = &m->level[level];
         sg_vi c[4];
-        SG_LANES_FN(texels16)(v->texels, v->width, v->height, bilinear, repeat, sv, tv, c);
+        SG_LANES_FN(texels16)(v->texels, v->width, v->height, bilinear, repeat, s, t, c);
         const sg_vi in0 = lv0 == level, in1 = lv1 == level;
         for (int k = 0; k < 4; k++) {
             a[k] = SELI(in0, c[k], a[k]);
