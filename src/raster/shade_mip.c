@@ -16,19 +16,8 @@
 #include "tex/mip.h"
 #include "tex/sample16.h"
 
-#define SG_LANES_FN(name) name##_portable
-#define SG_LANES_ATTR
-#include "raster/shade_mip_body.h"
-#undef SG_LANES_FN
-#undef SG_LANES_ATTR
-
-#if SG_LANES_AVX512
-#define SG_LANES_FN(name) name##_avx512
-#define SG_LANES_ATTR     SG_LANES_AVX512_ATTR
-#include "raster/shade_mip_body.h"
-#undef SG_LANES_FN
-#undef SG_LANES_ATTR
-#endif
+#define SG_LANES_BODY "raster/shade_mip_body.h"
+#include "tex/lanes_copies.h"
 
 sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                 sg_isa isa) {

@@ -9,16 +9,5 @@
 
 #include "tex/lanes.h"
 
-#define SG_LANES_FN(name) name##_portable
-#define SG_LANES_ATTR
-#include "tex/sample16_body.h"
-#undef SG_LANES_FN
-#undef SG_LANES_ATTR
-
-#if SG_LANES_AVX512
-#define SG_LANES_FN(name) name##_avx512
-#define SG_LANES_ATTR     SG_LANES_AVX512_ATTR
-#include "tex/sample16_body.h"
-#undef SG_LANES_FN
-#undef SG_LANES_ATTR
-#endif
+#define SG_LANES_BODY "tex/sample16_body.h"
+#include "tex/lanes_copies.h"
