@@ -1155,19 +1155,28 @@ static bool same_image(const result *x, int r, int j, int k) {
            a->mean_abs_error == b->mean_abs_error;
 }
 
+/* The gnuplot script tmpdir/name, opened for writing (its path in *path, to free); NULL, said on
+ * stderr, when it cannot be. */
+static FILE *open_script(const char *tmpdir, const char *name, char **path) {
+    *path = concat3(tmpdir, name, "");
+    FILE *f = *path ? fopen(*path, "w") : NULL;
+    if (!f) {
+        fprintf(stderr, "sgapi-bench: cannot write the gnuplot script: %s\n",
+                *path ? strerror(errno) : "out of memory");
+        free(*path);
+        *path = NULL;
+    }
+    return f;
+}
+
 /* One panel a scene: time against PSNR for each setting of each renderer, the frontier joined. */
 static bool plot_quality(const options *o, const result *res, size_t count, const char *tmpdir,
                          const char *csv) {
     const char *out = o->plot ? o->plot : "quality.png";
     int cols = count > 1 ? 2 : 1, rows = (int)((count + (size_t)cols - 1) / (size_t)cols);
-    char *script = concat3(tmpdir, "/quality.gp", "");
-    FILE *f = script ? fopen(script, "w") : NULL;
-    if (!f) {
-        fprintf(stderr, "sgapi-bench: cannot write the gnuplot script: %s\n",
-                script ? strerror(errno) : "out of memory");
-        free(script);
-        return false;
-    }
+    char *script = NULL;
+    FILE *f = open_script(tmpdir, "/quality.gp", &script);
+    if (!f) return false;
     static const char *const colour[2] = {"#1f6fb4", "#c8322a"};
     fprintf(f, "set terminal png size %d,%d noenhanced\nset output ",
             800 * cols + (cols == 1) * 100, 560 * rows + 40);
@@ -1267,14 +1276,9 @@ static bool plot_pareto(const options *o, const result *res, size_t count, const
             any_inf |= !isfinite(p);
         }
     double inf_y = ceil(top / 10) * 10 + 10;
-    char *script = concat3(tmpdir, "/pareto.gp", "");
-    FILE *f = script ? fopen(script, "w") : NULL;
-    if (!f) {
-        fprintf(stderr, "sgapi-bench: cannot write the gnuplot script: %s\n",
-                script ? strerror(errno) : "out of memory");
-        free(script);
-        return false;
-    }
+    char *script = NULL;
+    FILE *f = open_script(tmpdir, "/pareto.gp", &script);
+    if (!f) return false;
     fprintf(f, "set terminal png size 1400,1000 noenhanced\nset output ");
     gp_string(f, out);
     fprintf(f,

@@ -24,13 +24,7 @@ SGS_STAGE static void phong_vertex(sgVertexBatch *b, const void *uniforms) {
 SGS_STAGE static void phong_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 4, 7, 10, 13, 16);
-    const sgs_vf base[3] = {sgs_vload(b->varying[6]), sgs_vload(b->varying[7]),
-                            sgs_vload(b->varying[8])};
-    sgs_vf c[3];
-    sgs_vlight_eval(&l, sgs_vload(b->varying[0]), sgs_vload(b->varying[1]),
-                    sgs_vload(b->varying[2]), sgs_vload(b->varying[3]), sgs_vload(b->varying[4]),
-                    sgs_vload(b->varying[5]), base, c);
-    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
+    sgs_vlight_varyings(&l, b, 0);
     memcpy(b->color[3], b->varying[9], sizeof b->color[3]);
 }
 

@@ -344,6 +344,17 @@ static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs
                  (s * l->color[k]) * l->specular[k];
 }
 
+/* The equation on a fragment batch whose varyings from `first` are its view-space point, its
+ * normal and its base colour (three each), into colour channels 0..2. */
+static inline void sgs_vlight_varyings(const sgs_light *l, sgFragmentBatch *b, int first) {
+    float(*v)[SGS_LANES] = b->varying + first;
+    const sgs_vf base[3] = {sgs_vload(v[6]), sgs_vload(v[7]), sgs_vload(v[8])};
+    sgs_vf c[3];
+    sgs_vlight_eval(l, sgs_vload(v[0]), sgs_vload(v[1]), sgs_vload(v[2]), sgs_vload(v[3]),
+                    sgs_vload(v[4]), sgs_vload(v[5]), base, c);
+    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
+}
+
 /* The same in GLSL: light(P, n, base, ambient, direction, colour, specular, shininess) with the
  * uniform offsets; spec < 0: none. */
 #define SGS_GLSL_LIGHT                                                                             \

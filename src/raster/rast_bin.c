@@ -171,12 +171,7 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
 }
 
 /* Where a bin's pixels are in the target images. */
-typedef struct bin_view {
-    int x0, y0, w, h;
-    size_t pitch; /* of both targets: width * 4 bytes */
-    uint8_t *color;
-    float *depth; /* NULL without a depth target */
-} bin_view;
+typedef sg_bin_view bin_view;
 
 /* The bin's depth from the pass's load or clear (nothing without a depth target). */
 static void start_depth(const sg_bin_pass *p, const bin_view *v, float *depth) {
@@ -351,14 +346,9 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
 }
 
-void sg_rast_bin(const sg_bin_pass *p, int index) {
-    if (p->samples > 1) { /* its own path: this one stays as it is */
-        sg_rast_bin_msaa(p, index);
-        return;
-    }
+sg_bin_view sg_bin_view_of(const sg_bin_pass *p, int index) {
     const sg_binner *b = p->binner;
-    const sg_bin *bin = &b->bins[index];
-    bin_view v;
+    sg_bin_view v;
     v.x0 = (index % b->bins_x) << SG_BIN_SHIFT;
     v.y0 = (index / b->bins_x) << SG_BIN_SHIFT;
     v.w = p->width - v.x0 < SG_BIN_SIZE ? p->width - v.x0 : SG_BIN_SIZE;
@@ -367,16 +357,31 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     v.color = p->color ? p->color + (size_t)v.y0 * v.pitch + (size_t)v.x0 * 4 : NULL;
     v.depth =
         p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)v.y0 * v.pitch) + v.x0 : NULL;
+    return v;
+}
+
+void sg_bin_fill_empty(const sg_bin_pass *p, const sg_bin_view *v) {
+    if (v->color && !p->load_color)
+        sg_fill_linear_u32(v->color, v->pitch, v->w, v->h, p->clear_color);
+    if (v->depth && p->store_depth && !p->load_depth) {
+        uint32_t bits;
+        memcpy(&bits, &p->clear_depth, 4);
+        sg_fill_linear_u32(v->depth, v->pitch, v->w, v->h, bits);
+    }
+}
+
+void sg_rast_bin(const sg_bin_pass *p, int index) {
+    if (p->samples > 1) { /* its own path: this one stays as it is */
+        sg_rast_bin_msaa(p, index);
+        return;
+    }
+    const sg_binner *b = p->binner;
+    const sg_bin *bin = &b->bins[index];
+    bin_view v = sg_bin_view_of(p, index);
     int x0 = v.x0, y0 = v.y0;
     SG_STAGE_START(clock);
     if (!bin->count) { /* nothing drawn here: the pass's load and clear are the result */
-        if (v.color && !p->load_color)
-            sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
-        if (v.depth && p->store_depth && !p->load_depth) {
-            uint32_t bits;
-            memcpy(&bits, &p->clear_depth, 4);
-            sg_fill_linear_u32(v.depth, v.pitch, v.w, v.h, bits);
-        }
+        sg_bin_fill_empty(p, &v);
         SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_WRITE, clock);
         return;
     }

@@ -83,4 +83,17 @@ typedef struct sg_bin_pass {
 /** Renders bin `index` of the pass into its target images. */
 void sg_rast_bin(const sg_bin_pass *pass, int index);
 
+/* Where bin `index` lies in the pass's targets. */
+typedef struct sg_bin_view {
+    int x0, y0, w, h; /* its top-left pixel and size, cut at the targets' edges */
+    size_t pitch;     /* of both targets: width * 4 bytes */
+    uint8_t *color;   /* its first pixel in each target, NULL without that target */
+    float *depth;
+} sg_bin_view;
+
+/** The view of bin `index` of the pass (one-sample and multisampled bins alike). */
+sg_bin_view sg_bin_view_of(const sg_bin_pass *pass, int index);
+/** A bin nothing was drawn in: its targets get the pass's clear where the pass does not load. */
+void sg_bin_fill_empty(const sg_bin_pass *pass, const sg_bin_view *v);
+
 #endif

@@ -41,6 +41,13 @@ typedef struct msaa_bin {
     int x0, y0; /* the bin's top-left pixel */
 } msaa_bin;
 
+/* The tiles of touched-word `word` that some sample's walk reached. */
+static inline uint64_t reached_by_any(const msaa_bin *b, int word) {
+    uint64_t reached = 0;
+    for (int k = 0; k < NS; k++) reached |= b->touched[k][word];
+    return reached;
+}
+
 /* src's pixels of `mask` into dst. */
 static inline void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
     if (mask == 0xffffu) {
@@ -55,9 +62,7 @@ static inline void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask)
  * samples. The ids are set back to 0 and the tiles to unreached. */
 static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     for (int word = 0; word < TOUCH_WORDS; word++) {
-        uint64_t reached = 0;
-        for (int k = 0; k < NS; k++) reached |= b->touched[k][word];
-        for (; reached; reached &= reached - 1) {
+        for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
             const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
             const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
@@ -104,9 +109,7 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
     (void)p;
     const bool shader = d->ctx.shader.fragment != NULL;
     for (int word = 0; word < TOUCH_WORDS; word++) {
-        uint64_t reached = 0;
-        for (int k = 0; k < NS; k++) reached |= b->touched[k][word];
-        for (; reached; reached &= reached - 1) {
+        for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
             const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
             const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
@@ -147,12 +150,7 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
 }
 
 /* Where a bin's pixels are in the target images. */
-typedef struct bin_view {
-    int w, h;
-    size_t pitch; /* of both targets: width * 4 bytes */
-    uint8_t *color;
-    float *depth; /* NULL without a depth target */
-} bin_view;
+typedef sg_bin_view bin_view;
 
 /* The bin's samples from the pass's load or clear, or from the sample buffers after a flush. */
 static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index) {
@@ -251,29 +249,16 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
 }
 
 void sg_rast_bin_msaa(const sg_bin_pass *p, int index) {
-    const sg_binner *bn = p->binner;
-    const sg_bin *bin = &bn->bins[index];
-    const int x0 = (index % bn->bins_x) << SG_BIN_SHIFT, y0 = (index / bn->bins_x) << SG_BIN_SHIFT;
-    bin_view v;
-    v.w = p->width - x0 < SG_BIN_SIZE ? p->width - x0 : SG_BIN_SIZE;
-    v.h = p->height - y0 < SG_BIN_SIZE ? p->height - y0 : SG_BIN_SIZE;
-    v.pitch = (size_t)p->width * 4;
-    v.color = p->color ? p->color + (size_t)y0 * v.pitch + (size_t)x0 * 4 : NULL;
-    v.depth = p->depth ? (float *)(void *)((uint8_t *)p->depth + (size_t)y0 * v.pitch) + x0 : NULL;
+    const sg_bin *bin = &p->binner->bins[index];
+    const bin_view v = sg_bin_view_of(p, index);
     if (!bin->count && !p->msaa_load && !p->msaa_store) {
         /* Nothing drawn here: every sample holds the load or clear, and so does their average. */
-        if (v.color && !p->load_color)
-            sg_fill_linear_u32(v.color, v.pitch, v.w, v.h, p->clear_color);
-        if (v.depth && p->store_depth && !p->load_depth) {
-            uint32_t bits;
-            memcpy(&bits, &p->clear_depth, 4);
-            sg_fill_linear_u32(v.depth, v.pitch, v.w, v.h, bits);
-        }
+        sg_bin_fill_empty(p, &v);
         return;
     }
     /* 192 KB of samples and ids: the same stack for every bin of the thread. */
     msaa_bin b;
-    b.x0 = x0;
-    b.y0 = y0;
+    b.x0 = v.x0;
+    b.y0 = v.y0;
     if (!render(p, &v, &b, index, false)) render(p, &v, &b, index, true);
 }
