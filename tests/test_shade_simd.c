@@ -402,6 +402,8 @@ static void compare_variant(int variant, int kind) {
     sg_shade2_fn pair[2] = {NULL, NULL};
     /* AVX2's and AVX-512's partly covered tiles packed together */
     sg_shade_runs_fn runs[2] = {NULL, NULL};
+    /* AVX-512's tiles that several triangles share, in one pass */
+    sg_shade_mixed_fn mixed = NULL;
     static const char *const set_name[2] = {"AVX2", "AVX-512"};
     if (kind >= PHONG) {
         const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
@@ -425,6 +427,7 @@ static void compare_variant(int variant, int kind) {
         if (has_avx512) pair[1] = sg_shade2_avx512(index);
         if (has_avx2) runs[0] = sg_shade_runs_avx2(index);
         if (has_avx512) runs[1] = sg_shade_runs_avx512(index);
+        if (has_avx512 && kind == UNLIT) mixed = sg_shade_mixed_avx512(index);
         if (has_neon) neon = sg_shade_neon(index);
 #if defined(__aarch64__)
         assert_non_null(neon); /* Advanced SIMD is the AArch64 baseline */
@@ -433,6 +436,7 @@ static void compare_variant(int variant, int kind) {
         if (kind == UNLIT) assert_non_null(sse2); /* SSE2 is the x86-64 baseline */
         if (has_avx2) assert_non_null(avx2);
         if (has_avx512) assert_non_null(avx512);
+        if (has_avx512 && kind == UNLIT) assert_non_null(mixed);
 #endif
     }
     const long cases = kind >= PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
@@ -494,6 +498,42 @@ static void compare_variant(int variant, int kind) {
                            "(%d, %d)\n",
                            set_name[set], variant, flat, n, x0, y0, x1, y1);
                     failures++;
+                }
+            }
+            if (mixed && n % 2 == 0) {
+                /* Two to four triangles of the same flat kind sharing the tile, its pixels dealt
+                 * out at random: as one scalar call per triangle. Each is made at a tile of its
+                 * own and moved, bounds and all, to this one, which keeps its values there. */
+                sg_tri ts[4];
+                const sg_tri *tp[4];
+                uint32_t masks[4] = {0, 0, 0, 0}, got[16], want[16];
+                const int k = irange(&g, 2, 4);
+                for (int j = 0; j < k; j++) {
+                    int xj, yj;
+                    random_tri(&g, &ts[j], flat, tx->w, tx->h, &xj, &yj);
+                    ts[j].minx += x0 - xj;
+                    ts[j].miny += y0 - yj;
+                    tp[j] = &ts[j];
+                }
+                const uint32_t all = chance(&g, 30) ? 0xffffu : random_mask(&g);
+                for (int i = 0; i < 16; i++)
+                    if (all >> i & 1) masks[irange(&g, 0, k - 1)] |= 1u << i;
+                int used = 0;
+                for (int j = 0; j < k; j++)
+                    if (masks[j]) {
+                        tp[used] = tp[j];
+                        masks[used++] = masks[j];
+                    }
+                if (used >= 2) {
+                    for (int i = 0; i < 16; i++) got[i] = want[i] = sentinel;
+                    for (int j = 0; j < used; j++) scalar(&ctx, tp[j], x0, y0, masks[j], want);
+                    mixed(&ctx, tp, masks, used, x0, y0, got);
+                    if (memcmp(got, want, sizeof got)) {
+                        printf("AVX-512 mixed tile differs: variant %d flat %d case %ld, %d "
+                               "triangles\n",
+                               variant, flat, n, used);
+                        failures++;
+                    }
                 }
             }
             for (int set = 0; set < 2; set++) {

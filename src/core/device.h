@@ -48,6 +48,7 @@ typedef struct sg_pso {
     sg_shade2_fn shade2_sec;    /* the same for shade_sec */
     sg_shade_runs_fn runs_fn;   /* partly covered tiles packed together (NULL: none) */
     sg_shade_runs_fn runs_sec;  /* the same for shade_sec */
+    sg_shade_mixed_fn mixed_fn; /* tiles several triangles share, in one pass (NULL: none) */
     sg_raster_fn raster_shadow; /* raster_fn, for draws that receive a shadow map */
     sg_raster_fn raster_pass;   /* raster_fn without depth test (sg_draw_state), or NULL */
     sg_raster_fn raster_shadow_pass; /* the same for raster_shadow */

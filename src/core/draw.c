@@ -898,6 +898,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     ds->shade_fn = shadowed ? pso->shade_shadow : sec ? pso->shade_sec : pso->shade_fn;
     ds->shade2_fn = shadowed ? NULL : sec ? pso->shade2_sec : pso->shade2_fn;
     ds->runs_fn = shadowed ? NULL : sec ? pso->runs_sec : pso->runs_fn;
+    ds->mixed_fn = shadowed || sec ? NULL : pso->mixed_fn;
     ds->ctx = ctx;
     ds->shader_in_place = NULL;
     ds->compare = pso->desc.depth.compare;
@@ -908,6 +909,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_pair |= ds->shade2_fn != NULL;
     dev->pass.any_runs |= ds->runs_fn != NULL;
+    dev->pass.any_mixed |= ds->mixed_fn != NULL;
     sgResult r = run_front_end(dev, &a, NULL, 1);
     if (r != SG_OK) return r;
     if (tex) tex->pass_use = dev->pass_serial;

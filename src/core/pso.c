@@ -110,6 +110,8 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     p.runs_fn =
         d->lighting == SG_LIGHTING_PHONG ? NULL : sg_shade_runs_select_variant(variant, dev->isa);
     p.runs_sec = sg_shade_runs_select_variant(variant + SG_SHADE_SECONDARY, dev->isa);
+    p.mixed_fn =
+        d->lighting == SG_LIGHTING_PHONG ? NULL : sg_shade_mixed_select_variant(variant, dev->isa);
     /* Draws that receive a shadow map shade from each pixel's view position (shade_phong.c; flat
      * and Gouraud ones with their split colours);
      * blended ones then call that shading from the blend (its unlit shading is not inlined). */
@@ -141,6 +143,7 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
         p.shade_sec = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, true, dev->isa);
         p.shade2_fn = p.shade2_sec = NULL;
         p.runs_fn = p.runs_sec = NULL;
+        p.mixed_fn = NULL;
         p.raster_line = NULL;
         if (d->blend == SG_BLEND_ALPHA) {
             p.raster_fn = sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa);
@@ -156,6 +159,7 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
         p.shade_fn = sg_shade_shader;
         p.shade2_fn = p.shade2_sec = NULL;
         p.runs_fn = p.runs_sec = NULL;
+        p.mixed_fn = NULL;
         p.raster_line = NULL;
         p.raster_pass = NULL;
         p.shader_in_place =

@@ -101,19 +101,52 @@ static inline void shade_run(const sg_bin_pass *p, run_set *s, uint32_t id, int 
                 y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT), mask, color + tile * SG_TILE_PIXELS);
 }
 
-/* Shades the visible pixels of one tile: each run of pixels that see the same triangle is one
- * call of that triangle's shading function (or collected in s, see shade_run). */
+/* A tile that several triangles share, shaded in one pass (their draw's sg_shade_mixed_fn) when
+ * all are of one draw that has one and of one flat kind; false: not shaded. first: a triangle
+ * of the tile, covering `mask`; left: the tile's other covered pixels. */
+static inline bool shade_mixed(const sg_bin_pass *p, const uint32_t *ids, uint32_t first,
+                               uint32_t mask, uint32_t left, int x, int y, uint32_t *dst) {
+    const sg_tri *tris = p->binner->tris, *t = &tris[first - 1];
+    const sg_draw_state *d = &p->draws[t->draw];
+    if (!d->mixed_fn) return false;
+    const sg_tri *ts[SG_TILE_PIXELS];
+    uint32_t masks[SG_TILE_PIXELS];
+    ts[0] = t;
+    masks[0] = mask;
+    int n = 1;
+    while (left) {
+        const uint32_t id = ids[__builtin_ctz(left)];
+        const sg_tri *o = &tris[id - 1];
+        if (o->draw != t->draw || o->flat != t->flat) return false;
+        ts[n] = o;
+        masks[n] = sg_tile_same_id(ids, id);
+        left &= ~masks[n++];
+    }
+    d->mixed_fn(&d->ctx, ts, masks, n, x, y, dst);
+    return true;
+}
+
+/* Shades the visible pixels of one tile: in one pass when several triangles share it and
+ * shade_mixed takes it, else each run of pixels that see the same triangle is one call of that
+ * triangle's shading function (or collected in s, see shade_run). */
 static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *p, run_set *s,
                                                              const uint32_t *ids, int tile, int x0,
                                                              int y0, uint32_t *color) {
-    uint32_t left = 0xffffu;
     if (ids[0]) { /* the first pixel's triangle first: often the tile's only one */
         uint32_t mask = sg_tile_same_id(ids, ids[0]);
-        shade_run(p, s, ids[0], tile, x0, y0, mask, color);
-        left &= ~mask;
-        if (!left) return;
+        if (mask == 0xffffu) {
+            shade_run(p, s, ids[0], tile, x0, y0, mask, color);
+            return;
+        }
     }
-    left &= ~sg_tile_same_id(ids, 0);
+    uint32_t left = ~sg_tile_same_id(ids, 0) & 0xffffu;
+    if (p->any_mixed && left) {
+        const uint32_t id = ids[__builtin_ctz(left)], mask = sg_tile_same_id(ids, id);
+        if (mask != left &&
+            shade_mixed(p, ids, id, mask, left & ~mask, x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT),
+                        y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT), color + tile * SG_TILE_PIXELS))
+            return;
+    }
     while (left) {
         uint32_t id = ids[__builtin_ctz(left)], mask = sg_tile_same_id(ids, id);
         shade_run(p, s, id, tile, x0, y0, mask, color);

@@ -28,8 +28,9 @@ typedef struct sg_draw_state {
     sg_raster_fn raster_pass_fn;
     bool writes_depth;
     sg_shade_fn shade_fn;
-    sg_shade2_fn shade2_fn;   /* two whole tiles of a triangle at once, or NULL */
-    sg_shade_runs_fn runs_fn; /* partly covered tiles of a triangle packed together, or NULL */
+    sg_shade2_fn shade2_fn;     /* two whole tiles of a triangle at once, or NULL */
+    sg_shade_runs_fn runs_fn;   /* partly covered tiles of a triangle packed together, or NULL */
+    sg_shade_mixed_fn mixed_fn; /* a tile several of the draw's triangles share, or NULL */
     sg_shade_ctx ctx;
     sgCompare compare;
     bool in_place; /* raster_fn shades into the colour as it goes: blends, lines (blend.h) */
@@ -66,6 +67,7 @@ typedef struct sg_bin_pass {
     bool any_in_place;    /* some draw is shaded in place: bins take the ordered path */
     bool any_pair;        /* some draw shades two whole tiles at once (shade2_fn) */
     bool any_runs;        /* some draw packs partly covered tiles (runs_fn) */
+    bool any_mixed;       /* some draw shades shared tiles in one pass (mixed_fn) */
     bool any_shader;      /* some draw has a fragment stage (sgShaderDesc) */
     int *shader_discards; /* tiles whose fragment stage discarded (shade_shader.h), all bins */
     const sg_fb_ops *fb;  /* the bin's fills, for the device's instruction set */

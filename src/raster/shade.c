@@ -77,6 +77,11 @@ sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa) {
     return isa == SG_ISA_AVX2 ? sg_shade_runs_avx2(variant) : NULL;
 }
 
+sg_shade_mixed_fn sg_shade_mixed_select_variant(int variant, sg_isa isa) {
+    return isa == SG_ISA_AVX512 && variant < SG_SHADE_VARIANTS ? sg_shade_mixed_avx512(variant)
+                                                               : NULL;
+}
+
 int sg_shade_attr_count(sgShade shade) {
     return shade == SG_SHADE_TEXTURE_MODULATE ? 6 : 4;
 }

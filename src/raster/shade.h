@@ -99,6 +99,13 @@ typedef struct sg_run {
 typedef void (*sg_shade_runs_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int bx0, int by0,
                                  const sg_run *runs, int n, uint32_t *color);
 
+/* Shades the pixels of a 4x4 tile (top-left pixel (x0, y0)) that n >= 2 triangles of one draw
+ * share, all of one flat kind: ts[j] covers the pixels of masks[j] (disjoint). Written into dst
+ * as by sg_shade_fn: the same bytes as the variant's sg_shade_fn on each triangle's pixels, in
+ * one pass over the tile instead of one per triangle (the tiles of a dense mesh). */
+typedef void (*sg_shade_mixed_fn)(const sg_shade_ctx *ctx, const sg_tri *const ts[],
+                                  const uint32_t masks[], int n, int x0, int y0, uint32_t *dst);
+
 /** The index of a resolved shading state in the variant tables below: 0 vertex colour,
  *  1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */
 int sg_shade_variant(sgShade shade, sgFilter filter, sgWrap wrap);
@@ -150,6 +157,10 @@ sg_shade2_fn sg_shade2_avx2(int variant);
 sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa);
 sg_shade_runs_fn sg_shade_runs_avx2(int variant);
 sg_shade_runs_fn sg_shade_runs_avx512(int variant);
+/** The shared-tile function of an unlit variant (no secondary colour) for the instruction set,
+ *  or NULL where it has none; the callers then shade each triangle's pixels alone. */
+sg_shade_mixed_fn sg_shade_mixed_select_variant(int variant, sg_isa isa);
+sg_shade_mixed_fn sg_shade_mixed_avx512(int variant);
 sg_shade_fn sg_shade_neon(int variant);
 /** Attributes an unlit shading mode interpolates: r g b a, plus s t when textured. */
 int sg_shade_attr_count(sgShade shade);

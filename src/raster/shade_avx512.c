@@ -90,6 +90,44 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 #define SG_RUNS_TABLE sg_shade_runs_avx512
 #include "raster/shade_runs_variants.h"
 
+/* A tile that several triangles share (sg_shade_mixed_fn), their flat kind split off once. */
+INLINE void shade_mixed(const sg_shade_ctx *c, const sg_tri *const ts[], const uint32_t masks[],
+                        int n, int x0, int y0, uint32_t *dst, const int textured,
+                        const int bilinear, const int repeat) {
+    uint32_t all = 0;
+    for (int j = 0; j < n; j++) all |= masks[j];
+    __m512i v;
+    if (ts[0]->flat == SG_FLAT_WHITE)
+        v = sg_shade16_mixed(c, ts, masks, n, x0, y0, all, textured, bilinear, repeat,
+                             SG_FLAT_WHITE);
+    else if (ts[0]->flat != SG_FLAT_NONE)
+        v = sg_shade16_mixed(c, ts, masks, n, x0, y0, all, textured, bilinear, repeat,
+                             SG_FLAT_COLOR);
+    else
+        v = sg_shade16_mixed(c, ts, masks, n, x0, y0, all, textured, bilinear, repeat,
+                             SG_FLAT_NONE);
+    _mm512_mask_storeu_epi32(dst, (__mmask16)all, v);
+}
+
+#define SG_MIXED(tex, bil, rep)                                                                    \
+    static void mixed_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *const ts[],             \
+                                      const uint32_t masks[], int n, int x0, int y0,               \
+                                      uint32_t *dst) {                                             \
+        shade_mixed(c, ts, masks, n, x0, y0, dst, tex, bil, rep);                                  \
+    }
+SG_MIXED(0, 0, 0) /* vertex colour */
+SG_MIXED(1, 0, 1) /* texture, nearest, repeat */
+SG_MIXED(1, 0, 0) /* texture, nearest, clamp */
+SG_MIXED(1, 1, 1) /* texture, bilinear, repeat */
+SG_MIXED(1, 1, 0) /* texture, bilinear, clamp */
+#undef SG_MIXED
+
+sg_shade_mixed_fn sg_shade_mixed_avx512(int index) {
+    static const sg_shade_mixed_fn table[SG_SHADE_VARIANTS] = {mixed_000, mixed_101, mixed_100,
+                                                               mixed_111, mixed_110};
+    return table[index];
+}
+
 #else
 
 sg_shade_fn sg_shade_avx512(int index) {
@@ -103,6 +141,11 @@ sg_shade2_fn sg_shade2_avx512(int index) {
 }
 
 sg_shade_runs_fn sg_shade_runs_avx512(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade_mixed_fn sg_shade_mixed_avx512(int index) {
     (void)index;
     return NULL;
 }

@@ -260,6 +260,46 @@ INLINE __m512i pack_unorm8(const __m512 col[4]) {
     return _mm512_shuffle_epi8(_mm512_packus_epi16(p01, p23), tr);
 }
 
+/* The texturing step of shade16_tiles: the texels at coordinates (s[i], u[i]) of n tiles' pixels,
+ * lanes of mask[i], modulate their colours col[i]; an opaque white triangle without a secondary
+ * colour takes the texel as it is, and then out[i] is the result already (true). */
+INLINE bool texture16_tiles(const sg_shade_ctx *c, const int n, const __m512 s[], const __m512 u[],
+                            const uint32_t mask[], __m512 col[][4], __m512i out[],
+                            const int bilinear, const int repeat, const int flat, const int sec) {
+    const tex16 tx = tex16_of(&c->tex, bilinear);
+    __m512i tc[4][4];
+    if (bilinear) {
+        __m512i gx[4], gy[4], texels[4][4], x[4][4];
+        for (int i = 0; i < n; i++) {
+            gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
+            gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
+        }
+        for (int i = 0; i < n; i++)
+            bilinear_fetch16(&tx, gx[i], gy[i], (__mmask16)mask[i], repeat, texels[i]);
+        for (int i = 0; i < n; i++) bilinear_filter16(gx[i], gy[i], texels[i], x[i]);
+        if (flat == SG_FLAT_WHITE && !sec) {
+            for (int i = 0; i < n; i++) out[i] = pack_hi8(x[i]);
+            return true;
+        }
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 4; k++) tc[i][k] = _mm512_srli_epi32(x[i][k], 16);
+    } else {
+        __m512i texel[4];
+        for (int i = 0; i < n; i++)
+            texel[i] = nearest16(&tx, s[i], u[i], (__mmask16)mask[i], repeat);
+        if (flat == SG_FLAT_WHITE && !sec) { /* the colour, as in the reference */
+            for (int i = 0; i < n; i++) out[i] = texel[i];
+            return true;
+        }
+        for (int i = 0; i < n; i++) unpack_texels(texel[i], tc[i]);
+    }
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++)
+            col[i][k] = _mm512_mul_ps(col[i][k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[i][k]),
+                                                               _mm512_set1_ps(1.0f / 255.0f)));
+    return false;
+}
+
 /* The colours of n tiles' pixels (n is 1, 2 or 4, a constant) at offsets (dx[i], dy[i]) from the
  * triangle's bounds, lanes of mask[i], as RGBA8 lanes in out[i] (others undefined): the body of
  * every variant, as shade_rows in shade.c; the constant arguments fold away. Each lane computes
@@ -300,7 +340,6 @@ INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *
                     : _mm512_mul_ps(SG_PLANE(SG_T(i)->a[k], SG_T(i)->a_dx[k], SG_T(i)->a_dy[k], i),
                                     w[i]);
     if (textured) {
-        const tex16 tx = tex16_of(&c->tex, bilinear);
         __m512 s[4], u[4];
         for (int i = 0; i < n; i++) {
             s[i] =
@@ -308,36 +347,7 @@ INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *
             u[i] =
                 _mm512_mul_ps(SG_PLANE(SG_T(i)->a[5], SG_T(i)->a_dx[5], SG_T(i)->a_dy[5], i), w[i]);
         }
-        __m512i tc[4][4];
-        if (bilinear) {
-            __m512i gx[4], gy[4], texels[4][4], x[4][4];
-            for (int i = 0; i < n; i++) {
-                gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
-                gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
-            }
-            for (int i = 0; i < n; i++)
-                bilinear_fetch16(&tx, gx[i], gy[i], (__mmask16)mask[i], repeat, texels[i]);
-            for (int i = 0; i < n; i++) bilinear_filter16(gx[i], gy[i], texels[i], x[i]);
-            if (flat == SG_FLAT_WHITE && !sec) {
-                for (int i = 0; i < n; i++) out[i] = pack_hi8(x[i]);
-                return;
-            }
-            for (int i = 0; i < n; i++)
-                for (int k = 0; k < 4; k++) tc[i][k] = _mm512_srli_epi32(x[i][k], 16);
-        } else {
-            __m512i texel[4];
-            for (int i = 0; i < n; i++)
-                texel[i] = nearest16(&tx, s[i], u[i], (__mmask16)mask[i], repeat);
-            if (flat == SG_FLAT_WHITE && !sec) { /* the colour, as in the reference */
-                for (int i = 0; i < n; i++) out[i] = texel[i];
-                return;
-            }
-            for (int i = 0; i < n; i++) unpack_texels(texel[i], tc[i]);
-        }
-        for (int i = 0; i < n; i++)
-            for (int k = 0; k < 4; k++)
-                col[i][k] = _mm512_mul_ps(col[i][k], _mm512_mul_ps(_mm512_cvtepi32_ps(tc[i][k]),
-                                                                   _mm512_set1_ps(1.0f / 255.0f)));
+        if (texture16_tiles(c, n, s, u, mask, col, out, bilinear, repeat, flat, sec)) return;
     }
     for (int i = 0; i < n; i++)
         for (int k = 0; sec && k < 3; k++)
@@ -405,6 +415,84 @@ INLINE __m512i sg_shade16(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_e
     __m512 dx, dy;
     sg_tile_dxdy16(t, x0, y0, &dx, &dy);
     return sg_shade16_at(c, t, ext, dx, dy, mask, textured, bilinear, repeat, flat, sec);
+}
+
+/* The colours of a tile's pixels that several triangles of one draw share, as RGBA8 lanes (lanes
+ * outside `all` undefined): triangle ts[j] covers the lanes of masks[j] (disjoint, their union
+ * `all`), and every triangle has the flat kind `flat`. Each lane takes its own triangle's
+ * values where shade16_tiles broadcasts one triangle's, and goes through the same operations, so
+ * a lane's bytes are those of its triangle's shading; one pass for the whole tile instead of one
+ * per triangle. The lanes outside `all` take ts[0]'s values, which keeps them near the others
+ * (the texel window of bilinear_fetch16 starts at lane 0). */
+INLINE __m512i sg_shade16_mixed(const sg_shade_ctx *c, const sg_tri *const ts[],
+                                const uint32_t masks[], int n, int x0, int y0, uint32_t all,
+                                const int textured, const int bilinear, const int repeat,
+                                const int flat) {
+    if (!textured && flat != SG_FLAT_NONE) { /* each triangle's colour, as shade16_tiles packs it */
+        __m512i out = _mm512_setzero_si512();
+        for (int j = 0; j < n; j++) {
+            const float *f = ts[j]->color;
+            uint32_t px = sg_pack_rgba8(sg_to_unorm8(f[0]), sg_to_unorm8(f[1]), sg_to_unorm8(f[2]),
+                                        sg_to_unorm8(f[3]));
+            out = _mm512_mask_mov_epi32(out, (__mmask16)masks[j], _mm512_set1_epi32((int)px));
+        }
+        return out;
+    }
+    /* Per lane: its triangle's offset from the tile to the triangle's bounds, and its planes. */
+    enum { OX, OY, Q, C = Q + 3, S = C + 12, NV = S + 6 };
+    __m512 v[NV];
+#define SG_FIELDS(t, put)                                                                          \
+    do {                                                                                           \
+        put(OX, (float)(x0 - (t)->minx));                                                          \
+        put(OY, (float)(y0 - (t)->miny));                                                          \
+        put(Q, (t)->q);                                                                            \
+        put(Q + 1, (t)->q_dx);                                                                     \
+        put(Q + 2, (t)->q_dy);                                                                     \
+        for (int k = 0; k < 4; k++) {                                                              \
+            if (flat != SG_FLAT_NONE) {                                                            \
+                put(C + 3 * k, (t)->color[k]);                                                     \
+                continue;                                                                          \
+            }                                                                                      \
+            put(C + 3 * k, (t)->a[k]);                                                             \
+            put(C + 3 * k + 1, (t)->a_dx[k]);                                                      \
+            put(C + 3 * k + 2, (t)->a_dy[k]);                                                      \
+        }                                                                                          \
+        for (int k = 0; textured && k < 2; k++) {                                                  \
+            put(S + 3 * k, (t)->a[4 + k]);                                                         \
+            put(S + 3 * k + 1, (t)->a_dx[4 + k]);                                                  \
+            put(S + 3 * k + 2, (t)->a_dy[4 + k]);                                                  \
+        }                                                                                          \
+    } while (0)
+#define SG_SET(i, x)   v[i] = _mm512_set1_ps(x)
+#define SG_MERGE(i, x) v[i] = _mm512_mask_mov_ps(v[i], m, _mm512_set1_ps(x))
+    SG_FIELDS(ts[0], SG_SET);
+    for (int j = 1; j < n; j++) {
+        const __mmask16 m = (__mmask16)masks[j];
+        SG_FIELDS(ts[j], SG_MERGE);
+    }
+#undef SG_SET
+#undef SG_MERGE
+#undef SG_FIELDS
+    /* As sg_tile_dxdy16 and SG_PLANE of shade16_tiles, lane by lane. */
+    const __m512 dx = _mm512_add_ps(v[OX], _mm512_set4_ps(3.0f, 2.0f, 1.0f, 0.0f));
+    const __m512 dy =
+        _mm512_add_ps(v[OY], _mm512_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 2.0f,
+                                            2.0f, 2.0f, 2.0f, 3.0f, 3.0f, 3.0f, 3.0f));
+#define SG_LANE_PLANE(i)                                                                           \
+    _mm512_add_ps(_mm512_add_ps(v[i], _mm512_mul_ps(v[(i) + 1], dx)), _mm512_mul_ps(v[(i) + 2], dy))
+    const __m512 w = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_LANE_PLANE(Q));
+    __m512 col[1][4];
+    for (int k = 0; k < 4; k++)
+        col[0][k] =
+            flat != SG_FLAT_NONE ? v[C + 3 * k] : _mm512_mul_ps(SG_LANE_PLANE(C + 3 * k), w);
+    __m512i out;
+    if (textured) {
+        const __m512 s = _mm512_mul_ps(SG_LANE_PLANE(S), w);
+        const __m512 u = _mm512_mul_ps(SG_LANE_PLANE(S + 3), w);
+        if (texture16_tiles(c, 1, &s, &u, &all, col, &out, bilinear, repeat, flat, 0)) return out;
+    }
+#undef SG_LANE_PLANE
+    return pack_unorm8(col[0]);
 }
 
 #endif
