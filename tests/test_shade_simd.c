@@ -501,37 +501,48 @@ static void compare_variant(int variant, int kind) {
                 }
             }
             if (mixed && n % 2 == 0) {
-                /* Two to four triangles of the same flat kind sharing the tile, its pixels dealt
-                 * out at random: as one scalar call per triangle. Each is made at a tile of its
-                 * own and moved, bounds and all, to this one, which keeps its values there. */
-                sg_tri ts[4];
-                const sg_tri *tp[4];
-                uint32_t masks[4] = {0, 0, 0, 0}, got[16], want[16];
-                const int k = irange(&g, 2, 4);
-                for (int j = 0; j < k; j++) {
-                    int xj, yj;
-                    random_tri(&g, &ts[j], flat, tx->w, tx->h, &xj, &yj);
-                    ts[j].minx += x0 - xj;
-                    ts[j].miny += y0 - yj;
-                    tp[j] = &ts[j];
-                }
-                const uint32_t all = chance(&g, 30) ? 0xffffu : random_mask(&g);
-                for (int i = 0; i < 16; i++)
-                    if (all >> i & 1) masks[irange(&g, 0, k - 1)] |= 1u << i;
-                int used = 0;
-                for (int j = 0; j < k; j++)
-                    if (masks[j]) {
-                        tp[used] = tp[j];
-                        masks[used++] = masks[j];
+                /* One or two tiles, each shared by two to four triangles of the same flat kind,
+                 * its pixels dealt out at random: as one scalar call per triangle. Each triangle
+                 * is made at a tile of its own and moved, bounds and all, to this one (the second
+                 * tile: a neighbour), which keeps its values there. */
+                sg_tri ts[2][4];
+                sg_mixed_tile mt[2];
+                uint32_t got[2][16], want[2][16];
+                const int count = irange(&g, 1, 2);
+                int made = 0;
+                for (int i = 0; i < count; i++) {
+                    const int cx = x0 + 4 * i, cy = y0;
+                    const int k = irange(&g, 2, 4);
+                    uint32_t masks[4] = {0, 0, 0, 0};
+                    const uint32_t all = chance(&g, 30) ? 0xffffu : random_mask(&g);
+                    for (int b = 0; b < 16; b++)
+                        if (all >> b & 1) masks[irange(&g, 0, k - 1)] |= 1u << b;
+                    sg_mixed_tile *m = &mt[made];
+                    m->n = 0;
+                    for (int j = 0; j < k; j++) {
+                        int xj, yj;
+                        random_tri(&g, &ts[made][j], flat, tx->w, tx->h, &xj, &yj);
+                        ts[made][j].minx += cx - xj;
+                        ts[made][j].miny += cy - yj;
+                        if (!masks[j]) continue;
+                        m->ts[m->n] = &ts[made][j];
+                        m->masks[m->n++] = masks[j];
                     }
-                if (used >= 2) {
-                    for (int i = 0; i < 16; i++) got[i] = want[i] = sentinel;
-                    for (int j = 0; j < used; j++) scalar(&ctx, tp[j], x0, y0, masks[j], want);
-                    mixed(&ctx, tp, masks, used, x0, y0, got);
-                    if (memcmp(got, want, sizeof got)) {
-                        printf("AVX-512 mixed tile differs: variant %d flat %d case %ld, %d "
-                               "triangles\n",
-                               variant, flat, n, used);
+                    if (m->n < 2) continue;
+                    m->x0 = cx;
+                    m->y0 = cy;
+                    m->dst = got[made];
+                    for (int b = 0; b < 16; b++) got[made][b] = want[made][b] = sentinel;
+                    for (int j = 0; j < m->n; j++)
+                        scalar(&ctx, m->ts[j], cx, cy, m->masks[j], want[made]);
+                    made++;
+                }
+                if (made) {
+                    mixed(&ctx, mt, made);
+                    if (memcmp(got, want, (size_t)made * sizeof got[0])) {
+                        printf("AVX-512 mixed tiles differ: variant %d flat %d case %ld, %d "
+                               "tiles\n",
+                               variant, flat, n, made);
                         failures++;
                     }
                 }

@@ -101,28 +101,52 @@ static inline void shade_run(const sg_bin_pass *p, run_set *s, uint32_t id, int 
                 y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT), mask, color + tile * SG_TILE_PIXELS);
 }
 
-/* A tile that several triangles share, shaded in one pass (their draw's sg_shade_mixed_fn) when
- * all are of one draw that has one and of one flat kind; false: not shaded. first: a triangle
- * of the tile, covering `mask`; left: the tile's other covered pixels. */
-static inline bool shade_mixed(const sg_bin_pass *p, const uint32_t *ids, uint32_t first,
-                               uint32_t mask, uint32_t left, int x, int y, uint32_t *dst) {
+/* Tiles that several triangles share waiting to be shaded two at a time (their draw's
+ * sg_shade_mixed_fn), one at most: of `draw`. */
+typedef struct mixed_set {
+    sg_mixed_tile tile[2];
+    int count;
+    const sg_draw_state *draw;
+} mixed_set;
+
+/* Shades the waiting tile, if any. */
+static inline void flush_mixed(mixed_set *m) {
+    if (m->count) m->draw->mixed_fn(&m->draw->ctx, m->tile, 1);
+    m->count = 0;
+}
+
+/* A tile that several triangles share, shaded in one pass (their draw's sg_shade_mixed_fn), in a
+ * pair with the waiting one when that is of the same draw and flat kind, else left waiting; false
+ * when they are not all of one draw that has one and of one flat kind (nothing done). first: a
+ * triangle of the tile, covering `mask`; left: the tile's other covered pixels. */
+static inline bool shade_mixed(const sg_bin_pass *p, mixed_set *m, const uint32_t *ids,
+                               uint32_t first, uint32_t mask, uint32_t left, int x, int y,
+                               uint32_t *dst) {
     const sg_tri *tris = p->binner->tris, *t = &tris[first - 1];
     const sg_draw_state *d = &p->draws[t->draw];
     if (!d->mixed_fn) return false;
-    const sg_tri *ts[SG_TILE_PIXELS];
-    uint32_t masks[SG_TILE_PIXELS];
-    ts[0] = t;
-    masks[0] = mask;
+    if (m->count && (m->draw != d || m->tile[0].ts[0]->flat != t->flat)) flush_mixed(m);
+    sg_mixed_tile *mt = &m->tile[m->count];
+    mt->ts[0] = t;
+    mt->masks[0] = mask;
     int n = 1;
     while (left) {
         const uint32_t id = ids[__builtin_ctz(left)];
         const sg_tri *o = &tris[id - 1];
         if (o->draw != t->draw || o->flat != t->flat) return false;
-        ts[n] = o;
-        masks[n] = sg_tile_same_id(ids, id);
-        left &= ~masks[n++];
+        mt->ts[n] = o;
+        mt->masks[n] = sg_tile_same_id(ids, id);
+        left &= ~mt->masks[n++];
     }
-    d->mixed_fn(&d->ctx, ts, masks, n, x, y, dst);
+    mt->n = n;
+    mt->x0 = x;
+    mt->y0 = y;
+    mt->dst = dst;
+    m->draw = d;
+    if (++m->count == 2) {
+        d->mixed_fn(&d->ctx, m->tile, 2);
+        m->count = 0;
+    }
     return true;
 }
 
@@ -130,8 +154,9 @@ static inline bool shade_mixed(const sg_bin_pass *p, const uint32_t *ids, uint32
  * shade_mixed takes it, else each run of pixels that see the same triangle is one call of that
  * triangle's shading function (or collected in s, see shade_run). */
 static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *p, run_set *s,
-                                                             const uint32_t *ids, int tile, int x0,
-                                                             int y0, uint32_t *color) {
+                                                             mixed_set *m, const uint32_t *ids,
+                                                             int tile, int x0, int y0,
+                                                             uint32_t *color) {
     if (ids[0]) { /* the first pixel's triangle first: often the tile's only one */
         uint32_t mask = sg_tile_same_id(ids, ids[0]);
         if (mask == 0xffffu) {
@@ -143,7 +168,8 @@ static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *
     if (p->any_mixed && left) {
         const uint32_t id = ids[__builtin_ctz(left)], mask = sg_tile_same_id(ids, id);
         if (mask != left &&
-            shade_mixed(p, ids, id, mask, left & ~mask, x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT),
+            shade_mixed(p, m, ids, id, mask, left & ~mask,
+                        x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT),
                         y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT), color + tile * SG_TILE_PIXELS))
             return;
     }
@@ -176,6 +202,8 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
                                                                 uint32_t *ids, uint64_t *touched,
                                                                 int x0, int y0, uint32_t *color,
                                                                 const bool forget) {
+    mixed_set mixed;
+    mixed.count = 0;
     for (int word = 0; word < BIN_TILES * BIN_TILES / 64; word++) {
         for (uint64_t left = touched[word]; left; left &= left - 1) {
             int tile = word * 64 + __builtin_ctzll(left);
@@ -194,12 +222,13 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
                 if (forget) memset(ids + next * SG_TILE_PIXELS, 0, SG_TILE_PIXELS * sizeof *tids);
                 left = rest; /* the loop's step then drops `next` too */
             } else {
-                shade_tile(p, runs, tids, tile, x0, y0, color);
+                shade_tile(p, runs, &mixed, tids, tile, x0, y0, color);
             }
             if (forget) memset(tids, 0, SG_TILE_PIXELS * sizeof *tids);
         }
         if (forget) touched[word] = 0;
     }
+    flush_mixed(&mixed);
     if (runs && runs->n) flush_runs(p, runs, x0, y0, color);
 }
 

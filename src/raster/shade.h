@@ -18,6 +18,7 @@
 
 #include "pipeline/light.h"
 #include "pipeline/setup.h"
+#include "raster/framebuffer.h"
 #include "raster/shadow.h"
 #include "sgapi/sgapi.h"
 #include "tex/sample.h"
@@ -99,12 +100,20 @@ typedef struct sg_run {
 typedef void (*sg_shade_runs_fn)(const sg_shade_ctx *ctx, const sg_tri *t, int bx0, int by0,
                                  const sg_run *runs, int n, uint32_t *color);
 
-/* Shades the pixels of a 4x4 tile (top-left pixel (x0, y0)) that n >= 2 triangles of one draw
- * share, all of one flat kind: ts[j] covers the pixels of masks[j] (disjoint). Written into dst
- * as by sg_shade_fn: the same bytes as the variant's sg_shade_fn on each triangle's pixels, in
- * one pass over the tile instead of one per triangle (the tiles of a dense mesh). */
-typedef void (*sg_shade_mixed_fn)(const sg_shade_ctx *ctx, const sg_tri *const ts[],
-                                  const uint32_t masks[], int n, int x0, int y0, uint32_t *dst);
+/* The pixels of a 4x4 tile (top-left pixel (x0, y0)) that n >= 2 triangles of one draw share,
+ * all of one flat kind: ts[j] covers the pixels of masks[j] (disjoint); their colours go to dst
+ * as an sg_shade_fn writes them. */
+typedef struct sg_mixed_tile {
+    const sg_tri *ts[SG_TILE_PIXELS];
+    uint32_t masks[SG_TILE_PIXELS];
+    int n, x0, y0;
+    uint32_t *dst;
+} sg_mixed_tile;
+
+/* Shades `count` (1 or 2) such tiles of one draw: the same bytes as the variant's sg_shade_fn on
+ * each triangle's pixels, in one pass over a tile instead of one per triangle (the tiles of a
+ * dense mesh), two tiles side by side where there are two. */
+typedef void (*sg_shade_mixed_fn)(const sg_shade_ctx *ctx, const sg_mixed_tile *tiles, int count);
 
 /** The index of a resolved shading state in the variant tables below: 0 vertex colour,
  *  1 + (bilinear ? 2 : 0) + (clamp ? 1 : 0) texture. */

@@ -90,30 +90,31 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 #define SG_RUNS_TABLE sg_shade_runs_avx512
 #include "raster/shade_runs_variants.h"
 
-/* A tile that several triangles share (sg_shade_mixed_fn), their flat kind split off once. */
-INLINE void shade_mixed(const sg_shade_ctx *c, const sg_tri *const ts[], const uint32_t masks[],
-                        int n, int x0, int y0, uint32_t *dst, const int textured,
-                        const int bilinear, const int repeat) {
-    uint32_t all = 0;
-    for (int j = 0; j < n; j++) all |= masks[j];
-    __m512i v;
-    if (ts[0]->flat == SG_FLAT_WHITE)
-        v = sg_shade16_mixed(c, ts, masks, n, x0, y0, all, textured, bilinear, repeat,
-                             SG_FLAT_WHITE);
-    else if (ts[0]->flat != SG_FLAT_NONE)
-        v = sg_shade16_mixed(c, ts, masks, n, x0, y0, all, textured, bilinear, repeat,
-                             SG_FLAT_COLOR);
+/* `count` tiles that several triangles share (sg_shade_mixed_fn), their flat kind split off
+ * once: every triangle of a call has the same one. */
+INLINE void shade_mixed(const sg_shade_ctx *c, const sg_mixed_tile *tiles, const int count,
+                        const int textured, const int bilinear, const int repeat) {
+    uint32_t all[2] = {0, 0};
+    for (int i = 0; i < count; i++)
+        for (int j = 0; j < tiles[i].n; j++) all[i] |= tiles[i].masks[j];
+    __m512i v[2];
+    const int flat = tiles[0].ts[0]->flat;
+    if (flat == SG_FLAT_WHITE)
+        sg_shade16_mixed(c, tiles, count, all, v, textured, bilinear, repeat, SG_FLAT_WHITE);
+    else if (flat != SG_FLAT_NONE)
+        sg_shade16_mixed(c, tiles, count, all, v, textured, bilinear, repeat, SG_FLAT_COLOR);
     else
-        v = sg_shade16_mixed(c, ts, masks, n, x0, y0, all, textured, bilinear, repeat,
-                             SG_FLAT_NONE);
-    _mm512_mask_storeu_epi32(dst, (__mmask16)all, v);
+        sg_shade16_mixed(c, tiles, count, all, v, textured, bilinear, repeat, SG_FLAT_NONE);
+    for (int i = 0; i < count; i++) _mm512_mask_storeu_epi32(tiles[i].dst, (__mmask16)all[i], v[i]);
 }
 
 #define SG_MIXED(tex, bil, rep)                                                                    \
-    static void mixed_##tex##bil##rep(const sg_shade_ctx *c, const sg_tri *const ts[],             \
-                                      const uint32_t masks[], int n, int x0, int y0,               \
-                                      uint32_t *dst) {                                             \
-        shade_mixed(c, ts, masks, n, x0, y0, dst, tex, bil, rep);                                  \
+    static void mixed_##tex##bil##rep(const sg_shade_ctx *c, const sg_mixed_tile *tiles,           \
+                                      int count) {                                                 \
+        if (count == 2)                                                                            \
+            shade_mixed(c, tiles, 2, tex, bil, rep);                                               \
+        else                                                                                       \
+            shade_mixed(c, tiles, 1, tex, bil, rep);                                               \
     }
 SG_MIXED(0, 0, 0) /* vertex colour */
 SG_MIXED(1, 0, 1) /* texture, nearest, repeat */

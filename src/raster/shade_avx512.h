@@ -417,30 +417,32 @@ INLINE __m512i sg_shade16(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_e
     return sg_shade16_at(c, t, ext, dx, dy, mask, textured, bilinear, repeat, flat, sec);
 }
 
-/* The colours of a tile's pixels that several triangles of one draw share, as RGBA8 lanes (lanes
- * outside `all` undefined): triangle ts[j] covers the lanes of masks[j] (disjoint, their union
- * `all`), and every triangle has the flat kind `flat`. Each lane takes its own triangle's
+/* The colours of `count` (1 or 2, a constant) tiles' pixels that several triangles of one draw
+ * share (sg_mixed_tile), as RGBA8 lanes in out[i] (lanes outside `all[i]`, the union of tile i's
+ * masks, undefined); every triangle has the flat kind `flat`. Each lane takes its own triangle's
  * values where shade16_tiles broadcasts one triangle's, and goes through the same operations, so
- * a lane's bytes are those of its triangle's shading; one pass for the whole tile instead of one
- * per triangle. The lanes outside `all` take ts[0]'s values, which keeps them near the others
- * (the texel window of bilinear_fetch16 starts at lane 0). */
-INLINE __m512i sg_shade16_mixed(const sg_shade_ctx *c, const sg_tri *const ts[],
-                                const uint32_t masks[], int n, int x0, int y0, uint32_t all,
-                                const int textured, const int bilinear, const int repeat,
-                                const int flat) {
+ * a lane's bytes are those of its triangle's shading; the tiles go through each step together, as
+ * in shade16_tiles. The lanes outside `all` take the tile's first triangle's values, which keeps
+ * them near the others (the texel window of bilinear_fetch16 starts at lane 0). */
+INLINE void sg_shade16_mixed(const sg_shade_ctx *c, const sg_mixed_tile *tiles, const int count,
+                             const uint32_t all[], __m512i out[], const int textured,
+                             const int bilinear, const int repeat, const int flat) {
     if (!textured && flat != SG_FLAT_NONE) { /* each triangle's colour, as shade16_tiles packs it */
-        __m512i out = _mm512_setzero_si512();
-        for (int j = 0; j < n; j++) {
-            const float *f = ts[j]->color;
-            uint32_t px = sg_pack_rgba8(sg_to_unorm8(f[0]), sg_to_unorm8(f[1]), sg_to_unorm8(f[2]),
-                                        sg_to_unorm8(f[3]));
-            out = _mm512_mask_mov_epi32(out, (__mmask16)masks[j], _mm512_set1_epi32((int)px));
+        for (int i = 0; i < count; i++) {
+            out[i] = _mm512_setzero_si512();
+            for (int j = 0; j < tiles[i].n; j++) {
+                const float *f = tiles[i].ts[j]->color;
+                uint32_t px = sg_pack_rgba8(sg_to_unorm8(f[0]), sg_to_unorm8(f[1]),
+                                            sg_to_unorm8(f[2]), sg_to_unorm8(f[3]));
+                out[i] = _mm512_mask_mov_epi32(out[i], (__mmask16)tiles[i].masks[j],
+                                               _mm512_set1_epi32((int)px));
+            }
         }
-        return out;
+        return;
     }
     /* Per lane: its triangle's offset from the tile to the triangle's bounds, and its planes. */
     enum { OX, OY, Q, C = Q + 3, S = C + 12, NV = S + 6 };
-    __m512 v[NV];
+    __m512 v[2][NV];
 #define SG_FIELDS(t, put)                                                                          \
     do {                                                                                           \
         put(OX, (float)(x0 - (t)->minx));                                                          \
@@ -463,36 +465,45 @@ INLINE __m512i sg_shade16_mixed(const sg_shade_ctx *c, const sg_tri *const ts[],
             put(S + 3 * k + 2, (t)->a_dy[4 + k]);                                                  \
         }                                                                                          \
     } while (0)
-#define SG_SET(i, x)   v[i] = _mm512_set1_ps(x)
-#define SG_MERGE(i, x) v[i] = _mm512_mask_mov_ps(v[i], m, _mm512_set1_ps(x))
-    SG_FIELDS(ts[0], SG_SET);
-    for (int j = 1; j < n; j++) {
-        const __mmask16 m = (__mmask16)masks[j];
-        SG_FIELDS(ts[j], SG_MERGE);
+#define SG_SET(f, x)   v[i][f] = _mm512_set1_ps(x)
+#define SG_MERGE(f, x) v[i][f] = _mm512_mask_mov_ps(v[i][f], m, _mm512_set1_ps(x))
+    for (int i = 0; i < count; i++) {
+        const int x0 = tiles[i].x0, y0 = tiles[i].y0;
+        SG_FIELDS(tiles[i].ts[0], SG_SET);
+        for (int j = 1; j < tiles[i].n; j++) {
+            const __mmask16 m = (__mmask16)tiles[i].masks[j];
+            SG_FIELDS(tiles[i].ts[j], SG_MERGE);
+        }
     }
 #undef SG_SET
 #undef SG_MERGE
 #undef SG_FIELDS
     /* As sg_tile_dxdy16 and SG_PLANE of shade16_tiles, lane by lane. */
-    const __m512 dx = _mm512_add_ps(v[OX], _mm512_set4_ps(3.0f, 2.0f, 1.0f, 0.0f));
-    const __m512 dy =
-        _mm512_add_ps(v[OY], _mm512_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 2.0f,
-                                            2.0f, 2.0f, 2.0f, 3.0f, 3.0f, 3.0f, 3.0f));
-#define SG_LANE_PLANE(i)                                                                           \
-    _mm512_add_ps(_mm512_add_ps(v[i], _mm512_mul_ps(v[(i) + 1], dx)), _mm512_mul_ps(v[(i) + 2], dy))
-    const __m512 w = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_LANE_PLANE(Q));
-    __m512 col[1][4];
-    for (int k = 0; k < 4; k++)
-        col[0][k] =
-            flat != SG_FLAT_NONE ? v[C + 3 * k] : _mm512_mul_ps(SG_LANE_PLANE(C + 3 * k), w);
-    __m512i out;
+    const __m512 lane_x = _mm512_set4_ps(3.0f, 2.0f, 1.0f, 0.0f);
+    const __m512 lane_y = _mm512_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 2.0f, 2.0f,
+                                         2.0f, 2.0f, 3.0f, 3.0f, 3.0f, 3.0f);
+    __m512 dx[2], dy[2], w[2], col[2][4], s[2], u[2];
+    for (int i = 0; i < count; i++) {
+        dx[i] = _mm512_add_ps(v[i][OX], lane_x);
+        dy[i] = _mm512_add_ps(v[i][OY], lane_y);
+    }
+#define SG_LANE_PLANE(i, f)                                                                        \
+    _mm512_add_ps(_mm512_add_ps(v[i][f], _mm512_mul_ps(v[i][(f) + 1], dx[i])),                     \
+                  _mm512_mul_ps(v[i][(f) + 2], dy[i]))
+    for (int i = 0; i < count; i++) w[i] = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_LANE_PLANE(i, Q));
+    for (int i = 0; i < count; i++)
+        for (int k = 0; k < 4; k++)
+            col[i][k] = flat != SG_FLAT_NONE ? v[i][C + 3 * k]
+                                             : _mm512_mul_ps(SG_LANE_PLANE(i, C + 3 * k), w[i]);
     if (textured) {
-        const __m512 s = _mm512_mul_ps(SG_LANE_PLANE(S), w);
-        const __m512 u = _mm512_mul_ps(SG_LANE_PLANE(S + 3), w);
-        if (texture16_tiles(c, 1, &s, &u, &all, col, &out, bilinear, repeat, flat, 0)) return out;
+        for (int i = 0; i < count; i++) {
+            s[i] = _mm512_mul_ps(SG_LANE_PLANE(i, S), w[i]);
+            u[i] = _mm512_mul_ps(SG_LANE_PLANE(i, S + 3), w[i]);
+        }
+        if (texture16_tiles(c, count, s, u, all, col, out, bilinear, repeat, flat, 0)) return;
     }
 #undef SG_LANE_PLANE
-    return pack_unorm8(col[0]);
+    for (int i = 0; i < count; i++) out[i] = pack_unorm8(col[i]);
 }
 
 #endif
