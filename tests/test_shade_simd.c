@@ -402,8 +402,8 @@ static void compare_variant(int variant, int kind) {
     sg_shade2_fn pair[2] = {NULL, NULL};
     /* AVX2's and AVX-512's partly covered tiles packed together */
     sg_shade_runs_fn runs[2] = {NULL, NULL};
-    /* AVX-512's tiles that several triangles share, in one pass */
-    sg_shade_mixed_fn mixed = NULL;
+    /* AVX2's and AVX-512's tiles that several triangles share, in one pass */
+    sg_shade_mixed_fn mixed[2] = {NULL, NULL};
     static const char *const set_name[2] = {"AVX2", "AVX-512"};
     if (kind >= PHONG) {
         const int pixel = (kind == PHONG          ? SG_PIXEL_PHONG
@@ -427,7 +427,8 @@ static void compare_variant(int variant, int kind) {
         if (has_avx512) pair[1] = sg_shade2_avx512(index);
         if (has_avx2) runs[0] = sg_shade_runs_avx2(index);
         if (has_avx512) runs[1] = sg_shade_runs_avx512(index);
-        if (has_avx512 && kind == UNLIT) mixed = sg_shade_mixed_avx512(index);
+        if (has_avx2 && kind == UNLIT) mixed[0] = sg_shade_mixed_avx2(index);
+        if (has_avx512 && kind == UNLIT) mixed[1] = sg_shade_mixed_avx512(index);
         if (has_neon) neon = sg_shade_neon(index);
 #if defined(__aarch64__)
         assert_non_null(neon); /* Advanced SIMD is the AArch64 baseline */
@@ -436,7 +437,8 @@ static void compare_variant(int variant, int kind) {
         if (kind == UNLIT) assert_non_null(sse2); /* SSE2 is the x86-64 baseline */
         if (has_avx2) assert_non_null(avx2);
         if (has_avx512) assert_non_null(avx512);
-        if (has_avx512 && kind == UNLIT) assert_non_null(mixed);
+        if (has_avx2 && kind == UNLIT) assert_non_null(mixed[0]);
+        if (has_avx512 && kind == UNLIT) assert_non_null(mixed[1]);
 #endif
     }
     const long cases = kind >= PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
@@ -500,7 +502,8 @@ static void compare_variant(int variant, int kind) {
                     failures++;
                 }
             }
-            if (mixed && n % 2 == 0) {
+            for (int set = 0; set < 2; set++) {
+                if (!mixed[set] || n % 2 != 0) continue;
                 /* One or two tiles, each shared by two to four triangles of the same flat kind,
                  * its pixels dealt out at random: as one scalar call per triangle. Each triangle
                  * is made at a tile of its own and moved, bounds and all, to this one (the second
@@ -538,11 +541,10 @@ static void compare_variant(int variant, int kind) {
                     made++;
                 }
                 if (made) {
-                    mixed(&ctx, mt, made);
+                    mixed[set](&ctx, mt, made);
                     if (memcmp(got, want, (size_t)made * sizeof got[0])) {
-                        printf("AVX-512 mixed tiles differ: variant %d flat %d case %ld, %d "
-                               "tiles\n",
-                               variant, flat, n, made);
+                        printf("%s mixed tiles differ: variant %d flat %d case %ld, %d tiles\n",
+                               set_name[set], variant, flat, n, made);
                         failures++;
                     }
                 }

@@ -78,8 +78,9 @@ sg_shade_runs_fn sg_shade_runs_select_variant(int variant, sg_isa isa) {
 }
 
 sg_shade_mixed_fn sg_shade_mixed_select_variant(int variant, sg_isa isa) {
-    return isa == SG_ISA_AVX512 && variant < SG_SHADE_VARIANTS ? sg_shade_mixed_avx512(variant)
-                                                               : NULL;
+    if (variant >= SG_SHADE_VARIANTS) return NULL;
+    if (isa == SG_ISA_AVX512) return sg_shade_mixed_avx512(variant);
+    return isa == SG_ISA_AVX2 ? sg_shade_mixed_avx2(variant) : NULL;
 }
 
 int sg_shade_attr_count(sgShade shade) {

@@ -169,6 +169,7 @@ sg_shade_runs_fn sg_shade_runs_avx512(int variant);
 /** The shared-tile function of an unlit variant (no secondary colour) for the instruction set,
  *  or NULL where it has none; the callers then shade each triangle's pixels alone. */
 sg_shade_mixed_fn sg_shade_mixed_select_variant(int variant, sg_isa isa);
+sg_shade_mixed_fn sg_shade_mixed_avx2(int variant);
 sg_shade_mixed_fn sg_shade_mixed_avx512(int variant);
 sg_shade_fn sg_shade_neon(int variant);
 /** Attributes an unlit shading mode interpolates: r g b a, plus s t when textured. */

@@ -319,6 +319,44 @@ INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
     return tx;
 }
 
+/* The texturing step of shade8_sets: the texels at coordinates (s[i], u[i]) of n sets of eight
+ * pixels modulate their colours col[i]; an opaque white triangle without a secondary colour takes
+ * the texel as it is, and then out[i] is the result already (true). */
+INLINE bool texture8_sets(const sg_shade_ctx *c, const int n, const __m256 s[], const __m256 u[],
+                          __m256 col[][4], __m256i out[], const int bilinear, const int repeat,
+                          const int flat, const int sec) {
+    const tex8 tx = tex8_of(&c->tex, bilinear);
+    __m256i tc[4][4];
+    if (bilinear) {
+        __m256i gx[4], gy[4], texels[4][4], x[4][4];
+        for (int i = 0; i < n; i++) {
+            gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
+            gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
+        }
+        for (int i = 0; i < n; i++) bilinear_fetch8(&tx, gx[i], gy[i], repeat, texels[i]);
+        for (int i = 0; i < n; i++) bilinear_filter8(gx[i], gy[i], texels[i], x[i]);
+        if (flat == SG_FLAT_WHITE && !sec) {
+            for (int i = 0; i < n; i++) out[i] = pack_hi8(x[i]);
+            return true;
+        }
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 4; k++) tc[i][k] = _mm256_srli_epi32(x[i][k], 16);
+    } else {
+        __m256i texel[4];
+        for (int i = 0; i < n; i++) texel[i] = nearest8(&tx, s[i], u[i], repeat);
+        if (flat == SG_FLAT_WHITE && !sec) { /* the colour, as in the reference */
+            for (int i = 0; i < n; i++) out[i] = texel[i];
+            return true;
+        }
+        for (int i = 0; i < n; i++) unpack_texels(texel[i], tc[i]);
+    }
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++)
+            col[i][k] = _mm256_mul_ps(col[i][k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[i][k]),
+                                                               _mm256_set1_ps(1.0f / 255.0f)));
+    return false;
+}
+
 /* The colours of eight pixels at offsets (dx, dy) from the triangle's bounds, as RGBA8 lanes, for
  * n sets of eight (n is 1, 2 or 4, a constant): the body of every variant (the constant arguments
  * fold away), in the reference's operation order ((a + a_dx dx) + a_dy dy, then times 1/q). Each
@@ -356,7 +394,6 @@ INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *co
                     : _mm256_mul_ps(SG_PLANE(SG_T(i)->a[k], SG_T(i)->a_dx[k], SG_T(i)->a_dy[k], i),
                                     w[i]);
     if (textured) {
-        const tex8 tx = tex8_of(&c->tex, bilinear);
         __m256 s[4], u[4];
         for (int i = 0; i < n; i++) {
             s[i] =
@@ -364,34 +401,7 @@ INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *co
             u[i] =
                 _mm256_mul_ps(SG_PLANE(SG_T(i)->a[5], SG_T(i)->a_dx[5], SG_T(i)->a_dy[5], i), w[i]);
         }
-        __m256i tc[4][4];
-        if (bilinear) {
-            __m256i gx[4], gy[4], texels[4][4], x[4][4];
-            for (int i = 0; i < n; i++) {
-                gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
-                gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
-            }
-            for (int i = 0; i < n; i++) bilinear_fetch8(&tx, gx[i], gy[i], repeat, texels[i]);
-            for (int i = 0; i < n; i++) bilinear_filter8(gx[i], gy[i], texels[i], x[i]);
-            if (flat == SG_FLAT_WHITE && !sec) {
-                for (int i = 0; i < n; i++) out[i] = pack_hi8(x[i]);
-                return;
-            }
-            for (int i = 0; i < n; i++)
-                for (int k = 0; k < 4; k++) tc[i][k] = _mm256_srli_epi32(x[i][k], 16);
-        } else {
-            __m256i texel[4];
-            for (int i = 0; i < n; i++) texel[i] = nearest8(&tx, s[i], u[i], repeat);
-            if (flat == SG_FLAT_WHITE && !sec) { /* the colour, as in the reference */
-                for (int i = 0; i < n; i++) out[i] = texel[i];
-                return;
-            }
-            for (int i = 0; i < n; i++) unpack_texels(texel[i], tc[i]);
-        }
-        for (int i = 0; i < n; i++)
-            for (int k = 0; k < 4; k++)
-                col[i][k] = _mm256_mul_ps(col[i][k], _mm256_mul_ps(_mm256_cvtepi32_ps(tc[i][k]),
-                                                                   _mm256_set1_ps(1.0f / 255.0f)));
+        if (texture8_sets(c, n, s, u, col, out, bilinear, repeat, flat, sec)) return;
     }
     for (int i = 0; i < n; i++)
         for (int k = 0; sec && k < 3; k++)
@@ -481,6 +491,101 @@ INLINE void store_rows(uint32_t *dst, __m256i v, unsigned m) {
     const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     __m256i sel = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)m), bits), bits);
     _mm256_maskstore_epi32((int *)(void *)dst, sel, v);
+}
+
+/* The lanes of the 8-bit mask `bits`, all bits set in each. */
+INLINE __m256 sg_lanes8(unsigned bits) {
+    const __m256i sel = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), sel), sel));
+}
+
+/* The colours of `count` (1 or 2, a constant) tiles' pixels that several triangles of one draw
+ * share (sg_mixed_tile), as RGBA8 lanes: out[2 i + h] holds rows 2h and 2h + 1 of tile i (lanes of
+ * other pixels undefined); every triangle has the flat kind `flat`. As sg_shade16_mixed of
+ * shade_avx512.h: each lane takes its own triangle's values where shade8_sets broadcasts one
+ * triangle's and goes through the same operations, so a lane's bytes are those of its triangle's
+ * shading; the lanes of uncovered pixels take the tile's first triangle's values. */
+INLINE void sg_shade8_mixed(const sg_shade_ctx *c, const sg_mixed_tile *tiles, const int count,
+                            __m256i out[], const int textured, const int bilinear, const int repeat,
+                            const int flat) {
+    const int sets = 2 * count;
+    if (!textured && flat != SG_FLAT_NONE) { /* each triangle's colour, as shade8_sets packs it */
+        for (int i = 0; i < sets; i++) {
+            const sg_mixed_tile *m = &tiles[i / 2];
+            out[i] = _mm256_setzero_si256();
+            for (int j = 0; j < m->n; j++)
+                out[i] = _mm256_castps_si256(_mm256_blendv_ps(
+                    _mm256_castsi256_ps(out[i]),
+                    _mm256_castsi256_ps(_mm256_set1_epi32((int)sg_flat_pixel(m->ts[j], NULL, 0))),
+                    sg_lanes8(m->masks[j] >> (8 * (i % 2)) & 255u)));
+        }
+        return;
+    }
+    /* Per lane: its triangle's offset from the rows to the triangle's bounds, and its planes. */
+    enum { OX, OY, Q, C = Q + 3, S = C + 12, NV = S + 6 };
+    __m256 v[4][NV];
+#define SG_FIELDS(t, put)                                                                          \
+    do {                                                                                           \
+        put(OX, (float)(x0 - (t)->minx));                                                          \
+        put(OY, (float)(y0 - (t)->miny + 2 * h));                                                  \
+        put(Q, (t)->q);                                                                            \
+        put(Q + 1, (t)->q_dx);                                                                     \
+        put(Q + 2, (t)->q_dy);                                                                     \
+        for (int k = 0; k < 4; k++) {                                                              \
+            if (flat != SG_FLAT_NONE) {                                                            \
+                put(C + 3 * k, (t)->color[k]);                                                     \
+                continue;                                                                          \
+            }                                                                                      \
+            put(C + 3 * k, (t)->a[k]);                                                             \
+            put(C + 3 * k + 1, (t)->a_dx[k]);                                                      \
+            put(C + 3 * k + 2, (t)->a_dy[k]);                                                      \
+        }                                                                                          \
+        for (int k = 0; textured && k < 2; k++) {                                                  \
+            put(S + 3 * k, (t)->a[4 + k]);                                                         \
+            put(S + 3 * k + 1, (t)->a_dx[4 + k]);                                                  \
+            put(S + 3 * k + 2, (t)->a_dy[4 + k]);                                                  \
+        }                                                                                          \
+    } while (0)
+#define SG_SET(f, x)   v[i][f] = _mm256_set1_ps(x)
+#define SG_MERGE(f, x) v[i][f] = _mm256_blendv_ps(v[i][f], _mm256_set1_ps(x), m)
+    for (int i = 0; i < sets; i++) {
+        const sg_mixed_tile *mt = &tiles[i / 2];
+        const int x0 = mt->x0, y0 = mt->y0, h = i % 2;
+        SG_FIELDS(mt->ts[0], SG_SET);
+        for (int j = 1; j < mt->n; j++) {
+            const __m256 m = sg_lanes8(mt->masks[j] >> (8 * h) & 255u);
+            SG_FIELDS(mt->ts[j], SG_MERGE);
+        }
+    }
+#undef SG_SET
+#undef SG_MERGE
+#undef SG_FIELDS
+    /* As sg_rows_dxdy8 and SG_PLANE of shade8_sets, lane by lane. */
+    const __m256 lane_x = _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f);
+    const __m256 lane_y = _mm256_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f);
+    __m256 dx[4], dy[4], w[4], col[4][4], s[4], u[4];
+    for (int i = 0; i < sets; i++) {
+        dx[i] = _mm256_add_ps(v[i][OX], lane_x);
+        dy[i] = _mm256_add_ps(v[i][OY], lane_y);
+    }
+#define SG_LANE_PLANE(i, f)                                                                        \
+    _mm256_add_ps(_mm256_add_ps(v[i][f], _mm256_mul_ps(v[i][(f) + 1], dx[i])),                     \
+                  _mm256_mul_ps(v[i][(f) + 2], dy[i]))
+    for (int i = 0; i < sets; i++) w[i] = _mm256_div_ps(_mm256_set1_ps(1.0f), SG_LANE_PLANE(i, Q));
+    for (int i = 0; i < sets; i++)
+        for (int k = 0; k < 4; k++)
+            col[i][k] = flat != SG_FLAT_NONE ? v[i][C + 3 * k]
+                                             : _mm256_mul_ps(SG_LANE_PLANE(i, C + 3 * k), w[i]);
+    if (textured) {
+        for (int i = 0; i < sets; i++) {
+            s[i] = _mm256_mul_ps(SG_LANE_PLANE(i, S), w[i]);
+            u[i] = _mm256_mul_ps(SG_LANE_PLANE(i, S + 3), w[i]);
+        }
+        if (texture8_sets(c, sets, s, u, col, out, bilinear, repeat, flat, 0)) return;
+    }
+#undef SG_LANE_PLANE
+    for (int i = 0; i < sets; i++) out[i] = pack_unorm8(col[i]);
 }
 
 #endif
