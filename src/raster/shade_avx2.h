@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "raster/shade.h"
+#include "raster/shade_mixed.h"
 
 /* FLT_EVAL_METHOD 0: the scalar code rounds each operation to float, as AVX does. */
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__AVX2__) && FLT_EVAL_METHOD == 0
@@ -523,68 +524,27 @@ INLINE void sg_shade8_mixed(const sg_shade_ctx *c, const sg_mixed_tile *tiles, c
         return;
     }
     /* Per lane: its triangle's offset from the rows to the triangle's bounds, and its planes. */
-    enum { OX, OY, Q, C = Q + 3, S = C + 12, NV = S + 6 };
-    __m256 v[4][NV];
-#define SG_FIELDS(t, put)                                                                          \
-    do {                                                                                           \
-        put(OX, (float)(x0 - (t)->minx));                                                          \
-        put(OY, (float)(y0 - (t)->miny + 2 * h));                                                  \
-        put(Q, (t)->q);                                                                            \
-        put(Q + 1, (t)->q_dx);                                                                     \
-        put(Q + 2, (t)->q_dy);                                                                     \
-        for (int k = 0; k < 4; k++) {                                                              \
-            if (flat != SG_FLAT_NONE) {                                                            \
-                put(C + 3 * k, (t)->color[k]);                                                     \
-                continue;                                                                          \
-            }                                                                                      \
-            put(C + 3 * k, (t)->a[k]);                                                             \
-            put(C + 3 * k + 1, (t)->a_dx[k]);                                                      \
-            put(C + 3 * k + 2, (t)->a_dy[k]);                                                      \
-        }                                                                                          \
-        for (int k = 0; textured && k < 2; k++) {                                                  \
-            put(S + 3 * k, (t)->a[4 + k]);                                                         \
-            put(S + 3 * k + 1, (t)->a_dx[4 + k]);                                                  \
-            put(S + 3 * k + 2, (t)->a_dy[4 + k]);                                                  \
-        }                                                                                          \
-    } while (0)
+    __m256 v[4][SG_MIX_VALUES];
 #define SG_SET(f, x)   v[i][f] = _mm256_set1_ps(x)
 #define SG_MERGE(f, x) v[i][f] = _mm256_blendv_ps(v[i][f], _mm256_set1_ps(x), m)
     for (int i = 0; i < sets; i++) {
         const sg_mixed_tile *mt = &tiles[i / 2];
-        const int x0 = mt->x0, y0 = mt->y0, h = i % 2;
-        SG_FIELDS(mt->ts[0], SG_SET);
+        const int x0 = mt->x0, y0 = mt->y0 + 2 * (i % 2); /* rows 2h and 2h + 1 of the tile */
+        SG_MIXED_VALUES(mt->ts[0], x0, y0, flat, textured, SG_SET);
         for (int j = 1; j < mt->n; j++) {
-            const __m256 m = sg_lanes8(mt->masks[j] >> (8 * h) & 255u);
-            SG_FIELDS(mt->ts[j], SG_MERGE);
+            const __m256 m = sg_lanes8(mt->masks[j] >> (8 * (i % 2)) & 255u);
+            SG_MIXED_VALUES(mt->ts[j], x0, y0, flat, textured, SG_MERGE);
         }
     }
 #undef SG_SET
 #undef SG_MERGE
-#undef SG_FIELDS
-    /* As sg_rows_dxdy8 and SG_PLANE of shade8_sets, lane by lane. */
+    /* Lane i of a pair of rows is its column i % 4, row i / 4 (as sg_rows_dxdy8). */
     const __m256 lane_x = _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f);
     const __m256 lane_y = _mm256_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f);
     __m256 dx[4], dy[4], w[4], col[4][4], s[4], u[4];
-    for (int i = 0; i < sets; i++) {
-        dx[i] = _mm256_add_ps(v[i][OX], lane_x);
-        dy[i] = _mm256_add_ps(v[i][OY], lane_y);
-    }
-#define SG_LANE_PLANE(i, f)                                                                        \
-    _mm256_add_ps(_mm256_add_ps(v[i][f], _mm256_mul_ps(v[i][(f) + 1], dx[i])),                     \
-                  _mm256_mul_ps(v[i][(f) + 2], dy[i]))
-    for (int i = 0; i < sets; i++) w[i] = _mm256_div_ps(_mm256_set1_ps(1.0f), SG_LANE_PLANE(i, Q));
-    for (int i = 0; i < sets; i++)
-        for (int k = 0; k < 4; k++)
-            col[i][k] = flat != SG_FLAT_NONE ? v[i][C + 3 * k]
-                                             : _mm256_mul_ps(SG_LANE_PLANE(i, C + 3 * k), w[i]);
-    if (textured) {
-        for (int i = 0; i < sets; i++) {
-            s[i] = _mm256_mul_ps(SG_LANE_PLANE(i, S), w[i]);
-            u[i] = _mm256_mul_ps(SG_LANE_PLANE(i, S + 3), w[i]);
-        }
-        if (texture8_sets(c, sets, s, u, col, out, bilinear, repeat, flat, 0)) return;
-    }
-#undef SG_LANE_PLANE
+    SG_MIXED_PLANES(_mm256_add_ps, _mm256_mul_ps, _mm256_div_ps, _mm256_set1_ps, sets, v, lane_x,
+                    lane_y, dx, dy, w, col, s, u, flat, textured);
+    if (textured && texture8_sets(c, sets, s, u, col, out, bilinear, repeat, flat, 0)) return;
     for (int i = 0; i < sets; i++) out[i] = pack_unorm8(col[i]);
 }
 

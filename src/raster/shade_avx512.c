@@ -90,44 +90,20 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 #define SG_RUNS_TABLE sg_shade_runs_avx512
 #include "raster/shade_runs_variants.h"
 
-/* `count` tiles that several triangles share (sg_shade_mixed_fn), their flat kind split off
- * once: every triangle of a call has the same one. */
+/* `count` tiles that several triangles share (sg_shade_mixed_fn), their triangles all of the flat
+ * kind `flat`: shaded side by side, each stored under its mask. */
 INLINE void shade_mixed(const sg_shade_ctx *c, const sg_mixed_tile *tiles, const int count,
-                        const int textured, const int bilinear, const int repeat) {
+                        const int textured, const int bilinear, const int repeat, const int flat) {
     uint32_t all[2] = {0, 0};
     for (int i = 0; i < count; i++)
         for (int j = 0; j < tiles[i].n; j++) all[i] |= tiles[i].masks[j];
     __m512i v[2];
-    const int flat = tiles[0].ts[0]->flat;
-    if (flat == SG_FLAT_WHITE)
-        sg_shade16_mixed(c, tiles, count, all, v, textured, bilinear, repeat, SG_FLAT_WHITE);
-    else if (flat != SG_FLAT_NONE)
-        sg_shade16_mixed(c, tiles, count, all, v, textured, bilinear, repeat, SG_FLAT_COLOR);
-    else
-        sg_shade16_mixed(c, tiles, count, all, v, textured, bilinear, repeat, SG_FLAT_NONE);
+    sg_shade16_mixed(c, tiles, count, all, v, textured, bilinear, repeat, flat);
     for (int i = 0; i < count; i++) _mm512_mask_storeu_epi32(tiles[i].dst, (__mmask16)all[i], v[i]);
 }
 
-#define SG_MIXED(tex, bil, rep)                                                                    \
-    static void mixed_##tex##bil##rep(const sg_shade_ctx *c, const sg_mixed_tile *tiles,           \
-                                      int count) {                                                 \
-        if (count == 2)                                                                            \
-            shade_mixed(c, tiles, 2, tex, bil, rep);                                               \
-        else                                                                                       \
-            shade_mixed(c, tiles, 1, tex, bil, rep);                                               \
-    }
-SG_MIXED(0, 0, 0) /* vertex colour */
-SG_MIXED(1, 0, 1) /* texture, nearest, repeat */
-SG_MIXED(1, 0, 0) /* texture, nearest, clamp */
-SG_MIXED(1, 1, 1) /* texture, bilinear, repeat */
-SG_MIXED(1, 1, 0) /* texture, bilinear, clamp */
-#undef SG_MIXED
-
-sg_shade_mixed_fn sg_shade_mixed_avx512(int index) {
-    static const sg_shade_mixed_fn table[SG_SHADE_VARIANTS] = {mixed_000, mixed_101, mixed_100,
-                                                               mixed_111, mixed_110};
-    return table[index];
-}
+#define SG_MIXED_TABLE sg_shade_mixed_avx512
+#include "raster/shade_mixed.h"
 
 #else
 

@@ -12,6 +12,7 @@
 
 #include "raster/depth_simd.h"
 #include "raster/shade.h"
+#include "raster/shade_mixed.h"
 
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__AVX512F__) && defined(__AVX512BW__) && \
     FLT_EVAL_METHOD == 0
@@ -441,68 +442,28 @@ INLINE void sg_shade16_mixed(const sg_shade_ctx *c, const sg_mixed_tile *tiles, 
         return;
     }
     /* Per lane: its triangle's offset from the tile to the triangle's bounds, and its planes. */
-    enum { OX, OY, Q, C = Q + 3, S = C + 12, NV = S + 6 };
-    __m512 v[2][NV];
-#define SG_FIELDS(t, put)                                                                          \
-    do {                                                                                           \
-        put(OX, (float)(x0 - (t)->minx));                                                          \
-        put(OY, (float)(y0 - (t)->miny));                                                          \
-        put(Q, (t)->q);                                                                            \
-        put(Q + 1, (t)->q_dx);                                                                     \
-        put(Q + 2, (t)->q_dy);                                                                     \
-        for (int k = 0; k < 4; k++) {                                                              \
-            if (flat != SG_FLAT_NONE) {                                                            \
-                put(C + 3 * k, (t)->color[k]);                                                     \
-                continue;                                                                          \
-            }                                                                                      \
-            put(C + 3 * k, (t)->a[k]);                                                             \
-            put(C + 3 * k + 1, (t)->a_dx[k]);                                                      \
-            put(C + 3 * k + 2, (t)->a_dy[k]);                                                      \
-        }                                                                                          \
-        for (int k = 0; textured && k < 2; k++) {                                                  \
-            put(S + 3 * k, (t)->a[4 + k]);                                                         \
-            put(S + 3 * k + 1, (t)->a_dx[4 + k]);                                                  \
-            put(S + 3 * k + 2, (t)->a_dy[4 + k]);                                                  \
-        }                                                                                          \
-    } while (0)
+    __m512 v[2][SG_MIX_VALUES];
 #define SG_SET(f, x)   v[i][f] = _mm512_set1_ps(x)
 #define SG_MERGE(f, x) v[i][f] = _mm512_mask_mov_ps(v[i][f], m, _mm512_set1_ps(x))
     for (int i = 0; i < count; i++) {
         const int x0 = tiles[i].x0, y0 = tiles[i].y0;
-        SG_FIELDS(tiles[i].ts[0], SG_SET);
+        SG_MIXED_VALUES(tiles[i].ts[0], x0, y0, flat, textured, SG_SET);
         for (int j = 1; j < tiles[i].n; j++) {
             const __mmask16 m = (__mmask16)tiles[i].masks[j];
-            SG_FIELDS(tiles[i].ts[j], SG_MERGE);
+            SG_MIXED_VALUES(tiles[i].ts[j], x0, y0, flat, textured, SG_MERGE);
         }
     }
 #undef SG_SET
 #undef SG_MERGE
-#undef SG_FIELDS
-    /* As sg_tile_dxdy16 and SG_PLANE of shade16_tiles, lane by lane. */
+    /* Lane i of a tile is its column i % 4, row i / 4 (as sg_tile_dxdy16). */
     const __m512 lane_x = _mm512_set4_ps(3.0f, 2.0f, 1.0f, 0.0f);
     const __m512 lane_y = _mm512_setr_ps(0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 2.0f, 2.0f,
                                          2.0f, 2.0f, 3.0f, 3.0f, 3.0f, 3.0f);
     __m512 dx[2], dy[2], w[2], col[2][4], s[2], u[2];
-    for (int i = 0; i < count; i++) {
-        dx[i] = _mm512_add_ps(v[i][OX], lane_x);
-        dy[i] = _mm512_add_ps(v[i][OY], lane_y);
-    }
-#define SG_LANE_PLANE(i, f)                                                                        \
-    _mm512_add_ps(_mm512_add_ps(v[i][f], _mm512_mul_ps(v[i][(f) + 1], dx[i])),                     \
-                  _mm512_mul_ps(v[i][(f) + 2], dy[i]))
-    for (int i = 0; i < count; i++) w[i] = _mm512_div_ps(_mm512_set1_ps(1.0f), SG_LANE_PLANE(i, Q));
-    for (int i = 0; i < count; i++)
-        for (int k = 0; k < 4; k++)
-            col[i][k] = flat != SG_FLAT_NONE ? v[i][C + 3 * k]
-                                             : _mm512_mul_ps(SG_LANE_PLANE(i, C + 3 * k), w[i]);
-    if (textured) {
-        for (int i = 0; i < count; i++) {
-            s[i] = _mm512_mul_ps(SG_LANE_PLANE(i, S), w[i]);
-            u[i] = _mm512_mul_ps(SG_LANE_PLANE(i, S + 3), w[i]);
-        }
-        if (texture16_tiles(c, count, s, u, all, col, out, bilinear, repeat, flat, 0)) return;
-    }
-#undef SG_LANE_PLANE
+    SG_MIXED_PLANES(_mm512_add_ps, _mm512_mul_ps, _mm512_div_ps, _mm512_set1_ps, count, v, lane_x,
+                    lane_y, dx, dy, w, col, s, u, flat, textured);
+    if (textured && texture16_tiles(c, count, s, u, all, col, out, bilinear, repeat, flat, 0))
+        return;
     for (int i = 0; i < count; i++) out[i] = pack_unorm8(col[i]);
 }
 
