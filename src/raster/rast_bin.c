@@ -157,18 +157,22 @@ static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *
                                                              mixed_set *m, const uint32_t *ids,
                                                              int tile, int x0, int y0,
                                                              uint32_t *color) {
-    if (ids[0]) { /* the first pixel's triangle first: often the tile's only one */
-        uint32_t mask = sg_tile_same_id(ids, ids[0]);
+    uint32_t first = ids[0], mask = 0;
+    if (first) { /* the first pixel's triangle first: often the tile's only one */
+        mask = sg_tile_same_id(ids, first);
         if (mask == 0xffffu) {
-            shade_run(p, s, ids[0], tile, x0, y0, mask, color);
+            shade_run(p, s, first, tile, x0, y0, mask, color);
             return;
         }
     }
     uint32_t left = ~sg_tile_same_id(ids, 0) & 0xffffu;
     if (p->any_mixed && left) {
-        const uint32_t id = ids[__builtin_ctz(left)], mask = sg_tile_same_id(ids, id);
+        if (!first) { /* then the first covered pixel's */
+            first = ids[__builtin_ctz(left)];
+            mask = sg_tile_same_id(ids, first);
+        }
         if (mask != left &&
-            shade_mixed(p, m, ids, id, mask, left & ~mask,
+            shade_mixed(p, m, ids, first, mask, left & ~mask,
                         x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT),
                         y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT), color + tile * SG_TILE_PIXELS))
             return;
