@@ -180,6 +180,56 @@ static void sixteen_lanes_match_the_scalar_sampler(void **state) {
     }
 }
 
+/* The same on a larger chain with tile-shaped footprints (a 4 x 4 block of lanes a small step
+ * apart, anywhere on the texture and past its edges): the AVX-512 copy then reads from a window of
+ * texels, or two neighbours in one gather, besides lane by lane. */
+static void sixteen_lanes_match_on_tile_footprints(void **state) {
+    (void)state;
+    enum { W = 45, H = 27 };
+    static uint8_t chain[2 * W * H * 4];
+    srand(45);
+    for (size_t i = 0; i < sizeof chain; i++) chain[i] = (uint8_t)(rand() & 255);
+    sg_mip_chain m = {.levels = 5};
+    const uint8_t *at = chain;
+    for (int l = 0; l < m.levels; l++) {
+        const int w = W >> l > 1 ? W >> l : 1, h = H >> l > 1 ? H >> l : 1;
+        m.level[l] = (sg_texview){at, w, h};
+        at += (size_t)w * (size_t)h * 4;
+    }
+    const int copies = sg_isa_runs(SG_ISA_AVX512) ? 2 : 1;
+    for (int round = 0; round < 4000 * copies; round++) {
+        const bool bilinear = round & 1, repeat = round >> 1 & 1, avx512 = round >= 4000;
+        /* A step of 1/8 to 3 texels a lane, from anywhere in [-0.2, 1.2). */
+        const float s0 = (float)rand() / (float)RAND_MAX * 1.4f - 0.2f,
+                    t0 = (float)rand() / (float)RAND_MAX * 1.4f - 0.2f;
+        const float step = (0.125f + (float)(rand() % 24) * 0.125f) / (float)W;
+        const float skew = (float)(rand() % 5 - 2) * 0.25f * step;
+        float s[SG_SHADER_LANES], t[SG_SHADER_LANES];
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            s[i] = s0 + (float)(i & 3) * step + (float)(i >> 2) * skew;
+            t[i] = t0 - (float)(i >> 2) * step + (float)(i & 3) * skew;
+        }
+        int32_t got[4][SG_SHADER_LANES];
+        sg_sample16(avx512, m.level[0].texels, W, H, bilinear, repeat, s, t, got);
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            const sg_texel want = sg_sample(&m.level[0], s[i], t[i], bilinear, repeat);
+            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
+        }
+        sg_mip_pick pick[4];
+        for (int q = 0; q < 4; q++) {
+            const int l0 = rand() % m.levels;
+            const bool two = l0 + 1 < m.levels && rand() % 3;
+            pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
+        }
+        sg_sample16_mip(avx512, &m, pick, bilinear, repeat, s, t, got);
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
+            const sg_texel want = sg_sample_mip(&m, p, s[i], t[i], bilinear, repeat);
+            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
+        }
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(t_zero_is_the_bottom_row),
@@ -189,6 +239,7 @@ int main(void) {
         cmocka_unit_test(mip_generator_matches_the_formula),
         cmocka_unit_test(mip_level_of_detail),
         cmocka_unit_test(sixteen_lanes_match_the_scalar_sampler),
+        cmocka_unit_test(sixteen_lanes_match_on_tile_footprints),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

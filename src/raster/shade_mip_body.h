@@ -64,6 +64,10 @@ SG_LANES_FN(shade_mip)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, u
         }
         px = (sg_vu)ch[0] | (sg_vu)ch[1] << 8 | (sg_vu)ch[2] << 16 | (sg_vu)ch[3] << 24;
     }
+    if ((mask & 0xffffu) == 0xffffu) { /* one store (lane by lane, each waits for the vector) */
+        memcpy(dst, &px, sizeof px);
+        return;
+    }
     _Alignas(64) uint32_t out[SG_SHADER_LANES];
     memcpy(out, &px, sizeof out);
     for (uint32_t left = mask & 0xffffu; left; left &= left - 1) {
