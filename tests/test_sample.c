@@ -230,6 +230,24 @@ static void sixteen_lanes_match_on_tile_footprints(void **state) {
     }
 }
 
+/* Every channel value 0 .. 255 to the float c / 255.0f, bit for bit, in both copies. */
+static void texels_to_unit_divide_exactly(void **state) {
+    (void)state;
+    for (int avx512 = 0; avx512 <= (sg_isa_runs(SG_ISA_AVX512) ? 1 : 0); avx512++)
+        for (int c0 = 0; c0 < 256; c0 += SG_SHADER_LANES) {
+            int32_t texel[4][SG_SHADER_LANES];
+            float got[4][SG_SHADER_LANES];
+            for (int k = 0; k < 4; k++)
+                for (int i = 0; i < SG_SHADER_LANES; i++) texel[k][i] = (c0 + i + 64 * k) & 255;
+            sg_texels_to_unit(avx512, texel, got);
+            for (int k = 0; k < 4; k++)
+                for (int i = 0; i < SG_SHADER_LANES; i++) {
+                    const float want = (float)texel[k][i] / 255.0f;
+                    assert_memory_equal(&got[k][i], &want, sizeof want);
+                }
+        }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(t_zero_is_the_bottom_row),
@@ -240,6 +258,7 @@ int main(void) {
         cmocka_unit_test(mip_level_of_detail),
         cmocka_unit_test(sixteen_lanes_match_the_scalar_sampler),
         cmocka_unit_test(sixteen_lanes_match_on_tile_footprints),
+        cmocka_unit_test(texels_to_unit_divide_exactly),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -160,17 +160,6 @@ static float sample_depth(const sg_shader_tex *tx, float s, float t, bool biline
            (v[1][0] * (1.0f - fx) + v[1][1] * fx) * fy;
 }
 
-/* Channels 0 .. 255 of 16 lanes to floats, as sgSample gives them. */
-static void texels_to_rgba(const int32_t texel[4][SG_SHADER_LANES],
-                           float rgba[4][SG_SHADER_LANES]) {
-    for (int k = 0; k < 4; k++) {
-        sg_vi c;
-        memcpy(&c, texel[k], sizeof c);
-        const sg_vf f = __builtin_convertvector(c, sg_vf) / 255.0f;
-        memcpy(rgba[k], &f, sizeof f);
-    }
-}
-
 /* sgSample of a mipmapped pipeline on an RGBA8 texture: each 2 x 2 quad of lanes (a tile's lanes
  * are its pixels, row by row) takes its levels from its own differences of u and v, as the fixed
  * shading does (shade_mip.c). */
@@ -186,7 +175,7 @@ static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s,
     }
     int32_t texel[4][SG_SHADER_LANES];
     sg_sample16_mip(s->avx512, tx->mips, pick, s->bilinear, s->repeat, u, v, texel);
-    texels_to_rgba(texel, rgba);
+    sg_texels_to_unit(s->avx512, texel, rgba);
 }
 
 void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
@@ -204,7 +193,7 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
         int32_t texel[4][SG_SHADER_LANES];
         sg_sample16(c->shader.avx512, tx->data, tx->width, tx->height, c->shader.bilinear,
                     c->shader.repeat, u, v, texel);
-        texels_to_rgba(texel, rgba);
+        sg_texels_to_unit(c->shader.avx512, texel, rgba);
         return;
     }
     for (int i = 0; i < SG_SHADER_LANES; i++) {

@@ -24,7 +24,9 @@
     void sg_sample16_mip_##suffix(const sg_mip_chain *m, const sg_mip_pick pick[4], bool bilinear, \
                                   bool repeat, const float s[SG_SHADER_LANES],                     \
                                   const float t[SG_SHADER_LANES],                                  \
-                                  int32_t texel[4][SG_SHADER_LANES]);
+                                  int32_t texel[4][SG_SHADER_LANES]);                              \
+    void sg_texels_to_unit_##suffix(const int32_t texel[4][SG_SHADER_LANES],                       \
+                                    float out[4][SG_SHADER_LANES]);
 SG_SAMPLE16_DECLARE(portable)
 #if SG_SAMPLE16_AVX512
 SG_SAMPLE16_DECLARE(avx512)
@@ -60,6 +62,19 @@ static inline void sg_sample16_mip(bool avx512, const sg_mip_chain *m, const sg_
 #endif
     (void)avx512;
     sg_sample16_mip_portable(m, pick, bilinear, repeat, s, t, texel);
+}
+
+/** Channels 0 .. 255 (texel[channel][lane]) to floats c / 255.0f, bit for bit. */
+static inline void sg_texels_to_unit(bool avx512, const int32_t texel[4][SG_SHADER_LANES],
+                                     float out[4][SG_SHADER_LANES]) {
+#if SG_SAMPLE16_AVX512
+    if (avx512) {
+        sg_texels_to_unit_avx512(texel, out);
+        return;
+    }
+#endif
+    (void)avx512;
+    sg_texels_to_unit_portable(texel, out);
 }
 
 #endif

@@ -129,3 +129,14 @@ SG_LANES_ATTR void SG_LANES_FN(sg_sample16_mip)(const sg_mip_chain *m, const sg_
         memcpy(texel[k], &r, sizeof r);
     }
 }
+
+/* Channels 0 .. 255 to floats over 255, as a division gives them. */
+SG_LANES_ATTR void SG_LANES_FN(sg_texels_to_unit)(const int32_t texel[4][SG_SHADER_LANES],
+                                                  float out[4][SG_SHADER_LANES]) {
+    for (int k = 0; k < 4; k++) {
+        sg_vi c;
+        memcpy(&c, texel[k], sizeof c);
+        const sg_vf f = __builtin_convertvector(c, sg_vf) / 255.0f;
+        memcpy(out[k], &f, sizeof f);
+    }
+}
