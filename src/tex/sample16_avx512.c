@@ -82,20 +82,17 @@ void sg_sample16_mip_avx512(const sg_mip_chain *m, const sg_mip_pick pick[4], bo
     }
 }
 
-/* c / 255.0f without a division: c (1 / 255) in double, rounded once to float. For an integer c
- * in 0 .. 255 that is the quotient's float: c / 255 repeats c's eight bits forever, so it lies
- * far (about 2^-32 of it) from any point halfway between two floats, farther than the double
- * product's error (2^-52) can move it (test_sample checks all 256). */
+/* c / 255.0f without a division: q = c (1 / 255) in float is within an ulp of the quotient, and
+ * one correction step, q + (c - 255 q) (1 / 255), with the remainder c - 255 q exact in a fused
+ * multiply-add, gives the correctly rounded quotient for every c in 0 .. 255 (test_sample checks
+ * all 256). The fused operations are written out; the library is compiled without contraction. */
 void sg_texels_to_unit_avx512(const int32_t texel[4][SG_SHADER_LANES],
                               float out[4][SG_SHADER_LANES]) {
-    const __m512d r = _mm512_set1_pd(1.0 / 255.0);
+    const __m512 r = _mm512_set1_ps(1.0f / 255.0f), d = _mm512_set1_ps(255.0f);
     for (int k = 0; k < 4; k++) {
-        const __m512i c = _mm512_loadu_si512(texel[k]);
-        const __m256 lo =
-            _mm512_cvtpd_ps(_mm512_mul_pd(_mm512_cvtepi32_pd(_mm512_castsi512_si256(c)), r));
-        const __m256 hi =
-            _mm512_cvtpd_ps(_mm512_mul_pd(_mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(c, 1)), r));
-        _mm512_storeu_ps(out[k], _mm512_insertf32x8(_mm512_castps256_ps512(lo), hi, 1));
+        const __m512 c = _mm512_cvtepi32_ps(_mm512_loadu_si512(texel[k]));
+        const __m512 q = _mm512_mul_ps(c, r);
+        _mm512_storeu_ps(out[k], _mm512_fmadd_ps(_mm512_fnmadd_ps(q, d, c), r, q));
     }
 }
 
