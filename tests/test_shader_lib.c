@@ -57,6 +57,13 @@ static void builtin_library(void **state) {
 
 /* unlit's vertex stage: clip = (proj * world_view) * p with the fixed path's bits, the colour as 4
  * varyings; its fragment stage writes them back. */
+/* A zeroed batch on the heap, aligned as its type asks. */
+static void *zeroed_batch(size_t size) {
+    void *p = aligned_alloc(64, (size + 63) / 64 * 64);
+    if (p) memset(p, 0, size);
+    return p;
+}
+
 static void unlit_stages(void **state) {
     (void)state;
     /* Matrices and positions whose products round (a turned view, an odd projection). */
@@ -64,7 +71,7 @@ static void unlit_stages(void **state) {
                           -0.1f, 0.3f,  0.9f, -3.3f, 0,    0,    0,    1};
     const float proj[16] = {1.37f, 0, 0.01f,    0,         0, 1.83f, 0,  0,
                             0,     0, -1.0202f, -0.20202f, 0, 0,     -1, 0};
-    sgVertexBatch *b = calloc(1, sizeof *b);
+    sgVertexBatch *b = zeroed_batch(sizeof *b); /* the batches' arrays are 64-byte aligned */
     assert_non_null(b);
     b->count = 16;
     b->world_view = wv;
@@ -91,7 +98,7 @@ static void unlit_stages(void **state) {
                          want[r]);
         for (int c = 0; c < 4; c++) assert_float_equal(b->varying[c][i], b->color[c][i], 0);
     }
-    sgFragmentBatch *fb = calloc(1, sizeof *fb);
+    sgFragmentBatch *fb = zeroed_batch(sizeof *fb);
     assert_non_null(fb);
     fb->mask = 0xffff;
     fb->discard = 0x5;
@@ -118,7 +125,7 @@ static void load_library(void **state) {
     assert_non_null(tint);
     assert_int_equal(tint->uniform_count, 3);
     assert_non_null(sc_shaders_find(s, "unlit"));
-    sgFragmentBatch *fb = calloc(1, sizeof *fb);
+    sgFragmentBatch *fb = zeroed_batch(sizeof *fb);
     assert_non_null(fb);
     const float u[3] = {0.25f, 0.5f, 0.75f};
     fb->mask = 0xffff;

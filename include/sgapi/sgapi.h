@@ -58,6 +58,13 @@ extern "C" {
 #define SG_MAX_ATTRIBUTES    4
 #define SG_MAX_DRAW_TEXTURES 8
 #define SG_MAX_UNIFORM_SIZE  65536
+/* The batches' lane arrays start on 64-byte lines, so that 16 lanes are one aligned vector (a
+ * vector split across two lines cannot be forwarded from the store that wrote it). */
+#if defined(__cplusplus)
+#define SG_LANES_ALIGNED alignas(64)
+#else
+#define SG_LANES_ALIGNED _Alignas(64)
+#endif
 
 typedef enum sgResult {
     SG_OK = 0,
@@ -240,34 +247,34 @@ SGAPI_API sgResult sgDestroyGeom(sgDevice *device, sgGeom geom);
 /* The vertex stage's batch: up to 16 vertices of a draw's geom. */
 typedef struct sgVertexBatch {
     /* in */
-    int count;                          /* lanes in use, 1..16; lanes past it copy lane 0 */
-    int instance;                       /* 0 .. instance_count - 1 */
-    uint32_t index[SG_SHADER_LANES];    /* the vertices' indices in the geom */
-    float position[4][SG_SHADER_LANES]; /* x, y, z, w as given */
+    int count;    /* lanes in use, 1..16; lanes past it copy lane 0 */
+    int instance; /* 0 .. instance_count - 1 */
+    SG_LANES_ALIGNED uint32_t index[SG_SHADER_LANES]; /* the vertices' indices in the geom */
+    float position[4][SG_SHADER_LANES];               /* x, y, z, w as given */
     float color[4][SG_SHADER_LANES];    /* r, g, b, a; 1 when the geom has no colours */
     float normal[3][SG_SHADER_LANES];   /* object space; 0 when the geom has none */
     float texcoord[2][SG_SHADER_LANES]; /* s, t; 0 when the geom has none */
     float attribute[SG_MAX_ATTRIBUTES][4][SG_SHADER_LANES]; /* sgGeomDesc.attributes; 0 absent */
     const float *world_view, *proj; /* the draw's matrices, 16 floats each, row-major */
     /* out */
-    float clip[4][SG_SHADER_LANES]; /* clip-space position, OpenGL's convention (as proj gives) */
+    SG_LANES_ALIGNED float clip[4][SG_SHADER_LANES]; /* clip space, OpenGL's (as proj gives) */
     float varying[SG_MAX_VARYINGS][SG_SHADER_LANES]; /* the first varying_count are interpolated */
 } sgVertexBatch;
 
 /* The fragment stage's batch: one whole 4 x 4 tile of a triangle (or line). */
 typedef struct sgFragmentBatch {
     /* in */
-    uint32_t mask;            /* bit i: lane i is a fragment to shade */
-    int x, y;                 /* lane i is pixel (x + i % 4, y + i / 4), rows from the top */
-    float z[SG_SHADER_LANES]; /* window depth, 0 near .. 1 far */
-    bool front_facing;        /* the triangle faces the viewer (sgPipelineDesc.front_face); lines:
-                                 true */
-    int primitive;            /* index of the triangle or line in the draw */
-    int instance;             /* 0 .. instance_count - 1 */
+    uint32_t mask; /* bit i: lane i is a fragment to shade */
+    int x, y;      /* lane i is pixel (x + i % 4, y + i / 4), rows from the top */
+    SG_LANES_ALIGNED float z[SG_SHADER_LANES]; /* window depth, 0 near .. 1 far */
+    bool front_facing; /* the triangle faces the viewer (sgPipelineDesc.front_face); lines:
+                          true */
+    int primitive;     /* index of the triangle or line in the draw */
+    int instance;      /* 0 .. instance_count - 1 */
     /* Perspective-correct at each lane's pixel centre (+0.5), the lanes outside mask too (as a
      * GPU's helper lanes, so that differences between neighbours are defined); flat varyings
      * hold the triangle's first vertex's value exactly. */
-    float varying[SG_MAX_VARYINGS][SG_SHADER_LANES];
+    SG_LANES_ALIGNED float varying[SG_MAX_VARYINGS][SG_SHADER_LANES];
     /* out */
     float color[4][SG_SHADER_LANES]; /* r, g, b, a: clamped to [0, 1], NaN written as 0 */
     uint32_t discard;                /* lanes that write nothing, depth included */
