@@ -78,6 +78,27 @@ static void blend_rgba8_channel_by_channel(void **state) {
     }
 }
 
+/* The 16-pixel blend of multisampled passes: sg_blend_rgba8 in every lane, alpha 0 and 255
+ * and every channel's extremes among random values. */
+static void blend16_matches_the_pixel_blend(void **state) {
+    (void)state;
+    uint32_t x = 4242;
+    for (int i = 0; i < 100000; i++) {
+        uint32_t src[16], dst[16], out[16];
+        for (int l = 0; l < 16; l++) {
+            x = x * 1664525u + 1013904223u;
+            src[l] = x;
+            x = x * 1664525u + 1013904223u;
+            dst[l] = x;
+            if ((x >> 4 & 7) == 0) src[l] |= 0xff000000u;
+            if ((x >> 4 & 7) == 1) src[l] &= 0x00ffffffu;
+            if ((x >> 4 & 7) == 2) dst[l] = 0xffffffffu;
+        }
+        sg_blend16_rgba8(src, dst, out);
+        for (int l = 0; l < 16; l++) assert_int_equal(out[l], sg_blend_rgba8(src[l], dst[l]));
+    }
+}
+
 /* ---- order ---- */
 
 enum { S = 150, NTRI = 120, PER_DRAW = 8 };
@@ -534,6 +555,7 @@ int main(void) {
         cmocka_unit_test(product_rounding),
         cmocka_unit_test(blend_channel_exhaustive),
         cmocka_unit_test(blend_rgba8_channel_by_channel),
+        cmocka_unit_test(blend16_matches_the_pixel_blend),
         cmocka_unit_test(blending_follows_submission_order),
         cmocka_unit_test(alpha_sources),
         cmocka_unit_test(blended_variants_identical),

@@ -16,6 +16,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "raster/depth.h"
 #include "sgapi/sgapi.h"
@@ -39,6 +40,28 @@ static inline uint32_t sg_blend_rgba8(uint32_t src, uint32_t dst) {
     for (int k = 0; k < 32; k += 8)
         out |= sg_blend_channel((src >> k) & 255u, (dst >> k) & 255u, a) << k;
     return out;
+}
+
+/** sg_blend_rgba8 of 16 fragments src over 16 pixels dst into out, on vectors: two channels in
+ *  the 16-bit halves of each 32-bit lane (red and blue, then green and alpha). Every product and
+ *  sum of sg_mul_unorm8 fits 16 bits (t <= 65025, t + t / 256 + 128 <= 65407), so each half gets
+ *  the scalar function's value. */
+static inline void sg_blend16_rgba8(const uint32_t src[16], const uint32_t dst[16],
+                                    uint32_t out[16]) {
+    typedef uint32_t vu __attribute__((vector_size(64)));
+    typedef uint16_t vh __attribute__((vector_size(64)));
+    vu s, d;
+    memcpy(&s, src, sizeof s);
+    memcpy(&d, dst, sizeof d);
+    const vu lo = s >> 24;
+    const vh a = (vh)(lo | lo << 16), ia = 255 - a;
+#define SG_MUL8(x, y) ((((x) * (y)) + (((x) * (y)) >> 8) + 128) >> 8)
+    const vh sr = (vh)(s & 0x00ff00ffu), sg = (vh)(s >> 8 & 0x00ff00ffu);
+    const vh dr = (vh)(d & 0x00ff00ffu), dg = (vh)(d >> 8 & 0x00ff00ffu);
+    const vu r = (vu)(SG_MUL8(sr, a) + SG_MUL8(dr, ia)) | (vu)(SG_MUL8(sg, a) + SG_MUL8(dg, ia))
+                                                              << 8;
+#undef SG_MUL8
+    memcpy(out, &r, sizeof r);
 }
 
 /** The raster function of a blended draw for a shading variant (sg_shade_variant; -1: a lit one,

@@ -57,6 +57,13 @@ static inline void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask)
     for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
 }
 
+/* src's fragments of `mask` blended over dst's pixels. */
+static inline void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+    _Alignas(64) uint32_t px[SG_TILE_PIXELS];
+    sg_blend16_rgba8(src, dst, px);
+    put_masked(dst, px, mask);
+}
+
 /* Shades the ids the samples hold: per tile, each triangle seen by some sample once, for the
  * pixels where one of its samples sees it, at the pixel centre, its colour then written to those
  * samples. The ids are set back to 0 and the tiles to unreached. */
@@ -136,11 +143,9 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
                     }
                 }
                 uint32_t *dst = b->color[k] + base;
+                if (!mk) continue;
                 if (d->blend)
-                    for (; mk; mk &= mk - 1) {
-                        int bit = __builtin_ctz(mk);
-                        dst[bit] = sg_blend_rgba8(src[bit], dst[bit]);
-                    }
+                    blend_masked(dst, src, mk);
                 else
                     put_masked(dst, src, mk);
             }
