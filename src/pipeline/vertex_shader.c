@@ -7,28 +7,35 @@
 
 #include "pipeline/vertex.h"
 
-/* The inputs of lanes [0, n) from vertices first..first + n - 1; lanes past n copy lane 0. */
+/* The inputs of lanes [0, n) from vertices first..first + n - 1; lanes past n copy lane 0. Stream
+ * by stream: a missing one is a constant fill, with no test per lane. */
 static void fill_batch(const sg_vertex_shader_run *r, int first, int n, sgVertexBatch *b) {
     b->count = n;
     b->instance = r->instance;
     b->world_view = r->world_view;
     b->proj = r->proj;
+    size_t v[SG_SHADER_LANES];
     for (int i = 0; i < SG_SHADER_LANES; i++) {
-        const size_t v = (size_t)first + (size_t)(i < n ? i : 0);
-        b->index[i] = (uint32_t)v;
-        for (int k = 0; k < 4; k++) {
-            b->position[k][i] = r->positions[v * 4 + (size_t)k];
-            b->color[k][i] = r->colors ? r->colors[v * 4 + (size_t)k] : 1.0f;
-        }
-        for (int k = 0; k < 3; k++)
-            b->normal[k][i] = r->normals ? r->normals[v * 3 + (size_t)k] : 0.0f;
-        for (int k = 0; k < 2; k++)
-            b->texcoord[k][i] = r->texcoords ? r->texcoords[v * 2 + (size_t)k] : 0.0f;
-        for (int a = 0; a < SG_MAX_ATTRIBUTES; a++)
-            for (int k = 0; k < 4; k++)
-                b->attribute[a][k][i] =
-                    r->attributes[a] ? r->attributes[a][v * 4 + (size_t)k] : 0.0f;
+        v[i] = (size_t)first + (size_t)(i < n ? i : 0);
+        b->index[i] = (uint32_t)v[i];
     }
+#define SG_FILL(dst, src, comps, absent)                                                           \
+    do {                                                                                           \
+        for (int k = 0; k < (comps); k++)                                                          \
+            for (int i = 0; i < SG_SHADER_LANES; i++)                                              \
+                (dst)[k][i] = (src) ? (src)[v[i] * (comps) + (size_t)k] : (absent);                \
+    } while (0)
+    SG_FILL(b->position, r->positions, 4, 0.0f);
+    SG_FILL(b->color, r->colors, 4, 1.0f);
+    SG_FILL(b->normal, r->normals, 3, 0.0f);
+    SG_FILL(b->texcoord, r->texcoords, 2, 0.0f);
+    for (int a = 0; a < SG_MAX_ATTRIBUTES; a++) {
+        if (r->attributes[a])
+            SG_FILL(b->attribute[a], r->attributes[a], 4, 0.0f);
+        else
+            memset(b->attribute[a], 0, sizeof b->attribute[a]);
+    }
+#undef SG_FILL
 }
 
 static bool finite(float v) {
@@ -42,20 +49,33 @@ void sg_vertex_shade(const sg_vertex_shader_run *r, int first, int count) {
         fill_batch(r, at, n, &b);
         /* The outputs start defined: a shader that leaves a varying unwritten gets 0 there. */
         memset(b.clip, 0, sizeof b.clip);
-        memset(b.varying, 0, sizeof b.varying);
+        memset(b.varying, 0, (size_t)r->varying_count * sizeof b.varying[0]);
         r->vertex(&b, r->uniforms);
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 4; k++) r->clip[at + i][k] = b.clip[k][i];
+#if defined(__SSE2__) && defined(__SSE_MATH__)
+        /* The fixed vertex stage's outcodes and projection, four lanes at a time. */
+        _Alignas(16) uint32_t oc[SG_SHADER_LANES];
+        for (int g = 0; g < SG_SHADER_LANES; g += 4)
+            _mm_store_si128((__m128i *)(void *)(oc + g),
+                            sg_clip_outcode4(_mm_load_ps(b.clip[0] + g), _mm_load_ps(b.clip[1] + g),
+                                             _mm_load_ps(b.clip[2] + g), _mm_load_ps(b.clip[3] + g),
+                                             r->guard));
+        memcpy(r->outcodes + at, oc, (size_t)n * sizeof *oc);
+#else
+        for (int i = 0; i < n; i++)
+            r->outcodes[at + i] = sg_clip_outcode(r->clip[at + i], r->guard);
+#endif
+        sg_vertex_project(r->setup, (const float(*)[4])r->clip + at, r->outcodes + at, n,
+                          r->screen + at, r->screen_ok + at);
         for (int i = 0; i < n; i++) {
-            const int v = at + i;
-            for (int k = 0; k < 4; k++) r->clip[v][k] = b.clip[k][i];
-            r->outcodes[v] = sg_clip_outcode(r->clip[v], r->guard);
             bool ok = true;
-            float *out = r->varyings + (size_t)v * (size_t)r->varying_count;
+            float *out = r->varyings + (size_t)(at + i) * (size_t)r->varying_count;
             for (int k = 0; k < r->varying_count; k++) {
                 out[k] = b.varying[k][i];
                 ok &= finite(out[k]);
             }
-            r->screen_ok[v] =
-                ok && r->outcodes[v] == 0 && sg_setup_project(r->setup, r->clip[v], &r->screen[v]);
+            r->screen_ok[at + i] &= ok;
         }
     }
 }
