@@ -236,6 +236,11 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
     if (runs && runs->n) flush_runs(p, runs, x0, y0, color);
 }
 
+void sg_shade_bin_tiles(const sg_bin_pass *p, uint32_t *ids, uint64_t *touched, int x0, int y0,
+                        uint32_t *color) {
+    shade_reached(p, NULL, ids, touched, x0, y0, color, false);
+}
+
 /* Where a bin's pixels are in the target images. */
 typedef sg_bin_view bin_view;
 

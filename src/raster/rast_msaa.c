@@ -68,8 +68,35 @@ static inline void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mas
  * pixels where one of its samples sees it, at the pixel centre, its colour then written to those
  * samples. The ids are set back to 0 and the tiles to unreached. */
 static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
+    /* Tiles where every sample sees what sample 0 sees (inside the triangles, away from their
+     * edges): shaded as a one-sample bin's, in plane 0, then copied to the other planes' covered
+     * pixels. The others below, triangle by triangle. */
+    uint64_t uniform[TOUCH_WORDS], mixed[TOUCH_WORDS];
     for (int word = 0; word < TOUCH_WORDS; word++) {
+        uniform[word] = mixed[word] = 0;
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
+            const int bit = __builtin_ctzll(reached), base = (word * 64 + bit) * SG_TILE_PIXELS;
+            uint32_t diff = 0;
+            for (int k = 1; k < NS; k++)
+                for (int i = 0; i < SG_TILE_PIXELS; i++)
+                    diff |= b->ids[k][base + i] ^ b->ids[0][base + i];
+            if (diff)
+                mixed[word] |= (uint64_t)1 << bit;
+            else
+                uniform[word] |= (uint64_t)1 << bit;
+        }
+    }
+    sg_shade_bin_tiles(p, b->ids[0], uniform, b->x0, b->y0, b->color[0]);
+    for (int word = 0; word < TOUCH_WORDS; word++) {
+        for (uint64_t left = uniform[word]; left; left &= left - 1) {
+            const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
+            const uint32_t covered = ~sg_tile_same_id(b->ids[0] + base, 0) & 0xffffu;
+            for (int k = 1; k < NS; k++)
+                put_masked(b->color[k] + base, b->color[0] + base, covered);
+            for (int k = 0; k < NS; k++)
+                memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
+        }
+        for (uint64_t reached = mixed[word]; reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
             const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
             const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
