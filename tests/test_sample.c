@@ -135,48 +135,60 @@ static float any_coordinate(void) {
     return (float)rand() / (float)RAND_MAX * 3.0f - 1.0f;
 }
 
-/* sg_sample16 and sg_sample16_mip (both copies) give each lane exactly what sg_sample and
- * sg_sample_mip give. */
-static void sixteen_lanes_match_the_scalar_sampler(void **state) {
-    (void)state;
-    enum { W = 13, H = 6 };
-    static uint8_t chain[2 * W * H * 4];
-    srand(16);
-    for (size_t i = 0; i < sizeof chain; i++) chain[i] = (uint8_t)(rand() & 255);
-    sg_mip_chain m = {.levels = 4};
-    const uint8_t *at = chain;
-    for (int l = 0; l < m.levels; l++) { /* random texels stand for each level */
-        const int w = W >> l > 1 ? W >> l : 1, h = H >> l > 1 ? H >> l : 1;
+/* A chain of `levels` levels of random texels (each level stands for itself), level 0 w x h, in
+ * storage of 2 w h texels. */
+static sg_mip_chain random_chain(uint8_t *storage, int w0, int h0, int levels) {
+    for (size_t i = 0; i < (size_t)(2 * w0 * h0 * 4); i++) storage[i] = (uint8_t)(rand() & 255);
+    sg_mip_chain m = {.levels = levels};
+    const uint8_t *at = storage;
+    for (int l = 0; l < levels; l++) {
+        const int w = w0 >> l > 1 ? w0 >> l : 1, h = h0 >> l > 1 ? h0 >> l : 1;
         m.level[l] = (sg_texview){at, w, h};
         at += (size_t)w * (size_t)h * 4;
     }
-    /* Both copies: the portable one, and the AVX-512 one where this CPU runs it. */
+    return m;
+}
+
+/* sg_sample16 and sg_sample16_mip (the copy avx512 names) at (s, t) give each lane exactly what
+ * sg_sample and sg_sample_mip give, the quads' levels random. */
+static void check_lanes(const sg_mip_chain *m, bool avx512, bool bilinear, bool repeat,
+                        const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES]) {
+    int32_t got[4][SG_SHADER_LANES];
+    sg_sample16(avx512, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear, repeat,
+                s, t, got);
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        const sg_texel want = sg_sample(&m->level[0], s[i], t[i], bilinear, repeat);
+        for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
+    }
+    sg_mip_pick pick[4];
+    for (int q = 0; q < 4; q++) {
+        const int l0 = rand() % m->levels;
+        const bool two = l0 + 1 < m->levels && rand() % 3;
+        pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
+    }
+    sg_sample16_mip(avx512, m, pick, bilinear, repeat, s, t, got);
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
+        const sg_texel want = sg_sample_mip(m, p, s[i], t[i], bilinear, repeat);
+        for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
+    }
+}
+
+/* Both copies (the portable one, and the AVX-512 one where this CPU runs it) agree with the scalar
+ * sampler at random coordinates. */
+static void sixteen_lanes_match_the_scalar_sampler(void **state) {
+    (void)state;
+    static uint8_t chain[2 * 13 * 6 * 4];
+    srand(16);
+    const sg_mip_chain m = random_chain(chain, 13, 6, 4);
     const int copies = sg_isa_runs(SG_ISA_AVX512) ? 2 : 1;
     for (int round = 0; round < 4000 * copies; round++) {
-        const bool bilinear = round & 1, repeat = round >> 1 & 1, avx512 = round >= 4000;
         float s[SG_SHADER_LANES], t[SG_SHADER_LANES];
         for (int i = 0; i < SG_SHADER_LANES; i++) {
             s[i] = any_coordinate();
             t[i] = any_coordinate();
         }
-        int32_t got[4][SG_SHADER_LANES];
-        sg_sample16(avx512, m.level[0].texels, W, H, bilinear, repeat, s, t, got);
-        for (int i = 0; i < SG_SHADER_LANES; i++) {
-            const sg_texel want = sg_sample(&m.level[0], s[i], t[i], bilinear, repeat);
-            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
-        }
-        sg_mip_pick pick[4];
-        for (int q = 0; q < 4; q++) {
-            const int l0 = rand() % m.levels;
-            const bool two = l0 + 1 < m.levels && rand() % 3;
-            pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
-        }
-        sg_sample16_mip(avx512, &m, pick, bilinear, repeat, s, t, got);
-        for (int i = 0; i < SG_SHADER_LANES; i++) {
-            const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
-            const sg_texel want = sg_sample_mip(&m, p, s[i], t[i], bilinear, repeat);
-            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
-        }
+        check_lanes(&m, round >= 4000, round & 1, round >> 1 & 1, s, t);
     }
 }
 
@@ -188,17 +200,9 @@ static void sixteen_lanes_match_on_tile_footprints(void **state) {
     enum { W = 45, H = 27 };
     static uint8_t chain[2 * W * H * 4];
     srand(45);
-    for (size_t i = 0; i < sizeof chain; i++) chain[i] = (uint8_t)(rand() & 255);
-    sg_mip_chain m = {.levels = 5};
-    const uint8_t *at = chain;
-    for (int l = 0; l < m.levels; l++) {
-        const int w = W >> l > 1 ? W >> l : 1, h = H >> l > 1 ? H >> l : 1;
-        m.level[l] = (sg_texview){at, w, h};
-        at += (size_t)w * (size_t)h * 4;
-    }
+    const sg_mip_chain m = random_chain(chain, W, H, 5);
     const int copies = sg_isa_runs(SG_ISA_AVX512) ? 2 : 1;
     for (int round = 0; round < 4000 * copies; round++) {
-        const bool bilinear = round & 1, repeat = round >> 1 & 1, avx512 = round >= 4000;
         /* A step of 1/8 to 3 texels a lane, from anywhere in [-0.2, 1.2). */
         const float s0 = (float)rand() / (float)RAND_MAX * 1.4f - 0.2f,
                     t0 = (float)rand() / (float)RAND_MAX * 1.4f - 0.2f;
@@ -209,24 +213,7 @@ static void sixteen_lanes_match_on_tile_footprints(void **state) {
             s[i] = s0 + (float)(i & 3) * step + (float)(i >> 2) * skew;
             t[i] = t0 - (float)(i >> 2) * step + (float)(i & 3) * skew;
         }
-        int32_t got[4][SG_SHADER_LANES];
-        sg_sample16(avx512, m.level[0].texels, W, H, bilinear, repeat, s, t, got);
-        for (int i = 0; i < SG_SHADER_LANES; i++) {
-            const sg_texel want = sg_sample(&m.level[0], s[i], t[i], bilinear, repeat);
-            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
-        }
-        sg_mip_pick pick[4];
-        for (int q = 0; q < 4; q++) {
-            const int l0 = rand() % m.levels;
-            const bool two = l0 + 1 < m.levels && rand() % 3;
-            pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
-        }
-        sg_sample16_mip(avx512, &m, pick, bilinear, repeat, s, t, got);
-        for (int i = 0; i < SG_SHADER_LANES; i++) {
-            const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
-            const sg_texel want = sg_sample_mip(&m, p, s[i], t[i], bilinear, repeat);
-            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
-        }
+        check_lanes(&m, round >= 4000, round & 1, round >> 1 & 1, s, t);
     }
 }
 
