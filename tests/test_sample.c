@@ -160,6 +160,14 @@ static void check_lanes(const sg_mip_chain *m, bool avx512, bool bilinear, bool 
         const sg_texel want = sg_sample(&m->level[0], s[i], t[i], bilinear, repeat);
         for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
     }
+    float unit[4][SG_SHADER_LANES];
+    sg_sample16_unit(avx512, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear,
+                     repeat, s, t, unit);
+    for (int i = 0; i < SG_SHADER_LANES; i++)
+        for (int k = 0; k < 4; k++) {
+            const float want = (float)got[k][i] / 255.0f;
+            assert_memory_equal(&unit[k][i], &want, sizeof want);
+        }
     sg_mip_pick pick[4];
     for (int q = 0; q < 4; q++) {
         const int l0 = rand() % m->levels;

@@ -50,9 +50,10 @@ LANE_CLONES static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, i
         const sg_vf v = s->flat >> k & 1 ? zero + a : (a + ax * dx + ay * dy) * w;
         memcpy(b.varying[k], &v, sizeof v);
     }
-    /* Vector stores, not a call of memset: a tile is a few hundred cycles in all. */
-    for (int k = s->varying_count; k < SG_MAX_VARYINGS; k++)
-        memcpy(b.varying[k], &zero, sizeof zero);
+    /* Vector stores, not a call of memset: a tile is a few hundred cycles in all (a loop from
+     * the count on became one). */
+    for (int k = 0; k < SG_MAX_VARYINGS; k++)
+        if (k >= s->varying_count) memcpy(b.varying[k], &zero, sizeof zero);
     for (int ch = 0; ch < 4; ch++) memcpy(b.color[ch], &zero, sizeof zero);
     s->fragment(&b, s->uniforms);
     sg_vi p = {0};
@@ -190,10 +191,8 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
         return;
     }
     if (tx && !tx->depth) {
-        int32_t texel[4][SG_SHADER_LANES];
-        sg_sample16(c->shader.avx512, tx->data, tx->width, tx->height, c->shader.bilinear,
-                    c->shader.repeat, u, v, texel);
-        sg_texels_to_unit(c->shader.avx512, texel, rgba);
+        sg_sample16_unit(c->shader.avx512, tx->data, tx->width, tx->height, c->shader.bilinear,
+                         c->shader.repeat, u, v, rgba);
         return;
     }
     for (int i = 0; i < SG_SHADER_LANES; i++) {

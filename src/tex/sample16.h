@@ -26,7 +26,10 @@
                                   const float t[SG_SHADER_LANES],                                  \
                                   int32_t texel[4][SG_SHADER_LANES]);                              \
     void sg_texels_to_unit_##suffix(const int32_t texel[4][SG_SHADER_LANES],                       \
-                                    float out[4][SG_SHADER_LANES]);
+                                    float out[4][SG_SHADER_LANES]);                                \
+    void sg_sample16_unit_##suffix(const uint8_t *texels, int w, int h, bool bilinear,             \
+                                   bool repeat, const float s[SG_SHADER_LANES],                    \
+                                   const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]);
 SG_SAMPLE16_DECLARE(portable)
 #if SG_SAMPLE16_AVX512
 SG_SAMPLE16_DECLARE(avx512)
@@ -75,6 +78,20 @@ static inline void sg_texels_to_unit(bool avx512, const int32_t texel[4][SG_SHAD
 #endif
     (void)avx512;
     sg_texels_to_unit_portable(texel, out);
+}
+
+/** sg_sample16's channels as sg_texels_to_unit gives them, in one call. */
+static inline void sg_sample16_unit(bool avx512, const uint8_t *texels, int w, int h, bool bilinear,
+                                    bool repeat, const float s[SG_SHADER_LANES],
+                                    const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {
+#if SG_SAMPLE16_AVX512
+    if (avx512) {
+        sg_sample16_unit_avx512(texels, w, h, bilinear, repeat, s, t, out);
+        return;
+    }
+#endif
+    (void)avx512;
+    sg_sample16_unit_portable(texels, w, h, bilinear, repeat, s, t, out);
 }
 
 #endif

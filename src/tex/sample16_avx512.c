@@ -86,14 +86,25 @@ void sg_sample16_mip_avx512(const sg_mip_chain *m, const sg_mip_pick pick[4], bo
  * one correction step, q + (c - 255 q) (1 / 255), with the remainder c - 255 q exact in a fused
  * multiply-add, gives the correctly rounded quotient for every c in 0 .. 255 (test_sample checks
  * all 256). The fused operations are written out; the library is compiled without contraction. */
+INLINE __m512 unit16(__m512i texel) {
+    const __m512 r = _mm512_set1_ps(1.0f / 255.0f), d = _mm512_set1_ps(255.0f);
+    const __m512 c = _mm512_cvtepi32_ps(texel), q = _mm512_mul_ps(c, r);
+    return _mm512_fmadd_ps(_mm512_fnmadd_ps(q, d, c), r, q);
+}
+
 void sg_texels_to_unit_avx512(const int32_t texel[4][SG_SHADER_LANES],
                               float out[4][SG_SHADER_LANES]) {
-    const __m512 r = _mm512_set1_ps(1.0f / 255.0f), d = _mm512_set1_ps(255.0f);
-    for (int k = 0; k < 4; k++) {
-        const __m512 c = _mm512_cvtepi32_ps(_mm512_loadu_si512(texel[k]));
-        const __m512 q = _mm512_mul_ps(c, r);
-        _mm512_storeu_ps(out[k], _mm512_fmadd_ps(_mm512_fnmadd_ps(q, d, c), r, q));
-    }
+    for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16(_mm512_loadu_si512(texel[k])));
+}
+
+/* The lookups and the conversion in one call, the channels kept in registers between them. */
+void sg_sample16_unit_avx512(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
+                             const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
+                             float out[4][SG_SHADER_LANES]) {
+    const sg_texview tv = {texels, w, h};
+    __m512i c[4];
+    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, c);
+    for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16(c[k]));
 }
 
 #endif

@@ -140,3 +140,13 @@ SG_LANES_ATTR void SG_LANES_FN(sg_texels_to_unit)(const int32_t texel[4][SG_SHAD
         memcpy(out[k], &f, sizeof f);
     }
 }
+
+/* sg_sample16, then sg_texels_to_unit. */
+SG_LANES_ATTR void SG_LANES_FN(sg_sample16_unit)(const uint8_t *texels, int w, int h, bool bilinear,
+                                                 bool repeat, const float s[SG_SHADER_LANES],
+                                                 const float t[SG_SHADER_LANES],
+                                                 float out[4][SG_SHADER_LANES]) {
+    int32_t texel[4][SG_SHADER_LANES];
+    SG_LANES_FN(sg_sample16)(texels, w, h, bilinear, repeat, s, t, texel);
+    SG_LANES_FN(sg_texels_to_unit)(texel, out);
+}
