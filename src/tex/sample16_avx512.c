@@ -30,12 +30,18 @@ INLINE void lookup16(const sg_texview *tv, __m512 s, __m512 t, __mmask16 m, bool
 #endif
 }
 
+/* Every lane of a w x h texture at (s[i], t[i]). */
+INLINE void lookup_all(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
+                       const float *s, const float *t, __m512i c[4]) {
+    const sg_texview tv = {texels, w, h};
+    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, c);
+}
+
 void sg_sample16_avx512(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
                         const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
                         int32_t texel[4][SG_SHADER_LANES]) {
-    const sg_texview tv = {texels, w, h};
     __m512i c[4];
-    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, c);
+    lookup_all(texels, w, h, bilinear, repeat, s, t, c);
     for (int k = 0; k < 4; k++) _mm512_storeu_si512(texel[k], c[k]);
 }
 
@@ -101,9 +107,8 @@ void sg_texels_to_unit_avx512(const int32_t texel[4][SG_SHADER_LANES],
 void sg_sample16_unit_avx512(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
                              const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
                              float out[4][SG_SHADER_LANES]) {
-    const sg_texview tv = {texels, w, h};
     __m512i c[4];
-    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, c);
+    lookup_all(texels, w, h, bilinear, repeat, s, t, c);
     for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16(c[k]));
 }
 
