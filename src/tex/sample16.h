@@ -35,20 +35,22 @@ SG_SAMPLE16_DECLARE(portable)
 SG_SAMPLE16_DECLARE(avx512)
 #endif
 
+/* The copy `avx512` names (the CPU runs SG_ISA_AVX512) of function `name`, called with the
+ * arguments that follow. */
+#if SG_SAMPLE16_AVX512
+#define SG_SAMPLE16_CALL(avx512, name, ...)                                                        \
+    ((avx512) ? name##_avx512(__VA_ARGS__) : name##_portable(__VA_ARGS__))
+#else
+#define SG_SAMPLE16_CALL(avx512, name, ...) ((void)(avx512), name##_portable(__VA_ARGS__))
+#endif
+
 /** RGBA8 texels (top row first, width w, height h) at the 16 coordinates (s[i], t[i]): each
  *  lane's channels 0 .. 255 in texel[channel][lane], as sg_sample gives them; avx512: the CPU
  *  runs SG_ISA_AVX512 (same bits). */
 static inline void sg_sample16(bool avx512, const uint8_t *texels, int w, int h, bool bilinear,
                                bool repeat, const float s[SG_SHADER_LANES],
                                const float t[SG_SHADER_LANES], int32_t texel[4][SG_SHADER_LANES]) {
-#if SG_SAMPLE16_AVX512
-    if (avx512) {
-        sg_sample16_avx512(texels, w, h, bilinear, repeat, s, t, texel);
-        return;
-    }
-#endif
-    (void)avx512;
-    sg_sample16_portable(texels, w, h, bilinear, repeat, s, t, texel);
+    SG_SAMPLE16_CALL(avx512, sg_sample16, texels, w, h, bilinear, repeat, s, t, texel);
 }
 
 /** The same from a mipmap chain, each quad q (lanes of its 2 x 2 block) with its levels pick[q],
@@ -57,41 +59,20 @@ static inline void sg_sample16_mip(bool avx512, const sg_mip_chain *m, const sg_
                                    bool bilinear, bool repeat, const float s[SG_SHADER_LANES],
                                    const float t[SG_SHADER_LANES],
                                    int32_t texel[4][SG_SHADER_LANES]) {
-#if SG_SAMPLE16_AVX512
-    if (avx512) {
-        sg_sample16_mip_avx512(m, pick, bilinear, repeat, s, t, texel);
-        return;
-    }
-#endif
-    (void)avx512;
-    sg_sample16_mip_portable(m, pick, bilinear, repeat, s, t, texel);
+    SG_SAMPLE16_CALL(avx512, sg_sample16_mip, m, pick, bilinear, repeat, s, t, texel);
 }
 
 /** Channels 0 .. 255 (texel[channel][lane]) to floats c / 255.0f, bit for bit. */
 static inline void sg_texels_to_unit(bool avx512, const int32_t texel[4][SG_SHADER_LANES],
                                      float out[4][SG_SHADER_LANES]) {
-#if SG_SAMPLE16_AVX512
-    if (avx512) {
-        sg_texels_to_unit_avx512(texel, out);
-        return;
-    }
-#endif
-    (void)avx512;
-    sg_texels_to_unit_portable(texel, out);
+    SG_SAMPLE16_CALL(avx512, sg_texels_to_unit, texel, out);
 }
 
 /** sg_sample16's channels as sg_texels_to_unit gives them, in one call. */
 static inline void sg_sample16_unit(bool avx512, const uint8_t *texels, int w, int h, bool bilinear,
                                     bool repeat, const float s[SG_SHADER_LANES],
                                     const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {
-#if SG_SAMPLE16_AVX512
-    if (avx512) {
-        sg_sample16_unit_avx512(texels, w, h, bilinear, repeat, s, t, out);
-        return;
-    }
-#endif
-    (void)avx512;
-    sg_sample16_unit_portable(texels, w, h, bilinear, repeat, s, t, out);
+    SG_SAMPLE16_CALL(avx512, sg_sample16_unit, texels, w, h, bilinear, repeat, s, t, out);
 }
 
 #endif
