@@ -16,6 +16,7 @@
 #include "pipeline/setup.h"
 #include "raster/depth.h"
 #include "raster/framebuffer.h"
+#include "raster/rast_msaa.h"
 #include "raster/rast_tile.h"
 #include "raster/shade.h"
 #include "test_setup.h"
@@ -223,6 +224,79 @@ static void walks_agree_with_edge_functions(void **state) {
     free(h);
 }
 
+/* A multisampled pass's one walk for a triangle's four samples (sg_depth_samples_select) leaves
+ * each sample's plane of ids, depth and reached tiles as the one-sample visibility function of
+ * the same depth state does walking that sample's triangle: every instruction set, compares with
+ * and without a test and a write, random triangles from a pixel to far past the target (edge
+ * values past 32 bits), over random stored depths. */
+typedef struct sample_planes {
+    _Alignas(64) float depth[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN];
+    _Alignas(64) uint32_t ids[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN];
+    uint64_t touched[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN / SG_TILE_PIXELS / 64];
+} sample_planes;
+
+static void sample_walk_matches_walk_per_sample(void **state) {
+    (void)state;
+    /* Aligned as a bin's planes are: the vector sets load them whole. */
+    sample_planes *a = aligned_alloc(64, sizeof *a), *b = aligned_alloc(64, sizeof *b);
+    assert_non_null(a);
+    assert_non_null(b);
+    const sgCompare ops[] = {SG_COMPARE_ALWAYS, SG_COMPARE_LESS, SG_COMPARE_GREATER_EQUAL};
+    uint32_t seed = 20261129;
+    for (sg_isa isa = SG_ISA_SCALAR; isa <= sg_isa_detect(); isa++) {
+        long checked = 0;
+        for (int n = 0; n < 3000; n++) {
+            const double size = n % 10 == 9 ? 2e5 : 1.0 + pow(walk_rand(&seed), 3.0) * 96.0;
+            const double cx = walk_rand(&seed) * WALK_W, cy = walk_rand(&seed) * WALK_H;
+            sg_cvert v[3];
+            for (int k = 0; k < 3; k++) {
+                const float w = (float)(0.5 + 3.0 * walk_rand(&seed));
+                memset(&v[k], 0, sizeof v[k]);
+                v[k].pos[0] =
+                    (float)((cx + (walk_rand(&seed) - 0.5) * size) / WALK_W * 2.0 - 1.0) * w;
+                v[k].pos[1] =
+                    (float)(1.0 - (cy + (walk_rand(&seed) - 0.5) * size) / WALK_H * 2.0) * w;
+                v[k].pos[2] = (float)(walk_rand(&seed) * 2.0 - 1.0) * w;
+                v[k].pos[3] = w;
+            }
+            sg_setup_params p = sg_test_params(WALK_W, WALK_H, 0);
+            sg_tri t, st[SG_VIS_SAMPLES];
+            if (!sg_setup_triangle(&p, &v[0], &v[1], &v[2], &t, NULL)) continue;
+            for (int k = 0; k < SG_VIS_SAMPLES; k++) sg_msaa_sample_tri(&t, k, &st[k]);
+            const int rx0 =
+                (t.minx + (int)(walk_rand(&seed) * (t.maxx - t.minx + 1))) / WALK_BIN * WALK_BIN;
+            const int ry0 =
+                (t.miny + (int)(walk_rand(&seed) * (t.maxy - t.miny + 1))) / WALK_BIN * WALK_BIN;
+            const sgCompare op = ops[n % 3];
+            const bool write = (n / 3) % 2;
+            memset(a, 0, sizeof *a);
+            for (int k = 0; k < SG_VIS_SAMPLES; k++)
+                for (int i = 0; i < WALK_BIN * WALK_BIN; i++)
+                    a->depth[k][i] = (float)walk_rand(&seed);
+            memcpy(b, a, sizeof *a);
+            sg_vis_ctx va[SG_VIS_SAMPLES], vb[SG_VIS_SAMPLES];
+            for (int k = 0; k < SG_VIS_SAMPLES; k++) {
+                va[k] =
+                    (sg_vis_ctx){a->depth[k], a->ids[k], a->touched[k], rx0,  ry0, (uint32_t)n + 1,
+                                 op,          NULL,      NULL,          NULL, NULL};
+                vb[k] =
+                    (sg_vis_ctx){b->depth[k], b->ids[k], b->touched[k], rx0,  ry0, (uint32_t)n + 1,
+                                 op,          NULL,      NULL,          NULL, NULL};
+                sg_depth_select(op, write, isa)(&st[k], rx0, ry0, rx0 + WALK_BIN, ry0 + WALK_BIN,
+                                                &va[k]);
+            }
+            sg_depth_samples_select(op, write, isa)(st, rx0, ry0, rx0 + WALK_BIN, ry0 + WALK_BIN,
+                                                    vb);
+            if (memcmp(a, b, sizeof *a) != 0)
+                fail_msg("instruction set %d, triangle %d: the sample walk differs", (int)isa, n);
+            checked++;
+        }
+        assert_true(checked > 2000);
+    }
+    free(a);
+    free(b);
+}
+
 static void culling_and_zero_area(void **state) {
     (void)state;
     sg_setup_params p = sg_test_params(W, H, 0);
@@ -324,6 +398,7 @@ int main(void) {
         cmocka_unit_test(fan_covers_disc_once),
         cmocka_unit_test(random_meshes_are_watertight),
         cmocka_unit_test(walks_agree_with_edge_functions),
+        cmocka_unit_test(sample_walk_matches_walk_per_sample),
         cmocka_unit_test(culling_and_zero_area),
         cmocka_unit_test(huge_triangle_stays_exact),
         cmocka_unit_test(depth_bound_holds_every_pixel),

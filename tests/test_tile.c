@@ -64,6 +64,45 @@ static void fb_ops_match_portable(void **state) {
     }
 }
 
+/* The multisampled bins' masked tile copy and four-plane average (sg_fb_ops): every set gives the
+ * portable bytes, and the portable average is each channel's (a + b + c + d + 2) / 4. */
+static void fb_sample_ops_match_portable(void **state) {
+    (void)state;
+    enum { N = 256 };
+    const sg_fb_ops *sets[] = {&sg_fb_ops_portable, &sg_fb_ops_avx2, &sg_fb_ops_avx512};
+    const sg_isa isas[] = {SG_ISA_SCALAR, SG_ISA_AVX2, SG_ISA_AVX512};
+    _Alignas(64) uint32_t planes[4][N], a[N], b[N];
+    uint32_t seed = 7;
+    for (int k = 0; k < 4; k++)
+        for (int i = 0; i < N; i++) {
+            seed = seed * 1664525u + 1013904223u;
+            /* Every channel value, the extremes included, in some pixel. */
+            planes[k][i] = i < 4 ? (k == i ? 0xffffffffu : 0u) : seed;
+        }
+    for (size_t s = 0; s < sizeof sets / sizeof sets[0]; s++) {
+        if (!sg_isa_runs(isas[s])) continue;
+        memcpy(a, planes[0], sizeof a);
+        sets[s]->average4(a, planes[1], planes[2], planes[3], N);
+        for (int i = 0; i < N; i++)
+            for (int c = 0; c < 4; c++) {
+                unsigned sum = 2;
+                for (int k = 0; k < 4; k++) sum += planes[k][i] >> (8 * c) & 255u;
+                assert_int_equal(a[i] >> (8 * c) & 255u, sum / 4);
+            }
+        for (uint32_t mask = 0; mask < 0x10000u; mask += 0x0ffbu) {
+            memcpy(a, planes[0], 64);
+            memcpy(b, planes[0], 64);
+            sets[s]->put_masked(a, planes[1], mask | (mask == 0 ? 0 : 0x8000u));
+            for (int i = 0; i < 16; i++)
+                if ((mask | (mask == 0 ? 0 : 0x8000u)) >> i & 1) b[i] = planes[1][i];
+            assert_memory_equal(a, b, 64);
+        }
+        memcpy(a, planes[0], 64);
+        sets[s]->put_masked(a, planes[2], 0xffffu);
+        assert_memory_equal(a, planes[2], 64);
+    }
+}
+
 /* Every set's depth range of a bin buffer is its smallest and largest value, and none is given
  * when a value is negative, -0 or NaN (+inf is a value). */
 static void depth_range_of_bin(void **state) {
@@ -138,11 +177,9 @@ static void bin_writes_stay_in_place(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(index_layout),
-        cmocka_unit_test(round_trip_odd_sizes),
-        cmocka_unit_test(fb_ops_match_portable),
-        cmocka_unit_test(depth_range_of_bin),
-        cmocka_unit_test(bin_writes_stay_in_place),
+        cmocka_unit_test(index_layout),          cmocka_unit_test(round_trip_odd_sizes),
+        cmocka_unit_test(fb_ops_match_portable), cmocka_unit_test(fb_sample_ops_match_portable),
+        cmocka_unit_test(depth_range_of_bin),    cmocka_unit_test(bin_writes_stay_in_place),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -497,6 +497,14 @@ static size_t copy_uniforms(sgDevice *dev, const void *src, size_t size) {
 
 /* sgDraw of a shader pipeline (sgShaderDesc): checked, then the vertex stage per instance and the
  * front end as for fixed pipelines; the fragment stage runs when the bins are rendered. */
+/* A multisampled pass's visibility functions of the draw's depth state: as the pipeline writes
+ * depth, and without depth write, for the draws shaded in place (rast_msaa.c). */
+static void sample_fns(const sgDevice *dev, const sg_pso *pso, sg_draw_state *ds) {
+    if (dev->pass.samples <= 1) return;
+    ds->vis_fn = sg_depth_samples_select(pso->desc.depth.compare, pso->desc.depth.write, dev->isa);
+    ds->test_fn = sg_depth_samples_select(pso->desc.depth.compare, false, dev->isa);
+}
+
 static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject pso_h, sg_geom *geom,
                             const sgDrawParams *params) {
     const sgShaderDesc *sh = &pso->desc.shader;
@@ -634,8 +642,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     ds->shade_fn = pso->shade_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
-    ds->vis_fn = pso->depth_fn;
-    ds->test_fn = dev->pass.samples > 1 ? sg_depth_select(ds->compare, false, dev->isa) : NULL;
+    sample_fns(dev, pso, ds);
     ds->blend = pso->desc.blend == SG_BLEND_ALPHA;
     dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_shader = true;
@@ -902,8 +909,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     ds->ctx = ctx;
     ds->shader_in_place = NULL;
     ds->compare = pso->desc.depth.compare;
-    ds->vis_fn = pso->depth_fn;
-    ds->test_fn = dev->pass.samples > 1 ? sg_depth_select(ds->compare, false, dev->isa) : NULL;
+    sample_fns(dev, pso, ds);
     ds->blend = pso->desc.blend == SG_BLEND_ALPHA;
     ds->in_place = put_lines || (!depth_only && pso->desc.blend == SG_BLEND_ALPHA);
     dev->pass.any_in_place |= ds->in_place;

@@ -40,6 +40,7 @@ static inline __attribute__((always_inline)) void vis_scalar(const void *vctx, c
 }
 
 SG_VIS_SET(vis, vis_scalar)
+SG_VIS_SAMPLES_SET(vis_samples, vis_scalar)
 
 #if defined(__SSE2__)
 /* One row of 4 pixels at a time (z as depth_simd.h computes it). `lanes` has the bit of each
@@ -74,6 +75,8 @@ static inline __attribute__((always_inline)) void vis_sse2(const void *vctx, con
 
 SG_WALK_FN(vis_less_0_sse2, vis_sse2, Z_LESS, 0)
 SG_WALK_FN(vis_less_1_sse2, vis_sse2, Z_LESS, 1)
+SG_VIS_SAMPLES_FN(vis_samples_less_0_sse2, vis_sse2, Z_LESS, 0)
+SG_VIS_SAMPLES_FN(vis_samples_less_1_sse2, vis_sse2, Z_LESS, 1)
 #endif
 
 sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
@@ -93,6 +96,25 @@ sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
         return depth_write ? vis_less_1_sse2 : vis_less_0_sse2;
 #else
     (void)isa;
+#endif
+    return scalar[zmode][depth_write ? 1 : 0];
+}
+
+sg_raster_samples_fn sg_depth_samples_select(sgCompare compare, bool depth_write, sg_isa isa) {
+    static const sg_raster_samples_fn scalar[3][2] = SG_VIS_TABLE(vis_samples);
+    int zmode = sg_zmode(compare);
+    if (isa == SG_ISA_NEON)
+        return zmode == Z_LESS && sg_depth_samples_less_neon(depth_write)
+                   ? sg_depth_samples_less_neon(depth_write)
+                   : scalar[zmode][depth_write ? 1 : 0];
+    /* The same choice as sg_depth_select's. */
+    if (isa >= SG_ISA_AVX512 && sg_depth_samples_avx512(compare, depth_write))
+        return sg_depth_samples_avx512(compare, depth_write);
+    if (isa >= SG_ISA_AVX2 && sg_depth_samples_avx2(compare, depth_write))
+        return sg_depth_samples_avx2(compare, depth_write);
+#if defined(__SSE2__)
+    if (isa >= SG_ISA_SSE2 && zmode == Z_LESS)
+        return depth_write ? vis_samples_less_1_sse2 : vis_samples_less_0_sse2;
 #endif
     return scalar[zmode][depth_write ? 1 : 0];
 }

@@ -113,6 +113,22 @@ static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
     return v->ids + base;
 }
 
+/* Multisampled passes (rast_msaa.h): a pixel's samples. */
+enum { SG_VIS_SAMPLES = 4 };
+
+/* The visibility of a triangle's samples in the rectangle [x0, x1) x [y0, y1): st[k] is the
+ * triangle as sample k sees it (sg_msaa_sample_tri), vis[k] sample k's plane of ids and depth.
+ * The planes end as SG_VIS_SAMPLES calls of the sg_raster_fn of the same depth state would leave
+ * them, one a sample, but the triangle is walked once (depth_walk.h). */
+typedef void (*sg_raster_samples_fn)(const sg_tri *st, int x0, int y0, int x1, int y1,
+                                     sg_vis_ctx *vis);
+
+/** The sample visibility function for a resolved depth state. */
+sg_raster_samples_fn sg_depth_samples_select(sgCompare compare, bool depth_write, sg_isa isa);
+sg_raster_samples_fn sg_depth_samples_avx2(sgCompare compare, bool depth_write);
+sg_raster_samples_fn sg_depth_samples_avx512(sgCompare compare, bool depth_write);
+sg_raster_samples_fn sg_depth_samples_less_neon(bool depth_write);
+
 /** The AVX2 visibility function of a compare (depth_avx2.c); NULL where AVX2 code is not built. */
 sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write);
 /** The AVX-512 one (depth_avx512.c); NULL where AVX-512 code is not built. */

@@ -48,6 +48,13 @@ sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write) {
     return fns[sg_zmode(compare)][depth_write ? 1 : 0];
 }
 
+SG_VIS_SAMPLES_SET(vis_samples_avx2, vis_avx2)
+
+sg_raster_samples_fn sg_depth_samples_avx2(sgCompare compare, bool depth_write) {
+    static const sg_raster_samples_fn fns[3][2] = SG_VIS_TABLE(vis_samples_avx2);
+    return fns[sg_zmode(compare)][depth_write ? 1 : 0];
+}
+
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
                      const void *ctx) {
     sg_rast_walk(t, x0, y0, x1, y1, fn, ctx);
@@ -60,6 +67,12 @@ sg_walk_fn sg_walk_avx2(void) {
 #else
 
 sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write) {
+    (void)compare;
+    (void)depth_write;
+    return NULL;
+}
+
+sg_raster_samples_fn sg_depth_samples_avx2(sgCompare compare, bool depth_write) {
     (void)compare;
     (void)depth_write;
     return NULL;

@@ -38,6 +38,13 @@ sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write) {
     return fns[sg_zmode(compare)][depth_write ? 1 : 0];
 }
 
+SG_VIS_SAMPLES_SET(vis_samples_avx512, vis_avx512)
+
+sg_raster_samples_fn sg_depth_samples_avx512(sgCompare compare, bool depth_write) {
+    static const sg_raster_samples_fn fns[3][2] = SG_VIS_TABLE(vis_samples_avx512);
+    return fns[sg_zmode(compare)][depth_write ? 1 : 0];
+}
+
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
                      const void *ctx) {
     sg_rast_walk(t, x0, y0, x1, y1, fn, ctx);
@@ -50,6 +57,12 @@ sg_walk_fn sg_walk_avx512(void) {
 #else
 
 sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write) {
+    (void)compare;
+    (void)depth_write;
+    return NULL;
+}
+
+sg_raster_samples_fn sg_depth_samples_avx512(sgCompare compare, bool depth_write) {
     (void)compare;
     (void)depth_write;
     return NULL;

@@ -3,7 +3,7 @@
 #include "raster/depth.h"
 
 #include "raster/depth_neon.h"
-#include "raster/rast_walk.h"
+#include "raster/depth_walk.h"
 
 #if defined(__aarch64__) && defined(__ARM_NEON)
 
@@ -46,9 +46,23 @@ sg_raster_fn sg_depth_less_neon(bool depth_write) {
     return depth_write ? vis_less_1_neon : vis_less_0_neon;
 }
 
+/* The tile body as the sample walk calls it (LESS only). */
+#define vis_neon_less(c, t, x0, y0, m, zm, zw) vis_neon(c, t, x0, y0, m, zw)
+SG_VIS_SAMPLES_FN(vis_samples_less_0_neon, vis_neon_less, Z_LESS, 0)
+SG_VIS_SAMPLES_FN(vis_samples_less_1_neon, vis_neon_less, Z_LESS, 1)
+
+sg_raster_samples_fn sg_depth_samples_less_neon(bool depth_write) {
+    return depth_write ? vis_samples_less_1_neon : vis_samples_less_0_neon;
+}
+
 #else
 
 sg_raster_fn sg_depth_less_neon(bool depth_write) {
+    (void)depth_write;
+    return NULL;
+}
+
+sg_raster_samples_fn sg_depth_samples_less_neon(bool depth_write) {
     (void)depth_write;
     return NULL;
 }

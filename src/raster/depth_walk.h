@@ -46,4 +46,150 @@ static inline int sg_zmode(sgCompare compare) {
         }                                                                                          \
     }
 
+/* Multisampled passes: the visibility of a triangle's four samples in one walk. The walk goes
+ * over a triangle whose edges hold every pixel some sample is inside of (each edge moved by the
+ * largest of the samples' offsets); per tile, each sample's coverage is then its own edges'
+ * test (crossed_mask, the walk's own) and the tile body runs per sample with it. A line's samples
+ * are all the line: its mask is theirs. */
+typedef struct sg_vis_samples {
+    const sg_tri *st; /* the triangle as each sample sees it */
+    sg_vis_ctx *vis;  /* each sample's plane */
+    walk w;           /* st[0]'s: the edge steps are the samples' */
+#if defined(__AVX512F__) || defined(__AVX2__)
+    /* narrow: every sample's edge values over a tile a crossing edge may give fit in int32; then
+     * per edge and sample, i dx + j dy of pixel (i, j) plus the sample's edge offset from sample
+     * 0's, in 32 bits (with AVX2 rows 0-1 and rows 2-3), and the extremes over the samples of the
+     * tile's lowest and highest. */
+    bool narrow;
+#if defined(__AVX512F__)
+    __m512i offs[SG_VIS_SAMPLES][3];
+#else
+    __m256i offs[SG_VIS_SAMPLES][3][2];
+#endif
+    int64_t lo[3], hi[3];
+#endif
+} sg_vis_samples;
+
+/* Each sample's covered pixels of a tile at (x0, y0) the union walk visits with mask m. */
+SG_WALK_INLINE void sg_vis_samples_masks(const sg_vis_samples *s, const sg_tri *t, int x0, int y0,
+                                         uint32_t m, uint32_t mk[SG_VIS_SAMPLES]) {
+    int64_t at[3]; /* the edges' change from their values at the bounds' first pixel */
+    for (int e = 0; e < 3; e++)
+        at[e] = (int64_t)(x0 - t->minx) * t->edge_dx[e] + (int64_t)(y0 - t->miny) * t->edge_dy[e];
+#if defined(__AVX512F__) || defined(__AVX2__)
+    if (s->narrow) {
+#if defined(__AVX512F__)
+        __mmask16 in[SG_VIS_SAMPLES];
+        for (int k = 0; k < SG_VIS_SAMPLES; k++) in[k] = (__mmask16)m;
+        const __m512i zero = _mm512_setzero_si512();
+#else
+        /* Per sample, the OR of the crossing edges' values: a sign bit is "outside". */
+        __m256i out[SG_VIS_SAMPLES][2];
+        for (int k = 0; k < SG_VIS_SAMPLES; k++) out[k][0] = out[k][1] = _mm256_setzero_si256();
+#endif
+        for (int e = 0; e < 3; e++) {
+            const int64_t e0 = s->st[0].edge[e] + at[e];
+            if (e0 + s->lo[e] >= 0) continue; /* every sample holds the whole tile */
+            if (e0 + s->hi[e] < 0) {          /* no sample holds a pixel */
+                for (int k = 0; k < SG_VIS_SAMPLES; k++) mk[k] = 0;
+                return;
+            }
+            /* A crossing edge: the values fit in int32 (narrow), wrapping sums give them. */
+#if defined(__AVX512F__)
+            const __m512i b = _mm512_set1_epi32((int32_t)(uint32_t)(uint64_t)e0);
+            for (int k = 0; k < SG_VIS_SAMPLES; k++)
+                in[k] =
+                    _mm512_mask_cmpge_epi32_mask(in[k], _mm512_add_epi32(b, s->offs[k][e]), zero);
+#else
+            const __m256i b = _mm256_set1_epi32((int32_t)(uint32_t)(uint64_t)e0);
+            for (int k = 0; k < SG_VIS_SAMPLES; k++)
+                for (int h = 0; h < 2; h++)
+                    out[k][h] = _mm256_or_si256(out[k][h], _mm256_add_epi32(b, s->offs[k][e][h]));
+#endif
+        }
+        for (int k = 0; k < SG_VIS_SAMPLES; k++)
+#if defined(__AVX512F__)
+            mk[k] = in[k];
+#else
+            mk[k] = m & ~((uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(out[k][0])) |
+                          (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(out[k][1])) << 8);
+#endif
+        return;
+    }
+#endif
+    for (int k = 0; k < SG_VIS_SAMPLES; k++) {
+        int64_t e0[3];
+        bool out = false;
+        for (int e = 0; e < 3; e++) {
+            e0[e] = s->st[k].edge[e] + at[e];
+            out |= e0[e] + s->w.hi[e] < 0;
+        }
+        mk[k] = out ? 0 : m & crossed_mask(&s->w, e0);
+    }
+}
+
+/* The sample walk's preparation for triangle st (not a line); `all` receives the union's edges. */
+SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, sg_tri *all) {
+    sg_walk_prepare(&st[0], &s->w);
+    for (int k = 1; k < SG_VIS_SAMPLES; k++)
+        for (int e = 0; e < 3; e++)
+            if (st[k].edge[e] > all->edge[e]) all->edge[e] = st[k].edge[e];
+#if defined(__AVX512F__) || defined(__AVX2__)
+    s->narrow = s->w.narrow;
+    for (int e = 0; e < 3; e++) {
+        int64_t dlo = 0, dhi = 0; /* the samples' edge offsets from sample 0's: extremes */
+        for (int k = 1; k < SG_VIS_SAMPLES; k++) {
+            const int64_t d = st[k].edge[e] - st[0].edge[e];
+            dlo = d < dlo ? d : dlo;
+            dhi = d > dhi ? d : dhi;
+        }
+        s->lo[e] = s->w.lo[e] + dlo;
+        s->hi[e] = s->w.hi[e] + dhi;
+        s->narrow &= s->hi[e] - s->lo[e] < ((int64_t)1 << 31);
+    }
+    if (s->narrow)
+        for (int k = 0; k < SG_VIS_SAMPLES; k++)
+            for (int e = 0; e < 3; e++) {
+                const int32_t d = (int32_t)(st[k].edge[e] - st[0].edge[e]);
+#if defined(__AVX512F__)
+                s->offs[k][e] = _mm512_add_epi32(s->w.offs[e], _mm512_set1_epi32(d));
+#else
+                for (int h = 0; h < 2; h++)
+                    s->offs[k][e][h] = _mm256_add_epi32(s->w.offs[e][h], _mm256_set1_epi32(d));
+#endif
+            }
+#endif
+}
+
+#define SG_VIS_SAMPLES_FN(name, body, zm, zw)                                                      \
+    SG_WALK_INLINE void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {  \
+        const sg_vis_samples *s = c;                                                               \
+        if (t->line) {                                                                             \
+            for (int k = 0; k < SG_VIS_SAMPLES; k++)                                               \
+                body(&s->vis[k], &s->st[k], x0, y0, m, zm, zw);                                    \
+            return;                                                                                \
+        }                                                                                          \
+        uint32_t mk[SG_VIS_SAMPLES];                                                               \
+        sg_vis_samples_masks(s, t, x0, y0, m, mk);                                                 \
+        for (int k = 0; k < SG_VIS_SAMPLES; k++)                                                   \
+            if (mk[k]) body(&s->vis[k], &s->st[k], x0, y0, mk[k], zm, zw);                         \
+    }                                                                                              \
+    static void name(const sg_tri *st, int x0, int y0, int x1, int y1, sg_vis_ctx *vis) {          \
+        sg_vis_samples s;                                                                          \
+        s.st = st;                                                                                 \
+        s.vis = vis;                                                                               \
+        sg_tri all = st[0];                                                                        \
+        if (!all.line) sg_vis_samples_prepare(&s, st, &all);                                       \
+        sg_rast_walk(&all, x0, y0, x1, y1, name##_tile, &s);                                       \
+    }
+
+/* The six sample visibility functions of a tile body, and their [zmode][depth write] table. */
+#define SG_VIS_SAMPLES_SET(prefix, body)                                                           \
+    SG_VIS_SAMPLES_FN(prefix##_none_0, body, Z_NONE, 0)                                            \
+    SG_VIS_SAMPLES_FN(prefix##_none_1, body, Z_NONE, 1)                                            \
+    SG_VIS_SAMPLES_FN(prefix##_less_0, body, Z_LESS, 0)                                            \
+    SG_VIS_SAMPLES_FN(prefix##_less_1, body, Z_LESS, 1)                                            \
+    SG_VIS_SAMPLES_FN(prefix##_any_0, body, Z_ANY, 0)                                              \
+    SG_VIS_SAMPLES_FN(prefix##_any_1, body, Z_ANY, 1)
+
 #endif

@@ -88,4 +88,18 @@ bool sg_fb_depth_range(const float *src, size_t n, float *lo, float *hi) {
     return sg_fb_depth_range_of(src, n, lo, hi);
 }
 
-const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth, sg_fb_depth_range};
+void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+    if (mask == 0xffffu) {
+        memcpy(dst, src, SG_TILE_PIXELS * sizeof *dst);
+        return;
+    }
+    for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
+}
+
+void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
+                           size_t n) {
+    for (size_t i = 0; i < n; i++) p0[i] = sg_fb_average4(p0[i], p1[i], p2[i], p3[i]);
+}
+
+const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth, sg_fb_depth_range,
+                                      sg_fb_put_masked, sg_fb_average4_planes};

@@ -63,7 +63,26 @@ typedef struct sg_fb_ops {
     void (*fill_depth)(float *dst, size_t n, float value);
     /* sg_fb_depth_range, vectorised for the set */
     bool (*depth_range)(const float *src, size_t n, float *lo, float *hi);
+    /* Multisampled bins (rast_msaa.c): src's pixels of `mask` into dst (a tile, 16 pixels, both
+     * 64-byte aligned); and the average of four planes of n pixels into the first (n a multiple
+     * of 16, every plane 64-byte aligned), as sg_fb_average4 computes it. */
+    void (*put_masked)(uint32_t *dst, const uint32_t *src, uint32_t mask);
+    void (*average4)(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
+                     size_t n);
 } sg_fb_ops;
+
+/** The average of four packed RGBA8 values, each channel rounded to nearest (halves up). */
+static inline uint32_t sg_fb_average4(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
+    const uint32_t m = 0x00ff00ffu;
+    uint32_t lo = (a & m) + (b & m) + (c & m) + (d & m) + 0x00020002u;
+    uint32_t hi = (a >> 8 & m) + (b >> 8 & m) + (c >> 8 & m) + (d >> 8 & m) + 0x00020002u;
+    return (lo >> 2 & m) | (hi >> 2 & m) << 8;
+}
+
+/** The portable put_masked and average4 of sg_fb_ops. */
+void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
+void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
+                           size_t n);
 
 /* The body of every set's sg_fb_depth_range: floats in [+0, +inf] order as their bit patterns
  * do, and an integer min and max vectorise on every set; a negative value or -0 (below 0 as

@@ -40,7 +40,7 @@ typedef struct sg_draw_state {
     /* Multisampled passes only (rast_msaa.c): the plain visibility function of the draw's depth
      * state (ids and depth, per sample), the same without depth write (a depth test for the draws
      * shaded in place), and whether the draw blends. */
-    sg_raster_fn vis_fn, test_fn;
+    sg_raster_samples_fn vis_fn, test_fn;
     bool blend;
 } sg_draw_state;
 

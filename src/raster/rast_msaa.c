@@ -48,20 +48,12 @@ static inline uint64_t reached_by_any(const msaa_bin *b, int word) {
     return reached;
 }
 
-/* src's pixels of `mask` into dst. */
-static inline void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
-    if (mask == 0xffffu) {
-        memcpy(dst, src, SG_TILE_PIXELS * sizeof *dst);
-        return;
-    }
-    for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
-}
-
 /* src's fragments of `mask` blended over dst's pixels. */
-static inline void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+static inline void blend_masked(const sg_fb_ops *fb, uint32_t *dst, const uint32_t *src,
+                                uint32_t mask) {
     _Alignas(64) uint32_t px[SG_TILE_PIXELS];
     sg_blend16_rgba8(src, dst, px);
-    put_masked(dst, px, mask);
+    fb->put_masked(dst, px, mask);
 }
 
 /* Shades the ids the samples hold: per tile, each triangle seen by some sample once, for the
@@ -92,7 +84,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
             const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
             const uint32_t covered = ~sg_tile_same_id(b->ids[0] + base, 0) & 0xffffu;
             for (int k = 1; k < NS; k++)
-                put_masked(b->color[k] + base, b->color[0] + base, covered);
+                p->fb->put_masked(b->color[k] + base, b->color[0] + base, covered);
             for (int k = 0; k < NS; k++)
                 memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
         }
@@ -117,7 +109,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
                 d->shade_fn(&d->ctx, t, px, py, u, src);
                 any = 0;
                 for (int k = 0; k < NS; k++) {
-                    put_masked(b->color[k] + base, src, m[k]);
+                    p->fb->put_masked(b->color[k] + base, src, m[k]);
                     any |= left[k] &= ~m[k];
                 }
             }
@@ -138,9 +130,8 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
     for (int k = 0; k < NS; k++) {
         b->vis[k].id = id;
         b->vis[k].compare = d->compare;
-        d->test_fn(&st[k], b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, &b->vis[k]);
     }
-    (void)p;
+    d->test_fn(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, b->vis);
     const bool shader = d->ctx.shader.fragment != NULL;
     for (int word = 0; word < TOUCH_WORDS; word++) {
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
@@ -172,9 +163,9 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
                 uint32_t *dst = b->color[k] + base;
                 if (!mk) continue;
                 if (d->blend)
-                    blend_masked(dst, src, mk);
+                    blend_masked(p->fb, dst, src, mk);
                 else
-                    put_masked(dst, src, mk);
+                    p->fb->put_masked(dst, src, mk);
             }
         }
         for (int k = 0; k < NS; k++) b->touched[k][word] = 0;
@@ -219,10 +210,8 @@ static void end_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int in
         return;
     }
     if (v->color) {
-        uint32_t *c0 = b->color[0];
-        const uint32_t *c1 = b->color[1], *c2 = b->color[2], *c3 = b->color[3];
-        for (int i = 0; i < BIN_PIXELS; i++) c0[i] = sg_msaa_average(c0[i], c1[i], c2[i], c3[i]);
-        sg_tile_to_linear_rgba8(v->color, v->pitch, c0, v->w, v->h, BIN_TILES);
+        p->fb->average4(b->color[0], b->color[1], b->color[2], b->color[3], BIN_PIXELS);
+        sg_tile_to_linear_rgba8(v->color, v->pitch, b->color[0], v->w, v->h, BIN_TILES);
     }
     if (v->depth && p->store_depth)
         sg_tile_to_linear_f32(v->depth, v->pitch, b->depth[0], v->w, v->h, BIN_TILES);
@@ -268,8 +257,8 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
         for (int k = 0; k < NS; k++) {
             b->vis[k].id = ti + 1;
             b->vis[k].compare = d->compare;
-            d->vis_fn(&st[k], b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, &b->vis[k]);
         }
+        d->vis_fn(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, b->vis);
         pending = !depth_only;
     }
     if (pending) shade_ids(p, b);

@@ -5,8 +5,10 @@
  * (0.125, 0.625), (0.625, 0.875): 96, 224, 32, 160 / 256 of a pixel in x and 32, 96, 160, 224 in
  * y. The edge functions are exact integers in 1/256 pixel (setup.h), so a sample's coverage is the
  * pixel-centre coverage of the triangle moved by the sample's offset from the centre: a copy of
- * the triangle whose edge values and depth plane are moved is handed to the pass's ordinary
- * visibility functions (depth.h), once per sample, each into its own plane of ids and depth.
+ * the triangle whose edge values and depth plane are moved is what sample k sees. The four are
+ * walked at once (sg_raster_samples_fn, depth.h): one walk over the pixels some sample covers,
+ * then per tile each sample's own coverage and the ordinary visibility tile body, each sample
+ * into its own plane of ids and depth.
  * Shading then runs once per pixel and triangle, at the pixel centre (the attribute planes are
  * not moved), and its colour goes to the samples of the pixel that see the triangle. Blended
  * triangles are depth tested per sample, shaded once per pixel and blended into each passing
@@ -20,7 +22,7 @@
 #include "raster/rast_bin.h"
 
 enum {
-    SG_MSAA_SAMPLES = 4,
+    SG_MSAA_SAMPLES = SG_VIS_SAMPLES,
     /* Samples of one bin in the device's buffers between flushes (sg_bin_pass.msaa_color). */
     SG_MSAA_BIN_SAMPLES = SG_MSAA_SAMPLES * SG_BIN_SIZE * SG_BIN_SIZE
 };
@@ -42,13 +44,5 @@ void sg_msaa_sample_tri(const sg_tri *t, int k, sg_tri *out);
 /** Renders bin `index` of a multisampled pass: into its targets, or into the pass's sample
  *  buffers at a flush (sg_bin_pass.msaa_store). */
 void sg_rast_bin_msaa(const sg_bin_pass *pass, int index);
-
-/** The average of four packed RGBA8 values, each channel rounded to nearest (halves up). */
-static inline uint32_t sg_msaa_average(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
-    const uint32_t m = 0x00ff00ffu;
-    uint32_t lo = (a & m) + (b & m) + (c & m) + (d & m) + 0x00020002u;
-    uint32_t hi = (a >> 8 & m) + (b >> 8 & m) + (c >> 8 & m) + (d >> 8 & m) + 0x00020002u;
-    return (lo >> 2 & m) | (hi >> 2 & m) << 8;
-}
 
 #endif

@@ -569,6 +569,47 @@ SG_WALK_INLINE void line_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry
     }
 }
 
+/* The walk of triangle t prepared: corner offsets, and each edge's offsets over a tile. */
+SG_WALK_INLINE void sg_walk_prepare(const sg_tri *t, walk *w) {
+    w->t = t;
+    corners(t, SG_TILE - 1, w->hi, w->lo);
+    w->narrow = true;
+    for (int e = 0; e < 3; e++) w->narrow &= w->hi[e] - w->lo[e] < ((int64_t)1 << 31);
+    if (w->narrow) /* then 3 |dx| and 3 |dy| fit in int32 too */
+        for (int e = 0; e < 3; e++) {
+            int32_t dx = (int32_t)t->edge_dx[e], dy = (int32_t)t->edge_dy[e];
+#if defined(__AVX512F__)
+            w->offs[e] = sg_walk_offsets((uint32_t)dx, (uint32_t)dy);
+#elif defined(__AVX2__)
+            w->offs[e][0] = sg_walk_offsets8((uint32_t)dx, (uint32_t)dy, 0);
+            w->offs[e][1] = sg_walk_offsets8((uint32_t)dx, (uint32_t)dy, 1);
+#elif defined(__SSE2__)
+            w->lane[e] = _mm_setr_epi32(0, dx, 2 * dx, 3 * dx);
+            w->step[e] = _mm_set1_epi32(dy);
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+            const int32x4_t i = {0, 1, 2, 3};
+            w->lane[e] = vmulq_s32(vdupq_n_s32(dx), i);
+            w->step[e] = vdupq_n_s32(dy);
+#else
+            for (int i = 0; i < SG_TILE_PIXELS; i++) w->offs[e][i] = (i & 3) * dx + (i >> 2) * dy;
+#endif
+        }
+#if defined(__AVX512F__) || defined(__AVX2__)
+    else
+        for (int e = 0; e < 3; e++) {
+            int64_t o[SG_TILE_PIXELS];
+            for (int i = 0; i < SG_TILE_PIXELS; i++)
+                o[i] = (i & 3) * t->edge_dx[e] + (i >> 2) * t->edge_dy[e];
+#if defined(__AVX512F__)
+            for (int h = 0; h < 2; h++) w->wide[e][h] = _mm512_loadu_si512(o + 8 * h);
+#else
+            for (int j = 0; j < SG_TILE; j++)
+                w->wide[e][j] = _mm256_loadu_si256((const __m256i *)(const void *)(o + 4 * j));
+#endif
+        }
+#endif
+}
+
 SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
                                  const void *ctx) {
     int tx0 = (t->minx > rx0 ? t->minx : rx0) >> SG_TILE_SHIFT;
@@ -588,43 +629,7 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
         return;
     }
     walk w;
-    w.t = t;
-    corners(t, SG_TILE - 1, w.hi, w.lo);
-    w.narrow = true;
-    for (int e = 0; e < 3; e++) w.narrow &= w.hi[e] - w.lo[e] < ((int64_t)1 << 31);
-    if (w.narrow) /* then 3 |dx| and 3 |dy| fit in int32 too */
-        for (int e = 0; e < 3; e++) {
-            int32_t dx = (int32_t)t->edge_dx[e], dy = (int32_t)t->edge_dy[e];
-#if defined(__AVX512F__)
-            w.offs[e] = sg_walk_offsets((uint32_t)dx, (uint32_t)dy);
-#elif defined(__AVX2__)
-            w.offs[e][0] = sg_walk_offsets8((uint32_t)dx, (uint32_t)dy, 0);
-            w.offs[e][1] = sg_walk_offsets8((uint32_t)dx, (uint32_t)dy, 1);
-#elif defined(__SSE2__)
-            w.lane[e] = _mm_setr_epi32(0, dx, 2 * dx, 3 * dx);
-            w.step[e] = _mm_set1_epi32(dy);
-#elif defined(__aarch64__) && defined(__ARM_NEON)
-            const int32x4_t i = {0, 1, 2, 3};
-            w.lane[e] = vmulq_s32(vdupq_n_s32(dx), i);
-            w.step[e] = vdupq_n_s32(dy);
-#else
-            for (int i = 0; i < SG_TILE_PIXELS; i++) w.offs[e][i] = (i & 3) * dx + (i >> 2) * dy;
-#endif
-        }
-#if defined(__AVX512F__) || defined(__AVX2__)
-    else
-        for (int e = 0; e < 3; e++) {
-            int64_t o[SG_TILE_PIXELS];
-            for (int i = 0; i < SG_TILE_PIXELS; i++)
-                o[i] = (i & 3) * t->edge_dx[e] + (i >> 2) * t->edge_dy[e];
-#if defined(__AVX512F__)
-            for (int h = 0; h < 2; h++) w.wide[e][h] = _mm512_loadu_si512(o + 8 * h);
-#else
-            for (int j = 0; j < SG_TILE; j++)
-                w.wide[e][j] = _mm256_loadu_si256((const __m256i *)(const void *)(o + 4 * j));
-#endif
-        }
-#endif
+    sg_walk_prepare(t, &w);
     /* Small triangles: one block at most, so go straight to the tiles. */
     if (tx1 - tx0 < 4 && ty1 - ty0 < 4) {
         walk_tiles(&w, tx0, ty0, tx1, ty1, fn, ctx);
