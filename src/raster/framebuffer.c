@@ -1,6 +1,8 @@
 /* framebuffer.c - filling tiled and linear pixels and converting between the two layouts. */
 #include "raster/framebuffer.h"
 
+#include "raster/blend.h"
+
 #include <string.h>
 
 static int tiles_of(int n) {
@@ -96,10 +98,16 @@ void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
     for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
 }
 
+void sg_fb_blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+    _Alignas(64) uint32_t px[SG_TILE_PIXELS];
+    sg_blend16_rgba8(src, dst, px);
+    sg_fb_put_masked(dst, px, mask);
+}
+
 void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
                            size_t n) {
     for (size_t i = 0; i < n; i++) p0[i] = sg_fb_average4(p0[i], p1[i], p2[i], p3[i]);
 }
 
-const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth, sg_fb_depth_range,
-                                      sg_fb_put_masked, sg_fb_average4_planes};
+const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
+                                      sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes};

@@ -67,6 +67,8 @@ typedef struct sg_fb_ops {
      * 64-byte aligned); and the average of four planes of n pixels into the first (n a multiple
      * of 16, every plane 64-byte aligned), as sg_fb_average4 computes it. */
     void (*put_masked)(uint32_t *dst, const uint32_t *src, uint32_t mask);
+    /* src's fragments of `mask` blended over dst's pixels (sg_blend16_rgba8), the same tiles. */
+    void (*blend_masked)(uint32_t *dst, const uint32_t *src, uint32_t mask);
     void (*average4)(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
                      size_t n);
 } sg_fb_ops;
@@ -79,8 +81,9 @@ static inline uint32_t sg_fb_average4(uint32_t a, uint32_t b, uint32_t c, uint32
     return (lo >> 2 & m) | (hi >> 2 & m) << 8;
 }
 
-/** The portable put_masked and average4 of sg_fb_ops. */
+/** The portable put_masked, blend_masked and average4 of sg_fb_ops. */
 void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
+void sg_fb_blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
                            size_t n);
 

@@ -2,6 +2,8 @@
  * framebuffer.h). */
 #include "raster/framebuffer.h"
 
+#include "raster/blend.h"
+
 #if defined(__AVX2__)
 #include <immintrin.h>
 
@@ -18,6 +20,13 @@ static void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
                                _mm256_cmpeq_epi32(_mm256_and_si256(bits, lanes), lanes),
                                _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h)));
     }
+}
+
+/* The blend on whole vectors (blend.h's code, compiled for the set), stored under the mask. */
+static void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+    _Alignas(64) uint32_t px[SG_TILE_PIXELS];
+    sg_blend16_rgba8(src, dst, px);
+    put_masked(dst, px, mask);
 }
 
 /* 8 pixels a vector, as sg_fb_average4 computes each. */
@@ -47,6 +56,6 @@ static void average4(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const
 #define SG_FB_TABLE sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
 #else
-const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth, sg_fb_depth_range,
-                                  sg_fb_put_masked, sg_fb_average4_planes};
+const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
+                                  sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes};
 #endif

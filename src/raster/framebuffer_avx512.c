@@ -2,6 +2,8 @@
  * framebuffer.h). */
 #include "raster/framebuffer.h"
 
+#include "raster/blend.h"
+
 #if defined(__AVX512F__)
 #include <immintrin.h>
 
@@ -12,6 +14,13 @@ static void fill_color(uint32_t *dst, size_t n, uint32_t value) {
 
 static void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
     _mm512_mask_store_epi32(dst, (__mmask16)mask, _mm512_load_si512(src));
+}
+
+/* The blend on whole vectors (blend.h's code, compiled for the set), stored under the mask. */
+static void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+    __m512i px;
+    sg_blend16_rgba8(src, dst, (uint32_t *)(void *)&px);
+    _mm512_mask_store_epi32(dst, (__mmask16)mask, px);
 }
 
 /* 16 pixels a vector: each channel's four values summed in 16-bit lanes (even and odd bytes
@@ -39,6 +48,6 @@ static void average4(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const
 #define SG_FB_TABLE sg_fb_ops_avx512
 #include "raster/framebuffer_table.h"
 #else
-const sg_fb_ops sg_fb_ops_avx512 = {sg_fb_fill_color, sg_fb_fill_depth, sg_fb_depth_range,
-                                    sg_fb_put_masked, sg_fb_average4_planes};
+const sg_fb_ops sg_fb_ops_avx512 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
+                                    sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes};
 #endif

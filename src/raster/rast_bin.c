@@ -280,19 +280,6 @@ static void write_bin(const sg_bin_pass *p, const bin_view *v, const uint32_t *c
         sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
 }
 
-/* How many triangles ahead visibility and the ordered bins ask for the next: a triangle is four
- * cache lines, often not in cache (a big mesh's triangles outgrow it), and a small triangle's
- * visibility takes less time than a load from memory, so two ahead came too late (08_terrain 0.94
- * with twelve; docs/performance.md, "Triangles asked for twelve ahead"). */
-enum { PREFETCH_AHEAD = 12 };
-
-/* Asks for the bin's i-th triangle, if any. */
-static inline void prefetch_tri(const sg_binner *b, const sg_bin *bin, uint32_t i) {
-    if (i >= bin->count) return;
-    const char *t = (const char *)&b->tris[bin->tris[i]];
-    for (size_t off = 0; off < sizeof(sg_tri); off += 64) __builtin_prefetch(t + off);
-}
-
 /* A bin's depth range (sg_fb_depth_range), known or not yet; valid: known and given. */
 typedef struct depth_range {
     bool known, valid;
@@ -346,7 +333,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
-        prefetch_tri(b, bin, i + PREFETCH_AHEAD);
+        sg_prefetch_tri(b, bin, i + SG_PREFETCH_AHEAD);
         const sg_draw_state *d = &p->draws[t->draw];
         if (waiting.n && waiting.draw != t->draw) waiting.flush(&waiting, &vis);
         vis.id = ti + 1;
@@ -389,7 +376,7 @@ static inline __attribute__((always_inline)) void visibility(const sg_bin_pass *
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];
-        prefetch_tri(b, bin, i + PREFETCH_AHEAD);
+        sg_prefetch_tri(b, bin, i + SG_PREFETCH_AHEAD);
         const sg_draw_state *d = &p->draws[t->draw];
         vis->id = ti + 1;
         vis->compare = d->compare;

@@ -44,6 +44,19 @@ typedef struct sg_draw_state {
     bool blend;
 } sg_draw_state;
 
+/* How many triangles ahead visibility and the ordered bins ask for the next: a triangle is four
+ * cache lines, often not in cache (a big mesh's triangles outgrow it), and a small triangle's
+ * visibility takes less time than a load from memory, so two ahead came too late (08_terrain 0.94
+ * with twelve; docs/performance.md, "Triangles asked for twelve ahead"). */
+enum { SG_PREFETCH_AHEAD = 12 };
+
+/* Asks for the bin's i-th triangle, if any. */
+static inline void sg_prefetch_tri(const sg_binner *b, const sg_bin *bin, uint32_t i) {
+    if (i >= bin->count) return;
+    const char *t = (const char *)&b->tris[bin->tris[i]];
+    for (size_t off = 0; off < sizeof(sg_tri); off += 64) __builtin_prefetch(t + off);
+}
+
 /* Stages of a pass whose wall time a build with SGAPI_STAGE_TIMES adds up (stage_times.h). */
 enum {
     SG_STAGE_FRONT,

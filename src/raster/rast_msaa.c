@@ -3,7 +3,6 @@
 
 #include <string.h>
 
-#include "raster/blend.h"
 #include "raster/framebuffer.h"
 #include "raster/shade_shader.h"
 
@@ -31,11 +30,14 @@ void sg_msaa_sample_tri(const sg_tri *t, int k, sg_tri *out) {
 }
 
 /* A bin's samples: plane k holds sample k of every pixel, tiled like a one-sample bin, so that
- * each plane is what the visibility functions expect. */
+ * each plane is what the visibility functions expect. A plane is a cache line longer than its
+ * pixels: planes of 16 KB would put a tile's twelve lines (four samples of colour, depth and ids)
+ * in one set of the first-level cache, which holds eight; so each is in a set of its own. */
+enum { PLANE = BIN_PIXELS + SG_TILE_PIXELS };
 typedef struct msaa_bin {
-    _Alignas(64) uint32_t color[NS][BIN_PIXELS];
-    _Alignas(64) float depth[NS][BIN_PIXELS];
-    _Alignas(64) uint32_t ids[NS][BIN_PIXELS];
+    _Alignas(64) uint32_t color[NS][PLANE];
+    _Alignas(64) float depth[NS][PLANE];
+    _Alignas(64) uint32_t ids[NS][PLANE];
     uint64_t touched[NS][TOUCH_WORDS];
     sg_vis_ctx vis[NS];
     int x0, y0; /* the bin's top-left pixel */
@@ -46,14 +48,6 @@ static inline uint64_t reached_by_any(const msaa_bin *b, int word) {
     uint64_t reached = 0;
     for (int k = 0; k < NS; k++) reached |= b->touched[k][word];
     return reached;
-}
-
-/* src's fragments of `mask` blended over dst's pixels. */
-static inline void blend_masked(const sg_fb_ops *fb, uint32_t *dst, const uint32_t *src,
-                                uint32_t mask) {
-    _Alignas(64) uint32_t px[SG_TILE_PIXELS];
-    sg_blend16_rgba8(src, dst, px);
-    fb->put_masked(dst, px, mask);
 }
 
 /* Shades the ids the samples hold: per tile, each triangle seen by some sample once, for the
@@ -163,7 +157,7 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
                 uint32_t *dst = b->color[k] + base;
                 if (!mk) continue;
                 if (d->blend)
-                    blend_masked(p->fb, dst, src, mk);
+                    p->fb->blend_masked(dst, src, mk);
                 else
                     p->fb->put_masked(dst, src, mk);
             }
@@ -180,22 +174,26 @@ static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int 
     const size_t at = (size_t)index * SG_MSAA_BIN_SAMPLES;
     if (v->color) {
         if (p->msaa_load) {
-            memcpy(b->color, p->msaa_color + at, sizeof b->color);
+            for (int k = 0; k < NS; k++)
+                memcpy(b->color[k], p->msaa_color + at + (size_t)k * BIN_PIXELS,
+                       BIN_PIXELS * sizeof(uint32_t));
         } else if (p->load_color) {
             sg_tile_from_linear_rgba8(b->color[0], v->color, v->pitch, v->w, v->h, BIN_TILES);
             for (int k = 1; k < NS; k++) memcpy(b->color[k], b->color[0], sizeof b->color[0]);
         } else {
-            p->fb->fill_color(b->color[0], (size_t)NS * BIN_PIXELS, p->clear_color);
+            p->fb->fill_color(b->color[0], (size_t)NS * PLANE, p->clear_color);
         }
     }
     if (v->depth) {
         if (p->msaa_load) {
-            memcpy(b->depth, p->msaa_depth + at, sizeof b->depth);
+            for (int k = 0; k < NS; k++)
+                memcpy(b->depth[k], p->msaa_depth + at + (size_t)k * BIN_PIXELS,
+                       BIN_PIXELS * sizeof(float));
         } else if (p->load_depth) {
             sg_tile_from_linear_f32(b->depth[0], v->depth, v->pitch, v->w, v->h, BIN_TILES);
             for (int k = 1; k < NS; k++) memcpy(b->depth[k], b->depth[0], sizeof b->depth[0]);
         } else {
-            p->fb->fill_depth(b->depth[0], (size_t)NS * BIN_PIXELS, p->clear_depth);
+            p->fb->fill_depth(b->depth[0], (size_t)NS * PLANE, p->clear_depth);
         }
     }
 }
@@ -205,8 +203,11 @@ static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int 
 static void end_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index) {
     const size_t at = (size_t)index * SG_MSAA_BIN_SAMPLES;
     if (p->msaa_store) {
-        if (v->color) memcpy(p->msaa_color + at, b->color, sizeof b->color);
-        if (v->depth) memcpy(p->msaa_depth + at, b->depth, sizeof b->depth);
+        for (int k = 0; k < NS; k++) {
+            const size_t to = at + (size_t)k * BIN_PIXELS;
+            if (v->color) memcpy(p->msaa_color + to, b->color[k], BIN_PIXELS * sizeof(uint32_t));
+            if (v->depth) memcpy(p->msaa_depth + to, b->depth[k], BIN_PIXELS * sizeof(float));
+        }
         return;
     }
     if (v->color) {
@@ -244,6 +245,7 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
     sg_tri st[NS];
     for (uint32_t i = 0; i < bin->count; i++) {
         const uint32_t ti = bin->tris[i];
+        sg_prefetch_tri(p->binner, bin, i + SG_PREFETCH_AHEAD);
         const sg_tri *t = &p->binner->tris[ti];
         const sg_draw_state *d = &p->draws[t->draw];
         for (int k = 0; k < NS; k++) sg_msaa_sample_tri(t, k, &st[k]);
@@ -277,7 +279,8 @@ void sg_rast_bin_msaa(const sg_bin_pass *p, int index) {
         sg_bin_fill_empty(p, &v);
         return;
     }
-    /* 192 KB of samples and ids: the same stack for every bin of the thread. */
+    /* 192 KB of samples and ids (and a line a plane): the same stack for every bin of the thread.
+     */
     msaa_bin b;
     b.x0 = v.x0;
     b.y0 = v.y0;
