@@ -39,6 +39,11 @@ typedef struct msaa_bin {
     _Alignas(64) float depth[NS][PLANE];
     _Alignas(64) uint32_t ids[NS][PLANE];
     uint64_t touched[NS][TOUCH_WORDS];
+    /* A bit a tile: its samples' colours are all plane 0's, and planes 1-3 of the tile are not
+     * kept (a cleared or loaded tile, and one that only whole pixels have been written to since).
+     * The resolve then takes plane 0, and the other planes are filled in from it only when a
+     * tile's samples first differ (expand). */
+    uint64_t one_color[TOUCH_WORDS];
     sg_vis_ctx vis[NS];
     int x0, y0; /* the bin's top-left pixel */
 } msaa_bin;
@@ -48,6 +53,15 @@ static inline uint64_t reached_by_any(const msaa_bin *b, int word) {
     uint64_t reached = 0;
     for (int k = 0; k < NS; k++) reached |= b->touched[k][word];
     return reached;
+}
+
+/* Planes 1-3 of tile `base` (word, bit) filled in from plane 0, if they are not kept. */
+static inline void expand(msaa_bin *b, int word, int bit, int base) {
+    const uint64_t flag = (uint64_t)1 << bit;
+    if (!(b->one_color[word] & flag)) return;
+    b->one_color[word] &= ~flag;
+    for (int k = 1; k < NS; k++)
+        memcpy(b->color[k] + base, b->color[0] + base, SG_TILE_PIXELS * sizeof(uint32_t));
 }
 
 /* Shades the ids the samples hold: per tile, each triangle seen by some sample once, for the
@@ -74,11 +88,15 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     }
     sg_shade_bin_tiles(p, b->ids[0], uniform, b->x0, b->y0, b->color[0]);
     for (int word = 0; word < TOUCH_WORDS; word++) {
-        for (uint64_t left = uniform[word]; left; left &= left - 1) {
+        /* A uniform tile's samples take the same colour where covered: a one-colour tile stays. */
+        for (uint64_t left = uniform[word] & ~b->one_color[word]; left; left &= left - 1) {
             const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
             const uint32_t covered = ~sg_tile_same_id(b->ids[0] + base, 0) & 0xffffu;
             for (int k = 1; k < NS; k++)
                 p->fb->put_masked(b->color[k] + base, b->color[0] + base, covered);
+        }
+        for (uint64_t left = uniform[word]; left; left &= left - 1) {
+            const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
             for (int k = 0; k < NS; k++)
                 memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
         }
@@ -87,6 +105,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
             const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
             const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
             const int base = tile * SG_TILE_PIXELS;
+            expand(b, word, tile & 63, base);
             uint32_t left[NS], any = 0;
             for (int k = 0; k < NS; k++)
                 any |= left[k] = ~sg_tile_same_id(b->ids[k] + base, 0) & 0xffffu;
@@ -144,16 +163,22 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
                 keep = sg_shader_fragments(&d->ctx, t, px, py, u, src);
             else
                 d->shade_fn(&d->ctx, t, px, py, u, src);
-            for (int k = 0; k < NS; k++) {
-                uint32_t mk = m[k] & keep;
-                if (d->writes_depth && b->vis[k].depth) {
+            if (d->writes_depth && b->vis[0].depth)
+                for (int k = 0; k < NS; k++) {
                     const float ox = (float)(px - st[k].minx), oy = (float)(py - st[k].miny);
-                    for (uint32_t left = mk; left; left &= left - 1) {
+                    for (uint32_t left = m[k] & keep; left; left &= left - 1) {
                         int bit = __builtin_ctz(left);
                         b->depth[k][base + bit] =
                             sg_tri_depth(&st[k], ox + (float)(bit & 3), oy + (float)(bit >> 2));
                     }
                 }
+            /* Every sample of a one-colour tile's pixels written alike: it stays one colour. */
+            bool alike = b->one_color[word] >> (tile & 63) & 1;
+            for (int k = 0; k < NS; k++) alike &= m[k] == u;
+            const int n = alike ? 1 : NS;
+            if (!alike) expand(b, word, tile & 63, base);
+            for (int k = 0; k < n; k++) {
+                const uint32_t mk = m[k] & keep;
                 uint32_t *dst = b->color[k] + base;
                 if (!mk) continue;
                 if (d->blend)
@@ -172,6 +197,8 @@ typedef sg_bin_view bin_view;
 /* The bin's samples from the pass's load or clear, or from the sample buffers after a flush. */
 static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index) {
     const size_t at = (size_t)index * SG_MSAA_BIN_SAMPLES;
+    /* Cleared or loaded, every tile is one colour: plane 0 alone is filled. */
+    memset(b->one_color, v->color && !p->msaa_load ? 0xff : 0, sizeof b->one_color);
     if (v->color) {
         if (p->msaa_load) {
             for (int k = 0; k < NS; k++)
@@ -179,9 +206,8 @@ static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int 
                        BIN_PIXELS * sizeof(uint32_t));
         } else if (p->load_color) {
             sg_tile_from_linear_rgba8(b->color[0], v->color, v->pitch, v->w, v->h, BIN_TILES);
-            for (int k = 1; k < NS; k++) memcpy(b->color[k], b->color[0], sizeof b->color[0]);
         } else {
-            p->fb->fill_color(b->color[0], (size_t)NS * PLANE, p->clear_color);
+            p->fb->fill_color(b->color[0], BIN_PIXELS, p->clear_color);
         }
     }
     if (v->depth) {
@@ -203,6 +229,8 @@ static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int 
 static void end_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index) {
     const size_t at = (size_t)index * SG_MSAA_BIN_SAMPLES;
     if (p->msaa_store) {
+        for (int tile = 0; tile < BIN_TILES * BIN_TILES; tile++)
+            expand(b, tile >> 6, tile & 63, tile * SG_TILE_PIXELS);
         for (int k = 0; k < NS; k++) {
             const size_t to = at + (size_t)k * BIN_PIXELS;
             if (v->color) memcpy(p->msaa_color + to, b->color[k], BIN_PIXELS * sizeof(uint32_t));
@@ -211,7 +239,13 @@ static void end_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int in
         return;
     }
     if (v->color) {
-        p->fb->average4(b->color[0], b->color[1], b->color[2], b->color[3], BIN_PIXELS);
+        /* A one-colour tile's average is plane 0's colour. */
+        for (int word = 0; word < TOUCH_WORDS; word++)
+            for (uint64_t left = ~b->one_color[word]; left; left &= left - 1) {
+                const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
+                p->fb->average4(b->color[0] + base, b->color[1] + base, b->color[2] + base,
+                                b->color[3] + base, SG_TILE_PIXELS);
+            }
         sg_tile_to_linear_rgba8(v->color, v->pitch, b->color[0], v->w, v->h, BIN_TILES);
     }
     if (v->depth && p->store_depth)
