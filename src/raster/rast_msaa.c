@@ -55,6 +55,27 @@ static inline uint64_t reached_by_any(const msaa_bin *b, int word) {
     return reached;
 }
 
+/* Whether every sample of tile `base` sees what sample 0 sees. */
+static inline bool same_ids(const msaa_bin *b, int base) {
+#if defined(__SSE2__)
+    __m128i diff = _mm_setzero_si128();
+    for (int j = 0; j < SG_TILE_PIXELS; j += 4) {
+        const __m128i first = _mm_load_si128((const __m128i *)(const void *)(b->ids[0] + base + j));
+        for (int k = 1; k < NS; k++)
+            diff = _mm_or_si128(
+                diff,
+                _mm_xor_si128(
+                    first, _mm_load_si128((const __m128i *)(const void *)(b->ids[k] + base + j))));
+    }
+    return _mm_movemask_epi8(_mm_cmpeq_epi32(diff, _mm_setzero_si128())) == 0xffff;
+#else
+    uint32_t diff = 0;
+    for (int k = 1; k < NS; k++)
+        for (int i = 0; i < SG_TILE_PIXELS; i++) diff |= b->ids[k][base + i] ^ b->ids[0][base + i];
+    return diff == 0;
+#endif
+}
+
 /* Planes 1-3 of tile `base` (word, bit) filled in from plane 0, if they are not kept. */
 static inline void expand(msaa_bin *b, int word, int bit, int base) {
     const uint64_t flag = (uint64_t)1 << bit;
@@ -76,11 +97,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
         uniform[word] = mixed[word] = 0;
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int bit = __builtin_ctzll(reached), base = (word * 64 + bit) * SG_TILE_PIXELS;
-            uint32_t diff = 0;
-            for (int k = 1; k < NS; k++)
-                for (int i = 0; i < SG_TILE_PIXELS; i++)
-                    diff |= b->ids[k][base + i] ^ b->ids[0][base + i];
-            if (diff)
+            if (!same_ids(b, base))
                 mixed[word] |= (uint64_t)1 << bit;
             else
                 uniform[word] |= (uint64_t)1 << bit;
