@@ -330,8 +330,7 @@ void sg_rast_bin_msaa(const sg_bin_pass *p, int index) {
         sg_bin_fill_empty(p, &v);
         return;
     }
-    /* 192 KB of samples and ids (and a line a plane): the same stack for every bin of the thread.
-     */
+    /* About 193 KB of samples and ids: the same stack for every bin of the thread. */
     msaa_bin b;
     b.x0 = v.x0;
     b.y0 = v.y0;
