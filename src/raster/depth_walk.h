@@ -32,13 +32,12 @@ static inline int sg_zmode(sgCompare compare) {
 
 /* The six visibility functions of a tile body, prefix_none_0 ... prefix_any_1, and their
  * [zmode][depth write] table. */
-#define SG_VIS_SET(prefix, body)                                                                   \
-    SG_WALK_FN(prefix##_none_0, body, Z_NONE, 0)                                                   \
-    SG_WALK_FN(prefix##_none_1, body, Z_NONE, 1)                                                   \
-    SG_WALK_FN(prefix##_less_0, body, Z_LESS, 0)                                                   \
-    SG_WALK_FN(prefix##_less_1, body, Z_LESS, 1)                                                   \
-    SG_WALK_FN(prefix##_any_0, body, Z_ANY, 0)                                                     \
-    SG_WALK_FN(prefix##_any_1, body, Z_ANY, 1)
+#define SG_VIS_SET(prefix, body) SG_VIS_SET_OF(SG_WALK_FN, prefix, body)
+/* The six functions fn(prefix_..., body, zmode, depth write) makes of a tile body. */
+#define SG_VIS_SET_OF(fn, prefix, body)                                                            \
+    fn(prefix##_none_0, body, Z_NONE, 0) fn(prefix##_none_1, body, Z_NONE, 1)                      \
+        fn(prefix##_less_0, body, Z_LESS, 0) fn(prefix##_less_1, body, Z_LESS, 1)                  \
+            fn(prefix##_any_0, body, Z_ANY, 0) fn(prefix##_any_1, body, Z_ANY, 1)
 #define SG_VIS_TABLE(prefix)                                                                       \
     {                                                                                              \
         {prefix##_none_0, prefix##_none_1}, {prefix##_less_0, prefix##_less_1}, {                  \
@@ -183,13 +182,7 @@ SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, 
         sg_rast_walk(&all, x0, y0, x1, y1, name##_tile, &s);                                       \
     }
 
-/* The six sample visibility functions of a tile body, and their [zmode][depth write] table. */
-#define SG_VIS_SAMPLES_SET(prefix, body)                                                           \
-    SG_VIS_SAMPLES_FN(prefix##_none_0, body, Z_NONE, 0)                                            \
-    SG_VIS_SAMPLES_FN(prefix##_none_1, body, Z_NONE, 1)                                            \
-    SG_VIS_SAMPLES_FN(prefix##_less_0, body, Z_LESS, 0)                                            \
-    SG_VIS_SAMPLES_FN(prefix##_less_1, body, Z_LESS, 1)                                            \
-    SG_VIS_SAMPLES_FN(prefix##_any_0, body, Z_ANY, 0)                                              \
-    SG_VIS_SAMPLES_FN(prefix##_any_1, body, Z_ANY, 1)
+/* The six sample visibility functions of a tile body (their table: SG_VIS_TABLE). */
+#define SG_VIS_SAMPLES_SET(prefix, body) SG_VIS_SET_OF(SG_VIS_SAMPLES_FN, prefix, body)
 
 #endif

@@ -29,31 +29,8 @@ static void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
     put_masked(dst, px, mask);
 }
 
-/* 8 pixels a vector, as sg_fb_average4 computes each. */
-static void average4(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
-                     size_t n) {
-    const __m256i m = _mm256_set1_epi32(0x00ff00ff), half = _mm256_set1_epi32(0x00020002);
-    for (size_t i = 0; i < n; i += 8) {
-        const __m256i a = _mm256_load_si256((const __m256i *)(const void *)(p0 + i));
-        const __m256i b = _mm256_load_si256((const __m256i *)(const void *)(p1 + i));
-        const __m256i c = _mm256_load_si256((const __m256i *)(const void *)(p2 + i));
-        const __m256i d = _mm256_load_si256((const __m256i *)(const void *)(p3 + i));
-        __m256i lo =
-            _mm256_add_epi32(_mm256_add_epi32(_mm256_and_si256(a, m), _mm256_and_si256(b, m)),
-                             _mm256_add_epi32(_mm256_and_si256(c, m), _mm256_and_si256(d, m)));
-        __m256i hi =
-            _mm256_add_epi32(_mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(a, 8), m),
-                                              _mm256_and_si256(_mm256_srli_epi32(b, 8), m)),
-                             _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(c, 8), m),
-                                              _mm256_and_si256(_mm256_srli_epi32(d, 8), m)));
-        lo = _mm256_and_si256(_mm256_srli_epi32(_mm256_add_epi32(lo, half), 2), m);
-        hi = _mm256_and_si256(_mm256_srli_epi32(_mm256_add_epi32(hi, half), 2), m);
-        _mm256_store_si256((__m256i *)(void *)(p0 + i),
-                           _mm256_or_si256(lo, _mm256_slli_epi32(hi, 8)));
-    }
-}
-
-#define SG_FB_TABLE sg_fb_ops_avx2
+#define SG_FB_VECTOR_BYTES 32
+#define SG_FB_TABLE        sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
 #else
 const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
