@@ -47,9 +47,10 @@ static inline int sg_zmode(sgCompare compare) {
 
 /* Multisampled passes: the visibility of a triangle's four samples in one walk. The walk goes
  * over a triangle whose edges hold every pixel some sample is inside of (each edge moved by the
- * largest of the samples' offsets); per tile, each sample's coverage is then its own edges'
- * test (crossed_mask, the walk's own) and the tile body runs per sample with it. A line's samples
- * are all the line: its mask is theirs. */
+ * largest of the samples' offsets); per tile, each sample's coverage is then its own edges' test
+ * (with AVX-512 and AVX2 a 32-bit compare per crossing edge against offsets prepared once a
+ * triangle, elsewhere crossed_mask, the walk's own) and the tile body runs per sample with it. A
+ * line's samples are all the line: its mask is theirs. */
 typedef struct sg_vis_samples {
     const sg_tri *st; /* the triangle as each sample sees it */
     sg_vis_ctx *vis;  /* each sample's plane */
