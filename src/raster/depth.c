@@ -79,44 +79,33 @@ SG_VIS_SAMPLES_FN(vis_samples_less_0_sse2, vis_sse2, Z_LESS, 0)
 SG_VIS_SAMPLES_FN(vis_samples_less_1_sse2, vis_sse2, Z_LESS, 1)
 #endif
 
-sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
-    static const sg_raster_fn scalar[3][2] = SG_VIS_TABLE(vis);
-    int zmode = sg_zmode(compare);
-    if (isa == SG_ISA_NEON)
-        return zmode == Z_LESS && sg_depth_less_neon(depth_write)
-                   ? sg_depth_less_neon(depth_write)
-                   : scalar[zmode][depth_write ? 1 : 0];
-    /* The best set the ISA allows that is built: AVX-512, AVX2, SSE2, scalar. */
-    if (isa >= SG_ISA_AVX512 && sg_depth_avx512(compare, depth_write))
-        return sg_depth_avx512(compare, depth_write);
-    if (isa >= SG_ISA_AVX2 && sg_depth_avx2(compare, depth_write))
-        return sg_depth_avx2(compare, depth_write);
+/* The visibility functions of a depth state on `isa`: the best set the ISA allows that is built
+ * (AVX-512, AVX2, SSE2 for LESS, scalar; on AArch64 NEON for LESS, else scalar). */
+static sg_vis_fns vis_select(sgCompare compare, bool depth_write, sg_isa isa) {
+    static const sg_raster_fn one[3][2] = SG_VIS_TABLE(vis);
+    static const sg_raster_samples_fn samples[3][2] = SG_VIS_TABLE(vis_samples);
+    const int zmode = sg_zmode(compare);
+    sg_vis_fns f = {NULL, NULL};
+    if (isa == SG_ISA_NEON) {
+        if (zmode == Z_LESS) f = sg_depth_less_neon(depth_write);
+    } else {
+        if (isa >= SG_ISA_AVX512) f = sg_depth_avx512(compare, depth_write);
+        if (!f.one && isa >= SG_ISA_AVX2) f = sg_depth_avx2(compare, depth_write);
 #if defined(__SSE2__)
-    if (isa >= SG_ISA_SSE2 && zmode == Z_LESS)
-        return depth_write ? vis_less_1_sse2 : vis_less_0_sse2;
-#else
-    (void)isa;
+        if (!f.one && isa >= SG_ISA_SSE2 && zmode == Z_LESS)
+            f = depth_write ? (sg_vis_fns){vis_less_1_sse2, vis_samples_less_1_sse2}
+                            : (sg_vis_fns){vis_less_0_sse2, vis_samples_less_0_sse2};
 #endif
-    return scalar[zmode][depth_write ? 1 : 0];
+    }
+    return f.one ? f : sg_vis_pick(one, samples, compare, depth_write);
+}
+
+sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
+    return vis_select(compare, depth_write, isa).one;
 }
 
 sg_raster_samples_fn sg_depth_samples_select(sgCompare compare, bool depth_write, sg_isa isa) {
-    static const sg_raster_samples_fn scalar[3][2] = SG_VIS_TABLE(vis_samples);
-    int zmode = sg_zmode(compare);
-    if (isa == SG_ISA_NEON)
-        return zmode == Z_LESS && sg_depth_samples_less_neon(depth_write)
-                   ? sg_depth_samples_less_neon(depth_write)
-                   : scalar[zmode][depth_write ? 1 : 0];
-    /* The same choice as sg_depth_select's. */
-    if (isa >= SG_ISA_AVX512 && sg_depth_samples_avx512(compare, depth_write))
-        return sg_depth_samples_avx512(compare, depth_write);
-    if (isa >= SG_ISA_AVX2 && sg_depth_samples_avx2(compare, depth_write))
-        return sg_depth_samples_avx2(compare, depth_write);
-#if defined(__SSE2__)
-    if (isa >= SG_ISA_SSE2 && zmode == Z_LESS)
-        return depth_write ? vis_samples_less_1_sse2 : vis_samples_less_0_sse2;
-#endif
-    return scalar[zmode][depth_write ? 1 : 0];
+    return vis_select(compare, depth_write, isa).samples;
 }
 
 sg_walk_fn sg_walk_select(sg_isa isa) {

@@ -125,16 +125,20 @@ typedef void (*sg_raster_samples_fn)(const sg_tri *st, int x0, int y0, int x1, i
 
 /** The sample visibility function for a resolved depth state. */
 sg_raster_samples_fn sg_depth_samples_select(sgCompare compare, bool depth_write, sg_isa isa);
-sg_raster_samples_fn sg_depth_samples_avx2(sgCompare compare, bool depth_write);
-sg_raster_samples_fn sg_depth_samples_avx512(sgCompare compare, bool depth_write);
-sg_raster_samples_fn sg_depth_samples_less_neon(bool depth_write);
 
-/** The AVX2 visibility function of a compare (depth_avx2.c); NULL where AVX2 code is not built. */
-sg_raster_fn sg_depth_avx2(sgCompare compare, bool depth_write);
-/** The AVX-512 one (depth_avx512.c); NULL where AVX-512 code is not built. */
-sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write);
-/** The NEON LESS functions (depth_neon.c); NULL off AArch64. */
-sg_raster_fn sg_depth_less_neon(bool depth_write);
+/* A set's visibility functions of one depth state: one sample, and the four samples at once. */
+typedef struct sg_vis_fns {
+    sg_raster_fn one; /* NULL: the set has none for this state, or is not built */
+    sg_raster_samples_fn samples;
+} sg_vis_fns;
+
+/** The AVX2 visibility functions of a compare (depth_avx2.c); NULLs where AVX2 code is not built.
+ */
+sg_vis_fns sg_depth_avx2(sgCompare compare, bool depth_write);
+/** The AVX-512 ones (depth_avx512.c); NULLs where AVX-512 code is not built. */
+sg_vis_fns sg_depth_avx512(sgCompare compare, bool depth_write);
+/** The NEON LESS ones (depth_neon.c); NULLs off AArch64. */
+sg_vis_fns sg_depth_less_neon(bool depth_write);
 
 /** Mask of the pixels of a tile (16 ids) that see triangle `id`. */
 static inline uint32_t sg_tile_same_id(const uint32_t *ids, uint32_t id) {

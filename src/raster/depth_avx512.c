@@ -33,16 +33,12 @@ static inline __attribute__((always_inline)) void vis_avx512(const void *vctx, c
 
 SG_VIS_SET(vis_avx512, vis_avx512)
 
-sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write) {
-    static const sg_raster_fn fns[3][2] = SG_VIS_TABLE(vis_avx512);
-    return fns[sg_zmode(compare)][depth_write ? 1 : 0];
-}
-
 SG_VIS_SAMPLES_SET(vis_samples_avx512, vis_avx512)
 
-sg_raster_samples_fn sg_depth_samples_avx512(sgCompare compare, bool depth_write) {
-    static const sg_raster_samples_fn fns[3][2] = SG_VIS_TABLE(vis_samples_avx512);
-    return fns[sg_zmode(compare)][depth_write ? 1 : 0];
+sg_vis_fns sg_depth_avx512(sgCompare compare, bool depth_write) {
+    static const sg_raster_fn one[3][2] = SG_VIS_TABLE(vis_avx512);
+    static const sg_raster_samples_fn samples[3][2] = SG_VIS_TABLE(vis_samples_avx512);
+    return sg_vis_pick(one, samples, compare, depth_write);
 }
 
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
@@ -56,16 +52,10 @@ sg_walk_fn sg_walk_avx512(void) {
 
 #else
 
-sg_raster_fn sg_depth_avx512(sgCompare compare, bool depth_write) {
+sg_vis_fns sg_depth_avx512(sgCompare compare, bool depth_write) {
     (void)compare;
     (void)depth_write;
-    return NULL;
-}
-
-sg_raster_samples_fn sg_depth_samples_avx512(sgCompare compare, bool depth_write) {
-    (void)compare;
-    (void)depth_write;
-    return NULL;
+    return (sg_vis_fns){NULL, NULL};
 }
 
 sg_walk_fn sg_walk_avx512(void) {

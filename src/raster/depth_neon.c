@@ -42,29 +42,21 @@ static void vis_less_1_neon(const sg_tri *t, int x0, int y0, int x1, int y1, con
     sg_rast_walk(t, x0, y0, x1, y1, vis_less_1_tile, c);
 }
 
-sg_raster_fn sg_depth_less_neon(bool depth_write) {
-    return depth_write ? vis_less_1_neon : vis_less_0_neon;
-}
-
 /* The tile body as the sample walk calls it (LESS only). */
 #define vis_neon_less(c, t, x0, y0, m, zm, zw) vis_neon(c, t, x0, y0, m, zw)
 SG_VIS_SAMPLES_FN(vis_samples_less_0_neon, vis_neon_less, Z_LESS, 0)
 SG_VIS_SAMPLES_FN(vis_samples_less_1_neon, vis_neon_less, Z_LESS, 1)
 
-sg_raster_samples_fn sg_depth_samples_less_neon(bool depth_write) {
-    return depth_write ? vis_samples_less_1_neon : vis_samples_less_0_neon;
+sg_vis_fns sg_depth_less_neon(bool depth_write) {
+    return depth_write ? (sg_vis_fns){vis_less_1_neon, vis_samples_less_1_neon}
+                       : (sg_vis_fns){vis_less_0_neon, vis_samples_less_0_neon};
 }
 
 #else
 
-sg_raster_fn sg_depth_less_neon(bool depth_write) {
+sg_vis_fns sg_depth_less_neon(bool depth_write) {
     (void)depth_write;
-    return NULL;
-}
-
-sg_raster_samples_fn sg_depth_samples_less_neon(bool depth_write) {
-    (void)depth_write;
-    return NULL;
+    return (sg_vis_fns){NULL, NULL};
 }
 
 #endif
