@@ -27,6 +27,7 @@
 #include "raster/bin.h"
 #include "raster/framebuffer.h"
 #include "raster/shade.h"
+#include "tex/mipgen.h"
 
 enum { CASES_PER_FLAT = 70000, VARIANTS = 5, FLATS = 3 };
 
@@ -591,6 +592,96 @@ static void compare_variant(int variant, int kind) {
     }
 }
 
+/* Mipmapped shading (shade_mip.c, the portable reference, against AVX-512's single tiles and
+ * pairs): chains from 1 x 1 to 300 x 17 texels, derivatives from magnified to far past the last
+ * level, every filter, wrap, secondary colour and flat kind, random masks (quads with no covered
+ * pixel among them). Each level is an allocation of its own, exactly sized. */
+static void compare_mip(int linear) {
+    static const int sizes[][2] = {{1, 1}, {2, 1}, {8, 8}, {64, 64}, {300, 17}, {9, 130}, {33, 32}};
+    enum { NSIZES = sizeof sizes / sizeof *sizes, MIP_CASES = 6000 };
+    if (!sg_isa_runs(SG_ISA_AVX512)) { /* the portable reference is every other set's */
+        printf("AVX-512 is not run here: not compared\n");
+        return;
+    }
+    rng g = {0x5eed4d00u + (uint64_t)linear};
+    sg_mip_chain chains[NSIZES];
+    for (int i = 0; i < NSIZES; i++) {
+        int w = sizes[i][0], h = sizes[i][1];
+        chains[i].levels = sg_mip_chain_length(w, h);
+        for (int l = 0; l < chains[i].levels; l++) {
+            uint8_t *texels = malloc((size_t)w * (size_t)h * 4);
+            assert_non_null(texels);
+            for (size_t b = 0; b < (size_t)w * (size_t)h * 4; b++) texels[b] = (uint8_t)next(&g);
+            chains[i].level[l] = (sg_texview){texels, w, h};
+            w = sg_mip_next_side(w);
+            h = sg_mip_next_side(h);
+        }
+    }
+    long failures = 0;
+    for (int index = linear * 8; index < linear * 8 + 8 && failures < 5; index++) {
+        const int sec = index & 1;
+        const sg_shade_fn ref = sg_shade_mip_portable(index), fn = sg_shade_mip_avx512(index);
+        const sg_shade2_fn pair = sg_shade2_mip_avx512(index);
+        assert_non_null(fn);
+        assert_non_null(pair);
+        for (int flat = 0; flat < FLATS; flat++) {
+            for (long n = 0; n < MIP_CASES && failures < 5; n++) {
+                const sg_mip_chain *m = &chains[n % NSIZES];
+                sg_shade_ctx ctx;
+                memset(&ctx, 0, sizeof ctx);
+                ctx.tex = m->level[0];
+                ctx.mips = m;
+                sg_tri t;
+                sg_tri_ext ext;
+                int x0, y0;
+                random_tri(&g, &t, flat, m->level[0].width, m->level[0].height, &x0, &y0);
+                const float minify = (float)(1 << irange(&g, 0, 12));
+                for (int k = 4; k < 6; k++) {
+                    t.a_dx[k] *= minify;
+                    t.a_dy[k] *= minify;
+                }
+                if (sec) random_lit(&g, SECONDARY, flat, &t, x0, y0, &ext, &ctx);
+                ctx.tris = &t;
+                ctx.ext = sec ? &ext : NULL;
+                const uint32_t mask = random_mask(&g), sentinel = (uint32_t)next(&g);
+                uint32_t want[16], got[16];
+                for (int i = 0; i < 16; i++) want[i] = got[i] = sentinel;
+                ref(&ctx, &t, x0, y0, mask, want);
+                fn(&ctx, &t, x0, y0, mask, got);
+                if (memcmp(want, got, sizeof got)) {
+                    printf("AVX-512 mipmapped differs: index %d flat %d case %ld, mask %04x\n",
+                           index, flat, n, (unsigned)mask);
+                    failures++;
+                }
+                /* this tile and another of the triangle, whole, as two reference calls */
+                const int x1 = x0 + 4 * (int)(next(&g) % 5) - 8, y1 = y0 + 4 * (int)(next(&g) % 3);
+                uint32_t r0[16], r1[16], p0[16], p1[16];
+                ref(&ctx, &t, x0, y0, 0xffffu, r0);
+                ref(&ctx, &t, x1, y1, 0xffffu, r1);
+                pair(&ctx, &t, x0, y0, x1, y1, p0, p1);
+                if (memcmp(r0, p0, sizeof r0) || memcmp(r1, p1, sizeof r1)) {
+                    printf("AVX-512 mipmapped pair differs: index %d flat %d case %ld\n", index,
+                           flat, n);
+                    failures++;
+                }
+            }
+        }
+    }
+    for (int i = 0; i < NSIZES; i++)
+        for (int l = 0; l < chains[i].levels; l++) free((void *)chains[i].level[l].texels);
+    assert_int_equal(failures, 0);
+}
+
+static void mip_nearest_level(void **state) {
+    (void)state;
+    compare_mip(0);
+}
+
+static void mip_linear(void **state) {
+    (void)state;
+    compare_mip(1);
+}
+
 static void vertex_colour(void **state) {
     (void)state;
     compare_variant(0, UNLIT);
@@ -773,6 +864,8 @@ int main(void) {
         cmocka_unit_test(nearest_clamp_split_shadow),
         cmocka_unit_test(bilinear_repeat_split_shadow),
         cmocka_unit_test(bilinear_clamp_split_shadow),
+        cmocka_unit_test(mip_nearest_level),
+        cmocka_unit_test(mip_linear),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

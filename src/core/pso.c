@@ -141,8 +141,9 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
     if (mip && !shader) {
         p.shade_fn = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, false, dev->isa);
         p.shade_sec = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, true, dev->isa);
-        p.shade2_fn = p.shade2_sec = NULL;
-        p.runs_fn = p.runs_sec = NULL;
+        p.shade2_fn = sg_shade2_mip_select(d->mipmap, d->filter, d->wrap, false, dev->isa);
+        p.shade2_sec = sg_shade2_mip_select(d->mipmap, d->filter, d->wrap, true, dev->isa);
+        p.runs_fn = p.runs_sec = NULL; /* packed pixels lose the quads the level comes from */
         p.mixed_fn = NULL;
         p.raster_line = NULL;
         if (d->blend == SG_BLEND_ALPHA) {

@@ -143,10 +143,18 @@ sg_shade_fn sg_shade_phong_avx2(int index);
 sg_shade_fn sg_shade_phong_avx512(int index);
 sg_shade_fn sg_shade_phong_neon(int index);
 /** The textured shading of a mipmapped pipeline (mipmap NEAREST or LINEAR; shade_mip.c), with
- *  the secondary colour of flat and Gouraud lighting when sec; one portable function for every
- *  instruction set. */
+ *  the secondary colour of flat and Gouraud lighting when sec: AVX-512's, else the portable one,
+ *  which is the reference. */
 sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                 sg_isa isa);
+/** Its two-tile function, or NULL where the instruction set has none (all but AVX-512). */
+sg_shade2_fn sg_shade2_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
+                                  sg_isa isa);
+/** The portable reference of sg_shade_mip_select, and AVX-512's tables (NULL where not built),
+ *  by index: linear * 8 + bilinear * 4 + repeat * 2 + sec. */
+sg_shade_fn sg_shade_mip_portable(int index);
+sg_shade_fn sg_shade_mip_avx512(int index);
+sg_shade2_fn sg_shade2_mip_avx512(int index);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
 /** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,

@@ -51,6 +51,44 @@ sg_shade2_fn sg_shade2_avx512(int index) {
     return table[index];
 }
 
+/* Mipmapped textures (sgPipelineDesc.mipmap; shade_mip.c is the portable reference): single
+ * tiles and pairs, textured SG_TEX16_MIP or SG_TEX16_MIP_LINEAR, by the index of
+ * sg_shade_mip_select. */
+#define SG_MIP_VARIANT(tex, bil, rep, sec)                                                         \
+    static void mip_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,   \
+                                         uint32_t m, uint32_t *dst) {                              \
+        shade_flat(c, t, sec ? sg_shade_ext(c, t) : NULL, x0, y0, m, dst, tex, bil, rep, sec);     \
+    }                                                                                              \
+    SG_PAIR_VARIANT(tex, bil, rep, sec)
+#define SG_MIP_VARIANTS(tex)                                                                       \
+    SG_MIP_VARIANT(tex, 0, 0, 0)                                                                   \
+    SG_MIP_VARIANT(tex, 0, 0, 1)                                                                   \
+    SG_MIP_VARIANT(tex, 0, 1, 0)                                                                   \
+    SG_MIP_VARIANT(tex, 0, 1, 1)                                                                   \
+    SG_MIP_VARIANT(tex, 1, 0, 0)                                                                   \
+    SG_MIP_VARIANT(tex, 1, 0, 1)                                                                   \
+    SG_MIP_VARIANT(tex, 1, 1, 0)                                                                   \
+    SG_MIP_VARIANT(tex, 1, 1, 1)
+SG_MIP_VARIANTS(2) /* SG_TEX16_MIP */
+SG_MIP_VARIANTS(3) /* SG_TEX16_MIP_LINEAR */
+#undef SG_MIP_VARIANTS
+#undef SG_MIP_VARIANT
+_Static_assert(SG_TEX16_MIP == 2 && SG_TEX16_MIP_LINEAR == 3, "the variants' names");
+
+sg_shade_fn sg_shade_mip_avx512(int index) {
+    static const sg_shade_fn table[16] = {
+        mip_2000, mip_2001, mip_2010, mip_2011, mip_2100, mip_2101, mip_2110, mip_2111,
+        mip_3000, mip_3001, mip_3010, mip_3011, mip_3100, mip_3101, mip_3110, mip_3111};
+    return table[index];
+}
+
+sg_shade2_fn sg_shade2_mip_avx512(int index) {
+    static const sg_shade2_fn table[16] = {
+        pair_2000, pair_2001, pair_2010, pair_2011, pair_2100, pair_2101, pair_2110, pair_2111,
+        pair_3000, pair_3001, pair_3010, pair_3011, pair_3100, pair_3101, pair_3110, pair_3111};
+    return table[index];
+}
+
 /* Runs of a triangle (sg_shade_runs_fn): their pixels packed sixteen to a vector (sg_queue16),
  * two full vectors shaded side by side, and each lane's colour stored at its own offset. */
 INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
@@ -118,6 +156,16 @@ sg_shade2_fn sg_shade2_avx512(int index) {
 }
 
 sg_shade_runs_fn sg_shade_runs_avx512(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade_fn sg_shade_mip_avx512(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade2_fn sg_shade2_mip_avx512(int index) {
     (void)index;
     return NULL;
 }

@@ -231,19 +231,144 @@ INLINE void bilinear16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const i
     bilinear_filter16(gx, gy, t, x);
 }
 
-/* Four channels in bits 16 to 23 of their lanes, zeros above, to RGBA8. */
-INLINE __m512i pack_hi8(const __m512i x[4]) {
-    __m512i rb = _mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(x[0], 16), x[2]);
-    __m512i ga = _mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(x[1], 16), x[3]);
-    return _mm512_or_si512(rb, _mm512_slli_epi32(ga, 8));
-}
-
 INLINE void unpack_texels(__m512i t, __m512i c[4]) {
     const __m512i lo8 = _mm512_set1_epi32(255);
     c[0] = _mm512_and_si512(t, lo8);
     c[1] = _mm512_and_si512(_mm512_srli_epi32(t, 8), lo8);
     c[2] = _mm512_and_si512(_mm512_srli_epi32(t, 16), lo8);
     c[3] = _mm512_srli_epi32(t, 24);
+}
+
+/* Channel k (0 .. 255) of each lane of m in c[k] (others may be 0): nearest or bilinear. */
+INLINE void lookup16(const sg_texview *tv, __m512 s, __m512 u, __mmask16 m, const int bilinear,
+                     const int repeat, __m512i c[4]) {
+    const tex16 tx = tex16_of(tv, bilinear);
+    if (bilinear) { /* repeat as a constant in each call, where a caller's is not */
+        __m512i x[4];
+        if (repeat)
+            bilinear16(&tx, s, u, m, 1, x);
+        else
+            bilinear16(&tx, s, u, m, 0, x);
+        for (int k = 0; k < 4; k++) c[k] = _mm512_srli_epi32(x[k], 16);
+    } else {
+        unpack_texels(repeat ? nearest16(&tx, s, u, m, 1) : nearest16(&tx, s, u, m, 0), c);
+    }
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#error "unpack_texels and the filter read channel 0 from the low byte"
+#endif
+}
+
+/* Mipmapped lookups (tex/mip.h). The textured argument of the shading below: 1 one level, or a
+ * mipmap chain with the nearest level (SG_TEX16_MIP) or two levels blended (SG_TEX16_MIP_LINEAR).
+ */
+enum { SG_TEX16_MIP = 2, SG_TEX16_MIP_LINEAR = 3 };
+
+/* sg_mip_select of a tile's four 2 x 2 quads at once, each lane taking its quad's (lanes 0, 1, 4,
+ * 5 are the first quad): the same operations on the same values, so the same levels and
+ * weights. */
+INLINE void mip16_pick(const sg_mip_chain *m, __m512 s, __m512 u, const int linear, __m512i *l0,
+                       __m512i *l1, __m512i *f) {
+    const __m512i base = _mm512_setr_epi32(0, 0, 2, 2, 0, 0, 2, 2, 8, 8, 10, 10, 8, 8, 10, 10);
+    const __m512i one = _mm512_set1_epi32(1);
+    const __m512i right = _mm512_add_epi32(base, one),
+                  down = _mm512_add_epi32(base, _mm512_set1_epi32(4));
+    const __m512 s0 = _mm512_permutexvar_ps(base, s), u0 = _mm512_permutexvar_ps(base, u);
+    const __m512 w = _mm512_set1_ps((float)m->level[0].width);
+    const __m512 h = _mm512_set1_ps((float)m->level[0].height);
+    const __m512 ax = _mm512_mul_ps(_mm512_sub_ps(_mm512_permutexvar_ps(right, s), s0), w);
+    const __m512 bx = _mm512_mul_ps(_mm512_sub_ps(_mm512_permutexvar_ps(right, u), u0), h);
+    const __m512 ay = _mm512_mul_ps(_mm512_sub_ps(_mm512_permutexvar_ps(down, s), s0), w);
+    const __m512 by = _mm512_mul_ps(_mm512_sub_ps(_mm512_permutexvar_ps(down, u), u0), h);
+    const __m512 rx = _mm512_add_ps(_mm512_mul_ps(ax, ax), _mm512_mul_ps(bx, bx));
+    const __m512 ry = _mm512_add_ps(_mm512_mul_ps(ay, ay), _mm512_mul_ps(by, by));
+    /* rx > ry ? rx : ry (ry when either is NaN) */
+    const __m512 rho2 = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(rx, ry, _CMP_GT_OQ), ry, rx);
+    const __m512i bits = _mm512_castps_si512(rho2);
+    const __m512i e =
+        _mm512_sub_epi32(_mm512_and_si512(_mm512_srli_epi32(bits, 23), _mm512_set1_epi32(0xff)),
+                         _mm512_set1_epi32(127));
+    const __m512i zero = _mm512_setzero_si512(), last = _mm512_set1_epi32(m->levels - 1);
+    if (!linear) { /* round(log2 rho) = (exponent + 1) >> 1, arithmetic */
+        const __m512i l = _mm512_srai_epi32(_mm512_add_epi32(e, one), 1);
+        *l0 = *l1 = _mm512_min_epi32(_mm512_max_epi32(l, zero), last);
+        *f = zero;
+        return;
+    }
+    const __m512 mant = _mm512_castsi512_ps(_mm512_or_si512(
+        _mm512_and_si512(bits, _mm512_set1_epi32(0x007fffff)), _mm512_set1_epi32(0x3f800000)));
+    const __m512 lod = _mm512_mul_ps(
+        _mm512_add_ps(_mm512_cvtepi32_ps(_mm512_sub_epi32(e, one)), mant), _mm512_set1_ps(0.5f));
+    const __m512 fl = _mm512_roundscale_ps(lod, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    const __mmask16 finite = _mm512_cmp_ps_mask(lod, _mm512_set1_ps(-1e9f), _CMP_GE_OQ) &
+                             _mm512_cmp_ps_mask(lod, _mm512_set1_ps(1e9f), _CMP_LE_OQ);
+    const __m512i i = _mm512_maskz_cvttps_epi32(finite, fl);
+    const __m512 frac = _mm512_maskz_sub_ps(finite, lod, fl);
+    /* below level 0 or from the last level on: one level, weight 0 */
+    const __mmask16 low = _mm512_cmplt_epi32_mask(i, zero),
+                    high = _mm512_cmpge_epi32_mask(i, last) & (__mmask16)~low,
+                    two = (__mmask16) ~(low | high);
+    *l0 = _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(two, i), high, last);
+    *l1 = _mm512_mask_mov_epi32(_mm512_maskz_mov_epi32(two, _mm512_add_epi32(i, one)), high, last);
+    *f = _mm512_maskz_cvttps_epi32(two, _mm512_mul_ps(frac, _mm512_set1_ps(256.0f)));
+}
+
+/* sg_sample_mip in every lane, with the levels l0, l1 and weight f of its lane (0 .. 255): each
+ * level the lanes read is looked up once, for the lanes that take it (a lane whose second level
+ * weighs 0 does not read that level: its blend gives the first level's texel). Channels in c[k]. */
+INLINE void mip16_lookup(const sg_mip_chain *m, __m512i l0, __m512i l1, __m512i f, __m512 s,
+                         __m512 u, const int bilinear, const int repeat, __m512i c[4]) {
+    const __mmask16 weighed = _mm512_test_epi32_mask(f, f);
+    const __m512i one = _mm512_set1_epi32(1);
+    const __m512i bits =
+        _mm512_mask_or_epi32(_mm512_sllv_epi32(one, l0), weighed, _mm512_sllv_epi32(one, l0),
+                             _mm512_sllv_epi32(one, l1));
+    uint32_t want = (uint32_t)_mm512_reduce_or_epi32(bits);
+    __m512i a[4], b[4];
+    for (int k = 0; k < 4; k++) a[k] = b[k] = _mm512_setzero_si512();
+    for (; want; want &= want - 1) {
+        const int level = __builtin_ctz(want);
+        const __m512i lv = _mm512_set1_epi32(level);
+        const __mmask16 in0 = _mm512_cmpeq_epi32_mask(l0, lv),
+                        in1 = _mm512_cmpeq_epi32_mask(l1, lv);
+        __m512i t[4];
+        lookup16(&m->level[level], s, u, in0 | (in1 & weighed), bilinear, repeat, t);
+        for (int k = 0; k < 4; k++) {
+            a[k] = _mm512_mask_blend_epi32(in0, a[k], t[k]);
+            b[k] = _mm512_mask_blend_epi32(in1, b[k], t[k]);
+        }
+    }
+    for (int k = 0; k < 4; k++) {
+        const __m512i d = _mm512_mullo_epi32(_mm512_sub_epi32(b[k], a[k]), f);
+        c[k] = _mm512_add_epi32(a[k], _mm512_srai_epi32(d, 8));
+    }
+}
+
+/* The mipmapped texels of the pixels of `mask` of a tile at (s, u), as shade_mip.c takes them: a
+ * quad without a covered pixel takes a covered quad's levels, so that it reads no level of its
+ * own. */
+INLINE void mip16_texels(const sg_mip_chain *m, __m512 s, __m512 u, uint32_t mask, const int linear,
+                         const int bilinear, const int repeat, __m512i c[4]) {
+    __m512i l0, l1, f;
+    mip16_pick(m, s, u, linear, &l0, &l1, &f);
+    uint32_t quads = 0;
+    for (int q = 0; q < 4; q++) {
+        const uint32_t lanes = 0x33u << ((q & 1) * 2 + (q >> 1) * 8);
+        if (mask & lanes) quads |= lanes;
+    }
+    if (quads != 0xffffu && quads) {
+        const __m512i lane = _mm512_set1_epi32(__builtin_ctz(quads));
+        l0 = _mm512_mask_mov_epi32(_mm512_permutexvar_epi32(lane, l0), (__mmask16)quads, l0);
+        l1 = _mm512_mask_mov_epi32(_mm512_permutexvar_epi32(lane, l1), (__mmask16)quads, l1);
+        f = _mm512_mask_mov_epi32(_mm512_permutexvar_epi32(lane, f), (__mmask16)quads, f);
+    }
+    mip16_lookup(m, l0, l1, f, s, u, bilinear, repeat, c);
+}
+
+/* Four channels in bits 16 to 23 of their lanes, zeros above, to RGBA8. */
+INLINE __m512i pack_hi8(const __m512i x[4]) {
+    __m512i rb = _mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(x[0], 16), x[2]);
+    __m512i ga = _mm512_mask_blend_epi16(HI16, _mm512_srli_epi32(x[1], 16), x[3]);
+    return _mm512_or_si512(rb, _mm512_slli_epi32(ga, 8));
 }
 
 /* sg_to_unorm8 but the clamp to [0, 255], left to pack_unorm8 (see shade_avx2.c). */
@@ -262,14 +387,27 @@ INLINE __m512i pack_unorm8(const __m512 col[4]) {
 }
 
 /* The texturing step of shade16_tiles: the texels at coordinates (s[i], u[i]) of n tiles' pixels,
- * lanes of mask[i], modulate their colours col[i]; an opaque white triangle without a secondary
- * colour takes the texel as it is, and then out[i] is the result already (true). */
+ * lanes of mask[i] (textured: 1, or a mipmap chain, SG_TEX16_MIP*), modulate their colours col[i];
+ * an opaque white triangle without a secondary colour takes the texel as it is, and then out[i] is
+ * the result already (true). */
 INLINE bool texture16_tiles(const sg_shade_ctx *c, const int n, const __m512 s[], const __m512 u[],
                             const uint32_t mask[], __m512 col[][4], __m512i out[],
-                            const int bilinear, const int repeat, const int flat, const int sec) {
+                            const int textured, const int bilinear, const int repeat,
+                            const int flat, const int sec) {
     const tex16 tx = tex16_of(&c->tex, bilinear);
     __m512i tc[4][4];
-    if (bilinear) {
+    if (textured >= SG_TEX16_MIP) {
+        for (int i = 0; i < n; i++)
+            mip16_texels(c->mips, s[i], u[i], mask[i], textured == SG_TEX16_MIP_LINEAR, bilinear,
+                         repeat, tc[i]);
+        if (flat == SG_FLAT_WHITE && !sec) { /* the texel, as in shade_mip.c */
+            for (int i = 0; i < n; i++)
+                out[i] = _mm512_or_si512(_mm512_or_si512(tc[i][0], _mm512_slli_epi32(tc[i][1], 8)),
+                                         _mm512_or_si512(_mm512_slli_epi32(tc[i][2], 16),
+                                                         _mm512_slli_epi32(tc[i][3], 24)));
+            return true;
+        }
+    } else if (bilinear) {
         __m512i gx[4], gy[4], texels[4][4], x[4][4];
         for (int i = 0; i < n; i++) {
             gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
@@ -348,7 +486,8 @@ INLINE void shade16_tiles(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *
             u[i] =
                 _mm512_mul_ps(SG_PLANE(SG_T(i)->a[5], SG_T(i)->a_dx[5], SG_T(i)->a_dy[5], i), w[i]);
         }
-        if (texture16_tiles(c, n, s, u, mask, col, out, bilinear, repeat, flat, sec)) return;
+        if (texture16_tiles(c, n, s, u, mask, col, out, textured, bilinear, repeat, flat, sec))
+            return;
     }
     for (int i = 0; i < n; i++)
         for (int k = 0; sec && k < 3; k++)
@@ -462,7 +601,8 @@ INLINE void sg_shade16_mixed(const sg_shade_ctx *c, const sg_mixed_tile *tiles, 
     __m512 dx[2], dy[2], w[2], col[2][4], s[2], u[2];
     SG_MIXED_PLANES(_mm512_add_ps, _mm512_mul_ps, _mm512_div_ps, _mm512_set1_ps, count, v, lane_x,
                     lane_y, dx, dy, w, col, s, u, flat, textured);
-    if (textured && texture16_tiles(c, count, s, u, all, col, out, bilinear, repeat, flat, 0))
+    if (textured &&
+        texture16_tiles(c, count, s, u, all, col, out, textured, bilinear, repeat, flat, 0))
         return;
     for (int i = 0; i < count; i++) out[i] = pack_unorm8(col[i]);
 }
