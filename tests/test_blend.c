@@ -6,9 +6,9 @@
  * - Order: a pass of many overlapping blended and opaque triangles, in draws of several
  *   triangles, is byte-identical to drawing each triangle in a pass of its own that loads the
  *   previous result, for 1, 2 and 3 threads and every instruction set this CPU runs.
- * - Every unlit shading variant (vertex colour; texture nearest / bilinear, repeat / clamp),
- *   flat and varying colours, with and without a depth test, blended by every instruction set
- *   this CPU runs: the scalar reference's bytes.
+ * - Every unlit shading variant (vertex colour; texture nearest / bilinear, repeat / clamp;
+ *   without mipmaps, nearest and linear), flat and varying colours, with and without a depth
+ *   test, blended by every instruction set this CPU runs: the scalar reference's bytes.
  * - The constant draw colour multiplies the vertex colour; alpha from the vertex colour and from
  *   the texel.
  * - The back-to-front order against a plain stable sort of the same keys, ties, NaN keys and
@@ -306,9 +306,10 @@ static void alpha_sources(void **state) {
 enum { TS = 96, TTRI = 240, TPER = 24 };
 
 /* Renders TTRI small triangles (vertex colours with alpha, some all white, some one colour;
- * texture coordinates past [0, 1]) in draws of TPER, each draw cycling through the unlit
- * shading variants and depth states, blended over an opaque background. */
-static void render_variants(sgSimd simd, uint8_t *out) {
+ * texture coordinates past [0, 1], minified to every level of the chain) in draws of TPER, each
+ * draw cycling through the unlit shading variants and depth states, blended over an opaque
+ * background; the textured draws with `mip`. */
+static void render_variants(sgSimd simd, sgMipmap mip, uint8_t *out) {
     sgDevice *dev;
     assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.simd = simd}, &dev), SG_OK);
     uint8_t texels[13 * 7 * 4];
@@ -329,6 +330,7 @@ static void render_variants(sgSimd simd, uint8_t *out) {
                                      &(sgImage2DDesc){.width = 13,
                                                       .height = 7,
                                                       .format = SG_FORMAT_RGBA8_UNORM,
+                                                      .mip_levels = SG_MIP_LEVELS_ALL,
                                                       .data = texels},
                                      &tex),
                      SG_OK);
@@ -365,6 +367,7 @@ static void render_variants(sgSimd simd, uint8_t *out) {
             pd.shade = SG_SHADE_TEXTURE_MODULATE;
             pd.filter = filters[(variant - 1) / 2];
             pd.wrap = wraps[(variant - 1) % 2];
+            pd.mipmap = mip;
         }
         sgPipelineStateObject pso;
         assert_int_equal(sgCreatePipelineStateObject(dev, &pd, &pso), SG_OK);
@@ -394,21 +397,25 @@ static void render_variants(sgSimd simd, uint8_t *out) {
 }
 
 /* Every instruction set this CPU runs blends every variant to the scalar reference's bytes (the
- * SIMD ones inline the shading and shade pixels of several tiles together). */
+ * SIMD ones inline the shading and shade pixels, or mipmapped quads, of several tiles together),
+ * without mipmaps and with each kind. */
 static void blended_variants_identical(void **state) {
     (void)state;
     uint8_t *want = malloc(TS * TS * 4), *got = malloc(TS * TS * 4);
-    render_variants(SG_SIMD_SCALAR, want);
-    int changed = 0; /* most of the image is drawn over */
-    for (int i = 0; i < TS * TS; i++) changed += want[i * 4 + 1] != 153;
-    assert_true(changed > TS * TS / 2);
-    for (int simd = SG_SIMD_SCALAR + 1; simd <= SG_SIMD_NEON; simd++) {
-        if (!test_simd_runs((sgSimd)simd)) continue;
-        render_variants((sgSimd)simd, got);
-        for (int i = 0; i < TS * TS * 4; i++)
-            if (want[i] != got[i])
-                fail_msg("simd %d: byte %d (pixel %d, %d) is %d, the reference's %d", simd, i,
-                         i / 4 % TS, i / 4 / TS, got[i], want[i]);
+    static const sgMipmap mips[3] = {SG_MIPMAP_NONE, SG_MIPMAP_NEAREST, SG_MIPMAP_LINEAR};
+    for (int m = 0; m < 3; m++) {
+        render_variants(SG_SIMD_SCALAR, mips[m], want);
+        int changed = 0; /* most of the image is drawn over */
+        for (int i = 0; i < TS * TS; i++) changed += want[i * 4 + 1] != 153;
+        assert_true(changed > TS * TS / 2);
+        for (int simd = SG_SIMD_SCALAR + 1; simd <= SG_SIMD_NEON; simd++) {
+            if (!test_simd_runs((sgSimd)simd)) continue;
+            render_variants((sgSimd)simd, mips[m], got);
+            for (int i = 0; i < TS * TS * 4; i++)
+                if (want[i] != got[i])
+                    fail_msg("simd %d, mipmap %d: byte %d (pixel %d, %d) is %d, the reference's %d",
+                             simd, (int)mips[m], i, i / 4 % TS, i / 4 / TS, got[i], want[i]);
+        }
     }
     free(want);
     free(got);

@@ -146,10 +146,14 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
         p.runs_fn = p.runs_sec = NULL; /* packed pixels lose the quads the level comes from */
         p.mixed_fn = NULL;
         p.raster_line = NULL;
-        if (d->blend == SG_BLEND_ALPHA) {
-            p.raster_fn = sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa);
+        if (d->blend == SG_BLEND_ALPHA) { /* lit: a specular colour, chosen per draw */
+            p.raster_fn = lit ? sg_blend_select(-1, d->depth.compare, d->depth.write, dev->isa)
+                              : sg_blend_mip_select(d->mipmap, d->filter, d->wrap, d->depth.compare,
+                                                    d->depth.write, dev->isa);
             if (p.raster_pass)
-                p.raster_pass = sg_blend_select(-1, SG_COMPARE_ALWAYS, false, dev->isa);
+                p.raster_pass = lit ? sg_blend_select(-1, SG_COMPARE_ALWAYS, false, dev->isa)
+                                    : sg_blend_mip_select(d->mipmap, d->filter, d->wrap,
+                                                          SG_COMPARE_ALWAYS, false, dev->isa);
         }
     }
     p.nattr = sg_shade_attr_count(d->shade);

@@ -156,6 +156,16 @@ sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_wr
     return in_place_select(false, shade_variant, compare, depth_write, isa);
 }
 
+sg_raster_fn sg_blend_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, sgCompare compare,
+                                 bool depth_write, sg_isa isa) {
+    const int index = (mipmap == SG_MIPMAP_LINEAR) * 4 + (filter == SG_FILTER_BILINEAR) * 2 +
+                      (wrap == SG_WRAP_REPEAT);
+    const sg_raster_fn fn =
+        isa == SG_ISA_AVX512 ? sg_blend_mip_avx512(index, compare != SG_COMPARE_ALWAYS, depth_write)
+                             : NULL;
+    return fn ? fn : in_place_select(false, -1, compare, depth_write, isa);
+}
+
 sg_raster_fn sg_put_select(int shade_variant, sgCompare compare, bool depth_write, sg_isa isa) {
     return in_place_select(true, shade_variant, compare, depth_write, isa);
 }

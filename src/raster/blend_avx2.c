@@ -180,8 +180,9 @@ INLINE void finish(const sg_vis_ctx *v, const job *j, __m256i s) {
 }
 
 /* n jobs (a constant) shaded side by side and blended, in their order. */
-INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int bilinear,
-                       const int repeat, const int flat) {
+INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int textured,
+                       const int bilinear, const int repeat, const int flat) {
+    (void)textured; /* 1: mipmapped blends are not inlined here */
     __m256 dx[JOB_SETS], dy[JOB_SETS];
     __m256i s[JOB_SETS];
     const sg_tri *ts[JOB_SETS];
@@ -263,7 +264,7 @@ INLINE void drain(queued_ctx *p, const sg_tri *t) {
         p.q = &q;                                                                                  \
         p.jobs = p.v->pending;                                                                     \
         p.flat = &f;                                                                               \
-        if (tex) start_jobs(&p, t, blend_jobs_##bil##rep);                                         \
+        if (tex) start_jobs(&p, t, blend_jobs_1##bil##rep);                                        \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
         if (tex) drain(&p, t); /* vertex colours were blended in place */                          \
     }

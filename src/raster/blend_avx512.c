@@ -89,9 +89,20 @@ typedef struct job {
  * (as in blend_avx2.c). */
 enum { JOBS = 32, JOB_SETS = 4 };
 
+/* A mipmapped triangle's partly covered tiles: their 2 x 2 quads that hold a covered pixel, packed
+ * four to a vector, each quad's four pixels (its level of detail needs them all) in the lanes a
+ * quad of a tile has (shade_avx512.h, mip16_pick), the covered ones in mask. */
+typedef struct quad_queue {
+    __m512 dx, dy;
+    __m512i off;
+    uint32_t mask;
+    int n; /* quads held */
+} quad_queue;
+
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     sg_queue16 *q;
+    quad_queue *quads;      /* mipmapped triangles' */
     sg_blend_pending *jobs; /* the bin's */
     const flat_src *flat;   /* untextured triangles of one colour */
 } queued_ctx;
@@ -105,9 +116,9 @@ INLINE void blend_scattered(const sg_vis_ctx *v, const sg_queue16 *q, __m512i s,
 
 /* The shaded fragments s of a job blended into the bin's colour. */
 INLINE void finish(const sg_vis_ctx *v, const job *j, __m512i s) {
-    if (j->base >= 0) {
+    if (j->base >= 0) { /* a tile: whole, or a mipmapped triangle's with every quad touched */
         uint32_t *dst = v->color + j->base;
-        _mm512_store_si512(dst, blend16(s, _mm512_load_si512(dst)));
+        _mm512_mask_store_epi32(dst, (__mmask16)j->mask, blend16(s, _mm512_load_si512(dst)));
     } else {
         const sg_queue16 q = {j->dx, j->dy, j->off, 0};
         blend_scattered(v, &q, s, (__mmask16)j->mask);
@@ -127,8 +138,8 @@ INLINE uint32_t depth16(const sg_vis_ctx *v, const sg_tri *t, __m512 dx, __m512 
 }
 
 /* n jobs (a constant) shaded side by side (shade16_tiles) and blended, in their order. */
-INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int bilinear,
-                       const int repeat, const int flat) {
+INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int textured,
+                       const int bilinear, const int repeat, const int flat) {
     __m512 dx[JOB_SETS], dy[JOB_SETS];
     uint32_t mask[JOB_SETS];
     __m512i s[JOB_SETS];
@@ -139,11 +150,46 @@ INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int
         mask[i] = j[i].mask;
         ts[i] = j[i].t;
     }
-    shade16_tiles(v->shade_ctx, ts[0], ts, NULL, n, dx, dy, mask, s, 1, bilinear, repeat, flat, 0);
+    shade16_tiles(v->shade_ctx, ts[0], ts, NULL, n, dx, dy, mask, s, textured, bilinear, repeat,
+                  flat, 0);
     for (int i = 0; i < n; i++) finish(v, &j[i], s[i]);
 }
 
 SG_JOB_LIST_FNS
+SG_MIP_JOB_FNS
+#define blend_jobs_000 NULL /* vertex colours: shaded in place, no jobs */
+
+/* The quads of `mask` (some, not all, hold a covered pixel) of a mipmapped triangle's tile at bin
+ * offset base join its quad queue; each time four are there, they are a job. */
+INLINE void enqueue_quads(queued_ctx *p, const sg_tri *t, __m512 dx, __m512 dy, int base,
+                          uint32_t mask) {
+    quad_queue *q = p->quads;
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512i off = _mm512_add_epi32(_mm512_set1_epi32(base), lane);
+    for (int k = 0; k < 4; k++) {
+        const int from = (k & 1) * 2 + (k >> 1) * 8; /* quad k's first lane */
+        const uint32_t bits = mask >> from & 0x33u;
+        if (!bits) continue;
+        const int to = (q->n & 1) * 2 + (q->n >> 1) * 8;
+        const __mmask16 lanes = (__mmask16)(0x33u << to);
+        const __m512i idx = _mm512_add_epi32(lane, _mm512_set1_epi32(from - to));
+        q->dx = _mm512_mask_permutexvar_ps(q->dx, lanes, idx, dx);
+        q->dy = _mm512_mask_permutexvar_ps(q->dy, lanes, idx, dy);
+        q->off = _mm512_mask_permutexvar_epi32(q->off, lanes, idx, off);
+        q->mask |= bits << to;
+        if (++q->n == 4) {
+            const job j = {q->dx, q->dy, q->off, t, -1, q->mask};
+            submit(p, &j);
+            q->n = 0;
+            q->mask = 0;
+        }
+    }
+}
+
+/* Whether every quad of the tile holds a pixel of mask. */
+INLINE bool every_quad(uint32_t mask) {
+    return (mask & 0x0033u) && (mask & 0x00ccu) && (mask & 0x3300u) && (mask & 0xcc00u);
+}
 
 INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
                          const int ztest, const int zwrite, const int textured) {
@@ -166,9 +212,14 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
         _mm512_mask_storeu_epi32(dst, (__mmask16)mask, blend16(s, _mm512_load_si512(dst)));
         return;
     }
-    if (mask == 0xffffu) { /* a whole tile needs no packing */
-        const job j = {dx, dy, _mm512_setzero_si512(), t, base, 0xffffu};
+    if (mask == 0xffffu || (textured >= SG_TEX16_MIP && every_quad(mask))) {
+        /* a whole tile needs no packing, nor a tile whose every quad is shaded anyway */
+        const job j = {dx, dy, _mm512_setzero_si512(), t, base, mask};
         submit(p, &j);
+        return;
+    }
+    if (textured >= SG_TEX16_MIP) {
+        enqueue_quads(p, t, dx, dy, base, mask);
         return;
     }
     sg_queue16 full;
@@ -179,7 +230,12 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
 }
 
 /* The end of a triangle: its partial queue joins the jobs waiting. */
-INLINE void drain(queued_ctx *p, const sg_tri *t) {
+INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
+    if (textured >= SG_TEX16_MIP) {
+        const quad_queue *q = p->quads;
+        if (q->n) submit(p, &(job){q->dx, q->dy, q->off, t, -1, q->mask});
+        return;
+    }
     const sg_queue16 *q = p->q;
     if (q->n) submit(p, &(job){q->dx, q->dy, q->off, t, -1, (1u << q->n) - 1u});
 }
@@ -199,18 +255,37 @@ INLINE void drain(queued_ctx *p, const sg_tri *t) {
         p.v = c;                                                                                   \
         p.q = &q;                                                                                  \
         p.jobs = p.v->pending;                                                                     \
+        quad_queue quads = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0,   \
+                            0};                                                                    \
+        p.quads = tex >= SG_TEX16_MIP ? &quads : NULL;                                             \
         const flat_src f =                                                                         \
             flat_src_of(!tex && t->flat != SG_FLAT_NONE ? sg_flat_pixel(t, NULL, 0) : 0u);         \
         p.flat = &f;                                                                               \
-        if (tex) start_jobs(&p, t, blend_jobs_##bil##rep);                                         \
+        if (tex) start_jobs(&p, t, blend_jobs_##tex##bil##rep);                                    \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        if (tex) drain(&p, t); /* vertex colours were blended in place */                          \
+        if (tex) drain(&p, t, tex); /* vertex colours were blended in place */                     \
     }
 SG_BLEND_VARIANTS(SG_BLEND_QUEUED)
+/* Mipmapped textures, unlit (textured SG_TEX16_MIP, SG_TEX16_MIP_LINEAR) */
+SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 0, 0)
+SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 0, 1)
+SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 1, 0)
+SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 1, 1)
+SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 3, 0, 0)
+SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 3, 0, 1)
+SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 3, 1, 0)
+SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 3, 1, 1)
 
 sg_raster_fn sg_blend_avx512(int variant, bool depth_test, bool depth_write) {
     static const sg_raster_fn fns[5][4] = SG_BLEND_TABLE; /* in sg_shade_variant order */
     return fns[variant][(depth_test ? 2 : 0) + (depth_write ? 1 : 0)];
+}
+
+sg_raster_fn sg_blend_mip_avx512(int index, bool depth_test, bool depth_write) {
+    static const sg_raster_fn fns[8][4] = {
+        SG_BLEND_ROW(2, 0, 0), SG_BLEND_ROW(2, 0, 1), SG_BLEND_ROW(2, 1, 0), SG_BLEND_ROW(2, 1, 1),
+        SG_BLEND_ROW(3, 0, 0), SG_BLEND_ROW(3, 0, 1), SG_BLEND_ROW(3, 1, 0), SG_BLEND_ROW(3, 1, 1)};
+    return fns[index][(depth_test ? 2 : 0) + (depth_write ? 1 : 0)];
 }
 
 /* An opaque vertex-coloured line's tile: the passing pixels shaded and put in place. */
@@ -283,6 +358,13 @@ sg_raster_fn sg_put_avx512(bool depth_test, bool depth_write) {
 
 sg_raster_fn sg_blend_avx512(int variant, bool depth_test, bool depth_write) {
     (void)variant;
+    (void)depth_test;
+    (void)depth_write;
+    return NULL;
+}
+
+sg_raster_fn sg_blend_mip_avx512(int index, bool depth_test, bool depth_write) {
+    (void)index;
     (void)depth_test;
     (void)depth_write;
     return NULL;

@@ -74,36 +74,39 @@
 /* A textured blended draw's jobs (sets of pixels to shade) collected during its triangles' walks
  * and shaded later, in the bin's sg_blend_pending (depth.h): the functions every vector blend
  * file shares, for a file that defines `job` (with t, its triangle), `queued_ctx` (with v and
- * jobs, the bin's sg_blend_pending), JOBS, JOB_SETS and shade_some(v, jobs, n, bilinear, repeat,
- * flat), which shades n jobs (a constant) side by side and blends them in their order. Defines
- * shade_jobs_flat, shade_jobs, submit, start_jobs and blend_jobs_00 ... blend_jobs_11 (nearest /
- * bilinear, clamp / repeat: the flush, one copy each, not one per place the walk visits a tile).
+ * jobs, the bin's sg_blend_pending), JOBS, JOB_SETS and shade_some(v, jobs, n, textured, bilinear,
+ * repeat, flat), which shades n jobs (a constant) side by side and blends them in their order.
+ * Defines shade_jobs_flat, shade_jobs, submit, start_jobs and blend_jobs_100 ... blend_jobs_111
+ * (textured 1; nearest / bilinear, clamp / repeat: the flush, one copy each, not one per place the
+ * walk visits a tile); SG_MIP_JOB_FNS adds those of mipmapped textures, blend_jobs_200 ...
+ * blend_jobs_311 (textured SG_TEX16_MIP and SG_TEX16_MIP_LINEAR of shade_avx512.h).
  * Jobs are shaded in the order they came, and each is blended after the ones before it: a pixel
  * in two jobs (two triangles of the draw) is blended in the triangles' order. Jobs of several
  * triangles go side by side, so a triangle's last few do not go alone. */
 #define SG_JOB_LIST_FNS                                                                            \
     static inline __attribute__((always_inline)) void shade_jobs_flat(                             \
-        sg_blend_pending *w, const sg_vis_ctx *v, const int bilinear, const int repeat,            \
-        const int flat) {                                                                          \
+        sg_blend_pending *w, const sg_vis_ctx *v, const int textured, const int bilinear,          \
+        const int repeat, const int flat) {                                                        \
         const job *j = (const job *)(const void *)w->jobs;                                         \
         int i = 0;                                                                                 \
         for (; i + JOB_SETS <= w->n; i += JOB_SETS)                                                \
-            shade_some(v, j + i, JOB_SETS, bilinear, repeat, flat);                                \
+            shade_some(v, j + i, JOB_SETS, textured, bilinear, repeat, flat);                      \
         if (w->n - i >= 2) {                                                                       \
-            shade_some(v, j + i, 2, bilinear, repeat, flat);                                       \
+            shade_some(v, j + i, 2, textured, bilinear, repeat, flat);                             \
             i += 2;                                                                                \
         }                                                                                          \
-        if (i < w->n) shade_some(v, j + i, 1, bilinear, repeat, flat);                             \
+        if (i < w->n) shade_some(v, j + i, 1, textured, bilinear, repeat, flat);                   \
         w->n = 0;                                                                                  \
     }                                                                                              \
     static inline __attribute__((always_inline)) void shade_jobs(                                  \
-        sg_blend_pending *w, const sg_vis_ctx *v, const int bilinear, const int repeat) {          \
+        sg_blend_pending *w, const sg_vis_ctx *v, const int textured, const int bilinear,          \
+        const int repeat) {                                                                        \
         if (w->flat == SG_FLAT_WHITE)                                                              \
-            shade_jobs_flat(w, v, bilinear, repeat, SG_FLAT_WHITE);                                \
+            shade_jobs_flat(w, v, textured, bilinear, repeat, SG_FLAT_WHITE);                      \
         else if (w->flat == SG_FLAT_COLOR)                                                         \
-            shade_jobs_flat(w, v, bilinear, repeat, SG_FLAT_COLOR);                                \
+            shade_jobs_flat(w, v, textured, bilinear, repeat, SG_FLAT_COLOR);                      \
         else                                                                                       \
-            shade_jobs_flat(w, v, bilinear, repeat, SG_FLAT_NONE);                                 \
+            shade_jobs_flat(w, v, textured, bilinear, repeat, SG_FLAT_NONE);                       \
     }                                                                                              \
     static inline __attribute__((always_inline)) void submit(queued_ctx *p, const job *j) {        \
         sg_blend_pending *w = p->jobs;                                                             \
@@ -120,15 +123,24 @@
         w->draw = t->draw;                                                                         \
         w->flat = (int)t->flat;                                                                    \
     }                                                                                              \
-    SG_BLEND_JOBS(0, 0)                                                                            \
-    SG_BLEND_JOBS(0, 1)                                                                            \
-    SG_BLEND_JOBS(1, 0)                                                                            \
-    SG_BLEND_JOBS(1, 1)                                                                            \
+    SG_BLEND_JOBS(1, 0, 0)                                                                         \
+    SG_BLEND_JOBS(1, 0, 1)                                                                         \
+    SG_BLEND_JOBS(1, 1, 0)                                                                         \
+    SG_BLEND_JOBS(1, 1, 1)                                                                         \
     _Static_assert(sizeof(job) * JOBS <= SG_PENDING_BYTES, "the bin's job buffer holds JOBS");
-#define SG_BLEND_JOBS(bil, rep)                                                                    \
-    static __attribute__((noinline)) void blend_jobs_##bil##rep(sg_blend_pending *w,               \
-                                                                const sg_vis_ctx *v) {             \
-        shade_jobs(w, v, bil, rep);                                                                \
+#define SG_BLEND_JOBS(tex, bil, rep)                                                               \
+    static __attribute__((noinline)) void blend_jobs_##tex##bil##rep(sg_blend_pending *w,          \
+                                                                     const sg_vis_ctx *v) {        \
+        shade_jobs(w, v, tex, bil, rep);                                                           \
     }
+#define SG_MIP_JOB_FNS                                                                             \
+    SG_BLEND_JOBS(2, 0, 0)                                                                         \
+    SG_BLEND_JOBS(2, 0, 1)                                                                         \
+    SG_BLEND_JOBS(2, 1, 0)                                                                         \
+    SG_BLEND_JOBS(2, 1, 1)                                                                         \
+    SG_BLEND_JOBS(3, 0, 0)                                                                         \
+    SG_BLEND_JOBS(3, 0, 1)                                                                         \
+    SG_BLEND_JOBS(3, 1, 0)                                                                         \
+    SG_BLEND_JOBS(3, 1, 1)
 
 #endif
