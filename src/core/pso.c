@@ -135,8 +135,9 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
      * material and a shadow map keep them visibility first (sgDraw), and so do wireframes. */
     if (d->blend == SG_BLEND_OPAQUE && d->lighting != SG_LIGHTING_PHONG)
         p.raster_line = sg_put_select(variant, d->depth.compare, d->depth.write, dev->isa);
-    /* Mipmapped texturing has its own shading (shade_mip.c), called from the generic in-place
-     * blend; lines go visibility first, as that shading is not inlined in the line raster. */
+    /* Mipmapped texturing has its own shading (shade_mip.c; AVX-512's in its fixed shading, with
+     * pairs of whole tiles and, unlit, its own blends); lines go visibility first, as that
+     * shading is not inlined in the line raster. */
     const bool mip = d->mipmap != SG_MIPMAP_NONE && d->shade == SG_SHADE_TEXTURE_MODULATE;
     if (mip && !shader) {
         p.shade_fn = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, false, dev->isa);
