@@ -250,6 +250,20 @@ static int same_as_reference(sg_shade_fn fn, const char *isa, const sg_shade_ctx
     return 0;
 }
 
+/* A two-tile function on the tile at (x0, y0) and another of the triangle (a random one near it),
+ * whole, against two calls of the reference. */
+static int same_pair(sg_shade_fn ref, sg_shade2_fn pair, const sg_shade_ctx *ctx, const sg_tri *t,
+                     int x0, int y0, rng *g) {
+    const int x1 = x0 + 4 * (int)(next(g) % 5) - 8, y1 = y0 + 4 * (int)(next(g) % 3);
+    uint32_t r0[16], r1[16], p0[16], p1[16];
+    ref(ctx, t, x0, y0, 0xffffu, r0);
+    ref(ctx, t, x1, y1, 0xffffu, r1);
+    pair(ctx, t, x0, y0, x1, y1, p0, p1);
+    if (!memcmp(r0, p0, sizeof r0) && !memcmp(r1, p1, sizeof r1)) return 1;
+    printf("tiles (%d, %d) and (%d, %d): ", x0, y0, x1, y1);
+    return 0;
+}
+
 /* The lit part of a case: a secondary colour's planes (kind SECONDARY), or a view position and
  * normal and the draw's lights (kind PHONG: positions around the eye, normals of any length or
  * none, one to eight lights of both kinds, specular colours and shininess from 0 to 128). */
@@ -490,16 +504,9 @@ static void compare_variant(int variant, int kind) {
                 failures++;
             for (int set = 0; set < 2; set++) {
                 if (!pair[set]) continue;
-                /* this tile and another of the triangle, whole, as two scalar calls */
-                int x1 = x0 + 4 * (int)(next(&g) % 5) - 8, y1 = y0 + 4 * (int)(next(&g) % 3);
-                uint32_t r0[16], r1[16], p0[16], p1[16];
-                scalar(&ctx, &t, x0, y0, 0xffffu, r0);
-                scalar(&ctx, &t, x1, y1, 0xffffu, r1);
-                pair[set](&ctx, &t, x0, y0, x1, y1, p0, p1);
-                if (memcmp(r0, p0, sizeof r0) || memcmp(r1, p1, sizeof r1)) {
-                    printf("%s pair differs: variant %d flat %d case %ld, tiles (%d, %d) and "
-                           "(%d, %d)\n",
-                           set_name[set], variant, flat, n, x0, y0, x1, y1);
+                if (!same_pair(scalar, pair[set], &ctx, &t, x0, y0, &g)) {
+                    printf("%s pair differs: variant %d flat %d case %ld\n", set_name[set], variant,
+                           flat, n);
                     failures++;
                 }
             }
@@ -653,13 +660,7 @@ static void compare_mip(int linear) {
                            index, flat, n, (unsigned)mask);
                     failures++;
                 }
-                /* this tile and another of the triangle, whole, as two reference calls */
-                const int x1 = x0 + 4 * (int)(next(&g) % 5) - 8, y1 = y0 + 4 * (int)(next(&g) % 3);
-                uint32_t r0[16], r1[16], p0[16], p1[16];
-                ref(&ctx, &t, x0, y0, 0xffffu, r0);
-                ref(&ctx, &t, x1, y1, 0xffffu, r1);
-                pair(&ctx, &t, x0, y0, x1, y1, p0, p1);
-                if (memcmp(r0, p0, sizeof r0) || memcmp(r1, p1, sizeof r1)) {
+                if (!same_pair(ref, pair, &ctx, &t, x0, y0, &g)) {
                     printf("AVX-512 mipmapped pair differs: index %d flat %d case %ld\n", index,
                            flat, n);
                     failures++;
