@@ -264,6 +264,37 @@ static int same_pair(sg_shade_fn ref, sg_shade2_fn pair, const sg_shade_ctx *ctx
     return 0;
 }
 
+enum { BIN_TILES = SG_BIN_SIZE / SG_TILE, BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE };
+
+/* A packed-runs function on runs of distinct tiles of a bin around the tile at (x0, y0) (random
+ * masks, some whole), against one reference call a run; bin_ref and bin_out hold a bin each. */
+static int same_runs(sg_shade_fn ref, sg_shade_runs_fn runs, const sg_shade_ctx *ctx,
+                     const sg_tri *t, int x0, int y0, uint32_t sentinel, rng *g, uint32_t *bin_ref,
+                     uint32_t *bin_out) {
+    const int bx0 = x0 - 4 * irange(g, 0, BIN_TILES - 1);
+    const int by0 = y0 - 4 * irange(g, 0, BIN_TILES - 1);
+    sg_run list[64];
+    int nruns = irange(g, 1, 64);
+    for (int i = 0; i < BIN_PIXELS; i++) bin_ref[i] = bin_out[i] = sentinel;
+    for (int i = 0; i < nruns; i++) {
+        int tile = irange(g, 0, BIN_TILES * BIN_TILES - 1);
+        for (int j = 0; j < i; j++)
+            if (list[j].tile == tile) tile = -1;
+        if (tile < 0) { /* a triangle's runs are in different tiles */
+            nruns = i;
+            break;
+        }
+        uint32_t m = chance(g, 10) ? 0xffffu : random_mask(g);
+        list[i] = (sg_run){(uint16_t)tile, (uint16_t)m};
+        ref(ctx, t, bx0 + 4 * (tile % BIN_TILES), by0 + 4 * (tile / BIN_TILES), m,
+            bin_ref + tile * 16);
+    }
+    runs(ctx, t, bx0, by0, list, nruns, bin_out);
+    if (!memcmp(bin_ref, bin_out, BIN_PIXELS * sizeof *bin_out)) return 1;
+    printf("%d runs: ", nruns);
+    return 0;
+}
+
 /* The lit part of a case: a secondary colour's planes (kind SECONDARY), or a view position and
  * normal and the draw's lights (kind PHONG: positions around the eye, normals of any length or
  * none, one to eight lights of both kinds, specular colours and shininess from 0 to 128). */
@@ -459,7 +490,6 @@ static void compare_variant(int variant, int kind) {
     const long cases = kind >= PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
     long seen[3] = {0, 0, 0}; /* shadow kinds: pixel 0 hidden, partly seen, seen */
     long failures = 0;
-    enum { BIN_TILES = SG_BIN_SIZE / SG_TILE, BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE };
     uint32_t *bin_ref = malloc(BIN_PIXELS * sizeof *bin_ref);
     uint32_t *bin_out = malloc(BIN_PIXELS * sizeof *bin_out);
     assert_non_null(bin_ref);
@@ -559,29 +589,10 @@ static void compare_variant(int variant, int kind) {
             }
             for (int set = 0; set < 2; set++) {
                 if (!runs[set] || n % 8 != 0) continue;
-                /* runs of distinct tiles of a bin, as one scalar call each */
-                const int bx0 = x0 - 4 * irange(&g, 0, BIN_TILES - 1);
-                const int by0 = y0 - 4 * irange(&g, 0, BIN_TILES - 1);
-                sg_run list[64];
-                int nruns = irange(&g, 1, 64);
-                for (int i = 0; i < BIN_PIXELS; i++) bin_ref[i] = bin_out[i] = sentinel;
-                for (int i = 0; i < nruns; i++) {
-                    int tile = irange(&g, 0, BIN_TILES * BIN_TILES - 1);
-                    for (int j = 0; j < i; j++)
-                        if (list[j].tile == tile) tile = -1;
-                    if (tile < 0) { /* a triangle's runs are in different tiles */
-                        nruns = i;
-                        break;
-                    }
-                    uint32_t m = chance(&g, 10) ? 0xffffu : random_mask(&g);
-                    list[i] = (sg_run){(uint16_t)tile, (uint16_t)m};
-                    scalar(&ctx, &t, bx0 + 4 * (tile % BIN_TILES), by0 + 4 * (tile / BIN_TILES), m,
-                           bin_ref + tile * 16);
-                }
-                runs[set](&ctx, &t, bx0, by0, list, nruns, bin_out);
-                if (memcmp(bin_ref, bin_out, BIN_PIXELS * sizeof *bin_out)) {
-                    printf("%s runs differ: variant %d flat %d case %ld, %d runs\n", set_name[set],
-                           variant, flat, n, nruns);
+                if (!same_runs(scalar, runs[set], &ctx, &t, x0, y0, sentinel, &g, bin_ref,
+                               bin_out)) {
+                    printf("%s runs differ: variant %d flat %d case %ld\n", set_name[set], variant,
+                           flat, n);
                     failures++;
                 }
             }
@@ -599,10 +610,10 @@ static void compare_variant(int variant, int kind) {
     }
 }
 
-/* Mipmapped shading (shade_mip.c, the portable reference, against AVX-512's single tiles and
- * pairs): chains from 1 x 1 to 300 x 17 texels, derivatives from magnified to far past the last
- * level, every filter, wrap, secondary colour and flat kind, random masks (quads with no covered
- * pixel among them). Each level is an allocation of its own, exactly sized. */
+/* Mipmapped shading (shade_mip.c, the portable reference, against AVX-512's single tiles,
+ * pairs and packed runs): chains from 1 x 1 to 300 x 17 texels, derivatives from magnified to far
+ * past the last level, every filter, wrap, secondary colour and flat kind, random masks (quads with
+ * no covered pixel among them). Each level is an allocation of its own, exactly sized. */
 static void compare_mip(int linear) {
     static const int sizes[][2] = {{1, 1}, {2, 1}, {8, 8}, {64, 64}, {300, 17}, {9, 130}, {33, 32}};
     enum { NSIZES = sizeof sizes / sizeof *sizes, MIP_CASES = 6000 };
@@ -624,13 +635,19 @@ static void compare_mip(int linear) {
             h = sg_mip_next_side(h);
         }
     }
+    uint32_t *bin_ref = malloc(BIN_PIXELS * sizeof *bin_ref);
+    uint32_t *bin_out = malloc(BIN_PIXELS * sizeof *bin_out);
+    assert_non_null(bin_ref);
+    assert_non_null(bin_out);
     long failures = 0;
     for (int index = linear * 8; index < linear * 8 + 8 && failures < 5; index++) {
         const int sec = index & 1;
         const sg_shade_fn ref = sg_shade_mip_portable(index), fn = sg_shade_mip_avx512(index);
         const sg_shade2_fn pair = sg_shade2_mip_avx512(index);
+        const sg_shade_runs_fn runs = sg_shade_runs_mip_avx512(index);
         assert_non_null(fn);
         assert_non_null(pair);
+        assert_non_null(runs);
         for (int flat = 0; flat < FLATS; flat++) {
             for (long n = 0; n < MIP_CASES && failures < 5; n++) {
                 const sg_mip_chain *m = &chains[n % NSIZES];
@@ -665,11 +682,19 @@ static void compare_mip(int linear) {
                            flat, n);
                     failures++;
                 }
+                if (n % 4 == 0 &&
+                    !same_runs(ref, runs, &ctx, &t, x0, y0, sentinel, &g, bin_ref, bin_out)) {
+                    printf("AVX-512 mipmapped runs differ: index %d flat %d case %ld\n", index,
+                           flat, n);
+                    failures++;
+                }
             }
         }
     }
     for (int i = 0; i < NSIZES; i++)
         for (int l = 0; l < chains[i].levels; l++) free((void *)chains[i].level[l].texels);
+    free(bin_ref);
+    free(bin_out);
     assert_int_equal(failures, 0);
 }
 

@@ -144,7 +144,8 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
         p.shade_sec = sg_shade_mip_select(d->mipmap, d->filter, d->wrap, true, dev->isa);
         p.shade2_fn = sg_shade2_mip_select(d->mipmap, d->filter, d->wrap, false, dev->isa);
         p.shade2_sec = sg_shade2_mip_select(d->mipmap, d->filter, d->wrap, true, dev->isa);
-        p.runs_fn = p.runs_sec = NULL; /* packed pixels lose the quads the level comes from */
+        p.runs_fn = sg_shade_runs_mip_select(d->mipmap, d->filter, d->wrap, false, dev->isa);
+        p.runs_sec = sg_shade_runs_mip_select(d->mipmap, d->filter, d->wrap, true, dev->isa);
         p.mixed_fn = NULL;
         p.raster_line = NULL;
         if (d->blend == SG_BLEND_ALPHA) { /* lit: a specular colour, chosen per draw */

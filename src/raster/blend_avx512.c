@@ -89,20 +89,10 @@ typedef struct job {
  * (as in blend_avx2.c). */
 enum { JOBS = 32, JOB_SETS = 4 };
 
-/* A mipmapped triangle's partly covered tiles: their 2 x 2 quads that hold a covered pixel, packed
- * four to a vector, each quad's four pixels (its level of detail needs them all) in the lanes a
- * quad of a tile has (shade_avx512.h, mip16_pick), the covered ones in mask. */
-typedef struct quad_queue {
-    __m512 dx, dy;
-    __m512i off;
-    uint32_t mask;
-    int n; /* quads held */
-} quad_queue;
-
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     sg_queue16 *q;
-    quad_queue *quads;      /* mipmapped triangles' */
+    sg_quad_queue *quads;   /* mipmapped triangles' */
     sg_blend_pending *jobs; /* the bin's */
     const flat_src *flat;   /* untextured triangles of one colour */
 } queued_ctx;
@@ -159,38 +149,6 @@ SG_JOB_LIST_FNS
 SG_MIP_JOB_FNS
 #define blend_jobs_000 NULL /* vertex colours: shaded in place, no jobs */
 
-/* The quads of `mask` (some, not all, hold a covered pixel) of a mipmapped triangle's tile at bin
- * offset base join its quad queue; each time four are there, they are a job. */
-INLINE void enqueue_quads(queued_ctx *p, const sg_tri *t, __m512 dx, __m512 dy, int base,
-                          uint32_t mask) {
-    quad_queue *q = p->quads;
-    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m512i off = _mm512_add_epi32(_mm512_set1_epi32(base), lane);
-    for (int k = 0; k < 4; k++) {
-        const int from = (k & 1) * 2 + (k >> 1) * 8; /* quad k's first lane */
-        const uint32_t bits = mask >> from & 0x33u;
-        if (!bits) continue;
-        const int to = (q->n & 1) * 2 + (q->n >> 1) * 8;
-        const __mmask16 lanes = (__mmask16)(0x33u << to);
-        const __m512i idx = _mm512_add_epi32(lane, _mm512_set1_epi32(from - to));
-        q->dx = _mm512_mask_permutexvar_ps(q->dx, lanes, idx, dx);
-        q->dy = _mm512_mask_permutexvar_ps(q->dy, lanes, idx, dy);
-        q->off = _mm512_mask_permutexvar_epi32(q->off, lanes, idx, off);
-        q->mask |= bits << to;
-        if (++q->n == 4) {
-            const job j = {q->dx, q->dy, q->off, t, -1, q->mask};
-            submit(p, &j);
-            q->n = 0;
-            q->mask = 0;
-        }
-    }
-}
-
-/* Whether every quad of the tile holds a pixel of mask. */
-INLINE bool every_quad(uint32_t mask) {
-    return (mask & 0x0033u) && (mask & 0x00ccu) && (mask & 0x3300u) && (mask & 0xcc00u);
-}
-
 INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
                          const int ztest, const int zwrite, const int textured) {
     queued_ctx *p = (queued_ctx *)(uintptr_t)vctx; /* the walk's context, this function's own */
@@ -212,14 +170,18 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
         _mm512_mask_storeu_epi32(dst, (__mmask16)mask, blend16(s, _mm512_load_si512(dst)));
         return;
     }
-    if (mask == 0xffffu || (textured >= SG_TEX16_MIP && every_quad(mask))) {
+    if (mask == 0xffffu || (textured >= SG_TEX16_MIP && sg_every_quad(mask))) {
         /* a whole tile needs no packing, nor a tile whose every quad is shaded anyway */
         const job j = {dx, dy, _mm512_setzero_si512(), t, base, mask};
         submit(p, &j);
         return;
     }
     if (textured >= SG_TEX16_MIP) {
-        enqueue_quads(p, t, dx, dy, base, mask);
+        sg_quad_queue full;
+        if (sg_enqueue_quads(p->quads, dx, dy, base, mask, &full)) {
+            const job j = {full.dx, full.dy, full.off, t, -1, full.mask};
+            submit(p, &j);
+        }
         return;
     }
     sg_queue16 full;
@@ -232,7 +194,7 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
 /* The end of a triangle: its partial queue joins the jobs waiting. */
 INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
     if (textured >= SG_TEX16_MIP) {
-        const quad_queue *q = p->quads;
+        const sg_quad_queue *q = p->quads;
         if (q->n) submit(p, &(job){q->dx, q->dy, q->off, t, -1, q->mask});
         return;
     }
@@ -255,8 +217,8 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
         p.v = c;                                                                                   \
         p.q = &q;                                                                                  \
         p.jobs = p.v->pending;                                                                     \
-        quad_queue quads = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0,   \
-                            0};                                                                    \
+        sg_quad_queue quads = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(),   \
+                               0, 0};                                                              \
         p.quads = tex >= SG_TEX16_MIP ? &quads : NULL;                                             \
         const flat_src f =                                                                         \
             flat_src_of(!tex && t->flat != SG_FLAT_NONE ? sg_flat_pixel(t, NULL, 0) : 0u);         \

@@ -150,11 +150,16 @@ sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, b
 /** Its two-tile function, or NULL where the instruction set has none (all but AVX-512). */
 sg_shade2_fn sg_shade2_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                   sg_isa isa);
+/** Its packed-runs function (the runs' 2 x 2 quads packed), or NULL where it has none (all but
+ *  AVX-512). */
+sg_shade_runs_fn sg_shade_runs_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
+                                          sg_isa isa);
 /** The portable reference of sg_shade_mip_select, and AVX-512's tables (NULL where not built),
  *  by index: linear * 8 + bilinear * 4 + repeat * 2 + sec. */
 sg_shade_fn sg_shade_mip_portable(int index);
 sg_shade_fn sg_shade_mip_avx512(int index);
 sg_shade2_fn sg_shade2_mip_avx512(int index);
+sg_shade_runs_fn sg_shade_runs_mip_avx512(int index);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);
 /** The scalar reference functions (the SSE2, AVX2 and AVX-512 tables are in shade_sse2.c,

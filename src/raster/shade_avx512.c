@@ -89,12 +89,54 @@ sg_shade2_fn sg_shade2_mip_avx512(int index) {
     return table[index];
 }
 
+enum { ROW = SG_BIN_SIZE / SG_TILE };
+
+/* shade_runs of a mipmapped triangle: the runs' quads that hold a covered pixel packed four to a
+ * vector (sg_quad_queue), two full vectors shaded side by side, each covered lane's colour stored
+ * at its own offset; a run whose every quad is touched is shaded as its tile. */
+INLINE void shade_quad_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
+                            int by0, const sg_run *runs, int n, uint32_t *color, const int textured,
+                            const int bilinear, const int repeat, const int flat, const int sec) {
+    sg_quad_queue q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0, 0};
+    sg_quad_queue full[2];
+    int nfull = 0;
+    for (int i = 0; i < n; i++) {
+        const int tile = runs[i].tile;
+        const uint32_t mask = runs[i].mask;
+        __m512 dx, dy;
+        sg_tile_dxdy16(t, bx0 + (tile % ROW) * SG_TILE, by0 + (tile / ROW) * SG_TILE, &dx, &dy);
+        if (sg_every_quad(mask)) {
+            __m512i v =
+                sg_shade16_at(c, t, ext, dx, dy, mask, textured, bilinear, repeat, flat, sec);
+            _mm512_mask_storeu_epi32(color + tile * SG_TILE_PIXELS, (__mmask16)mask, v);
+            continue;
+        }
+        if (!sg_enqueue_quads(&q, dx, dy, tile * SG_TILE_PIXELS, mask, &full[nfull]) || ++nfull < 2)
+            continue;
+        const __m512 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
+        const uint32_t masks[2] = {full[0].mask, full[1].mask};
+        __m512i v[2];
+        shade16_tiles(c, t, NULL, ext, 2, fdx, fdy, masks, v, textured, bilinear, repeat, flat,
+                      sec);
+        for (int k = 0; k < 2; k++)
+            _mm512_mask_i32scatter_epi32(color, (__mmask16)masks[k], full[k].off, v[k], 4);
+        nfull = 0;
+    }
+    /* a full vector left, then the queue's last quads */
+    for (int k = 0; k < 2; k++) {
+        const sg_quad_queue *f = k ? &q : &full[0];
+        if (k ? !q.n : !nfull) continue;
+        __m512i v =
+            sg_shade16_at(c, t, ext, f->dx, f->dy, f->mask, textured, bilinear, repeat, flat, sec);
+        _mm512_mask_i32scatter_epi32(color, (__mmask16)f->mask, f->off, v, 4);
+    }
+}
+
 /* Runs of a triangle (sg_shade_runs_fn): their pixels packed sixteen to a vector (sg_queue16),
  * two full vectors shaded side by side, and each lane's colour stored at its own offset. */
 INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
                        int by0, const sg_run *runs, int n, uint32_t *color, const int textured,
                        const int bilinear, const int repeat, const int flat, const int sec) {
-    enum { ROW = SG_BIN_SIZE / SG_TILE };
     sg_queue16 q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0};
     sg_queue16 full[2];
     int nfull = 0;
@@ -127,6 +169,39 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 
 #define SG_RUNS_TABLE sg_shade_runs_avx512
 #include "raster/shade_runs_variants.h"
+
+/* The mipmapped runs (shade_quad_runs), by the index of sg_shade_mip_select. */
+#define SG_MIP_RUNS(tex, bil, rep, sec)                                                            \
+    static void runs_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int bx0,         \
+                                          int by0, const sg_run *r, int n, uint32_t *color) {      \
+        const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
+        if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
+            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_WHITE, sec);  \
+        else if (t->flat != SG_FLAT_NONE)                                                          \
+            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_COLOR, sec);  \
+        else                                                                                       \
+            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_NONE, sec);   \
+    }
+#define SG_MIP_RUNS_OF(tex)                                                                        \
+    SG_MIP_RUNS(tex, 0, 0, 0)                                                                      \
+    SG_MIP_RUNS(tex, 0, 0, 1)                                                                      \
+    SG_MIP_RUNS(tex, 0, 1, 0)                                                                      \
+    SG_MIP_RUNS(tex, 0, 1, 1)                                                                      \
+    SG_MIP_RUNS(tex, 1, 0, 0)                                                                      \
+    SG_MIP_RUNS(tex, 1, 0, 1)                                                                      \
+    SG_MIP_RUNS(tex, 1, 1, 0)                                                                      \
+    SG_MIP_RUNS(tex, 1, 1, 1)
+SG_MIP_RUNS_OF(2)
+SG_MIP_RUNS_OF(3)
+#undef SG_MIP_RUNS_OF
+#undef SG_MIP_RUNS
+
+sg_shade_runs_fn sg_shade_runs_mip_avx512(int index) {
+    static const sg_shade_runs_fn table[16] = {
+        runs_2000, runs_2001, runs_2010, runs_2011, runs_2100, runs_2101, runs_2110, runs_2111,
+        runs_3000, runs_3001, runs_3010, runs_3011, runs_3100, runs_3101, runs_3110, runs_3111};
+    return table[index];
+}
 
 /* `count` tiles that several triangles share (sg_shade_mixed_fn), their triangles all of the flat
  * kind `flat`: shaded side by side, each stored under its mask. */
@@ -165,7 +240,23 @@ sg_shade_fn sg_shade_mip_avx512(int index) {
     return NULL;
 }
 
+#define SG_MIP_RUNS(tex, bil, rep, sec)                                                            \
+    static void runs_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int bx0,         \
+                                          int by0, const sg_run *r, int n, uint32_t *color) {      \
+        const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
+        if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
+            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_WHITE, sec);  \
+        else if (t->flat != SG_FLAT_NONE)                                                          \
+            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_COLOR, sec);  \
+        else                                                                                       \
+            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_NONE, sec);   \
+    }
 sg_shade2_fn sg_shade2_mip_avx512(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade_runs_fn sg_shade_runs_mip_avx512(int index) {
     (void)index;
     return NULL;
 }

@@ -548,6 +548,51 @@ INLINE bool sg_enqueue16(sg_queue16 *q, __m512 dx, __m512 dy, int base, __mmask1
     return true;
 }
 
+/* A mipmapped triangle's partly covered tiles: their 2 x 2 quads that hold a covered pixel,
+ * packed four to a vector, each quad's four pixels (its level of detail needs them all) in the
+ * lanes a quad of a tile has (mip16_pick), with their offsets from the triangle's bounds and in
+ * the bin's colour; the covered ones in mask. */
+typedef struct sg_quad_queue {
+    __m512 dx, dy;
+    __m512i off;
+    uint32_t mask;
+    int n; /* quads held */
+} sg_quad_queue;
+
+/* Whether every quad of a tile holds a pixel of mask (then the tile is shaded as it is). */
+INLINE bool sg_every_quad(uint32_t mask) {
+    return (mask & 0x0033u) && (mask & 0x00ccu) && (mask & 0x3300u) && (mask & 0xcc00u);
+}
+
+/* Appends the quads of a tile (offsets dx, dy; colour at bin offset base) that hold a pixel of
+ * mask, not all of them, to q. When four are there, full gets them and q starts again with the
+ * rest; true then (once at most: a tile adds three quads at most). */
+INLINE bool sg_enqueue_quads(sg_quad_queue *q, __m512 dx, __m512 dy, int base, uint32_t mask,
+                             sg_quad_queue *full) {
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512i off = _mm512_add_epi32(_mm512_set1_epi32(base), lane);
+    bool filled = false;
+    for (int k = 0; k < 4; k++) {
+        const int from = (k & 1) * 2 + (k >> 1) * 8; /* quad k's first lane */
+        const uint32_t bits = mask >> from & 0x33u;
+        if (!bits) continue;
+        const int to = (q->n & 1) * 2 + (q->n >> 1) * 8;
+        const __mmask16 lanes = (__mmask16)(0x33u << to);
+        const __m512i idx = _mm512_add_epi32(lane, _mm512_set1_epi32(from - to));
+        q->dx = _mm512_mask_permutexvar_ps(q->dx, lanes, idx, dx);
+        q->dy = _mm512_mask_permutexvar_ps(q->dy, lanes, idx, dy);
+        q->off = _mm512_mask_permutexvar_epi32(q->off, lanes, idx, off);
+        q->mask |= bits << to;
+        if (++q->n == 4) {
+            *full = *q;
+            q->n = 0;
+            q->mask = 0;
+            filled = true;
+        }
+    }
+    return filled;
+}
+
 /* sg_shade16_at for the pixels of `mask` of the tile at (x0, y0), lane y * 4 + x. */
 INLINE __m512i sg_shade16(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
                           int y0, uint32_t mask, const int textured, const int bilinear,

@@ -137,3 +137,9 @@ sg_shade2_fn sg_shade2_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap,
                                   sg_isa isa) {
     return isa == SG_ISA_AVX512 ? sg_shade2_mip_avx512(mip_index(mipmap, filter, wrap, sec)) : NULL;
 }
+
+sg_shade_runs_fn sg_shade_runs_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
+                                          sg_isa isa) {
+    return isa == SG_ISA_AVX512 ? sg_shade_runs_mip_avx512(mip_index(mipmap, filter, wrap, sec))
+                                : NULL;
+}
