@@ -343,11 +343,11 @@ INLINE void mip16_lookup(const sg_mip_chain *m, __m512i l0, __m512i l1, __m512i 
     }
 }
 
-/* The mipmapped texels of the pixels of `mask` of a tile at (s, u), as shade_mip.c takes them: a
- * quad without a covered pixel takes a covered quad's levels, so that it reads no level of its
- * own. */
-INLINE void mip16_texels(const sg_mip_chain *m, __m512 s, __m512 u, uint32_t mask, const int linear,
-                         const int bilinear, const int repeat, __m512i c[4]) {
+/* The levels and weights (mip16_pick) of the pixels of `mask` of a tile at (s, u), as shade_mip.c
+ * takes them: a quad without a covered pixel takes a covered quad's, so that it reads no level of
+ * its own. */
+INLINE void mip16_levels(const sg_mip_chain *m, __m512 s, __m512 u, uint32_t mask, const int linear,
+                         __m512i *l0p, __m512i *l1p, __m512i *fp) {
     __m512i l0, l1, f;
     mip16_pick(m, s, u, linear, &l0, &l1, &f);
     uint32_t quads = 0;
@@ -361,7 +361,9 @@ INLINE void mip16_texels(const sg_mip_chain *m, __m512 s, __m512 u, uint32_t mas
         l1 = _mm512_mask_mov_epi32(_mm512_permutexvar_epi32(lane, l1), (__mmask16)quads, l1);
         f = _mm512_mask_mov_epi32(_mm512_permutexvar_epi32(lane, f), (__mmask16)quads, f);
     }
-    mip16_lookup(m, l0, l1, f, s, u, bilinear, repeat, c);
+    *l0p = l0;
+    *l1p = l1;
+    *fp = f;
 }
 
 /* Four channels in bits 16 to 23 of their lanes, zeros above, to RGBA8. */
@@ -397,9 +399,13 @@ INLINE bool texture16_tiles(const sg_shade_ctx *c, const int n, const __m512 s[]
     const tex16 tx = tex16_of(&c->tex, bilinear);
     __m512i tc[4][4];
     if (textured >= SG_TEX16_MIP) {
+        /* every tile's levels first: their chains of dependent steps side by side */
+        __m512i l0[4], l1[4], f[4];
         for (int i = 0; i < n; i++)
-            mip16_texels(c->mips, s[i], u[i], mask[i], textured == SG_TEX16_MIP_LINEAR, bilinear,
-                         repeat, tc[i]);
+            mip16_levels(c->mips, s[i], u[i], mask[i], textured == SG_TEX16_MIP_LINEAR, &l0[i],
+                         &l1[i], &f[i]);
+        for (int i = 0; i < n; i++)
+            mip16_lookup(c->mips, l0[i], l1[i], f[i], s[i], u[i], bilinear, repeat, tc[i]);
         if (flat == SG_FLAT_WHITE && !sec) { /* the texel, as in shade_mip.c */
             for (int i = 0; i < n; i++)
                 out[i] = _mm512_or_si512(_mm512_or_si512(tc[i][0], _mm512_slli_epi32(tc[i][1], 8)),
