@@ -33,7 +33,47 @@ static inline __attribute__((always_inline)) void vis_avx512(const void *vctx, c
 
 SG_VIS_SET(vis_avx512, vis_avx512)
 
-SG_VIS_SAMPLES_SET(vis_samples_avx512, vis_avx512)
+/* The four samples of a tile at once (the sample walk's body): the samples' triangles differ only
+ * in their edges and z (sg_msaa_sample_tri), so the pixels' offsets and the depth slopes' products
+ * with them are computed once, and each sample's z is its own z plus those products, added in
+ * vis_avx512's order: the same bits. */
+static inline __attribute__((always_inline)) void vis4_avx512(const sg_vis_samples *s,
+                                                              const sg_tri *t, int x0, int y0,
+                                                              const uint32_t *mk, const int zmode,
+                                                              const int zwrite) {
+    (void)t; /* the union's: its edges only differ */
+    const sg_tri *st = s->st;
+    const sg_vis_ctx *v0 = &s->vis[0];
+    const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
+    __m512 dzx = _mm512_setzero_ps(), dzy = _mm512_setzero_ps();
+    if (zmode != Z_NONE || zwrite) {
+        __m512 dx, dy;
+        sg_tile_dxdy16(&st[0], x0, y0, &dx, &dy);
+        dzx = _mm512_mul_ps(_mm512_set1_ps(st[0].z_dx), dx);
+        dzy = _mm512_mul_ps(_mm512_set1_ps(st[0].z_dy), dy);
+    }
+    const __m512i id = _mm512_set1_epi32((int)v0->id);
+    for (int k = 0; k < SG_VIS_SAMPLES; k++) {
+        if (!mk[k]) continue;
+        const sg_vis_ctx *v = &s->vis[k];
+        uint32_t *ids = sg_vis_tile_ids(v, base);
+        __mmask16 pass = (__mmask16)mk[k];
+        if (zmode != Z_NONE || zwrite) {
+            float *dp = v->depth + base;
+            __m512 z = _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(st[k].z), dzx), dzy);
+            z = _mm512_min_ps(_mm512_set1_ps(1.0f), _mm512_max_ps(_mm512_setzero_ps(), z));
+            if (zmode != Z_NONE)
+                pass = sg_compare16(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, pass, z,
+                                    _mm512_loadu_ps(dp));
+            if (zwrite) _mm512_mask_storeu_ps(dp, pass, z);
+        }
+        _mm512_mask_storeu_epi32(ids, pass, id);
+    }
+}
+
+#define VIS4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, body, vis4_avx512, zm, zw)
+SG_VIS_SET_OF(VIS4_FN, vis_samples_avx512, vis_avx512)
+#undef VIS4_FN
 
 sg_vis_fns sg_depth_avx512(sgCompare compare, bool depth_write) {
     static const sg_raster_fn one[3][2] = SG_VIS_TABLE(vis_avx512);
