@@ -60,18 +60,13 @@ sg_shade2_fn sg_shade2_avx512(int index) {
         shade_flat(c, t, sec ? sg_shade_ext(c, t) : NULL, x0, y0, m, dst, tex, bil, rep, sec);     \
     }                                                                                              \
     SG_PAIR_VARIANT(tex, bil, rep, sec)
-#define SG_MIP_VARIANTS(tex)                                                                       \
-    SG_MIP_VARIANT(tex, 0, 0, 0)                                                                   \
-    SG_MIP_VARIANT(tex, 0, 0, 1)                                                                   \
-    SG_MIP_VARIANT(tex, 0, 1, 0)                                                                   \
-    SG_MIP_VARIANT(tex, 0, 1, 1)                                                                   \
-    SG_MIP_VARIANT(tex, 1, 0, 0)                                                                   \
-    SG_MIP_VARIANT(tex, 1, 0, 1)                                                                   \
-    SG_MIP_VARIANT(tex, 1, 1, 0)                                                                   \
-    SG_MIP_VARIANT(tex, 1, 1, 1)
-SG_MIP_VARIANTS(2) /* SG_TEX16_MIP */
-SG_MIP_VARIANTS(3) /* SG_TEX16_MIP_LINEAR */
-#undef SG_MIP_VARIANTS
+/* fn(tex, bil, rep, sec) for the eight mipmapped variants of tex, in sg_shade_mip_select's index
+ * order */
+#define SG_MIP_EACH(fn, tex)                                                                       \
+    fn(tex, 0, 0, 0) fn(tex, 0, 0, 1) fn(tex, 0, 1, 0) fn(tex, 0, 1, 1) fn(tex, 1, 0, 0)           \
+        fn(tex, 1, 0, 1) fn(tex, 1, 1, 0) fn(tex, 1, 1, 1)
+SG_MIP_EACH(SG_MIP_VARIANT, 2) /* SG_TEX16_MIP */
+SG_MIP_EACH(SG_MIP_VARIANT, 3) /* SG_TEX16_MIP_LINEAR */
 #undef SG_MIP_VARIANT
 _Static_assert(SG_TEX16_MIP == 2 && SG_TEX16_MIP_LINEAR == 3, "the variants' names");
 
@@ -171,30 +166,11 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
 #include "raster/shade_runs_variants.h"
 
 /* The mipmapped runs (shade_quad_runs), by the index of sg_shade_mip_select. */
-#define SG_MIP_RUNS(tex, bil, rep, sec)                                                            \
-    static void runs_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int bx0,         \
-                                          int by0, const sg_run *r, int n, uint32_t *color) {      \
-        const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
-        if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
-            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_WHITE, sec);  \
-        else if (t->flat != SG_FLAT_NONE)                                                          \
-            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_COLOR, sec);  \
-        else                                                                                       \
-            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_NONE, sec);   \
-    }
-#define SG_MIP_RUNS_OF(tex)                                                                        \
-    SG_MIP_RUNS(tex, 0, 0, 0)                                                                      \
-    SG_MIP_RUNS(tex, 0, 0, 1)                                                                      \
-    SG_MIP_RUNS(tex, 0, 1, 0)                                                                      \
-    SG_MIP_RUNS(tex, 0, 1, 1)                                                                      \
-    SG_MIP_RUNS(tex, 1, 0, 0)                                                                      \
-    SG_MIP_RUNS(tex, 1, 0, 1)                                                                      \
-    SG_MIP_RUNS(tex, 1, 1, 0)                                                                      \
-    SG_MIP_RUNS(tex, 1, 1, 1)
-SG_MIP_RUNS_OF(2)
-SG_MIP_RUNS_OF(3)
-#undef SG_MIP_RUNS_OF
+#define SG_MIP_RUNS(tex, bil, rep, sec) SG_RUNS_VARIANT(shade_quad_runs, tex, bil, rep, sec)
+SG_MIP_EACH(SG_MIP_RUNS, 2)
+SG_MIP_EACH(SG_MIP_RUNS, 3)
 #undef SG_MIP_RUNS
+#undef SG_MIP_EACH
 
 sg_shade_runs_fn sg_shade_runs_mip_avx512(int index) {
     static const sg_shade_runs_fn table[16] = {
@@ -240,17 +216,6 @@ sg_shade_fn sg_shade_mip_avx512(int index) {
     return NULL;
 }
 
-#define SG_MIP_RUNS(tex, bil, rep, sec)                                                            \
-    static void runs_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int bx0,         \
-                                          int by0, const sg_run *r, int n, uint32_t *color) {      \
-        const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
-        if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
-            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_WHITE, sec);  \
-        else if (t->flat != SG_FLAT_NONE)                                                          \
-            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_COLOR, sec);  \
-        else                                                                                       \
-            shade_quad_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_NONE, sec);   \
-    }
 sg_shade2_fn sg_shade2_mip_avx512(int index) {
     (void)index;
     return NULL;

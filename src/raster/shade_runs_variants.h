@@ -12,17 +12,23 @@
 #error "define SG_RUNS_TABLE and shade_runs before including shade_runs_variants.h"
 #endif
 
-#define SG_RUNS(tex, bil, rep, sec)                                                                \
+/* runs_<tex><bil><rep><sec>: the sg_shade_runs_fn of a runs body (body(ctx, tri, ext, bx0, by0,
+ * runs, n, color, textured, bilinear, repeat, flat, sec), always inlined), for the file to use
+ * with other bodies too. */
+#ifndef SG_RUNS_VARIANT
+#define SG_RUNS_VARIANT(body, tex, bil, rep, sec)                                                  \
     static void runs_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int bx0,         \
                                           int by0, const sg_run *r, int n, uint32_t *color) {      \
         const sg_tri_ext *ext = sec ? sg_shade_ext(c, t) : NULL;                                   \
         if (t->flat == SG_FLAT_WHITE && !sec)                                                      \
-            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_WHITE, sec);       \
+            body(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_WHITE, sec);             \
         else if (t->flat != SG_FLAT_NONE)                                                          \
-            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_COLOR, sec);       \
+            body(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_COLOR, sec);             \
         else                                                                                       \
-            shade_runs(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_NONE, sec);        \
+            body(c, t, ext, bx0, by0, r, n, color, tex, bil, rep, SG_FLAT_NONE, sec);              \
     }
+#endif
+#define SG_RUNS(tex, bil, rep, sec) SG_RUNS_VARIANT(shade_runs, tex, bil, rep, sec)
 SG_RUNS(1, 0, 1, 0) /* texture, nearest, repeat */
 SG_RUNS(1, 0, 0, 0) /* texture, nearest, clamp */
 SG_RUNS(1, 1, 1, 0) /* texture, bilinear, repeat */
