@@ -41,7 +41,7 @@ static inline __attribute__((always_inline)) void vis4_avx512(const sg_vis_sampl
                                                               const sg_tri *t, int x0, int y0,
                                                               const uint32_t *mk, const int zmode,
                                                               const int zwrite) {
-    (void)t; /* the union's: its edges only differ */
+    (void)t; /* the union's (a line's: every sample's), its edges only differ */
     const sg_tri *st = s->st;
     const sg_vis_ctx *v0 = &s->vis[0];
     const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
@@ -71,7 +71,7 @@ static inline __attribute__((always_inline)) void vis4_avx512(const sg_vis_sampl
     }
 }
 
-#define VIS4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, body, vis4_avx512, zm, zw)
+#define VIS4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, vis4_avx512, zm, zw)
 SG_VIS_SET_OF(VIS4_FN, vis_samples_avx512, vis_avx512)
 #undef VIS4_FN
 

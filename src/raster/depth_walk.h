@@ -171,17 +171,15 @@ SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, 
 }
 
 /* name(): the sample walk with tile body body4(s, t, x0, y0, mk, zmode, zwrite), which takes each
- * sample's covered pixels mk[k] of the tile at once (a line's tiles: body, a sample at a time). */
-#define SG_VIS_SAMPLES_FN_WITH(name, body, body4, zm, zw)                                          \
+ * sample's covered pixels mk[k] of the tile at once (a line's samples: all the line's pixels). */
+#define SG_VIS_SAMPLES_FN_WITH(name, body4, zm, zw)                                                \
     SG_WALK_INLINE void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {  \
         const sg_vis_samples *s = c;                                                               \
-        if (t->line) {                                                                             \
-            for (int k = 0; k < SG_VIS_SAMPLES; k++)                                               \
-                body(&s->vis[k], &s->st[k], x0, y0, m, zm, zw);                                    \
-            return;                                                                                \
-        }                                                                                          \
         uint32_t mk[SG_VIS_SAMPLES];                                                               \
-        sg_vis_samples_masks(s, t, x0, y0, m, mk);                                                 \
+        if (t->line)                                                                               \
+            for (int k = 0; k < SG_VIS_SAMPLES; k++) mk[k] = m;                                    \
+        else                                                                                       \
+            sg_vis_samples_masks(s, t, x0, y0, m, mk);                                             \
         body4(s, t, x0, y0, mk, zm, zw);                                                           \
     }                                                                                              \
     static void name(const sg_tri *st, int x0, int y0, int x1, int y1, sg_vis_ctx *vis) {          \
@@ -198,10 +196,12 @@ SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, 
     SG_WALK_INLINE void name##_each(const sg_vis_samples *s, const sg_tri *t, int x0, int y0,      \
                                     const uint32_t *mk, const int zmode, const int zwrite) {       \
         (void)t;                                                                                   \
+        (void)zmode; /* constants, which a set's body may take as its own */                       \
+        (void)zwrite;                                                                              \
         for (int k = 0; k < SG_VIS_SAMPLES; k++)                                                   \
             if (mk[k]) body(&s->vis[k], &s->st[k], x0, y0, mk[k], zmode, zwrite);                  \
     }                                                                                              \
-    SG_VIS_SAMPLES_FN_WITH(name, body, name##_each, zm, zw)
+    SG_VIS_SAMPLES_FN_WITH(name, name##_each, zm, zw)
 
 /* The six sample visibility functions of a tile body (their table: SG_VIS_TABLE). */
 #define SG_VIS_SAMPLES_SET(prefix, body) SG_VIS_SET_OF(SG_VIS_SAMPLES_FN, prefix, body)
