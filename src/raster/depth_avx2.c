@@ -9,41 +9,91 @@
 #if defined(__AVX2__)
 #include <immintrin.h>
 
+/* Half h of a tile (rows 2h and 2h + 1), the lanes of bits: the depth test of z against the
+ * stored depth dp, then depth (when written) and the id where it passes. Both halves are tested
+ * and written whatever their masks, no branch: a lane that does not pass writes back what it
+ * read, and a small triangle's halves pass or fail in no pattern a branch predictor follows
+ * (docs/performance.md, "Four shading chains"). */
+static inline __attribute__((always_inline)) void vis_half_avx2(const sg_vis_ctx *v, uint32_t *ids,
+                                                                float *dp, int h, uint32_t bits,
+                                                                __m256 z, const int zmode,
+                                                                const int zwrite) {
+    const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    __m256 pass = _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes));
+    if (zmode != Z_NONE || zwrite) {
+        __m256 d = _mm256_load_ps(dp + 8 * h);
+        if (zmode != Z_NONE)
+            pass = _mm256_and_ps(pass,
+                                 sg_compare8(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, z, d));
+        if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, pass));
+    }
+    __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
+    _mm256_store_si256(ip, _mm256_blendv_epi8(_mm256_load_si256(ip), _mm256_set1_epi32((int)v->id),
+                                              _mm256_castps_si256(pass)));
+}
+
 static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, const sg_tri *t,
                                                            int x0, int y0, uint32_t mask,
                                                            const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     uint32_t *ids = sg_vis_tile_ids(v, base);
-    const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     const bool depth = zmode != Z_NONE || zwrite;
     float *dp = depth ? v->depth + base : NULL; /* NULL: the pass may have no depth target */
     const sg_zrows8 zr = depth ? sg_zrows8_at(t, x0, y0) : (sg_zrows8){0};
-    __m256i id = _mm256_set1_epi32((int)v->id);
-    /* Both halves tested and written whatever their masks, no branch: a lane that does not pass
-     * writes back what it read, and a small triangle's halves pass or fail in no pattern a branch
-     * predictor follows (docs/performance.md, "Four shading chains"). */
-    for (int h = 0; h < 2; h++) {
-        uint32_t bits = (mask >> (8 * h)) & 255u;
-        __m256 pass = _mm256_castsi256_ps(
-            _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes));
-        if (depth) {
-            __m256 z = sg_zrows8_half(&zr, h);
-            __m256 d = _mm256_load_ps(dp + 8 * h);
-            if (zmode != Z_NONE)
-                pass = _mm256_and_ps(
-                    pass, sg_compare8(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, z, d));
-            if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, pass));
-        }
-        __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
-        _mm256_store_si256(
-            ip, _mm256_blendv_epi8(_mm256_load_si256(ip), id, _mm256_castps_si256(pass)));
-    }
+    for (int h = 0; h < 2; h++)
+        vis_half_avx2(v, ids, dp, h, (mask >> (8 * h)) & 255u,
+                      depth ? sg_zrows8_half(&zr, h) : _mm256_setzero_ps(), zmode, zwrite);
 }
 
 SG_VIS_SET(vis_avx2, vis_avx2)
 
-SG_VIS_SAMPLES_SET(vis_samples_avx2, vis_avx2)
+/* The four samples of a tile at once (the sample walk's body), as vis4_avx512 in
+ * depth_avx512.c: the samples' triangles differ only in their edges and z, so the products of the
+ * depth slopes with the pixels' offsets are computed once, and each sample's z is its own z plus
+ * them, added in sg_zrows8's order: the same bits as vis_avx2. */
+static inline __attribute__((always_inline)) void vis4_avx2(const sg_vis_samples *s,
+                                                            const sg_tri *t, int x0, int y0,
+                                                            const uint32_t *mk, const int zmode,
+                                                            const int zwrite) {
+    (void)t; /* the union's (a line's: every sample's), its edges only differ */
+    const sg_tri *st = s->st;
+    const sg_vis_ctx *v0 = &s->vis[0];
+    const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
+    const bool depth = zmode != Z_NONE || zwrite;
+    /* The products of sg_zrows8_at and sg_zrows8_half, without the sample's z. */
+    __m256 zdx = _mm256_setzero_ps(), zdy[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()};
+    if (depth) {
+        const __m256 dx =
+            _mm256_add_ps(_mm256_set1_ps((float)(x0 - st[0].minx)),
+                          _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
+        zdx = _mm256_mul_ps(_mm256_set1_ps(st[0].z_dx), dx);
+        const __m256 oy = _mm256_set1_ps((float)(y0 - st[0].miny));
+        for (int h = 0; h < 2; h++) {
+            const float r0 = (float)(2 * h), r1 = (float)(2 * h + 1); /* the two rows, exact */
+            const __m256 dy = _mm256_add_ps(oy, _mm256_setr_ps(r0, r0, r0, r0, r1, r1, r1, r1));
+            zdy[h] = _mm256_mul_ps(_mm256_set1_ps(st[0].z_dy), dy);
+        }
+    }
+    for (int k = 0; k < SG_VIS_SAMPLES; k++) {
+        if (!mk[k]) continue;
+        const sg_vis_ctx *v = &s->vis[k];
+        uint32_t *ids = sg_vis_tile_ids(v, base);
+        const __m256 zx = _mm256_add_ps(_mm256_set1_ps(st[k].z), zdx);
+        for (int h = 0; h < 2; h++) {
+            const __m256 z = _mm256_add_ps(zx, zdy[h]);
+            vis_half_avx2(
+                v, ids, depth ? v->depth + base : NULL, h, (mk[k] >> (8 * h)) & 255u,
+                _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z)), zmode,
+                zwrite);
+        }
+    }
+}
+
+#define VIS4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, vis4_avx2, zm, zw)
+SG_VIS_SET_OF(VIS4_FN, vis_samples_avx2, vis_avx2)
+#undef VIS4_FN
 
 sg_vis_fns sg_depth_avx2(sgCompare compare, bool depth_write) {
     static const sg_raster_fn one[3][2] = SG_VIS_TABLE(vis_avx2);
