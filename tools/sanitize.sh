@@ -25,9 +25,10 @@ cmake --build "$build" -j "$jobs"
 # Skipped: install_consumer, which checks packaging, not code: its consumer is compiled by the
 # system cc, which cannot link objects built against clang's sanitizer runtime; the browser
 # checks of the regression report and the CI examples, which run Chromium and Python, not sgapi;
-# and regression_report, which renders again scenes the golden_* checks render (its code runs in
-# regression_workflow).
+# regression_report, which renders again scenes the golden_* checks render (its code runs in
+# regression_workflow); and slurm_batch, which checks the job scripts and the cluster's start and
+# stop, rendering scenes the golden_* checks render (a minute under the sanitizers).
 cd "$build"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    ctest --output-on-failure --no-tests=error -j "$jobs" -E '^(install_consumer|report_browser|ci_examples|regression_report)$'
+    ctest --output-on-failure --no-tests=error -j "$jobs" -E '^(install_consumer|report_browser|ci_examples|regression_report|slurm_batch)$'
