@@ -611,16 +611,25 @@ static void compare_variant(int variant, int kind) {
 }
 
 /* Mipmapped shading (shade_mip.c, the portable reference, against AVX-512's single tiles,
- * pairs and packed runs): chains from 1 x 1 to 300 x 17 texels, derivatives from magnified to far
- * past the last level, every filter, wrap, secondary colour and flat kind, random masks (quads with
- * no covered pixel among them). Each level is an allocation of its own, exactly sized. */
+ * pairs and packed runs, and AVX2's single tiles and pairs): chains from 1 x 1 to 300 x 17 texels,
+ * derivatives from magnified to far past the last level, every filter, wrap, secondary colour and
+ * flat kind, random masks (quads with no covered pixel among them). Each level is an allocation of
+ * its own, exactly sized. */
 static void compare_mip(int linear) {
     static const int sizes[][2] = {{1, 1}, {2, 1}, {8, 8}, {64, 64}, {300, 17}, {9, 130}, {33, 32}};
     enum { NSIZES = sizeof sizes / sizeof *sizes, MIP_CASES = 6000 };
-    if (!sg_isa_runs(SG_ISA_AVX512)) { /* the portable reference is every other set's */
-        printf("AVX-512 is not run here: not compared\n");
-        return;
-    }
+    /* the sets with their own mipmapped shading; the portable reference is every other set's */
+    static const struct {
+        sg_isa isa;
+        const char *name;
+        sg_shade_fn (*fn)(int);
+        sg_shade2_fn (*pair)(int);
+        sg_shade_runs_fn (*runs)(int);
+    } sets[] = {
+        {SG_ISA_AVX512, "AVX-512", sg_shade_mip_avx512, sg_shade2_mip_avx512,
+         sg_shade_runs_mip_avx512},
+        {SG_ISA_AVX2, "AVX2", sg_shade_mip_avx2, sg_shade2_mip_avx2, NULL},
+    };
     rng g = {0x5eed4d00u + (uint64_t)linear};
     sg_mip_chain chains[NSIZES];
     for (int i = 0; i < NSIZES; i++) {
@@ -640,53 +649,60 @@ static void compare_mip(int linear) {
     assert_non_null(bin_ref);
     assert_non_null(bin_out);
     long failures = 0;
-    for (int index = linear * 8; index < linear * 8 + 8 && failures < 5; index++) {
-        const int sec = index & 1;
-        const sg_shade_fn ref = sg_shade_mip_portable(index), fn = sg_shade_mip_avx512(index);
-        const sg_shade2_fn pair = sg_shade2_mip_avx512(index);
-        const sg_shade_runs_fn runs = sg_shade_runs_mip_avx512(index);
-        assert_non_null(fn);
-        assert_non_null(pair);
-        assert_non_null(runs);
-        for (int flat = 0; flat < FLATS; flat++) {
-            for (long n = 0; n < MIP_CASES && failures < 5; n++) {
-                const sg_mip_chain *m = &chains[n % NSIZES];
-                sg_shade_ctx ctx;
-                memset(&ctx, 0, sizeof ctx);
-                ctx.tex = m->level[0];
-                ctx.mips = m;
-                sg_tri t;
-                sg_tri_ext ext;
-                int x0, y0;
-                random_tri(&g, &t, flat, m->level[0].width, m->level[0].height, &x0, &y0);
-                const float minify = (float)(1 << irange(&g, 0, 12));
-                for (int k = 4; k < 6; k++) {
-                    t.a_dx[k] *= minify;
-                    t.a_dy[k] *= minify;
-                }
-                if (sec) random_lit(&g, SECONDARY, flat, &t, x0, y0, &ext, &ctx);
-                ctx.tris = &t;
-                ctx.ext = sec ? &ext : NULL;
-                const uint32_t mask = random_mask(&g), sentinel = (uint32_t)next(&g);
-                uint32_t want[16], got[16];
-                for (int i = 0; i < 16; i++) want[i] = got[i] = sentinel;
-                ref(&ctx, &t, x0, y0, mask, want);
-                fn(&ctx, &t, x0, y0, mask, got);
-                if (memcmp(want, got, sizeof got)) {
-                    printf("AVX-512 mipmapped differs: index %d flat %d case %ld, mask %04x\n",
-                           index, flat, n, (unsigned)mask);
-                    failures++;
-                }
-                if (!same_pair(ref, pair, &ctx, &t, x0, y0, &g)) {
-                    printf("AVX-512 mipmapped pair differs: index %d flat %d case %ld\n", index,
-                           flat, n);
-                    failures++;
-                }
-                if (n % 4 == 0 &&
-                    !same_runs(ref, runs, &ctx, &t, x0, y0, sentinel, &g, bin_ref, bin_out)) {
-                    printf("AVX-512 mipmapped runs differ: index %d flat %d case %ld\n", index,
-                           flat, n);
-                    failures++;
+    for (size_t set = 0; set < sizeof sets / sizeof *sets; set++) {
+        const char *name = sets[set].name;
+        if (!sg_isa_runs(sets[set].isa)) {
+            printf("%s is not run here: not compared\n", name);
+            continue;
+        }
+        for (int index = linear * 8; index < linear * 8 + 8 && failures < 5; index++) {
+            const int sec = index & 1;
+            const sg_shade_fn ref = sg_shade_mip_portable(index), fn = sets[set].fn(index);
+            const sg_shade2_fn pair = sets[set].pair(index);
+            const sg_shade_runs_fn runs = sets[set].runs ? sets[set].runs(index) : NULL;
+            assert_non_null(fn);
+            assert_non_null(pair);
+            assert_true(runs || !sets[set].runs);
+            for (int flat = 0; flat < FLATS; flat++) {
+                for (long n = 0; n < MIP_CASES && failures < 5; n++) {
+                    const sg_mip_chain *m = &chains[n % NSIZES];
+                    sg_shade_ctx ctx;
+                    memset(&ctx, 0, sizeof ctx);
+                    ctx.tex = m->level[0];
+                    ctx.mips = m;
+                    sg_tri t;
+                    sg_tri_ext ext;
+                    int x0, y0;
+                    random_tri(&g, &t, flat, m->level[0].width, m->level[0].height, &x0, &y0);
+                    const float minify = (float)(1 << irange(&g, 0, 12));
+                    for (int k = 4; k < 6; k++) {
+                        t.a_dx[k] *= minify;
+                        t.a_dy[k] *= minify;
+                    }
+                    if (sec) random_lit(&g, SECONDARY, flat, &t, x0, y0, &ext, &ctx);
+                    ctx.tris = &t;
+                    ctx.ext = sec ? &ext : NULL;
+                    const uint32_t mask = random_mask(&g), sentinel = (uint32_t)next(&g);
+                    uint32_t want[16], got[16];
+                    for (int i = 0; i < 16; i++) want[i] = got[i] = sentinel;
+                    ref(&ctx, &t, x0, y0, mask, want);
+                    fn(&ctx, &t, x0, y0, mask, got);
+                    if (memcmp(want, got, sizeof got)) {
+                        printf("%s mipmapped differs: index %d flat %d case %ld, mask %04x\n", name,
+                               index, flat, n, (unsigned)mask);
+                        failures++;
+                    }
+                    if (!same_pair(ref, pair, &ctx, &t, x0, y0, &g)) {
+                        printf("%s mipmapped pair differs: index %d flat %d case %ld\n", name,
+                               index, flat, n);
+                        failures++;
+                    }
+                    if (runs && n % 4 == 0 &&
+                        !same_runs(ref, runs, &ctx, &t, x0, y0, sentinel, &g, bin_ref, bin_out)) {
+                        printf("%s mipmapped runs differ: index %d flat %d case %ld\n", name, index,
+                               flat, n);
+                        failures++;
+                    }
                 }
             }
         }

@@ -156,11 +156,14 @@ INLINE void shade(const sg_vis_ctx *v, const sg_tri *t, const int n, const __m25
                   const int repeat) {
     const sg_shade_ctx *c = v->shade_ctx;
     if (t->flat == SG_FLAT_WHITE)
-        shade8_sets(c, t, NULL, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_WHITE, 0);
+        shade8_sets(c, t, NULL, NULL, n, dx, dy, NULL, out, textured, bilinear, repeat,
+                    SG_FLAT_WHITE, 0);
     else if (t->flat == SG_FLAT_COLOR)
-        shade8_sets(c, t, NULL, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_COLOR, 0);
+        shade8_sets(c, t, NULL, NULL, n, dx, dy, NULL, out, textured, bilinear, repeat,
+                    SG_FLAT_COLOR, 0);
     else
-        shade8_sets(c, t, NULL, NULL, n, dx, dy, out, textured, bilinear, repeat, SG_FLAT_NONE, 0);
+        shade8_sets(c, t, NULL, NULL, n, dx, dy, NULL, out, textured, bilinear, repeat,
+                    SG_FLAT_NONE, 0);
 }
 
 /* The fragments s of the first n pixels at offsets qoff blended into their pixels of the bin's
@@ -193,9 +196,11 @@ INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int
     }
     /* One triangle's jobs (they come together): its planes' terms broadcast once for all. */
     if (ts[0] == ts[n - 1])
-        shade8_sets(v->shade_ctx, ts[0], NULL, NULL, n, dx, dy, s, 1, bilinear, repeat, flat, 0);
+        shade8_sets(v->shade_ctx, ts[0], NULL, NULL, n, dx, dy, NULL, s, 1, bilinear, repeat, flat,
+                    0);
     else
-        shade8_sets(v->shade_ctx, ts[0], ts, NULL, n, dx, dy, s, 1, bilinear, repeat, flat, 0);
+        shade8_sets(v->shade_ctx, ts[0], ts, NULL, n, dx, dy, NULL, s, 1, bilinear, repeat, flat,
+                    0);
     for (int i = 0; i < n; i++) finish(v, &j[i], s[i]);
 }
 

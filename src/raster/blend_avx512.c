@@ -170,13 +170,13 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
         _mm512_mask_storeu_epi32(dst, (__mmask16)mask, blend16(s, _mm512_load_si512(dst)));
         return;
     }
-    if (mask == 0xffffu || (textured >= SG_TEX16_MIP && sg_every_quad(mask))) {
+    if (mask == 0xffffu || (textured >= SG_TEX_MIP && sg_every_quad(mask))) {
         /* a whole tile needs no packing, nor a tile whose every quad is shaded anyway */
         const job j = {dx, dy, _mm512_setzero_si512(), t, base, mask};
         submit(p, &j);
         return;
     }
-    if (textured >= SG_TEX16_MIP) {
+    if (textured >= SG_TEX_MIP) {
         sg_quad_queue full;
         if (sg_enqueue_quads(p->quads, dx, dy, base, mask, &full)) {
             const job j = {full.dx, full.dy, full.off, t, -1, full.mask};
@@ -193,7 +193,7 @@ INLINE void blend_avx512(const void *vctx, const sg_tri *t, int x0, int y0, uint
 
 /* The end of a triangle: its partial queue joins the jobs waiting. */
 INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
-    if (textured >= SG_TEX16_MIP) {
+    if (textured >= SG_TEX_MIP) {
         const sg_quad_queue *q = p->quads;
         if (q->n) submit(p, &(job){q->dx, q->dy, q->off, t, -1, q->mask});
         return;
@@ -219,7 +219,7 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
         p.jobs = p.v->pending;                                                                     \
         sg_quad_queue quads = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(),   \
                                0, 0};                                                              \
-        p.quads = tex >= SG_TEX16_MIP ? &quads : NULL;                                             \
+        p.quads = tex >= SG_TEX_MIP ? &quads : NULL;                                               \
         const flat_src f =                                                                         \
             flat_src_of(!tex && t->flat != SG_FLAT_NONE ? sg_flat_pixel(t, NULL, 0) : 0u);         \
         p.flat = &f;                                                                               \
@@ -228,7 +228,7 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
         if (tex) drain(&p, t, tex); /* vertex colours were blended in place */                     \
     }
 SG_BLEND_VARIANTS(SG_BLEND_QUEUED)
-/* Mipmapped textures, unlit (textured SG_TEX16_MIP, SG_TEX16_MIP_LINEAR) */
+/* Mipmapped textures, unlit (textured SG_TEX_MIP, SG_TEX_MIP_LINEAR) */
 SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 0, 0)
 SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 0, 1)
 SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 1, 0)

@@ -79,7 +79,7 @@
  * Defines shade_jobs_flat, shade_jobs, submit, start_jobs and blend_jobs_100 ... blend_jobs_111
  * (textured 1; nearest / bilinear, clamp / repeat: the flush, one copy each, not one per place the
  * walk visits a tile); SG_MIP_JOB_FNS adds those of mipmapped textures, blend_jobs_200 ...
- * blend_jobs_311 (textured SG_TEX16_MIP and SG_TEX16_MIP_LINEAR of shade_avx512.h).
+ * blend_jobs_311 (textured SG_TEX_MIP and SG_TEX_MIP_LINEAR of shade_avx512.h).
  * Jobs are shaded in the order they came, and each is blended after the ones before it: a pixel
  * in two jobs (two triangles of the draw) is blended in the triangles' order. Jobs of several
  * triangles go side by side, so a triangle's last few do not go alone. */

@@ -142,23 +142,30 @@ sg_shade_fn sg_shade_phong_scalar(int index);
 sg_shade_fn sg_shade_phong_avx2(int index);
 sg_shade_fn sg_shade_phong_avx512(int index);
 sg_shade_fn sg_shade_phong_neon(int index);
+/* The `textured` argument of the SIMD shading bodies: 0 untextured, 1 one level, or a mipmap chain
+ * with the nearest level (SG_TEX_MIP) or two levels blended (SG_TEX_MIP_LINEAR). */
+enum { SG_TEX_MIP = 2, SG_TEX_MIP_LINEAR = 3 };
+
 /** The textured shading of a mipmapped pipeline (mipmap NEAREST or LINEAR; shade_mip.c), with
- *  the secondary colour of flat and Gouraud lighting when sec: AVX-512's, else the portable one,
- *  which is the reference. */
+ *  the secondary colour of flat and Gouraud lighting when sec: AVX-512's or AVX2's, else the
+ *  portable one, which is the reference. */
 sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                 sg_isa isa);
-/** Its two-tile function, or NULL where the instruction set has none (all but AVX-512). */
+/** Its two-tile function, or NULL where the instruction set has none (all but AVX-512 and AVX2).
+ */
 sg_shade2_fn sg_shade2_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                   sg_isa isa);
 /** Its packed-runs function (the runs' 2 x 2 quads packed), or NULL where it has none (all but
  *  AVX-512). */
 sg_shade_runs_fn sg_shade_runs_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                           sg_isa isa);
-/** The portable reference of sg_shade_mip_select, and AVX-512's tables (NULL where not built),
- *  by index: linear * 8 + bilinear * 4 + repeat * 2 + sec. */
+/** The portable reference of sg_shade_mip_select, and AVX-512's and AVX2's tables (NULL where not
+ *  built), by index: linear * 8 + bilinear * 4 + repeat * 2 + sec. */
 sg_shade_fn sg_shade_mip_portable(int index);
 sg_shade_fn sg_shade_mip_avx512(int index);
 sg_shade2_fn sg_shade2_mip_avx512(int index);
+sg_shade_fn sg_shade_mip_avx2(int index);
+sg_shade2_fn sg_shade2_mip_avx2(int index);
 sg_shade_runs_fn sg_shade_runs_mip_avx512(int index);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);

@@ -86,10 +86,37 @@ INLINE void rows_body(const sg_tri *t, const sg_tri_ext *ext, const tex8 *tx, co
     for (int i = 0; i < n; i++) store_rows(dst + 4 * r[i], pack_unorm8(col[i]), m[i]);
 }
 
+/* A mipmapped tile (textured SG_TEX_MIP*): its pairs of rows that hold a covered pixel, each a
+ * set of shade8_sets with its two whole quads, side by side. */
+INLINE void mip_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0, int y0,
+                     uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
+                     const int repeat, const int flat, const int sec) {
+    __m256 dx[2], dy[2];
+    unsigned m[2];
+    int h[2], n = 0;
+    for (int k = 0; k < 2; k++) {
+        const unsigned bits = (mask >> (8 * k)) & 255u;
+        if (!bits) continue;
+        sg_rows_dxdy8(t, x0, y0, k, &dx[n], &dy[n]);
+        m[n] = bits;
+        h[n++] = k;
+    }
+    __m256i v[2];
+    if (n == 2)
+        shade8_sets(c, t, NULL, ext, 2, dx, dy, m, v, textured, bilinear, repeat, flat, sec);
+    else if (n == 1)
+        shade8_sets(c, t, NULL, ext, 1, dx, dy, m, v, textured, bilinear, repeat, flat, sec);
+    for (int i = 0; i < n; i++) store_rows(dst + 8 * h[i], v[i], m[i]);
+}
+
 /* The body of every variant, as shade_pixels in shade.c; the constant arguments fold away. */
 INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
                        int y0, uint32_t mask, uint32_t *dst, const int textured, const int bilinear,
                        const int repeat, const int flat, const int sec) {
+    if (textured >= SG_TEX_MIP) {
+        mip_rows(c, t, ext, x0, y0, mask, dst, textured, bilinear, repeat, flat, sec);
+        return;
+    }
     const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
         uint32_t px = sg_flat_pixel(t, ext, sec);
@@ -136,9 +163,6 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     }
 }
 
-#define SG_SHADE_TABLE sg_shade_avx2
-#include "raster/shade_variants.h"
-
 /* Two whole tiles of a triangle at once (sg_shade2_fn): their four pairs of rows shaded side by
  * side, the flat kind split off as in shade_flat. */
 INLINE void shade_pair(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
@@ -150,12 +174,17 @@ INLINE void shade_pair(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
         sg_rows_dxdy8(t, x1, y1, h, &dx[2 + h], &dy[2 + h]);
     }
     __m256i v[4];
-    shade8_sets(c, t, NULL, ext, 4, dx, dy, v, textured, bilinear, repeat, flat, sec);
+    shade8_sets(c, t, NULL, ext, 4, dx, dy, NULL, v, textured, bilinear, repeat, flat, sec);
     _mm256_storeu_si256((__m256i *)(void *)dst0, v[0]);
     _mm256_storeu_si256((__m256i *)(void *)(dst0 + 8), v[1]);
     _mm256_storeu_si256((__m256i *)(void *)dst1, v[2]);
     _mm256_storeu_si256((__m256i *)(void *)(dst1 + 8), v[3]);
 }
+
+#define SG_SHADE_TABLE sg_shade_avx2
+#define SG_MIP_TABLES(table)                                                                       \
+    table(sg_shade_fn, sg_shade_mip_avx2, mip) table(sg_shade2_fn, sg_shade2_mip_avx2, pair)
+#include "raster/shade_variants.h"
 
 /* Bilinear variants only: a nearest texel is a short chain, and 04_textured_cube (nearest) was
  * slower in pairs. */
@@ -192,7 +221,8 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
                 continue;
             const __m256 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
             __m256i v[2];
-            shade8_sets(c, t, NULL, ext, 2, fdx, fdy, v, textured, bilinear, repeat, flat, sec);
+            shade8_sets(c, t, NULL, ext, 2, fdx, fdy, NULL, v, textured, bilinear, repeat, flat,
+                        sec);
             sg_scatter8(color, full[0].off, v[0], 255u);
             sg_scatter8(color, full[1].off, v[1], 255u);
             nfull = 0;
@@ -200,13 +230,14 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     }
     if (nfull) {
         __m256i v;
-        shade8_sets(c, t, NULL, ext, 1, &full[0].dx, &full[0].dy, &v, textured, bilinear, repeat,
-                    flat, sec);
+        shade8_sets(c, t, NULL, ext, 1, &full[0].dx, &full[0].dy, NULL, &v, textured, bilinear,
+                    repeat, flat, sec);
         sg_scatter8(color, full[0].off, v, 255u);
     }
     if (q.n) {
         __m256i v;
-        shade8_sets(c, t, NULL, ext, 1, &q.dx, &q.dy, &v, textured, bilinear, repeat, flat, sec);
+        shade8_sets(c, t, NULL, ext, 1, &q.dx, &q.dy, NULL, &v, textured, bilinear, repeat, flat,
+                    sec);
         sg_scatter8(color, q.off, v, (1u << q.n) - 1u);
     }
 }
@@ -250,6 +281,16 @@ sg_shade_runs_fn sg_shade_runs_avx2(int index) {
 }
 
 sg_shade_mixed_fn sg_shade_mixed_avx2(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade_fn sg_shade_mip_avx2(int index) {
+    (void)index;
+    return NULL;
+}
+
+sg_shade2_fn sg_shade2_mip_avx2(int index) {
     (void)index;
     return NULL;
 }

@@ -320,15 +320,140 @@ INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
     return tx;
 }
 
+/* Channel k (0 .. 255) of each lane in c[k]: nearest or bilinear, on one level. */
+INLINE void lookup8(const sg_texview *tv, __m256 s, __m256 u, const int bilinear, const int repeat,
+                    __m256i c[4]) {
+    const tex8 tx = tex8_of(tv, bilinear);
+    if (bilinear) {
+        __m256i x[4];
+        bilinear8(&tx, s, u, repeat, x);
+        for (int k = 0; k < 4; k++) c[k] = _mm256_srli_epi32(x[k], 16);
+    } else {
+        unpack_texels(nearest8(&tx, s, u, repeat), c);
+    }
+}
+
+/* Mipmapped lookups (tex/mip.h) on a set of two rows of a tile, whose two 2 x 2 quads are lanes
+ * 0, 1, 4, 5 and lanes 2, 3, 6, 7: mip16_pick and mip16_lookup of shade_avx512.h on eight lanes,
+ * sg_mip_select's operations on the same values in the same order, so the same levels, weights
+ * and bytes. Each lane takes its quad's levels l0, l1 and weight f (0 .. 255). */
+INLINE void mip8_pick(const sg_mip_chain *m, __m256 s, __m256 u, const int linear, __m256i *l0,
+                      __m256i *l1, __m256i *f) {
+    const __m256i base = _mm256_setr_epi32(0, 0, 2, 2, 0, 0, 2, 2);
+    const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
+    const __m256i right = _mm256_add_epi32(base, one),
+                  down = _mm256_add_epi32(base, _mm256_set1_epi32(4));
+    const __m256 s0 = _mm256_permutevar8x32_ps(s, base), u0 = _mm256_permutevar8x32_ps(u, base);
+    const __m256 w = _mm256_set1_ps((float)m->level[0].width);
+    const __m256 h = _mm256_set1_ps((float)m->level[0].height);
+    const __m256 ax = _mm256_mul_ps(_mm256_sub_ps(_mm256_permutevar8x32_ps(s, right), s0), w);
+    const __m256 bx = _mm256_mul_ps(_mm256_sub_ps(_mm256_permutevar8x32_ps(u, right), u0), h);
+    const __m256 ay = _mm256_mul_ps(_mm256_sub_ps(_mm256_permutevar8x32_ps(s, down), s0), w);
+    const __m256 by = _mm256_mul_ps(_mm256_sub_ps(_mm256_permutevar8x32_ps(u, down), u0), h);
+    const __m256 rx = _mm256_add_ps(_mm256_mul_ps(ax, ax), _mm256_mul_ps(bx, bx));
+    const __m256 ry = _mm256_add_ps(_mm256_mul_ps(ay, ay), _mm256_mul_ps(by, by));
+    /* rx > ry ? rx : ry (ry when either is NaN) */
+    const __m256 rho2 = _mm256_blendv_ps(ry, rx, _mm256_cmp_ps(rx, ry, _CMP_GT_OQ));
+    const __m256i bits = _mm256_castps_si256(rho2);
+    const __m256i e =
+        _mm256_sub_epi32(_mm256_and_si256(_mm256_srli_epi32(bits, 23), _mm256_set1_epi32(0xff)),
+                         _mm256_set1_epi32(127));
+    const __m256i last = _mm256_set1_epi32(m->levels - 1);
+    if (!linear) { /* round(log2 rho) = (exponent + 1) >> 1, arithmetic */
+        const __m256i l = _mm256_srai_epi32(_mm256_add_epi32(e, one), 1);
+        *l0 = *l1 = _mm256_min_epi32(_mm256_max_epi32(l, zero), last);
+        *f = zero;
+        return;
+    }
+    const __m256 mant = _mm256_castsi256_ps(_mm256_or_si256(
+        _mm256_and_si256(bits, _mm256_set1_epi32(0x007fffff)), _mm256_set1_epi32(0x3f800000)));
+    const __m256 lod = _mm256_mul_ps(
+        _mm256_add_ps(_mm256_cvtepi32_ps(_mm256_sub_epi32(e, one)), mant), _mm256_set1_ps(0.5f));
+    const __m256 fl = _mm256_floor_ps(lod);
+    const __m256i finite =
+        _mm256_castps_si256(_mm256_and_ps(_mm256_cmp_ps(lod, _mm256_set1_ps(-1e9f), _CMP_GE_OQ),
+                                          _mm256_cmp_ps(lod, _mm256_set1_ps(1e9f), _CMP_LE_OQ)));
+    const __m256i i = _mm256_and_si256(finite, _mm256_cvttps_epi32(fl));
+    const __m256 frac = _mm256_and_ps(_mm256_castsi256_ps(finite), _mm256_sub_ps(lod, fl));
+    /* below level 0 or from the last level on: one level, weight 0 */
+    const __m256i low = _mm256_cmpgt_epi32(zero, i),
+                  high =
+                      _mm256_andnot_si256(low, _mm256_cmpgt_epi32(i, _mm256_sub_epi32(last, one)));
+    const __m256i two = _mm256_andnot_si256(_mm256_or_si256(low, high), _mm256_set1_epi32(-1));
+    *l0 = _mm256_or_si256(_mm256_and_si256(two, i), _mm256_and_si256(high, last));
+    *l1 = _mm256_or_si256(_mm256_and_si256(two, _mm256_add_epi32(i, one)),
+                          _mm256_and_si256(high, last));
+    *f = _mm256_and_si256(two, _mm256_cvttps_epi32(_mm256_mul_ps(frac, _mm256_set1_ps(256.0f))));
+}
+
+/* mip8_pick for the pixels of the 8-bit mask `bits` (all eight when 255): a quad without a covered
+ * pixel takes the other quad's levels, so that it reads no level of its own. */
+INLINE void mip8_levels(const sg_mip_chain *m, __m256 s, __m256 u, unsigned bits, const int linear,
+                        __m256i *l0, __m256i *l1, __m256i *f) {
+    mip8_pick(m, s, u, linear, l0, l1, f);
+    if (!(bits & 0x33u) == !(bits & 0xccu)) return; /* both quads covered */
+    const __m256i from = _mm256_set1_epi32(bits & 0x33u ? 0 : 2);
+    *l0 = _mm256_permutevar8x32_epi32(*l0, from);
+    *l1 = _mm256_permutevar8x32_epi32(*l1, from);
+    *f = _mm256_permutevar8x32_epi32(*f, from);
+}
+
+/* sg_sample_mip in every lane with its levels and weight: each level the lanes read is looked up
+ * once, for all eight (a lane whose second level weighs 0 does not ask for it). Channels in c[k].
+ */
+INLINE void mip8_lookup(const sg_mip_chain *m, __m256i l0, __m256i l1, __m256i f, __m256 s,
+                        __m256 u, const int bilinear, const int repeat, __m256i c[4]) {
+    const __m256i one = _mm256_set1_epi32(1);
+    const __m256i unweighed = _mm256_cmpeq_epi32(f, _mm256_setzero_si256());
+    const __m256i bits = _mm256_or_si256(
+        _mm256_sllv_epi32(one, l0), _mm256_andnot_si256(unweighed, _mm256_sllv_epi32(one, l1)));
+    __m128i x = _mm_or_si128(_mm256_castsi256_si128(bits), _mm256_extracti128_si256(bits, 1));
+    x = _mm_or_si128(x, _mm_shuffle_epi32(x, 0x4e));
+    x = _mm_or_si128(x, _mm_shuffle_epi32(x, 0xb1));
+    __m256i a[4], b[4];
+    for (int k = 0; k < 4; k++) a[k] = b[k] = _mm256_setzero_si256();
+    for (uint32_t want = (uint32_t)_mm_cvtsi128_si32(x); want; want &= want - 1) {
+        const int level = __builtin_ctz(want);
+        const __m256i lv = _mm256_set1_epi32(level);
+        const __m256i in0 = _mm256_cmpeq_epi32(l0, lv), in1 = _mm256_cmpeq_epi32(l1, lv);
+        __m256i t[4];
+        lookup8(&m->level[level], s, u, bilinear, repeat, t);
+        for (int k = 0; k < 4; k++) {
+            a[k] = _mm256_blendv_epi8(a[k], t[k], in0);
+            b[k] = _mm256_blendv_epi8(b[k], t[k], in1);
+        }
+    }
+    for (int k = 0; k < 4; k++) {
+        const __m256i d = _mm256_mullo_epi32(_mm256_sub_epi32(b[k], a[k]), f);
+        c[k] = _mm256_add_epi32(a[k], _mm256_srai_epi32(d, 8));
+    }
+}
+
 /* The texturing step of shade8_sets: the texels at coordinates (s[i], u[i]) of n sets of eight
- * pixels modulate their colours col[i]; an opaque white triangle without a secondary colour takes
- * the texel as it is, and then out[i] is the result already (true). */
+ * pixels (textured: 1, or a mipmap chain, SG_TEX_MIP*, whose sets hold the pixels of mask[i], or
+ * all eight where mask is NULL) modulate their colours col[i]; an opaque white triangle without a
+ * secondary colour takes the texel as it is, and then out[i] is the result already (true). */
 INLINE bool texture8_sets(const sg_shade_ctx *c, const int n, const __m256 s[], const __m256 u[],
-                          __m256 col[][4], __m256i out[], const int bilinear, const int repeat,
-                          const int flat, const int sec) {
+                          const unsigned mask[], __m256 col[][4], __m256i out[], const int textured,
+                          const int bilinear, const int repeat, const int flat, const int sec) {
     const tex8 tx = tex8_of(&c->tex, bilinear);
     __m256i tc[4][4];
-    if (bilinear) {
+    if (textured >= SG_TEX_MIP) {
+        /* every set's levels first: their chains of dependent steps side by side */
+        __m256i l0[4], l1[4], f[4];
+        for (int i = 0; i < n; i++)
+            mip8_levels(c->mips, s[i], u[i], mask ? mask[i] : 255u, textured == SG_TEX_MIP_LINEAR,
+                        &l0[i], &l1[i], &f[i]);
+        for (int i = 0; i < n; i++)
+            mip8_lookup(c->mips, l0[i], l1[i], f[i], s[i], u[i], bilinear, repeat, tc[i]);
+        if (flat == SG_FLAT_WHITE && !sec) { /* the texel, as in shade_mip.c */
+            for (int i = 0; i < n; i++)
+                out[i] = _mm256_or_si256(_mm256_or_si256(tc[i][0], _mm256_slli_epi32(tc[i][1], 8)),
+                                         _mm256_or_si256(_mm256_slli_epi32(tc[i][2], 16),
+                                                         _mm256_slli_epi32(tc[i][3], 24)));
+            return true;
+        }
+    } else if (bilinear) {
         __m256i gx[4], gy[4], texels[4][4], x[4][4];
         for (int i = 0; i < n; i++) {
             gx[i] = bilinear_split(s[i], tx.scale_x, tx.hi_x, repeat);
@@ -370,8 +495,8 @@ INLINE bool texture8_sets(const sg_shade_ctx *c, const int n, const __m256 s[], 
  * pairs of one tile, with the terms both pairs share computed once (keep the two in step). */
 INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *const ts[],
                         const sg_tri_ext *ext, const int n, const __m256 dx[], const __m256 dy[],
-                        __m256i out[], const int textured, const int bilinear, const int repeat,
-                        const int flat, const int sec) {
+                        const unsigned mask[], __m256i out[], const int textured,
+                        const int bilinear, const int repeat, const int flat, const int sec) {
     const int e = SG_LIT_SEC - SG_TRI_ATTRS; /* the secondary colour in ext */
     if (!textured && flat != SG_FLAT_NONE) { /* one colour, converted once */
         uint32_t px = sg_flat_pixel(t, ext, sec);
@@ -402,7 +527,8 @@ INLINE void shade8_sets(const sg_shade_ctx *c, const sg_tri *t, const sg_tri *co
             u[i] =
                 _mm256_mul_ps(SG_PLANE(SG_T(i)->a[5], SG_T(i)->a_dx[5], SG_T(i)->a_dy[5], i), w[i]);
         }
-        if (texture8_sets(c, n, s, u, col, out, bilinear, repeat, flat, sec)) return;
+        if (texture8_sets(c, n, s, u, mask, col, out, textured, bilinear, repeat, flat, sec))
+            return;
     }
     for (int i = 0; i < n; i++)
         for (int k = 0; sec && k < 3; k++)
@@ -544,7 +670,8 @@ INLINE void sg_shade8_mixed(const sg_shade_ctx *c, const sg_mixed_tile *tiles, c
     __m256 dx[4], dy[4], w[4], col[4][4], s[4], u[4];
     SG_MIXED_PLANES(_mm256_add_ps, _mm256_mul_ps, _mm256_div_ps, _mm256_set1_ps, sets, v, lane_x,
                     lane_y, dx, dy, w, col, s, u, flat, textured);
-    if (textured && texture8_sets(c, sets, s, u, col, out, bilinear, repeat, flat, 0)) return;
+    if (textured && texture8_sets(c, sets, s, u, NULL, col, out, 1, bilinear, repeat, flat, 0))
+        return;
     for (int i = 0; i < sets; i++) out[i] = pack_unorm8(col[i]);
 }
 

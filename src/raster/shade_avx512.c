@@ -17,9 +17,6 @@ INLINE void shade_rows(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     _mm512_mask_storeu_epi32(dst, (__mmask16)mask, v);
 }
 
-#define SG_SHADE_TABLE sg_shade_avx512
-#include "raster/shade_variants.h"
-
 /* Two whole tiles of a triangle at once (sg_shade2_fn), the flat kind split off as in
  * shade_flat. */
 INLINE void shade_pair(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int x0,
@@ -35,6 +32,11 @@ INLINE void shade_pair(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     _mm512_storeu_si512(dst1, v[1]);
 }
 
+#define SG_SHADE_TABLE sg_shade_avx512
+#define SG_MIP_TABLES(table)                                                                       \
+    table(sg_shade_fn, sg_shade_mip_avx512, mip) table(sg_shade2_fn, sg_shade2_mip_avx512, pair)
+#include "raster/shade_variants.h"
+
 /* Textured variants only: vertex-colour tiles measured no faster in pairs. */
 SG_PAIR_VARIANT(1, 0, 1, 0)
 SG_PAIR_VARIANT(1, 0, 0, 0)
@@ -48,39 +50,6 @@ SG_PAIR_VARIANT(1, 1, 0, 1)
 sg_shade2_fn sg_shade2_avx512(int index) {
     static const sg_shade2_fn table[10] = {NULL, pair_1010, pair_1000, pair_1110, pair_1100,
                                            NULL, pair_1011, pair_1001, pair_1111, pair_1101};
-    return table[index];
-}
-
-/* Mipmapped textures (sgPipelineDesc.mipmap; shade_mip.c is the portable reference): single
- * tiles and pairs, textured SG_TEX16_MIP or SG_TEX16_MIP_LINEAR, by the index of
- * sg_shade_mip_select. */
-#define SG_MIP_VARIANT(tex, bil, rep, sec)                                                         \
-    static void mip_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,   \
-                                         uint32_t m, uint32_t *dst) {                              \
-        shade_flat(c, t, sec ? sg_shade_ext(c, t) : NULL, x0, y0, m, dst, tex, bil, rep, sec);     \
-    }                                                                                              \
-    SG_PAIR_VARIANT(tex, bil, rep, sec)
-/* fn(tex, bil, rep, sec) for the eight mipmapped variants of tex, in sg_shade_mip_select's index
- * order */
-#define SG_MIP_EACH(fn, tex)                                                                       \
-    fn(tex, 0, 0, 0) fn(tex, 0, 0, 1) fn(tex, 0, 1, 0) fn(tex, 0, 1, 1) fn(tex, 1, 0, 0)           \
-        fn(tex, 1, 0, 1) fn(tex, 1, 1, 0) fn(tex, 1, 1, 1)
-SG_MIP_EACH(SG_MIP_VARIANT, 2) /* SG_TEX16_MIP */
-SG_MIP_EACH(SG_MIP_VARIANT, 3) /* SG_TEX16_MIP_LINEAR */
-#undef SG_MIP_VARIANT
-_Static_assert(SG_TEX16_MIP == 2 && SG_TEX16_MIP_LINEAR == 3, "the variants' names");
-
-sg_shade_fn sg_shade_mip_avx512(int index) {
-    static const sg_shade_fn table[16] = {
-        mip_2000, mip_2001, mip_2010, mip_2011, mip_2100, mip_2101, mip_2110, mip_2111,
-        mip_3000, mip_3001, mip_3010, mip_3011, mip_3100, mip_3101, mip_3110, mip_3111};
-    return table[index];
-}
-
-sg_shade2_fn sg_shade2_mip_avx512(int index) {
-    static const sg_shade2_fn table[16] = {
-        pair_2000, pair_2001, pair_2010, pair_2011, pair_2100, pair_2101, pair_2110, pair_2111,
-        pair_3000, pair_3001, pair_3010, pair_3011, pair_3100, pair_3101, pair_3110, pair_3111};
     return table[index];
 }
 

@@ -258,10 +258,7 @@ INLINE void lookup16(const sg_texview *tv, __m512 s, __m512 u, __mmask16 m, cons
 #endif
 }
 
-/* Mipmapped lookups (tex/mip.h). The textured argument of the shading below: 1 one level, or a
- * mipmap chain with the nearest level (SG_TEX16_MIP) or two levels blended (SG_TEX16_MIP_LINEAR).
- */
-enum { SG_TEX16_MIP = 2, SG_TEX16_MIP_LINEAR = 3 };
+/* Mipmapped lookups (tex/mip.h), for the textured kinds SG_TEX_MIP and SG_TEX_MIP_LINEAR. */
 
 /* sg_mip_select of a tile's four 2 x 2 quads at once, each lane taking its quad's (lanes 0, 1, 4,
  * 5 are the first quad): the same operations on the same values, so the same levels and
@@ -389,7 +386,7 @@ INLINE __m512i pack_unorm8(const __m512 col[4]) {
 }
 
 /* The texturing step of shade16_tiles: the texels at coordinates (s[i], u[i]) of n tiles' pixels,
- * lanes of mask[i] (textured: 1, or a mipmap chain, SG_TEX16_MIP*), modulate their colours col[i];
+ * lanes of mask[i] (textured: 1, or a mipmap chain, SG_TEX_MIP*), modulate their colours col[i];
  * an opaque white triangle without a secondary colour takes the texel as it is, and then out[i] is
  * the result already (true). */
 INLINE bool texture16_tiles(const sg_shade_ctx *c, const int n, const __m512 s[], const __m512 u[],
@@ -398,11 +395,11 @@ INLINE bool texture16_tiles(const sg_shade_ctx *c, const int n, const __m512 s[]
                             const int flat, const int sec) {
     const tex16 tx = tex16_of(&c->tex, bilinear);
     __m512i tc[4][4];
-    if (textured >= SG_TEX16_MIP) {
+    if (textured >= SG_TEX_MIP) {
         /* every tile's levels first: their chains of dependent steps side by side */
         __m512i l0[4], l1[4], f[4];
         for (int i = 0; i < n; i++)
-            mip16_levels(c->mips, s[i], u[i], mask[i], textured == SG_TEX16_MIP_LINEAR, &l0[i],
+            mip16_levels(c->mips, s[i], u[i], mask[i], textured == SG_TEX_MIP_LINEAR, &l0[i],
                          &l1[i], &f[i]);
         for (int i = 0; i < n; i++)
             mip16_lookup(c->mips, l0[i], l1[i], f[i], s[i], u[i], bilinear, repeat, tc[i]);

@@ -6,8 +6,8 @@
  * pixels, covered or not (a GPU's helper pixels), so a tile's 16 coordinates are made first, from
  * the same planes and in the same IEEE operations as shade.c, then each quad's levels from their
  * differences (tex/mip.h), then the 16 lookups at once (tex/sample16.c), and the covered pixels
- * are coloured as shade.c colours them. This portable body is the reference; AVX-512 has its own
- * copy of these steps in its shading (shade_avx512.h, the same bytes).
+ * are coloured as shade.c colours them. This portable body is the reference; AVX-512 and AVX2 have
+ * their own copies of these steps in their shading (shade_avx512.h, shade_avx2.h, the same bytes).
  */
 #include "raster/shade.h"
 
@@ -129,13 +129,18 @@ sg_shade_fn sg_shade_mip_portable(int index) {
 sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                 sg_isa isa) {
     const int i = mip_index(mipmap, filter, wrap, sec);
-    const sg_shade_fn fn = isa == SG_ISA_AVX512 ? sg_shade_mip_avx512(i) : NULL;
+    const sg_shade_fn fn = isa == SG_ISA_AVX512 ? sg_shade_mip_avx512(i)
+                           : isa == SG_ISA_AVX2 ? sg_shade_mip_avx2(i)
+                                                : NULL;
     return fn ? fn : mip_table[i];
 }
 
 sg_shade2_fn sg_shade2_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                   sg_isa isa) {
-    return isa == SG_ISA_AVX512 ? sg_shade2_mip_avx512(mip_index(mipmap, filter, wrap, sec)) : NULL;
+    const int i = mip_index(mipmap, filter, wrap, sec);
+    return isa == SG_ISA_AVX512 ? sg_shade2_mip_avx512(i)
+           : isa == SG_ISA_AVX2 ? sg_shade2_mip_avx2(i)
+                                : NULL;
 }
 
 sg_shade_runs_fn sg_shade_runs_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,

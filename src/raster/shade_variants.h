@@ -5,7 +5,8 @@
  * (always inlined, its last five arguments constants; sec: add the secondary colour of ext) and
  * SG_SHADE_TABLE, the name of its sg_shade_fn (int index) lookup, and SG_SHADE_NO_SECONDARY when
  * it has no secondary variants. The per-triangle `flat` is split off once per tile, so each
- * variant holds three specialised loops.
+ * variant holds three specialised loops. With SG_MIP_TABLES (the names of the mipmapped single
+ * tiles' and pairs' lookups) also the mipmapped variants, whose shade_pair must come first.
  */
 #ifndef SG_SHADE_TABLE
 #error "define SG_SHADE_TABLE and shade_rows before including shade_variants.h"
@@ -71,3 +72,35 @@ sg_shade_fn SG_SHADE_TABLE(int index) {
 #endif
     return table[index];
 }
+
+#if defined(SG_MIP_TABLES)
+/* Mipmapped textures (sgPipelineDesc.mipmap; shade_mip.c is the portable reference): single tiles
+ * mip_<tex><bil><rep><sec> and pairs, textured SG_TEX_MIP or SG_TEX_MIP_LINEAR. */
+#define SG_MIP_VARIANT(tex, bil, rep, sec)                                                         \
+    static void mip_##tex##bil##rep##sec(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,   \
+                                         uint32_t m, uint32_t *dst) {                              \
+        shade_flat(c, t, sec ? sg_shade_ext(c, t) : NULL, x0, y0, m, dst, tex, bil, rep, sec);     \
+    }                                                                                              \
+    SG_PAIR_VARIANT(tex, bil, rep, sec)
+/* fn(tex, bil, rep, sec) for the eight mipmapped variants of tex, in sg_shade_mip_select's index
+ * order (left defined for the file's own mipmapped functions) */
+#define SG_MIP_EACH(fn, tex)                                                                       \
+    fn(tex, 0, 0, 0) fn(tex, 0, 0, 1) fn(tex, 0, 1, 0) fn(tex, 0, 1, 1) fn(tex, 1, 0, 0)           \
+        fn(tex, 1, 0, 1) fn(tex, 1, 1, 0) fn(tex, 1, 1, 1)
+SG_MIP_EACH(SG_MIP_VARIANT, 2) /* SG_TEX_MIP */
+SG_MIP_EACH(SG_MIP_VARIANT, 3) /* SG_TEX_MIP_LINEAR */
+#undef SG_MIP_VARIANT
+_Static_assert(SG_TEX_MIP == 2 && SG_TEX_MIP_LINEAR == 3, "the variants' names");
+
+/* By the index of sg_shade_mip_select. */
+#define SG_MIP_TABLE(type, fn, prefix)                                                             \
+    type fn(int index) {                                                                           \
+        static const type table[16] = {                                                            \
+            prefix##_2000, prefix##_2001, prefix##_2010, prefix##_2011,                            \
+            prefix##_2100, prefix##_2101, prefix##_2110, prefix##_2111,                            \
+            prefix##_3000, prefix##_3001, prefix##_3010, prefix##_3011,                            \
+            prefix##_3100, prefix##_3101, prefix##_3110, prefix##_3111};                           \
+        return table[index];                                                                       \
+    }
+SG_MIP_TABLES(SG_MIP_TABLE)
+#endif
