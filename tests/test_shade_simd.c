@@ -611,7 +611,7 @@ static void compare_variant(int variant, int kind) {
 }
 
 /* Mipmapped shading (shade_mip.c, the portable reference, against AVX-512's single tiles,
- * pairs and packed runs, and AVX2's single tiles and pairs): chains from 1 x 1 to 300 x 17 texels,
+ * pairs and packed runs, and AVX2's): chains from 1 x 1 to 300 x 17 texels,
  * derivatives from magnified to far past the last level, every filter, wrap, secondary colour and
  * flat kind, random masks (quads with no covered pixel among them). Each level is an allocation of
  * its own, exactly sized. */
@@ -628,7 +628,7 @@ static void compare_mip(int linear) {
     } sets[] = {
         {SG_ISA_AVX512, "AVX-512", sg_shade_mip_avx512, sg_shade2_mip_avx512,
          sg_shade_runs_mip_avx512},
-        {SG_ISA_AVX2, "AVX2", sg_shade_mip_avx2, sg_shade2_mip_avx2, NULL},
+        {SG_ISA_AVX2, "AVX2", sg_shade_mip_avx2, sg_shade2_mip_avx2, sg_shade_runs_mip_avx2},
     };
     rng g = {0x5eed4d00u + (uint64_t)linear};
     sg_mip_chain chains[NSIZES];

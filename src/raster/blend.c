@@ -160,9 +160,10 @@ sg_raster_fn sg_blend_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, 
                                  bool depth_write, sg_isa isa) {
     const int index = (mipmap == SG_MIPMAP_LINEAR) * 4 + (filter == SG_FILTER_BILINEAR) * 2 +
                       (wrap == SG_WRAP_REPEAT);
-    const sg_raster_fn fn =
-        isa == SG_ISA_AVX512 ? sg_blend_mip_avx512(index, compare != SG_COMPARE_ALWAYS, depth_write)
-                             : NULL;
+    const bool test = compare != SG_COMPARE_ALWAYS;
+    const sg_raster_fn fn = isa == SG_ISA_AVX512 ? sg_blend_mip_avx512(index, test, depth_write)
+                            : isa == SG_ISA_AVX2 ? sg_blend_mip_avx2(index, test, depth_write)
+                                                 : NULL;
     return fn ? fn : in_place_select(false, -1, compare, depth_write, isa);
 }
 

@@ -74,11 +74,13 @@ sg_raster_fn sg_blend_select(int shade_variant, sgCompare compare, bool depth_wr
 sg_raster_fn sg_blend_avx2(int shade_variant, bool depth_test, bool depth_write);
 sg_raster_fn sg_blend_avx512(int shade_variant, bool depth_test, bool depth_write);
 /** The raster function of an unlit blended draw with mipmapped texturing (mipmap NEAREST or
- *  LINEAR): AVX-512's, which inlines that shading, else sg_blend_select's for a lit one. */
+ *  LINEAR): AVX-512's or AVX2's, which inline that shading, else sg_blend_select's for a lit one.
+ */
 sg_raster_fn sg_blend_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, sgCompare compare,
                                  bool depth_write, sg_isa isa);
-/** AVX-512's, by index linear * 4 + bilinear * 2 + repeat (NULL where not built). */
+/** AVX-512's and AVX2's, by index linear * 4 + bilinear * 2 + repeat (NULL where not built). */
 sg_raster_fn sg_blend_mip_avx512(int index, bool depth_test, bool depth_write);
+sg_raster_fn sg_blend_mip_avx2(int index, bool depth_test, bool depth_write);
 /** The NEON ones (blend_neon.c; NULL off AArch64). */
 sg_raster_fn sg_blend_neon(bool depth_test, bool depth_write);
 

@@ -8,9 +8,9 @@
  * draws are packed into a queue of eight lanes, shaded when it is full (small triangles and edges
  * cover tiles sparsely, and a shading pass costs the same for one pixel as for eight). The whole
  * pairs and full queues of a textured draw are collected as jobs during its triangles' walks and
- * shaded later in the bin, four side by side, in the order they came (blend_walk.h). Lit draws
- * call the draw's
- * shading function per tile. Opaque lines put their fragments in place: vertex colours eight
+ * shaded later in the bin, four side by side, in the order they came (blend_walk.h); a mipmapped
+ * draw's sets hold whole 2 x 2 quads instead of packed pixels (sg_pair_quad8). Lit draws call the
+ * draw's shading function per tile. Opaque lines put their fragments in place: vertex colours eight
  * columns of the line a vector (put_line), the others through the draw's function per tile.
  */
 #include "raster/blend.h"
@@ -125,17 +125,18 @@ SG_IN_PLACE_BODY(put_call, in_place_call, 1)
 SG_IN_PLACE_SET(blend, blend_call)
 SG_IN_PLACE_SET(put_call, put_call)
 
-/* Eight pixels of a textured triangle ready to shade: two whole rows of a tile, blended in place
- * at bin offset base, or a full (or the last, partial) queue of n pixels, blended through its
- * offsets. The walks collect them in the bin's list (blend_walk.h); they are shaded later, four
- * side by side (shade8_sets): a shading is a long chain of dependent steps, several keep the
- * vector units busy, and out of the walk they do not share the registers with its state. */
+/* Eight pixels of a textured triangle ready to shade: two rows of a tile, blended in place at bin
+ * offset base, or a full (or the last, partial) queue, blended through its offsets; the lanes of
+ * mask are written (a mipmapped job: two whole 2 x 2 quads, their covered pixels). The walks
+ * collect them in the bin's list (blend_walk.h); they are shaded later, four side by side
+ * (shade8_sets): a shading is a long chain of dependent steps, several keep the vector units busy,
+ * and out of the walk they do not share the registers with its state. */
 typedef struct job {
     __m256 dx, dy;
     __m256i off;
     const sg_tri *t;
     int base; /* -1: scattered through off */
-    int n;
+    unsigned mask;
 } job;
 
 /* Jobs waiting at most (the teapots' triangles give about ten a bin), and how many are shaded
@@ -145,6 +146,7 @@ enum { JOBS = 32, JOB_SETS = 4 };
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     sg_queue8 *q;
+    sg_quad_wait8 *quads;   /* a mipmapped draw's lone quad */
     sg_blend_pending *jobs; /* the bin's */
     const flat_src *flat;   /* untextured triangles of one colour */
 } queued_ctx;
@@ -166,45 +168,48 @@ INLINE void shade(const sg_vis_ctx *v, const sg_tri *t, const int n, const __m25
                     SG_FLAT_NONE, 0);
 }
 
-/* The fragments s of the first n pixels at offsets qoff blended into their pixels of the bin's
+/* The fragments s of the lanes of bits at offsets qoff blended into their pixels of the bin's
  * colour. */
-INLINE void blend_scattered(const sg_vis_ctx *v, __m256i qoff, __m256i s, int n) {
+INLINE void blend_scattered(const sg_vis_ctx *v, __m256i qoff, __m256i s, unsigned bits) {
     /* Every lane's offset is a pixel of the bin, so the loads read only the bin. */
     __m256i d = sg_load8((const int *)(const void *)v->color, qoff);
-    sg_scatter8(v->color, qoff, blend8(s, d), (1u << n) - 1u);
+    sg_scatter8(v->color, qoff, blend8(s, d), bits);
 }
 
 /* The shaded fragments s of a job blended into the bin's colour. */
 INLINE void finish(const sg_vis_ctx *v, const job *j, __m256i s) {
     if (j->base >= 0)
-        blend_rows(v->color + j->base, s, 255u, 0);
+        blend_rows(v->color + j->base, s, j->mask, 0);
     else
-        blend_scattered(v, j->off, s, j->n);
+        blend_scattered(v, j->off, s, j->mask);
 }
 
 /* n jobs (a constant) shaded side by side and blended, in their order. */
 INLINE void shade_some(const sg_vis_ctx *v, const job *j, const int n, const int textured,
                        const int bilinear, const int repeat, const int flat) {
-    (void)textured; /* 1: mipmapped blends are not inlined here */
     __m256 dx[JOB_SETS], dy[JOB_SETS];
     __m256i s[JOB_SETS];
     const sg_tri *ts[JOB_SETS];
+    unsigned mask[JOB_SETS];
     for (int i = 0; i < n; i++) {
         dx[i] = j[i].dx;
         dy[i] = j[i].dy;
         ts[i] = j[i].t;
+        mask[i] = j[i].mask;
     }
     /* One triangle's jobs (they come together): its planes' terms broadcast once for all. */
     if (ts[0] == ts[n - 1])
-        shade8_sets(v->shade_ctx, ts[0], NULL, NULL, n, dx, dy, NULL, s, 1, bilinear, repeat, flat,
-                    0);
+        shade8_sets(v->shade_ctx, ts[0], NULL, NULL, n, dx, dy, mask, s, textured, bilinear, repeat,
+                    flat, 0);
     else
-        shade8_sets(v->shade_ctx, ts[0], ts, NULL, n, dx, dy, NULL, s, 1, bilinear, repeat, flat,
-                    0);
+        shade8_sets(v->shade_ctx, ts[0], ts, NULL, n, dx, dy, mask, s, textured, bilinear, repeat,
+                    flat, 0);
     for (int i = 0; i < n; i++) finish(v, &j[i], s[i]);
 }
 
 SG_JOB_LIST_FNS
+SG_MIP_JOB_FNS
+#define blend_jobs_000 NULL /* vertex colours: shaded in place, no jobs */
 
 INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
                          const int zmode, const int zwrite, const int textured) {
@@ -230,23 +235,37 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
             blend_rows(v->color + base + 8 * h, s, bits, 0);
             continue;
         }
-        if (bits == 255) { /* full rows need no packing */
-            const job j = {dx, dy, _mm256_setzero_si256(), t, base + 8 * h, 8};
+        if (bits == 255 || (textured >= SG_TEX_MIP && sg_both_quads8(bits))) {
+            /* full rows need no packing, nor rows whose both quads are shaded anyway */
+            const job j = {dx, dy, _mm256_setzero_si256(), t, base + 8 * h, bits};
             submit(p, &j);
+            continue;
+        }
+        if (textured >= SG_TEX_MIP) {
+            sg_quad_wait8 full;
+            if (sg_pair_quad8(p->quads, dx, dy, base + 8 * h, bits, &full)) {
+                const job j = {full.dx, full.dy, full.off, t, -1, full.mask};
+                submit(p, &j);
+            }
             continue;
         }
         sg_queue8 full;
         if (sg_enqueue8(p->q, dx, dy, base + 8 * h, bits, &full)) {
-            const job j = {full.dx, full.dy, full.off, t, -1, 8};
+            const job j = {full.dx, full.dy, full.off, t, -1, 255u};
             submit(p, &j);
         }
     }
 }
 
-/* The end of a triangle: its partial queue joins the jobs waiting. */
-INLINE void drain(queued_ctx *p, const sg_tri *t) {
+/* The end of a triangle: its partial queue, or its lone quad, joins the jobs waiting. */
+INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
+    if (textured >= SG_TEX_MIP) {
+        const sg_quad_wait8 *q = p->quads;
+        if (q->mask) submit(p, &(job){q->dx, q->dy, q->off, t, -1, q->mask});
+        return;
+    }
     const sg_queue8 *q = p->q;
-    if (q->n) submit(p, &(job){q->dx, q->dy, q->off, t, -1, q->n});
+    if (q->n) submit(p, &(job){q->dx, q->dy, q->off, t, -1, (1u << q->n) - 1u});
 }
 
 /* One raster function per shading variant (vertex colour; texture nearest / bilinear, repeat /
@@ -269,11 +288,16 @@ INLINE void drain(queued_ctx *p, const sg_tri *t) {
         p.q = &q;                                                                                  \
         p.jobs = p.v->pending;                                                                     \
         p.flat = &f;                                                                               \
-        if (tex) start_jobs(&p, t, blend_jobs_1##bil##rep);                                        \
+        sg_quad_wait8 quads = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(),   \
+                               0};                                                                 \
+        p.quads = &quads;                                                                          \
+        if (tex) start_jobs(&p, t, blend_jobs_##tex##bil##rep);                                    \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \
-        if (tex) drain(&p, t); /* vertex colours were blended in place */                          \
+        if (tex) drain(&p, t, tex); /* vertex colours were blended in place */                     \
     }
 SG_BLEND_VARIANTS(SG_BLEND_INLINE)
+/* Mipmapped textures, unlit (textured SG_TEX_MIP, SG_TEX_MIP_LINEAR) */
+SG_BLEND_MIP_VARIANTS(SG_BLEND_INLINE)
 
 /* An opaque vertex-coloured line's tile: the passing pixels shaded and put in place. */
 INLINE void put_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint32_t mask,
@@ -362,6 +386,11 @@ sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
     return fns[variant][(depth_test ? 2 : 0) + (depth_write ? 1 : 0)];
 }
 
+sg_raster_fn sg_blend_mip_avx2(int index, bool depth_test, bool depth_write) {
+    static const sg_raster_fn fns[8][4] = SG_BLEND_MIP_TABLE;
+    return fns[index][(depth_test ? 2 : 0) + (depth_write ? 1 : 0)];
+}
+
 sg_raster_fn sg_put_avx2(int variant, bool depth_test, bool depth_write) {
     static const sg_raster_fn inlined[2][2] = SG_IN_PLACE_TABLE(put_line);
     static const sg_raster_fn call[2][2] = SG_IN_PLACE_TABLE(put_call);
@@ -372,6 +401,13 @@ sg_raster_fn sg_put_avx2(int variant, bool depth_test, bool depth_write) {
 
 sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
     (void)variant;
+    (void)depth_test;
+    (void)depth_write;
+    return NULL;
+}
+
+sg_raster_fn sg_blend_mip_avx2(int index, bool depth_test, bool depth_write) {
+    (void)index;
     (void)depth_test;
     (void)depth_write;
     return NULL;

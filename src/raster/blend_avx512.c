@@ -229,14 +229,7 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
     }
 SG_BLEND_VARIANTS(SG_BLEND_QUEUED)
 /* Mipmapped textures, unlit (textured SG_TEX_MIP, SG_TEX_MIP_LINEAR) */
-SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 0, 0)
-SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 0, 1)
-SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 1, 0)
-SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 2, 1, 1)
-SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 3, 0, 0)
-SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 3, 0, 1)
-SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 3, 1, 0)
-SG_BLEND_DEPTHS(SG_BLEND_QUEUED, 3, 1, 1)
+SG_BLEND_MIP_VARIANTS(SG_BLEND_QUEUED)
 
 sg_raster_fn sg_blend_avx512(int variant, bool depth_test, bool depth_write) {
     static const sg_raster_fn fns[5][4] = SG_BLEND_TABLE; /* in sg_shade_variant order */
@@ -244,9 +237,7 @@ sg_raster_fn sg_blend_avx512(int variant, bool depth_test, bool depth_write) {
 }
 
 sg_raster_fn sg_blend_mip_avx512(int index, bool depth_test, bool depth_write) {
-    static const sg_raster_fn fns[8][4] = {
-        SG_BLEND_ROW(2, 0, 0), SG_BLEND_ROW(2, 0, 1), SG_BLEND_ROW(2, 1, 0), SG_BLEND_ROW(2, 1, 1),
-        SG_BLEND_ROW(3, 0, 0), SG_BLEND_ROW(3, 0, 1), SG_BLEND_ROW(3, 1, 0), SG_BLEND_ROW(3, 1, 1)};
+    static const sg_raster_fn fns[8][4] = SG_BLEND_MIP_TABLE;
     return fns[index][(depth_test ? 2 : 0) + (depth_write ? 1 : 0)];
 }
 

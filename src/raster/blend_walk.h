@@ -65,6 +65,23 @@
         blend_##tex##bil##rep##00, blend_##tex##bil##rep##01, blend_##tex##bil##rep##10,           \
             blend_##tex##bil##rep##11                                                              \
     }
+/* The mipmapped ones (textured SG_TEX_MIP and SG_TEX_MIP_LINEAR; bil, rep) and their table, by
+ * index linear * 4 + bilinear * 2 + repeat (sg_blend_mip_select). */
+#define SG_BLEND_MIP_VARIANTS(fn)                                                                  \
+    SG_BLEND_DEPTHS(fn, 2, 0, 0)                                                                   \
+    SG_BLEND_DEPTHS(fn, 2, 0, 1)                                                                   \
+    SG_BLEND_DEPTHS(fn, 2, 1, 0)                                                                   \
+    SG_BLEND_DEPTHS(fn, 2, 1, 1)                                                                   \
+    SG_BLEND_DEPTHS(fn, 3, 0, 0)                                                                   \
+    SG_BLEND_DEPTHS(fn, 3, 0, 1)                                                                   \
+    SG_BLEND_DEPTHS(fn, 3, 1, 0)                                                                   \
+    SG_BLEND_DEPTHS(fn, 3, 1, 1)
+#define SG_BLEND_MIP_TABLE                                                                         \
+    {                                                                                              \
+        SG_BLEND_ROW(2, 0, 0), SG_BLEND_ROW(2, 0, 1), SG_BLEND_ROW(2, 1, 0),                       \
+            SG_BLEND_ROW(2, 1, 1), SG_BLEND_ROW(3, 0, 0), SG_BLEND_ROW(3, 0, 1),                   \
+            SG_BLEND_ROW(3, 1, 0), SG_BLEND_ROW(3, 1, 1)                                           \
+    }
 #define SG_BLEND_TABLE                                                                             \
     {                                                                                              \
         SG_BLEND_ROW(0, 0, 0), SG_BLEND_ROW(1, 0, 1), SG_BLEND_ROW(1, 0, 0),                       \
@@ -79,7 +96,7 @@
  * Defines shade_jobs_flat, shade_jobs, submit, start_jobs and blend_jobs_100 ... blend_jobs_111
  * (textured 1; nearest / bilinear, clamp / repeat: the flush, one copy each, not one per place the
  * walk visits a tile); SG_MIP_JOB_FNS adds those of mipmapped textures, blend_jobs_200 ...
- * blend_jobs_311 (textured SG_TEX_MIP and SG_TEX_MIP_LINEAR of shade_avx512.h).
+ * blend_jobs_311 (textured SG_TEX_MIP and SG_TEX_MIP_LINEAR, shade.h).
  * Jobs are shaded in the order they came, and each is blended after the ones before it: a pixel
  * in two jobs (two triangles of the draw) is blended in the triangles' order. Jobs of several
  * triangles go side by side, so a triangle's last few do not go alone. */

@@ -156,7 +156,7 @@ sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, b
 sg_shade2_fn sg_shade2_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                   sg_isa isa);
 /** Its packed-runs function (the runs' 2 x 2 quads packed), or NULL where it has none (all but
- *  AVX-512). */
+ *  AVX-512 and AVX2). */
 sg_shade_runs_fn sg_shade_runs_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                           sg_isa isa);
 /** The portable reference of sg_shade_mip_select, and AVX-512's and AVX2's tables (NULL where not
@@ -166,6 +166,7 @@ sg_shade_fn sg_shade_mip_avx512(int index);
 sg_shade2_fn sg_shade2_mip_avx512(int index);
 sg_shade_fn sg_shade_mip_avx2(int index);
 sg_shade2_fn sg_shade2_mip_avx2(int index);
+sg_shade_runs_fn sg_shade_runs_mip_avx2(int index);
 sg_shade_runs_fn sg_shade_runs_mip_avx512(int index);
 /** The shading function for a resolved pipeline state (no DEFAULT values) and instruction set. */
 sg_shade_fn sg_shade_select(sgShade shade, sgFilter filter, sgWrap wrap, sg_isa isa);

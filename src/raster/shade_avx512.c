@@ -141,12 +141,7 @@ SG_MIP_EACH(SG_MIP_RUNS, 3)
 #undef SG_MIP_RUNS
 #undef SG_MIP_EACH
 
-sg_shade_runs_fn sg_shade_runs_mip_avx512(int index) {
-    static const sg_shade_runs_fn table[16] = {
-        runs_2000, runs_2001, runs_2010, runs_2011, runs_2100, runs_2101, runs_2110, runs_2111,
-        runs_3000, runs_3001, runs_3010, runs_3011, runs_3100, runs_3101, runs_3110, runs_3111};
-    return table[index];
-}
+SG_MIP_TABLE(sg_shade_runs_fn, sg_shade_runs_mip_avx512, runs)
 
 /* `count` tiles that several triangles share (sg_shade_mixed_fn), their triangles all of the flat
  * kind `flat`: shaded side by side, each stored under its mask. */

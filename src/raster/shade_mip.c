@@ -145,6 +145,8 @@ sg_shade2_fn sg_shade2_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap,
 
 sg_shade_runs_fn sg_shade_runs_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                           sg_isa isa) {
-    return isa == SG_ISA_AVX512 ? sg_shade_runs_mip_avx512(mip_index(mipmap, filter, wrap, sec))
+    const int i = mip_index(mipmap, filter, wrap, sec);
+    return isa == SG_ISA_AVX512 ? sg_shade_runs_mip_avx512(i)
+           : isa == SG_ISA_AVX2 ? sg_shade_runs_mip_avx2(i)
                                 : NULL;
 }

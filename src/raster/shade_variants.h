@@ -92,7 +92,8 @@ SG_MIP_EACH(SG_MIP_VARIANT, 3) /* SG_TEX_MIP_LINEAR */
 #undef SG_MIP_VARIANT
 _Static_assert(SG_TEX_MIP == 2 && SG_TEX_MIP_LINEAR == 3, "the variants' names");
 
-/* By the index of sg_shade_mip_select. */
+/* The lookup fn of the variants prefix_<tex>..., by the index of sg_shade_mip_select (left defined
+ * for the file's own mipmapped functions). */
 #define SG_MIP_TABLE(type, fn, prefix)                                                             \
     type fn(int index) {                                                                           \
         static const type table[16] = {                                                            \
