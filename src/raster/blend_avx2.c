@@ -146,7 +146,7 @@ enum { JOBS = 32, JOB_SETS = 4 };
 typedef struct queued_ctx {
     const sg_vis_ctx *v;
     sg_queue8 *q;
-    sg_quad_wait8 *quads;   /* a mipmapped draw's lone quad */
+    sg_set8 *quads;         /* a mipmapped draw's lone quad */
     sg_blend_pending *jobs; /* the bin's */
     const flat_src *flat;   /* untextured triangles of one colour */
 } queued_ctx;
@@ -242,7 +242,7 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
             continue;
         }
         if (textured >= SG_TEX_MIP) {
-            sg_quad_wait8 full;
+            sg_set8 full;
             if (sg_pair_quad8(p->quads, dx, dy, base + 8 * h, bits, &full)) {
                 const job j = {full.dx, full.dy, full.off, t, -1, full.mask};
                 submit(p, &j);
@@ -260,7 +260,7 @@ INLINE void blend_inline(const void *vctx, const sg_tri *t, int x0, int y0, uint
 /* The end of a triangle: its partial queue, or its lone quad, joins the jobs waiting. */
 INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
     if (textured >= SG_TEX_MIP) {
-        const sg_quad_wait8 *q = p->quads;
+        const sg_set8 *q = p->quads;
         if (q->mask) submit(p, &(job){q->dx, q->dy, q->off, t, -1, q->mask});
         return;
     }
@@ -288,8 +288,7 @@ INLINE void drain(queued_ctx *p, const sg_tri *t, const int textured) {
         p.q = &q;                                                                                  \
         p.jobs = p.v->pending;                                                                     \
         p.flat = &f;                                                                               \
-        sg_quad_wait8 quads = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(),   \
-                               0};                                                                 \
+        sg_set8 quads = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};     \
         p.quads = &quads;                                                                          \
         if (tex) start_jobs(&p, t, blend_jobs_##tex##bil##rep);                                    \
         sg_rast_walk(t, x0, y0, x1, y1, blend_##tex##bil##rep##zt##zw##_tile, &p);                 \

@@ -200,61 +200,18 @@ sg_shade2_fn sg_shade2_avx2(int index) {
 }
 
 /* Runs of a triangle (sg_shade_runs_fn): the pixels of each pair of rows packed eight to a vector
- * (sg_queue8), two full vectors shaded side by side, each lane stored at its own offset. */
+ * (sg_queue8), two full vectors shaded side by side, each lane stored at its own offset. A
+ * mipmapped triangle's sets must hold whole 2 x 2 quads instead: a pair of rows whose two quads
+ * both hold a covered pixel is a set as it is, lone quads are paired (sg_pair_quad8), and only the
+ * covered lanes are stored. */
 INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
                        int by0, const sg_run *runs, int n, uint32_t *color, const int textured,
                        const int bilinear, const int repeat, const int flat, const int sec) {
     enum { ROW = SG_BIN_SIZE / SG_TILE };
+    const int mip = textured >= SG_TEX_MIP;
     sg_queue8 q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};
-    sg_queue8 full[2];
-    int nfull = 0;
-    for (int i = 0; i < n; i++) {
-        const int tile = runs[i].tile;
-        const int x0 = bx0 + (tile % ROW) * SG_TILE, y0 = by0 + (tile / ROW) * SG_TILE;
-        for (int h = 0; h < 2; h++) {
-            const unsigned bits = (runs[i].mask >> (8 * h)) & 255u;
-            if (!bits) continue;
-            __m256 dx, dy;
-            sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
-            if (!sg_enqueue8(&q, dx, dy, tile * SG_TILE_PIXELS + 8 * h, bits, &full[nfull]) ||
-                ++nfull < 2)
-                continue;
-            const __m256 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
-            __m256i v[2];
-            shade8_sets(c, t, NULL, ext, 2, fdx, fdy, NULL, v, textured, bilinear, repeat, flat,
-                        sec);
-            sg_scatter8(color, full[0].off, v[0], 255u);
-            sg_scatter8(color, full[1].off, v[1], 255u);
-            nfull = 0;
-        }
-    }
-    if (nfull) {
-        __m256i v;
-        shade8_sets(c, t, NULL, ext, 1, &full[0].dx, &full[0].dy, NULL, &v, textured, bilinear,
-                    repeat, flat, sec);
-        sg_scatter8(color, full[0].off, v, 255u);
-    }
-    if (q.n) {
-        __m256i v;
-        shade8_sets(c, t, NULL, ext, 1, &q.dx, &q.dy, NULL, &v, textured, bilinear, repeat, flat,
-                    sec);
-        sg_scatter8(color, q.off, v, (1u << q.n) - 1u);
-    }
-}
-
-#define SG_RUNS_TABLE sg_shade_runs_avx2
-#include "raster/shade_runs_variants.h"
-
-/* shade_runs of a mipmapped triangle, whose sets must hold whole 2 x 2 quads: a pair of rows whose
- * two quads both hold a covered pixel is a set as it is, lone quads are paired (sg_pair_quad8);
- * two full sets are shaded side by side, each covered lane's colour stored at its own offset. */
-INLINE void shade_quad_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
-                            int by0, const sg_run *runs, int n, uint32_t *color, const int textured,
-                            const int bilinear, const int repeat, const int flat, const int sec) {
-    enum { ROW = SG_BIN_SIZE / SG_TILE };
-    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    sg_quad_wait8 q = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};
-    sg_quad_wait8 full[2];
+    sg_set8 lone = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_si256(), 0};
+    sg_set8 full[2];
     int nfull = 0;
     for (int i = 0; i < n; i++) {
         const int tile = runs[i].tile;
@@ -265,35 +222,42 @@ INLINE void shade_quad_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri
             __m256 dx, dy;
             sg_rows_dxdy8(t, x0, y0, h, &dx, &dy);
             const int off = tile * SG_TILE_PIXELS + 8 * h;
-            if (sg_both_quads8(bits))
-                full[nfull] =
-                    (sg_quad_wait8){dx, dy, _mm256_add_epi32(_mm256_set1_epi32(off), lane), bits};
-            else if (!sg_pair_quad8(&q, dx, dy, off, bits, &full[nfull]))
-                continue;
+            if (mip && sg_both_quads8(bits)) {
+                full[nfull] = sg_set8_of(dx, dy, off, bits);
+            } else if (mip) {
+                if (!sg_pair_quad8(&lone, dx, dy, off, bits, &full[nfull])) continue;
+            } else {
+                sg_queue8 f;
+                if (!sg_enqueue8(&q, dx, dy, off, bits, &f)) continue;
+                full[nfull] = (sg_set8){f.dx, f.dy, f.off, 255u};
+            }
             if (++nfull < 2) continue;
             const __m256 fdx[2] = {full[0].dx, full[1].dx}, fdy[2] = {full[0].dy, full[1].dy};
             const unsigned masks[2] = {full[0].mask, full[1].mask};
             __m256i v[2];
-            shade8_sets(c, t, NULL, ext, 2, fdx, fdy, masks, v, textured, bilinear, repeat, flat,
-                        sec);
-            sg_scatter8(color, full[0].off, v[0], masks[0]);
-            sg_scatter8(color, full[1].off, v[1], masks[1]);
+            shade8_sets(c, t, NULL, ext, 2, fdx, fdy, mip ? masks : NULL, v, textured, bilinear,
+                        repeat, flat, sec);
+            sg_scatter8(color, full[0].off, v[0], mip ? masks[0] : 255u);
+            sg_scatter8(color, full[1].off, v[1], mip ? masks[1] : 255u);
             nfull = 0;
         }
     }
-    /* a full set left, then the waiting quad */
-    for (int k = 0; k < 2; k++) {
-        const sg_quad_wait8 *f = k ? &q : &full[0];
-        if (k ? !q.mask : !nfull) continue;
+    /* a full set left, then the last pixels, or the waiting quad */
+    if (!mip && q.n) full[nfull++] = (sg_set8){q.dx, q.dy, q.off, (1u << q.n) - 1u};
+    if (mip && lone.mask) full[nfull++] = lone;
+    for (int k = 0; k < nfull; k++) {
         __m256i v;
-        shade8_sets(c, t, NULL, ext, 1, &f->dx, &f->dy, &f->mask, &v, textured, bilinear, repeat,
-                    flat, sec);
-        sg_scatter8(color, f->off, v, f->mask);
+        shade8_sets(c, t, NULL, ext, 1, &full[k].dx, &full[k].dy, mip ? &full[k].mask : NULL, &v,
+                    textured, bilinear, repeat, flat, sec);
+        sg_scatter8(color, full[k].off, v, full[k].mask);
     }
 }
 
-/* The mipmapped runs (shade_quad_runs), by the index of sg_shade_mip_select. */
-#define SG_MIP_RUNS(tex, bil, rep, sec) SG_RUNS_VARIANT(shade_quad_runs, tex, bil, rep, sec)
+#define SG_RUNS_TABLE sg_shade_runs_avx2
+#include "raster/shade_runs_variants.h"
+
+/* The mipmapped runs, by the index of sg_shade_mip_select. */
+#define SG_MIP_RUNS(tex, bil, rep, sec) SG_RUNS_VARIANT(shade_runs, tex, bil, rep, sec)
 SG_MIP_EACH(SG_MIP_RUNS, 2)
 SG_MIP_EACH(SG_MIP_RUNS, 3)
 #undef SG_MIP_RUNS

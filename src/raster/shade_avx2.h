@@ -603,15 +603,23 @@ INLINE __m256 sg_lanes8(unsigned bits) {
         _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), sel), sel));
 }
 
-/* A pair of rows of a tile holds two 2 x 2 quads, lanes 0, 1, 4, 5 and 2, 3, 6, 7; a mipmapped set
- * must hold whole quads. sg_quad_wait8 is one lone quad waiting for another: the pixels of `mask`
- * (0: none waits) of its rows at (dx, dy), bin offsets off. */
-typedef struct sg_quad_wait8 {
+/* Eight lanes of pixels to shade: their offsets from the triangle's bounds (dx, dy) and in the
+ * bin (off), and the lanes to store (mask). */
+typedef struct sg_set8 {
     __m256 dx, dy;
     __m256i off;
     unsigned mask;
-} sg_quad_wait8;
+} sg_set8;
 
+/* The set of the pixels `bits` of a pair of rows at (dx, dy), bin offsets off + lane. */
+INLINE sg_set8 sg_set8_of(__m256 dx, __m256 dy, int off, unsigned bits) {
+    return (sg_set8){
+        dx, dy, _mm256_add_epi32(_mm256_set1_epi32(off), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)),
+        bits};
+}
+
+/* A pair of rows of a tile holds two 2 x 2 quads, lanes 0, 1, 4, 5 and 2, 3, 6, 7; a mipmapped set
+ * must hold whole quads. */
 enum { SG_QUAD8_LEFT = 0x33u, SG_QUAD8_RIGHT = 0xccu };
 
 /* Whether the pixels `bits` of a pair of rows lie in both of its quads. */
@@ -619,29 +627,27 @@ INLINE bool sg_both_quads8(unsigned bits) {
     return (bits & SG_QUAD8_LEFT) && (bits & SG_QUAD8_RIGHT);
 }
 
-/* Adds the lone quad of the pixels `bits` of the rows at (dx, dy), bin offsets off + lane, to q:
- * when one waits already, the two make a set, in *full, and true (the new one moved to the other
- * quad's lanes when both sit on the same side); else it waits. */
-INLINE bool sg_pair_quad8(sg_quad_wait8 *q, __m256 dx, __m256 dy, int off, unsigned bits,
-                          sg_quad_wait8 *full) {
-    __m256i soff =
-        _mm256_add_epi32(_mm256_set1_epi32(off), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+/* Adds the lone quad of the pixels `bits` of the rows at (dx, dy), bin offsets off + lane, to q,
+ * the quad waiting (mask 0: none): when one waits, the two make a set, in *full, and true (the new
+ * one moved to the other quad's lanes when both sit on the same side); else it waits. */
+INLINE bool sg_pair_quad8(sg_set8 *q, __m256 dx, __m256 dy, int off, unsigned bits, sg_set8 *full) {
+    sg_set8 in = sg_set8_of(dx, dy, off, bits);
     if (!q->mask) {
-        *q = (sg_quad_wait8){dx, dy, soff, bits};
+        *q = in;
         return false;
     }
-    if (!(bits & SG_QUAD8_LEFT) ==
-        !(q->mask & SG_QUAD8_LEFT)) { /* lanes 0, 1, 4, 5 <-> 2, 3, 6, 7 */
-        dx = _mm256_permute_ps(dx, _MM_SHUFFLE(1, 0, 3, 2));
-        dy = _mm256_permute_ps(dy, _MM_SHUFFLE(1, 0, 3, 2));
-        soff = _mm256_shuffle_epi32(soff, _MM_SHUFFLE(1, 0, 3, 2));
-        bits = ((bits & SG_QUAD8_LEFT) << 2) | ((bits & SG_QUAD8_RIGHT) >> 2);
+    /* on the same side: lanes 0, 1, 4, 5 <-> 2, 3, 6, 7 */
+    if (!(bits & SG_QUAD8_LEFT) == !(q->mask & SG_QUAD8_LEFT)) {
+        in.dx = _mm256_permute_ps(in.dx, _MM_SHUFFLE(1, 0, 3, 2));
+        in.dy = _mm256_permute_ps(in.dy, _MM_SHUFFLE(1, 0, 3, 2));
+        in.off = _mm256_shuffle_epi32(in.off, _MM_SHUFFLE(1, 0, 3, 2));
+        in.mask = ((bits & SG_QUAD8_LEFT) << 2) | ((bits & SG_QUAD8_RIGHT) >> 2);
     }
-    const __m256 side = sg_lanes8(bits & SG_QUAD8_LEFT ? SG_QUAD8_LEFT : SG_QUAD8_RIGHT);
-    *full = (sg_quad_wait8){_mm256_blendv_ps(q->dx, dx, side), _mm256_blendv_ps(q->dy, dy, side),
-                            _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(q->off),
-                                                                 _mm256_castsi256_ps(soff), side)),
-                            q->mask | bits};
+    const __m256 side = sg_lanes8(in.mask & SG_QUAD8_LEFT ? SG_QUAD8_LEFT : SG_QUAD8_RIGHT);
+    *full = (sg_set8){_mm256_blendv_ps(q->dx, in.dx, side), _mm256_blendv_ps(q->dy, in.dy, side),
+                      _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(q->off),
+                                                           _mm256_castsi256_ps(in.off), side)),
+                      q->mask | in.mask};
     q->mask = 0;
     return true;
 }
