@@ -149,19 +149,28 @@ static sg_mip_chain random_chain(uint8_t *storage, int w0, int h0, int levels) {
     return m;
 }
 
-/* sg_sample16 and sg_sample16_mip (the copy avx512 names) at (s, t) give each lane exactly what
+/* The copies of the 16-lane lookups this CPU runs (SG_SAMPLE16_*): the portable one first. */
+static int copies_run(int simd[3]) {
+    int n = 0;
+    simd[n++] = SG_SAMPLE16_PORTABLE;
+    if (sg_isa_runs(SG_ISA_AVX2)) simd[n++] = SG_SAMPLE16_AVX2;
+    if (sg_isa_runs(SG_ISA_AVX512)) simd[n++] = SG_SAMPLE16_AVX512;
+    return n;
+}
+
+/* sg_sample16 and sg_sample16_mip (the copy simd names) at (s, t) give each lane exactly what
  * sg_sample and sg_sample_mip give, the quads' levels random. */
-static void check_lanes(const sg_mip_chain *m, bool avx512, bool bilinear, bool repeat,
+static void check_lanes(const sg_mip_chain *m, int simd, bool bilinear, bool repeat,
                         const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES]) {
     int32_t got[4][SG_SHADER_LANES];
-    sg_sample16(avx512, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear, repeat,
+    sg_sample16(simd, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear, repeat,
                 s, t, got);
     for (int i = 0; i < SG_SHADER_LANES; i++) {
         const sg_texel want = sg_sample(&m->level[0], s[i], t[i], bilinear, repeat);
         for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
     }
     float unit[4][SG_SHADER_LANES];
-    sg_sample16_unit(avx512, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear,
+    sg_sample16_unit(simd, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear,
                      repeat, s, t, unit);
     for (int i = 0; i < SG_SHADER_LANES; i++)
         for (int k = 0; k < 4; k++) {
@@ -174,7 +183,7 @@ static void check_lanes(const sg_mip_chain *m, bool avx512, bool bilinear, bool 
         const bool two = l0 + 1 < m->levels && rand() % 3;
         pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
     }
-    sg_sample16_mip(avx512, m, pick, bilinear, repeat, s, t, got);
+    sg_sample16_mip(simd, m, pick, bilinear, repeat, s, t, got);
     for (int i = 0; i < SG_SHADER_LANES; i++) {
         const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
         const sg_texel want = sg_sample_mip(m, p, s[i], t[i], bilinear, repeat);
@@ -182,34 +191,36 @@ static void check_lanes(const sg_mip_chain *m, bool avx512, bool bilinear, bool 
     }
 }
 
-/* Both copies (the portable one, and the AVX-512 one where this CPU runs it) agree with the scalar
- * sampler at random coordinates. */
+/* Every copy (the portable one, and the AVX2 and AVX-512 ones where this CPU runs them) agrees
+ * with the scalar sampler at random coordinates. */
 static void sixteen_lanes_match_the_scalar_sampler(void **state) {
     (void)state;
     static uint8_t chain[2 * 13 * 6 * 4];
     srand(16);
     const sg_mip_chain m = random_chain(chain, 13, 6, 4);
-    const int copies = sg_isa_runs(SG_ISA_AVX512) ? 2 : 1;
+    int simd[3];
+    const int copies = copies_run(simd);
     for (int round = 0; round < 4000 * copies; round++) {
         float s[SG_SHADER_LANES], t[SG_SHADER_LANES];
         for (int i = 0; i < SG_SHADER_LANES; i++) {
             s[i] = any_coordinate();
             t[i] = any_coordinate();
         }
-        check_lanes(&m, round >= 4000, round & 1, round >> 1 & 1, s, t);
+        check_lanes(&m, simd[round / 4000], round & 1, round >> 1 & 1, s, t);
     }
 }
 
 /* The same on a larger chain with tile-shaped footprints (a 4 x 4 block of lanes a small step
- * apart, anywhere on the texture and past its edges): the AVX-512 copy then reads from a window of
- * texels, or two neighbours in one gather, besides lane by lane. */
+ * apart, anywhere on the texture and past its edges): the AVX2 and AVX-512 copies then read from a
+ * window of texels, or two neighbours in one load or gather, besides lane by lane. */
 static void sixteen_lanes_match_on_tile_footprints(void **state) {
     (void)state;
     enum { W = 45, H = 27 };
     static uint8_t chain[2 * W * H * 4];
     srand(45);
     const sg_mip_chain m = random_chain(chain, W, H, 5);
-    const int copies = sg_isa_runs(SG_ISA_AVX512) ? 2 : 1;
+    int simd[3];
+    const int copies = copies_run(simd);
     for (int round = 0; round < 4000 * copies; round++) {
         /* A step of 1/8 to 3 texels a lane, from anywhere in [-0.2, 1.2). */
         const float s0 = (float)rand() / (float)RAND_MAX * 1.4f - 0.2f,
@@ -221,20 +232,22 @@ static void sixteen_lanes_match_on_tile_footprints(void **state) {
             s[i] = s0 + (float)(i & 3) * step + (float)(i >> 2) * skew;
             t[i] = t0 - (float)(i >> 2) * step + (float)(i & 3) * skew;
         }
-        check_lanes(&m, round >= 4000, round & 1, round >> 1 & 1, s, t);
+        check_lanes(&m, simd[round / 4000], round & 1, round >> 1 & 1, s, t);
     }
 }
 
-/* Every channel value 0 .. 255 to the float c / 255.0f, bit for bit, in both copies. */
+/* Every channel value 0 .. 255 to the float c / 255.0f, bit for bit, in every copy. */
 static void texels_to_unit_divide_exactly(void **state) {
     (void)state;
-    for (int avx512 = 0; avx512 <= (sg_isa_runs(SG_ISA_AVX512) ? 1 : 0); avx512++)
+    int simd[3];
+    const int copies = copies_run(simd);
+    for (int copy = 0; copy < copies; copy++)
         for (int c0 = 0; c0 < 256; c0 += SG_SHADER_LANES) {
             int32_t texel[4][SG_SHADER_LANES];
             float got[4][SG_SHADER_LANES];
             for (int k = 0; k < 4; k++)
                 for (int i = 0; i < SG_SHADER_LANES; i++) texel[k][i] = (c0 + i + 64 * k) & 255;
-            sg_texels_to_unit(avx512, texel, got);
+            sg_texels_to_unit(simd[copy], texel, got);
             for (int k = 0; k < 4; k++)
                 for (int i = 0; i < SG_SHADER_LANES; i++) {
                     const float want = (float)texel[k][i] / 255.0f;

@@ -13,6 +13,7 @@
 #include "pipeline/vertex.h"
 #include "pipeline/vertex_shader.h"
 #include "raster/shade.h"
+#include "tex/sample16.h"
 
 /* Above this, the pass's triangles are not copied to grow their storage: what is binned is
  * rendered first (a flush), and the storage then grows empty. Only the first frames of a large
@@ -573,7 +574,9 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     st->varying_count = nv;
     st->flat = sh->flat_varyings;
     st->bilinear = pso->desc.filter == SG_FILTER_BILINEAR;
-    st->avx512 = dev->isa == SG_ISA_AVX512;
+    st->sample16 = dev->isa == SG_ISA_AVX512 ? SG_SAMPLE16_AVX512
+                   : dev->isa == SG_ISA_AVX2 ? SG_SAMPLE16_AVX2
+                                             : SG_SAMPLE16_PORTABLE;
     st->repeat = pso->desc.wrap == SG_WRAP_REPEAT;
     st->mipmap = pso->desc.mipmap;
     st->pso = pso_h.id;

@@ -39,7 +39,7 @@ typedef struct sg_shader_state {
     int varying_count;
     uint32_t flat; /* flat varyings: taken as they are, not divided by 1/w */
     bool bilinear, repeat;
-    bool avx512;     /* the device runs SG_ISA_AVX512: sgSample takes its AVX-512 copy */
+    int sample16;    /* the copy of the 16-lane lookups sgSample takes (SG_SAMPLE16_*) */
     sgMipmap mipmap; /* the pipeline's, resolved (NONE, NEAREST or LINEAR) */
     sg_shader_tex textures[SG_MAX_DRAW_TEXTURES];
     uint32_t pso; /* the pipeline's handle: told when the draw discards (pass.c) */

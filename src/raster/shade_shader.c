@@ -175,8 +175,8 @@ static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s,
                                 v[l0 + 4] - v[l0], linear);
     }
     int32_t texel[4][SG_SHADER_LANES];
-    sg_sample16_mip(s->avx512, tx->mips, pick, s->bilinear, s->repeat, u, v, texel);
-    sg_texels_to_unit(s->avx512, texel, rgba);
+    sg_sample16_mip(s->sample16, tx->mips, pick, s->bilinear, s->repeat, u, v, texel);
+    sg_texels_to_unit(s->sample16, texel, rgba);
 }
 
 void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
@@ -191,7 +191,7 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
         return;
     }
     if (tx && !tx->depth) {
-        sg_sample16_unit(c->shader.avx512, tx->data, tx->width, tx->height, c->shader.bilinear,
+        sg_sample16_unit(c->shader.sample16, tx->data, tx->width, tx->height, c->shader.bilinear,
                          c->shader.repeat, u, v, rgba);
         return;
     }

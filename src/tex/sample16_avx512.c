@@ -6,7 +6,7 @@
 
 #include "raster/shade_avx512.h"
 
-#if SG_SAMPLE16_AVX512
+#if SG_SAMPLE16_X86
 #if !defined(SG_SHADE_AVX512)
 #error "compile this file with the AVX-512 flags CMakeLists.txt gives it"
 #endif
