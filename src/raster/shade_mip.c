@@ -126,27 +126,26 @@ sg_shade_fn sg_shade_mip_portable(int index) {
     return mip_table[index];
 }
 
+/* The instruction set's own function of table kind (shade, shade2, shade_runs) at index i, NULL
+ * where it has none. */
+#define SG_MIP_SIMD(kind, isa, i)                                                                  \
+    ((isa) == SG_ISA_AVX512 ? sg_##kind##_mip_avx512(i)                                            \
+     : (isa) == SG_ISA_AVX2 ? sg_##kind##_mip_avx2(i)                                              \
+                            : NULL)
+
 sg_shade_fn sg_shade_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                 sg_isa isa) {
     const int i = mip_index(mipmap, filter, wrap, sec);
-    const sg_shade_fn fn = isa == SG_ISA_AVX512 ? sg_shade_mip_avx512(i)
-                           : isa == SG_ISA_AVX2 ? sg_shade_mip_avx2(i)
-                                                : NULL;
+    const sg_shade_fn fn = SG_MIP_SIMD(shade, isa, i);
     return fn ? fn : mip_table[i];
 }
 
 sg_shade2_fn sg_shade2_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                   sg_isa isa) {
-    const int i = mip_index(mipmap, filter, wrap, sec);
-    return isa == SG_ISA_AVX512 ? sg_shade2_mip_avx512(i)
-           : isa == SG_ISA_AVX2 ? sg_shade2_mip_avx2(i)
-                                : NULL;
+    return SG_MIP_SIMD(shade2, isa, mip_index(mipmap, filter, wrap, sec));
 }
 
 sg_shade_runs_fn sg_shade_runs_mip_select(sgMipmap mipmap, sgFilter filter, sgWrap wrap, bool sec,
                                           sg_isa isa) {
-    const int i = mip_index(mipmap, filter, wrap, sec);
-    return isa == SG_ISA_AVX512 ? sg_shade_runs_mip_avx512(i)
-           : isa == SG_ISA_AVX2 ? sg_shade_runs_mip_avx2(i)
-                                : NULL;
+    return SG_MIP_SIMD(shade_runs, isa, mip_index(mipmap, filter, wrap, sec));
 }
