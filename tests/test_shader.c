@@ -233,6 +233,60 @@ static void test_discard(void **state) {
     }
 }
 
+/* Every depth compare of a draw shaded in place (a discarding one): a fixed draw at depth 0.5,
+ * then the checker shader at 0.2, 0.5 and 0.8 with the compare under test: its white pixels show
+ * exactly where the compare passes. */
+static void test_in_place_compare(void **state) {
+    (void)state;
+    static const struct {
+        sgCompare op;
+        bool pass[3]; /* nearer, equal, farther */
+    } cases[] = {{SG_COMPARE_NEVER, {false, false, false}},
+                 {SG_COMPARE_LESS, {true, false, false}},
+                 {SG_COMPARE_EQUAL, {false, true, false}},
+                 {SG_COMPARE_LESS_EQUAL, {true, true, false}},
+                 {SG_COMPARE_GREATER, {false, false, true}},
+                 {SG_COMPARE_NOT_EQUAL, {true, false, true}},
+                 {SG_COMPARE_GREATER_EQUAL, {false, true, true}},
+                 {SG_COMPARE_ALWAYS, {true, true, true}}};
+    static const float depths[3] = {0.2f, 0.5f, 0.8f};
+    static uint8_t img[W * H * 4];
+    for (int simd = SG_SIMD_SCALAR; simd <= SG_SIMD_NEON; simd++) {
+        if (!test_simd_runs((sgSimd)simd)) continue;
+        sgDevice *dev;
+        assert_int_equal(
+            sgCreateDevice(&(sgDeviceDesc){.thread_count = 1, .simd = (sgSimd)simd}, &dev), SG_OK);
+        sgGeom mid = quad(dev, 0.5f);
+        sgDrawParams p = params();
+        sgPipelineStateObject fixed =
+            test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
+        for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+            sgPipelineStateObject checker =
+                test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0},
+                                               .depth = {.compare = cases[c].op, .write = true}});
+            for (int k = 0; k < 3; k++) {
+                sgGeom g = quad(dev, depths[k]);
+                target t = begin(dev);
+                static const sgColor grey = {0.5f, 0.5f, 0.5f, 1.0f};
+                p.color = &grey;
+                assert_int_equal(sgDraw(dev, fixed, mid, &p), SG_OK);
+                p.color = NULL;
+                assert_int_equal(sgDraw(dev, checker, g, &p), SG_OK);
+                end(dev, &t, img);
+                int white = 0; /* a quarter of the image when the compare passes */
+                for (int i = 0; i < W * H; i++)
+                    white += img[i * 4] == 255 && img[i * 4 + 1] == 255 && img[i * 4 + 2] == 255;
+                if (cases[c].pass[k] ? white < W * H / 4 : white != 0)
+                    fail_msg("simd %d, compare %d, depth %.1f: %d white pixels", simd,
+                             (int)cases[c].op, (double)depths[k], white);
+                sgDestroyGeom(dev, g);
+            }
+            sgDestroyPipelineStateObject(dev, checker);
+        }
+        sgDestroyDevice(dev);
+    }
+}
+
 /* sgSample reads the bound texture with the pipeline's filter; an empty slot gives (0, 0, 0, 1). */
 static void test_sample(void **state) {
     (void)state;
@@ -382,9 +436,9 @@ static void test_nan(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_matches_fixed), cmocka_unit_test(test_ids),
-        cmocka_unit_test(test_discard),       cmocka_unit_test(test_sample),
-        cmocka_unit_test(test_blend),         cmocka_unit_test(test_refusals),
-        cmocka_unit_test(test_nan),
+        cmocka_unit_test(test_discard),       cmocka_unit_test(test_in_place_compare),
+        cmocka_unit_test(test_sample),        cmocka_unit_test(test_blend),
+        cmocka_unit_test(test_refusals),      cmocka_unit_test(test_nan),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

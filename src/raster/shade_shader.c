@@ -92,6 +92,76 @@ void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uin
     __atomic_fetch_add(c->shader.pass_discards, 1, __ATOMIC_RELAXED);
 }
 
+/* The lanes of a 4 x 4 tile as bits, lane i in bit i. */
+static inline __attribute__((always_inline)) uint32_t lane_bits(sg_vi m) {
+    uint32_t bits = 0;
+    for (int i = 0; i < SG_TILE_PIXELS; i++) bits |= (uint32_t)(m[i] & 1) << i;
+    return bits;
+}
+
+/* The depth test of a tile shaded in place, on its 16 lanes at once (its own copies per set,
+ * since the walk's baseline code would split the vectors lane by lane): each lane's window depth
+ * into z (sg_tri_depth's operations, so its bits), and the lanes of mask that pass `op` against
+ * the tile's stored depths dp (all of them when dp is NULL). */
+LANE_CLONES static uint32_t tile_depth(const sg_tri *t, int x0, int y0, uint32_t mask,
+                                       const float *dp, sgCompare op, float z[SG_TILE_PIXELS]) {
+    const sg_vf lane_x = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
+    const sg_vf lane_y = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+    const sg_vf zero = {0}, one = zero + 1.0f;
+    const sg_vf dx = (float)(x0 - t->minx) + lane_x, dy = (float)(y0 - t->miny) + lane_y;
+    const sg_vf zr = t->z + t->z_dx * dx + t->z_dy * dy;
+    const sg_vf zc = SEL(zr < 0.0f, zero, SEL(zr > 1.0f, one, zr));
+    memcpy(z, &zc, sizeof zc);
+    if (!dp) return mask;
+    sg_vf d;
+    memcpy(&d, dp, sizeof d);
+    sg_vi pass;
+    switch (op) { /* sg_depth_passes, lane by lane */
+    case SG_COMPARE_NEVER:
+        return 0;
+    case SG_COMPARE_LESS:
+        pass = zc < d;
+        break;
+    case SG_COMPARE_EQUAL:
+        pass = zc == d;
+        break;
+    case SG_COMPARE_LESS_EQUAL:
+        pass = zc <= d;
+        break;
+    case SG_COMPARE_GREATER:
+        pass = zc > d;
+        break;
+    case SG_COMPARE_NOT_EQUAL:
+        pass = zc != d;
+        break;
+    case SG_COMPARE_GREATER_EQUAL:
+        pass = zc >= d;
+        break;
+    default:
+        return mask;
+    }
+    return mask & lane_bits(pass);
+}
+
+/* The lanes of keep written: depth z into dp (when not NULL) and the colours src put into dst. */
+LANE_CLONES static void put_tile(uint32_t keep, const float z[SG_TILE_PIXELS], float *dp,
+                                 const uint32_t src[SG_TILE_PIXELS], uint32_t *dst) {
+    const sg_vi bit = {1 << 0, 1 << 1, 1 << 2,  1 << 3,  1 << 4,  1 << 5,  1 << 6,  1 << 7,
+                       1 << 8, 1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 13, 1 << 14, 1 << 15};
+    const sg_vi m = (bit & (int32_t)keep) != 0;
+    sg_vi a, b;
+    if (dp) {
+        memcpy(&a, z, sizeof a);
+        memcpy(&b, dp, sizeof b);
+        b = SELI(m, a, b);
+        memcpy(dp, &b, sizeof b);
+    }
+    memcpy(&a, src, sizeof a);
+    memcpy(&b, dst, sizeof b);
+    b = SELI(m, a, b);
+    memcpy(dst, &b, sizeof b);
+}
+
 /* A tile of a shader draw shaded in place: the depth test without writing, the fragment stage,
  * then depth (when written) and colour where no lane was discarded. */
 static inline __attribute__((always_inline)) void in_place(const void *vctx, const sg_tri *t,
@@ -101,25 +171,21 @@ static inline __attribute__((always_inline)) void in_place(const void *vctx, con
     const sg_vis_ctx *v = vctx;
     const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     float *dp = v->depth ? v->depth + base : NULL;
-    const float ox = (float)(x0 - t->minx), oy = (float)(y0 - t->miny);
     float z[SG_TILE_PIXELS];
-    if (zmode != Z_NONE || zwrite) {
-        uint32_t pass = 0;
-        for (uint32_t left = mask; left; left &= left - 1) {
-            const int bit = __builtin_ctz(left);
-            z[bit] = sg_tri_depth(t, ox + (float)(bit & 3), oy + (float)(bit >> 2));
-            if (zmode == Z_NONE || sg_depth_passes(v->compare, z[bit], dp[bit])) pass |= 1u << bit;
-        }
-        mask = pass;
-    }
+    if (zmode != Z_NONE || zwrite)
+        mask = tile_depth(t, x0, y0, mask, zmode != Z_NONE ? dp : NULL, v->compare, z);
     if (!mask) return;
     uint32_t src[SG_TILE_PIXELS];
     const uint32_t keep = sg_shader_fragments(v->shade_ctx, t, x0, y0, mask, src);
     uint32_t *dst = v->color + base;
+    if (put) {
+        if (keep) put_tile(keep, z, zwrite ? dp : NULL, src, dst);
+        return;
+    }
     for (uint32_t m = keep; m; m &= m - 1) {
         const int bit = __builtin_ctz(m);
         if (zwrite) dp[bit] = z[bit];
-        dst[bit] = put ? src[bit] : sg_blend_rgba8(src[bit], dst[bit]);
+        dst[bit] = sg_blend_rgba8(src[bit], dst[bit]);
     }
 }
 
