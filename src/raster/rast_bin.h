@@ -50,11 +50,17 @@ typedef struct sg_draw_state {
  * with twelve; docs/performance.md, "Triangles asked for twelve ahead"). */
 enum { SG_PREFETCH_AHEAD = 12 };
 
-/* Asks for the bin's i-th triangle, if any. */
+/* Asks for the bin's i-th triangle, if any, and its extension when the pass has them: the
+ * shading reads it after the bin's visibility, by which time a big mesh's extensions (the
+ * attributes past SG_TRI_ATTRS of shader and lit draws) would have left the cache. */
 static inline void sg_prefetch_tri(const sg_binner *b, const sg_bin *bin, uint32_t i) {
     if (i >= bin->count) return;
     const char *t = (const char *)&b->tris[bin->tris[i]];
     for (size_t off = 0; off < sizeof(sg_tri); off += 64) __builtin_prefetch(t + off);
+    if (!b->use_ext) return;
+    const char *e = (const char *)&b->ext[bin->tris[i]];
+    for (size_t off = 0; off < sizeof(sg_tri_ext); off += 64) __builtin_prefetch(e + off);
+    __builtin_prefetch(e + sizeof(sg_tri_ext) - 1);
 }
 
 /* Stages of a pass whose wall time a build with SGAPI_STAGE_TIMES adds up (stage_times.h). */
