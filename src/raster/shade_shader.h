@@ -3,7 +3,9 @@
  * tile, its colours converted to RGBA8. Visibility first, like the fixed shading (sg_shade_shader,
  * an sg_shade_fn), or in place (sg_shader_in_place_select): blended draws, and draws whose
  * fragments discard, test depth, shade, then write depth and colour only where nothing was
- * discarded. One scalar C body for every instruction set: the user's function is the work. */
+ * discarded. One C body for every instruction set, its 16-lane parts (the batch's set-up and
+ * conversion, the in-place depth test and writes) in copies per set: the user's function is the
+ * work. */
 #ifndef SG_SHADE_SHADER_H
 #define SG_SHADE_SHADER_H
 
