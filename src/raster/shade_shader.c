@@ -92,13 +92,6 @@ void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uin
     __atomic_fetch_add(c->shader.pass_discards, 1, __ATOMIC_RELAXED);
 }
 
-/* The lanes of a 4 x 4 tile as bits, lane i in bit i. */
-static inline __attribute__((always_inline)) uint32_t lane_bits(sg_vi m) {
-    uint32_t bits = 0;
-    for (int i = 0; i < SG_TILE_PIXELS; i++) bits |= (uint32_t)(m[i] & 1) << i;
-    return bits;
-}
-
 /* The depth test of a tile shaded in place, on its 16 lanes at once (its own copies per set,
  * since the walk's baseline code would split the vectors lane by lane): each lane's window depth
  * into z (sg_tri_depth's operations, so its bits), and the lanes of mask that pass `op` against
@@ -140,7 +133,9 @@ LANE_CLONES static uint32_t tile_depth(const sg_tri *t, int x0, int y0, uint32_t
     default:
         return mask;
     }
-    return mask & lane_bits(pass);
+    uint32_t bits = 0; /* lane i in bit i */
+    for (int i = 0; i < SG_TILE_PIXELS; i++) bits |= (uint32_t)(pass[i] & 1) << i;
+    return mask & bits;
 }
 
 /* The lanes of keep written: depth z into dp (when not NULL) and the colours src put into dst. */
