@@ -173,6 +173,109 @@ static void test_ids(void **state) {
     sgDestroyDevice(dev);
 }
 
+/* Clip x from the instance (u[0] + u[1] instance, NDC), y and z as given; varyings as vs_basic's,
+ * then the instance in varying 6. */
+static void vs_spread(sgVertexBatch *b, const void *uniforms) {
+    const float *u = uniforms;
+    vs_basic(b, NULL);
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        b->clip[0][i] += u[0] + u[1] * (float)b->instance;
+        b->varying[6][i] = (float)b->instance;
+    }
+}
+
+/* The primitive, the instance the vertex stage was given (varying 6) and the fragment stage's, as
+ * colours (the primitive modulo 251, not a divisor of a block's 256, the instances modulo 256);
+ * alpha one half. */
+static void fs_spread(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        b->color[0][i] = (float)(b->primitive % 251) / 255.0f;
+        b->color[1][i] = (float)((int)b->varying[6][i] % 256) / 255.0f;
+        b->color[2][i] = (float)(b->instance % 256) / 255.0f;
+        b->color[3][i] = 0.5f;
+    }
+}
+
+/* A fan of `fan` triangles (at most 400), its centre behind the near plane (every triangle
+ * clipped into more), drawn `instances` times side by side, overlapping; `quads`: as quads, half
+ * as many. */
+static void render_instances(int threads, size_t budget, sgPolygonMode mode, bool quads, int fan,
+                             int instances, uint8_t *out) {
+    sgDevice *dev;
+    assert_int_equal(
+        sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .bin_memory_limit = budget}, &dev),
+        SG_OK);
+    static float pos[401 * 4];
+    static uint32_t idx[400 * 3];
+    pos[0] = 0.0f, pos[1] = 0.0f, pos[2] = -1.5f, pos[3] = 1.0f;
+    for (int i = 0; i < fan; i++) {
+        const double a = 6.283185307179586 * i / fan;
+        pos[4 + i * 4] = (float)(0.3 * cos(a));
+        pos[5 + i * 4] = (float)(0.6 * sin(a));
+        pos[6 + i * 4] = 0.5f - 0.5f * (float)i / (float)fan;
+        pos[7 + i * 4] = 1.0f;
+    }
+    int n = 0;
+    for (int i = 0; i < fan; i++) {
+        if (quads && i % 2) continue;
+        idx[n++] = 0;
+        idx[n++] = 1 + (uint32_t)i;
+        idx[n++] = 1 + (uint32_t)(i + 1) % (uint32_t)fan;
+        if (quads) idx[n++] = 1 + (uint32_t)(i + 2) % (uint32_t)fan;
+    }
+    sgGeom g;
+    sgGeomDesc gd = {.vertex_count = fan + 1,
+                     .positions = pos,
+                     .index_count = n,
+                     .indices = idx,
+                     .primitive = quads ? SG_PRIMITIVE_QUADS : SG_PRIMITIVE_TRIANGLES};
+    assert_int_equal(sgCreateGeom(dev, &gd, &g), SG_OK);
+    sgDrawParams p = params();
+    const float u[2] = {-0.7f, 1.4f / (float)instances};
+    p.uniforms = u;
+    p.uniform_size = sizeof u;
+    p.instance_count = instances;
+    /* Blended, half opaque: every fragment of every triangle shows, in order. */
+    sgPipelineDesc sd = {.shader = {vs_spread, fs_spread, 7, 1u << 4 | 1u << 6, 0},
+                         .polygon_mode = mode,
+                         .blend = SG_BLEND_ALPHA};
+    target t = begin(dev);
+    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
+    end(dev, &t, out);
+    sgDestroyDevice(dev);
+}
+
+/* Instanced draws of a small geom assemble rounds of instances on every thread (draw.c): the
+ * image of one thread at every thread count, with runs overfilled by clipping (the calling
+ * thread does the rest, from within an instance when it has more primitives than a block), as
+ * wireframe, as quads, and with budgets that flush between rounds or leave no room for one. */
+static void test_instance_rounds(void **state) {
+    (void)state;
+    static uint8_t want[W * H * 4], got[W * H * 4];
+    const sgPolygonMode modes[2] = {SG_POLYGON_MODE_FILL, SG_POLYGON_MODE_LINE};
+    const size_t budgets[3] = {0, 8u << 20, 1u << 20};
+    const int fans[2][2] = {{16, 700}, {400, 40}}; /* triangles, instances */
+    for (int f = 0; f < 2; f++)
+        for (int m = 0; m < 2; m++)
+            for (int quads = 0; quads < 2; quads++) {
+                render_instances(1, 0, modes[m], quads, fans[f][0], fans[f][1], want);
+                int drawn = 0;
+                for (int i = 0; i < W * H; i++)
+                    drawn += (want[i * 4] | want[i * 4 + 1] | want[i * 4 + 2]) != 0;
+                assert_true(drawn > W * H / 8);
+                for (int threads = 2; threads <= 3; threads++)
+                    for (int k = 0; k < 3; k++) {
+                        render_instances(threads, budgets[k], modes[m], quads, fans[f][0],
+                                         fans[f][1], got);
+                        if (memcmp(want, got, sizeof want) != 0)
+                            fail_msg("fan %d, mode %d, quads %d, %d threads, budget %zu: "
+                                     "differs from one thread",
+                                     fans[f][0], m, quads, threads, budgets[k]);
+                    }
+            }
+}
+
 /* A discarding draw over a background: the background shows through the discarded pixels, and
  * the discarded pixels wrote no depth (a third draw behind the first two but in front of the
  * background's depth shows there). */
@@ -435,10 +538,15 @@ static void test_nan(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_matches_fixed), cmocka_unit_test(test_ids),
-        cmocka_unit_test(test_discard),       cmocka_unit_test(test_in_place_compare),
-        cmocka_unit_test(test_sample),        cmocka_unit_test(test_blend),
-        cmocka_unit_test(test_refusals),      cmocka_unit_test(test_nan),
+        cmocka_unit_test(test_matches_fixed),
+        cmocka_unit_test(test_ids),
+        cmocka_unit_test(test_instance_rounds),
+        cmocka_unit_test(test_discard),
+        cmocka_unit_test(test_in_place_compare),
+        cmocka_unit_test(test_sample),
+        cmocka_unit_test(test_blend),
+        cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_nan),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -128,19 +128,18 @@ static void fe_emit(void *user) {
     c->count++;
 }
 
-static void fe_run(void *chunks, int index) {
-    fe_chunk *c = (fe_chunk *)chunks + index;
+/* Assembles the primitives of c->a from the first into the chunk's run, in blocks; false when it
+ * stopped before a block the run may not hold (c->done primitives are in it). */
+static bool fe_blocks(fe_chunk *c) {
     sg_assembly a = c->a;
     a.slot = fe_slot;
     a.emit = fe_emit;
     a.user = c;
     const int prims = c->a.index_count / c->per;
-    if (c->counts)
-        memset(c->counts, 0, (size_t)(c->binner->bins_x * c->binner->bins_y) * sizeof *c->counts);
     for (c->done = 0; c->done < prims;) {
         int n = prims - c->done < FE_BLOCK ? prims - c->done : FE_BLOCK;
         /* Room for the block unclipped; clipping can make more, then the block is undone. */
-        if (c->capacity - c->count < (size_t)n * (size_t)c->tris_per) return;
+        if (c->capacity - c->count < (size_t)n * (size_t)c->tris_per) return false;
         size_t before = c->count;
         a.indices = c->a.indices + (size_t)c->done * (size_t)c->per;
         a.prim_base = c->a.prim_base + c->done;
@@ -148,10 +147,22 @@ static void fe_run(void *chunks, int index) {
         sg_assemble(&a);
         if (c->overflow) {
             c->count = before;
-            return;
+            return false;
         }
         c->done += n;
     }
+    return true;
+}
+
+static void fe_clear_counts(fe_chunk *c) {
+    if (c->counts)
+        memset(c->counts, 0, (size_t)(c->binner->bins_x * c->binner->bins_y) * sizeof *c->counts);
+}
+
+static void fe_run(void *chunks, int index) {
+    fe_chunk *c = (fe_chunk *)chunks + index;
+    fe_clear_counts(c);
+    fe_blocks(c);
 }
 
 /* Lists the chunks' triangles in the bins on every thread (sg_binner_make_room, _fill), from
@@ -189,6 +200,56 @@ static bool count_room(sgDevice *dev, int n, size_t total) {
     return true;
 }
 
+/* A chunk of assembly a whose run starts `base` triangles into the round's and holds `prims`
+ * primitives unclipped and a block more. */
+static void fe_chunk_start(const sgDevice *dev, fe_chunk *c, const sg_assembly *a, size_t base,
+                           size_t prims, int per, int tris_per) {
+    c->a = *a;
+    c->base = base;
+    c->count = 0;
+    c->capacity = (prims + FE_BLOCK) * (size_t)tris_per;
+    c->per = per;
+    c->tris_per = tris_per;
+    c->done = 0;
+    c->draw = dev->binner.draw;
+    c->overflow = false;
+}
+
+/* Reserves the runs of n chunks (their bases and capacities set, `total` triangles in all) in
+ * the pass's triangle array and points the chunks at them; false: no room (out_of_memory set, or
+ * a flush failed). *counted: the chunks count their triangles per bin as they go. */
+static bool fe_reserve(sgDevice *dev, fe_chunk *chunks, int n, size_t total, bool *counted) {
+    sg_binner *b = &dev->binner;
+    if (!room_for(dev, total)) return false;
+    sg_tri *room = sg_binner_reserve(b, total);
+    if (!room) return false; /* out_of_memory is set: the draw fails */
+    *counted = count_room(dev, n, total);
+    const size_t nbins = (size_t)(b->bins_x * b->bins_y);
+    for (int i = 0; i < n; i++) {
+        chunks[i].out = room + chunks[i].base;
+        chunks[i].out_ext = b->use_ext ? b->ext + (room - b->tris) + chunks[i].base : NULL;
+        chunks[i].binner = b;
+        chunks[i].counts = *counted ? dev->fe_counts + (size_t)i * nbins : NULL;
+        chunks[i].ranges = *counted ? dev->fe_ranges + chunks[i].base : NULL;
+    }
+    return true;
+}
+
+/* After the chunks ran (their runs from triangle `first` on): the array ends after the last
+ * run's triangles, and when every chunk did all its work and counted, the runs are listed in the
+ * bins on every thread; false: the caller lists them one by one, with what each left undone. */
+static bool fe_list_runs(sgDevice *dev, const fe_chunk *chunks, int n, size_t first, bool all,
+                         bool counted) {
+    sg_binner *b = &dev->binner;
+    /* The room reserved past the last run's triangles is free. */
+    b->tri_count += chunks[n - 1].base + chunks[n - 1].count;
+    if (!all || !counted) return false;
+    fe_list job = {b, chunks, first};
+    if (sg_binner_make_room(b, dev->fe_counts, n))
+        sg_workers_run_shares(&dev->workers, n, fe_fill, &job);
+    return true;
+}
+
 /* One round of a large draw: primitives [p0, p0 + prims) on every thread. */
 static void assemble_round(sgDevice *dev, const sg_assembly *a, int p0, int prims, int per,
                            int tris_per, int n) {
@@ -196,45 +257,20 @@ static void assemble_round(sgDevice *dev, const sg_assembly *a, int p0, int prim
     size_t total = 0;
     for (int i = 0; i < n; i++) {
         int q0 = p0 + (int)((int64_t)prims * i / n), q1 = p0 + (int)((int64_t)prims * (i + 1) / n);
-        chunks[i].a = *a;
+        fe_chunk_start(dev, &chunks[i], a, total, (size_t)(q1 - q0), per, tris_per);
         chunks[i].a.indices = a->indices + (size_t)q0 * (size_t)per;
         chunks[i].a.prim_base = a->prim_base + q0;
         chunks[i].a.index_count = (q1 - q0) * per;
-        chunks[i].base = total;
-        chunks[i].count = 0;
-        chunks[i].capacity = ((size_t)(q1 - q0) + FE_BLOCK) * (size_t)tris_per;
-        chunks[i].per = per;
-        chunks[i].tris_per = tris_per;
-        chunks[i].done = 0;
-        chunks[i].draw = dev->binner.draw;
-        chunks[i].overflow = false;
         total += chunks[i].capacity;
     }
     sg_binner *b = &dev->binner;
-    if (!room_for(dev, total)) return;
-    sg_tri *room = sg_binner_reserve(b, total);
-    if (!room) return; /* out_of_memory is set: the draw fails */
-    const bool counted = count_room(dev, n, total);
-    const size_t nbins = (size_t)(b->bins_x * b->bins_y);
-    for (int i = 0; i < n; i++) {
-        chunks[i].out = room + chunks[i].base;
-        chunks[i].out_ext = b->use_ext ? b->ext + (room - b->tris) + chunks[i].base : NULL;
-        chunks[i].binner = b;
-        chunks[i].counts = counted ? dev->fe_counts + (size_t)i * nbins : NULL;
-        chunks[i].ranges = counted ? dev->fe_ranges + chunks[i].base : NULL;
-    }
+    bool counted;
+    if (!fe_reserve(dev, chunks, n, total, &counted)) return;
     size_t first = b->tri_count;
     sg_workers_run_shares(&dev->workers, n, fe_run, chunks);
-    /* The array ends after the last chunk's triangles: the room reserved past them is free. */
-    b->tri_count += chunks[n - 1].base + chunks[n - 1].count;
     bool all = true;
     for (int i = 0; i < n; i++) all &= chunks[i].done == chunks[i].a.index_count / per;
-    if (all && counted) {
-        fe_list job = {b, chunks, first};
-        if (sg_binner_make_room(b, dev->fe_counts, n))
-            sg_workers_run_shares(&dev->workers, n, fe_fill, &job);
-        return;
-    }
+    if (fe_list_runs(dev, chunks, n, first, all, counted)) return;
     for (int i = 0; i < n && !b->out_of_memory; i++) {
         for (size_t k = 0; k < chunks[i].count; k++)
             sg_binner_list(b, (uint32_t)(first + chunks[i].base + k));
@@ -410,14 +446,154 @@ static void vsh_run(void *vjob, int index) {
     sg_vertex_shade(&j->run, v0, v1 - v0);
 }
 
+/* A shader draw of a small geom drawn many times runs its front end on every thread too, in rounds
+ * of instances: each chunk of a round takes a run of instances, shades each one's vertices into
+ * that instance's own slots of the arenas (slot s: vertices s v .. s v + v - 1 of a v-vertex
+ * geom), then assembles them in order into its run of the triangle array, as a chunk of a large
+ * draw does its primitives (the same blocks, the same listing in chunk order, the calling thread
+ * doing what a run could not hold). The bins get the sequence the instances one by one give. */
+typedef struct fe_inst {
+    int first, count; /* the chunk's slots */
+    int finished;     /* instances all of whose primitives are in the run */
+} fe_inst;
+
+typedef struct fe_inst_round {
+    fe_chunk *chunks;
+    fe_inst *inst;
+    const vsh_job *vs;
+    const sg_assembly *a; /* the draw's, its arenas from slot 0 */
+    int instance0;        /* the instance in slot 0 */
+} fe_inst_round;
+
+/* The draw's assembly for the instance in slot s. */
+static sg_assembly slot_assembly(const fe_inst_round *r, int s) {
+    const size_t at = (size_t)s * (size_t)r->vs->count;
+    sg_assembly a = *r->a;
+    a.clip += at;
+    a.outcodes += at;
+    a.screen += at;
+    a.screen_ok += at;
+    a.vattr += at * (size_t)a.vstride;
+    a.instance = r->instance0 + s;
+    return a;
+}
+
+static void fe_inst_run(void *vround, int index) {
+    const fe_inst_round *r = vround;
+    fe_chunk *c = &r->chunks[index];
+    fe_inst *in = &r->inst[index];
+    for (int s = in->first; s < in->first + in->count; s++) {
+        const size_t at = (size_t)s * (size_t)r->vs->count;
+        sg_vertex_shader_run run = r->vs->run;
+        run.instance = r->instance0 + s;
+        run.clip += at;
+        run.varyings += at * (size_t)run.varying_count;
+        run.outcodes += at;
+        run.screen += at;
+        run.screen_ok += at;
+        sg_vertex_shade(&run, 0, r->vs->count);
+    }
+    fe_clear_counts(c);
+    for (in->finished = 0; in->finished < in->count; in->finished++) {
+        c->a = slot_assembly(r, in->first + in->finished);
+        if (!fe_blocks(c)) return;
+    }
+}
+
+/* One round: the instances in slots [0, slots) on every thread (n chunks). */
+static void instance_round(sgDevice *dev, const sg_assembly *a, const vsh_job *vs, int instance0,
+                           int slots, int per, int tris_per, int n) {
+    fe_chunk chunks[FE_MAX_CHUNKS];
+    fe_inst inst[FE_MAX_CHUNKS];
+    const size_t prims = (size_t)(a->index_count / per);
+    size_t total = 0;
+    for (int i = 0; i < n; i++) {
+        inst[i].first = (int)((int64_t)slots * i / n);
+        inst[i].count = (int)((int64_t)slots * (i + 1) / n) - inst[i].first;
+        inst[i].finished = 0;
+        fe_chunk_start(dev, &chunks[i], a, total, (size_t)inst[i].count * prims, per, tris_per);
+        total += chunks[i].capacity;
+    }
+    sg_binner *b = &dev->binner;
+    bool counted;
+    if (!fe_reserve(dev, chunks, n, total, &counted)) return;
+    size_t first = b->tri_count;
+    fe_inst_round round = {chunks, inst, vs, a, instance0};
+    sg_workers_run_shares(&dev->workers, n, fe_inst_run, &round);
+    bool all = true;
+    for (int i = 0; i < n; i++) all &= inst[i].finished == inst[i].count;
+    if (fe_list_runs(dev, chunks, n, first, all, counted)) return;
+    for (int i = 0; i < n && !b->out_of_memory; i++) {
+        for (size_t k = 0; k < chunks[i].count; k++)
+            sg_binner_list(b, (uint32_t)(first + chunks[i].base + k));
+        /* the rest, on this thread, appended to the array: the unfinished instance from where
+         * its run stopped, then the chunk's later ones */
+        for (int f = inst[i].finished; f < inst[i].count && !b->out_of_memory; f++) {
+            sg_assembly rest = slot_assembly(&round, inst[i].first + f);
+            if (f == inst[i].finished) {
+                rest.indices += (size_t)chunks[i].done * (size_t)per;
+                rest.prim_base += chunks[i].done;
+                rest.index_count -= chunks[i].done * per;
+            }
+            rest.slot = bin_slot_kept; /* the chunks after it are not listed yet */
+            rest.emit = bin_emit;
+            rest.user = dev;
+            sg_assemble(&rest);
+        }
+    }
+}
+
+/* Instances a round of a shader draw may take (the arenas' slots), or 1: instances one by one,
+ * each on every thread where its geom is large enough. */
+enum { FE_INSTANCE_VERTICES = 65536 };
+static int instance_slots(const sgDevice *dev, const sg_geom *geom, int instances) {
+    const int vertices = geom->vertex_count;
+    if (dev->thread_count < 2 || instances < 2 || vertices < 1 || vertices >= FE_MIN_TRIANGLES ||
+        geom->index_count >= FE_MIN_TRIANGLES)
+        return 1;
+    const int most = FE_INSTANCE_VERTICES / vertices;
+    return instances < most ? instances : most;
+}
+
+/* Every instance of a shader draw in rounds of at most `slots` (the arenas hold that many
+ * instances' vertices), each round's reserved triangles at most a quarter of the device's budget,
+ * as assemble_parallel's; a round too small to be worth it runs its instances one by one. */
+static void assemble_instances(sgDevice *dev, sg_assembly *a, vsh_job *vs, int instances,
+                               int slots) {
+    const int per = a->lines ? 2 : a->quads ? 4 : 3;
+    const int tris_per = a->wire ? (a->quads ? 4 : 3) : a->quads ? 2 : 1;
+    const size_t inst_tris = (size_t)(a->index_count / per) * (size_t)tris_per;
+    const int n = 4 * dev->thread_count < FE_MAX_CHUNKS ? 4 * dev->thread_count : FE_MAX_CHUNKS;
+    const sg_binner *b = &dev->binner;
+    const size_t room = dev->bin_flush_at / 4 / (sg_binner_tri_bytes(b) + sizeof(uint32_t));
+    const size_t margin = (size_t)n * FE_BLOCK * (size_t)tris_per;
+    for (int i = 0; i < instances && !b->out_of_memory;) {
+        size_t fit = room > margin && inst_tris ? (room - margin) / inst_tris : 0;
+        int k = instances - i < slots ? instances - i : slots;
+        if ((size_t)k > fit) k = (int)fit;
+        if (k < 2 || (size_t)k * inst_tris < FE_MIN_TRIANGLES) { /* one by one, in slot 0 */
+            vs->run.instance = i;
+            a->instance = i;
+            sg_vertex_shade(&vs->run, 0, vs->count);
+            sg_assemble(a);
+            i++;
+            continue;
+        }
+        instance_round(dev, a, vs, i, k, per, tris_per, k < n ? k : n);
+        i += k;
+    }
+}
+
 /* Assembles the open draw (its state is dev->draws' last) into the bins: once, or each of
  * `instances` after its vertex stage (vs: a shader draw). On running out of memory the draw's
  * triangles are taken back, unless a flush rendered some of them (then the pass fails). */
-static sgResult run_front_end(sgDevice *dev, sg_assembly *a, vsh_job *vs, int instances) {
+static sgResult run_front_end(sgDevice *dev, sg_assembly *a, vsh_job *vs, int instances,
+                              int slots) {
     dev->draw_first = dev->binner.tri_count;
     dev->draw_flushed = false;
     dev->binner.draw = (uint32_t)(dev->draw_count - 1);
-    for (int i = 0; i < instances && !dev->binner.out_of_memory; i++) {
+    if (vs && slots > 1) assemble_instances(dev, a, vs, instances, slots);
+    for (int i = 0; slots <= 1 && i < instances && !dev->binner.out_of_memory; i++) {
         if (vs) {
             vs->run.instance = i;
             a->instance = i;
@@ -552,11 +728,14 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
         st->textures[k] = (sg_shader_tex){img->data, img->width, img->height,
                                           img->format == SG_FORMAT_D32_FLOAT, &img->mips};
     }
-    if (!grow_vertex_arenas(dev, (size_t)geom->vertex_count))
-        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %d vertices",
-                        geom->vertex_count);
+    const int instances = params->instance_count ? params->instance_count : 1;
+    const int slots = instance_slots(dev, geom, instances);
+    const size_t vertices = (size_t)slots * (size_t)geom->vertex_count;
+    if (!grow_vertex_arenas(dev, vertices))
+        return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgDraw: out of memory for %zu vertices",
+                        vertices);
     const int nv = sh->varying_count;
-    if (!grow_lit(dev, (size_t)geom->vertex_count * (size_t)(nv ? nv : 1)))
+    if (!grow_lit(dev, vertices * (size_t)(nv ? nv : 1)))
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                         "sgDraw: out of memory for the varyings of %d vertices",
                         geom->vertex_count);
@@ -649,8 +828,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     ds->blend = pso->desc.blend == SG_BLEND_ALPHA;
     dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_shader = true;
-    int instances = params->instance_count ? params->instance_count : 1;
-    sgResult r = run_front_end(dev, &a, &vs, instances);
+    sgResult r = run_front_end(dev, &a, &vs, instances, slots);
     if (r != SG_OK) return r;
     for (int k = 0; k < SG_MAX_DRAW_TEXTURES; k++)
         if (params->textures[k].id)
@@ -919,7 +1097,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
     dev->pass.any_pair |= ds->shade2_fn != NULL;
     dev->pass.any_runs |= ds->runs_fn != NULL;
     dev->pass.any_mixed |= ds->mixed_fn != NULL;
-    sgResult r = run_front_end(dev, &a, NULL, 1);
+    sgResult r = run_front_end(dev, &a, NULL, 1, 1);
     if (r != SG_OK) return r;
     if (tex) tex->pass_use = dev->pass_serial;
     if (smap) smap->pass_use = dev->pass_serial;
