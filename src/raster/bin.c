@@ -22,7 +22,10 @@ static bool grow(sg_binner *b, void **ptr, size_t *capacity, size_t need, size_t
          * so large a block is mapped, not taken from the heap, and its pages are touched only as
          * triangles are stored, so a big pass neither copies nor touches its storage twice. */
         if (b->resize && cap * size > LAZY_BYTES) cap = most;
-        if (cap > most) cap = most > need ? most : need;
+        /* Never below need: triangles a round's run could not hold are appended past the
+         * budget's size (the front end's rest), and must have room. */
+        if (cap > most) cap = most;
+        if (cap < need) cap = need;
     }
     if (b->resize && *ptr) {
         void *p = b->resize(*ptr, cap * size, b->user);
