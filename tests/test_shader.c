@@ -253,27 +253,33 @@ static void render_instances(int threads, size_t budget, sgPolygonMode mode, boo
 static void test_instance_rounds(void **state) {
     (void)state;
     static uint8_t want[W * H * 4], got[W * H * 4];
-    const sgPolygonMode modes[2] = {SG_POLYGON_MODE_FILL, SG_POLYGON_MODE_LINE};
-    const size_t budgets[3] = {0, 8u << 20, 1u << 20};
-    const int fans[2][2] = {{16, 700}, {400, 40}}; /* triangles, instances */
-    for (int f = 0; f < 2; f++)
-        for (int m = 0; m < 2; m++)
-            for (int quads = 0; quads < 2; quads++) {
-                render_instances(1, 0, modes[m], quads, fans[f][0], fans[f][1], want);
-                int drawn = 0;
-                for (int i = 0; i < W * H; i++)
-                    drawn += (want[i * 4] | want[i * 4 + 1] | want[i * 4 + 2]) != 0;
-                assert_true(drawn > W * H / 8);
-                for (int threads = 2; threads <= 3; threads++)
-                    for (int k = 0; k < 3; k++) {
-                        render_instances(threads, budgets[k], modes[m], quads, fans[f][0],
-                                         fans[f][1], got);
-                        if (memcmp(want, got, sizeof want) != 0)
-                            fail_msg("fan %d, mode %d, quads %d, %d threads, budget %zu: "
-                                     "differs from one thread",
-                                     fans[f][0], m, quads, threads, budgets[k]);
-                    }
-            }
+    /* Budgets: the default (one round of every instance); one whose rounds take part of the
+     * instances, the rest one by one; one too small for a round. */
+    const size_t budgets[3] = {0, 12u << 20, 1u << 20};
+    static const struct {
+        int fan, instances;
+        sgPolygonMode mode;
+        bool quads;
+    } cases[] = {{16, 600, SG_POLYGON_MODE_FILL, false},
+                 {16, 600, SG_POLYGON_MODE_FILL, true},
+                 {16, 600, SG_POLYGON_MODE_LINE, false},
+                 {400, 40, SG_POLYGON_MODE_FILL, false}}; /* more primitives than a block */
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        render_instances(1, 0, cases[c].mode, cases[c].quads, cases[c].fan, cases[c].instances,
+                         want);
+        int drawn = 0;
+        for (int i = 0; i < W * H; i++)
+            drawn += (want[i * 4] | want[i * 4 + 1] | want[i * 4 + 2]) != 0;
+        assert_true(drawn > W * H / 8);
+        for (int k = 0; k < 3; k++) {
+            const int threads = 2 + (int)(k + c + 1) % 2; /* 2 and 3 threads in turn */
+            render_instances(threads, budgets[k], cases[c].mode, cases[c].quads, cases[c].fan,
+                             cases[c].instances, got);
+            if (memcmp(want, got, sizeof want) != 0)
+                fail_msg("case %zu, %d threads, budget %zu: differs from one thread", c, threads,
+                         budgets[k]);
+        }
+    }
 }
 
 /* A discarding draw over a background: the background shows through the discarded pixels, and
