@@ -255,15 +255,16 @@ static void test_instance_rounds(void **state) {
     static uint8_t want[W * H * 4], got[W * H * 4];
     /* Budgets: the default (one round of every instance); one whose rounds take part of the
      * instances, the rest one by one; one too small for a round. */
-    const size_t budgets[3] = {0, 12u << 20, 1u << 20};
+    static const size_t budgets[3] = {0, 12u << 20, 1u << 20};
     static const struct {
         int fan, instances;
         sgPolygonMode mode;
         bool quads;
-    } cases[] = {{16, 600, SG_POLYGON_MODE_FILL, false},
-                 {16, 600, SG_POLYGON_MODE_FILL, true},
-                 {16, 600, SG_POLYGON_MODE_LINE, false},
-                 {400, 40, SG_POLYGON_MODE_FILL, false}}; /* more primitives than a block */
+        int budgets; /* how many of them */
+    } cases[] = {{16, 600, SG_POLYGON_MODE_FILL, false, 3},
+                 {16, 600, SG_POLYGON_MODE_FILL, true, 1},
+                 {16, 600, SG_POLYGON_MODE_LINE, false, 1},
+                 {400, 40, SG_POLYGON_MODE_FILL, false, 2}}; /* more primitives than a block */
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         render_instances(1, 0, cases[c].mode, cases[c].quads, cases[c].fan, cases[c].instances,
                          want);
@@ -271,7 +272,7 @@ static void test_instance_rounds(void **state) {
         for (int i = 0; i < W * H; i++)
             drawn += (want[i * 4] | want[i * 4 + 1] | want[i * 4 + 2]) != 0;
         assert_true(drawn > W * H / 8);
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < cases[c].budgets; k++) {
             const int threads = 2 + (int)(k + c + 1) % 2; /* 2 and 3 threads in turn */
             render_instances(threads, budgets[k], cases[c].mode, cases[c].quads, cases[c].fan,
                              cases[c].instances, got);
