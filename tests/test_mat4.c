@@ -2,6 +2,7 @@
 #include "test_common.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "pipeline/mat4.h"
 #include "pipeline/vertex.h"
@@ -105,12 +106,59 @@ static void vertex_stage_matches_one_vertex_functions(void **state) {
         }
 }
 
+/* The fused stage of fixed draws gives the outcodes, screen records and flags of
+ * sg_vertex_transform then sg_vertex_project, and sg_vertex_clip the clip positions the first
+ * stores (assembly works them out again for the primitives it clips), to the bit. */
+static void fused_stage_matches_transform_then_project(void **state) {
+    (void)state;
+    const float proj[16] = {2.41421f, 0, 0,       0,        0, 2.41421f, 0,  0,
+                            0,        0, -1.002f, -0.2002f, 0, 0,        -1, 0};
+    const float wv[16] = {0.8f, -0.6f, 0,     0.3f, 0.6f, 0.8f, 0.1f, -0.2f,
+                          0,    -0.1f, 0.99f, -3,   0,    0,    0,    1};
+    float mvp[16];
+    sg_mat4_mul(mvp, proj, wv);
+    enum { N = 4099 };
+    static float pos[N * 4], clip[N][4];
+    static uint32_t codes[N], codes2[N];
+    static sg_svert screen[N], screen2[N];
+    static uint8_t ok[N], ok2[N];
+    unsigned seed = 777;
+    for (int i = 0; i < N * 4; i++) {
+        seed = seed * 1103515245u + 12345u;
+        pos[i] = (float)((int)(seed >> 8) % 20001 - 10000) / 1000.0f; /* -10 .. 10 */
+        if (i % 4 == 3) pos[i] = (seed >> 20) % 13 == 0 ? 0.5f : 1.0f;
+    }
+    pos[17] = NAN;
+    pos[42] = INFINITY;
+    sg_guard g = sg_guard_for_viewport(800, 600);
+    sg_setup_params p = {0};
+    p.width = 800;
+    p.height = 600;
+    sg_vertex_transform(mvp, pos, N, clip, codes, &g);
+    sg_vertex_project(&p, (const float(*)[4])clip, codes, N, screen, ok);
+    memset(screen2, 0, sizeof screen2);
+    sg_vertex_transform_project(mvp, pos, N, codes2, &g, &p, screen2, ok2);
+    int inside = 0, outside = 0;
+    for (int i = 0; i < N; i++) {
+        float c[4];
+        sg_vertex_clip(mvp, pos + (size_t)i * 4, c);
+        assert_memory_equal(c, clip[i], sizeof c);
+        assert_int_equal(codes2[i], codes[i]);
+        assert_int_equal(ok2[i], ok[i]);
+        if (ok[i]) assert_memory_equal(&screen2[i], &screen[i], sizeof screen[i]);
+        inside += ok[i];
+        outside += codes[i] != 0;
+    }
+    assert_true(inside > N / 10 && outside > N / 10); /* both kinds are tested */
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(mul_is_row_major_product),
         cmocka_unit_test(perspective_gives_w_equal_minus_z),
         cmocka_unit_test(vertex_stage_transforms_each_vertex_once),
         cmocka_unit_test(vertex_stage_matches_one_vertex_functions),
+        cmocka_unit_test(fused_stage_matches_transform_then_project),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -112,8 +112,8 @@ struct sgDevice {
     size_t most_tris; /* the most triangles a pass has had: empty storage grows to it (draw.c) */
 
     /* Arenas, grown as needed and reused. */
-    float (*clip)[4];
-    float *lit; /* a lit draw's vertex attributes (vertex.h, sg_vertex_lit_attributes) */
+    float (*clip)[4]; /* a shader draw's clip positions (a fixed draw stores none: assemble.h) */
+    float *lit;       /* a lit draw's vertex attributes (vertex.h, sg_vertex_lit_attributes) */
     size_t lit_capacity;
     uint32_t *outcodes;
     sg_svert *screen;   /* projections of the vertices inside every clip plane */

@@ -334,10 +334,8 @@ static void vs_run(void *vjob, int index) {
     int v0 = (int)((int64_t)j->count * index / j->chunks);
     int v1 = (int)((int64_t)j->count * (index + 1) / j->chunks);
     const sgDevice *dev = j->dev;
-    sg_vertex_transform(j->mvp, j->positions + (size_t)v0 * 4, v1 - v0, dev->clip + v0,
-                        dev->outcodes + v0, j->guard);
-    sg_vertex_project(j->setup, (const float(*)[4])dev->clip + v0, dev->outcodes + v0, v1 - v0,
-                      dev->screen + v0, dev->screen_ok + v0);
+    sg_vertex_transform_project(j->mvp, j->positions + (size_t)v0 * 4, v1 - v0, dev->outcodes + v0,
+                                j->guard, j->setup, dev->screen + v0, dev->screen_ok + v0);
     if (j->lit)
         sg_vertex_lit_attributes(j->lit, v0, v1 - v0, dev->lit, dev->screen_ok);
     else
@@ -1038,9 +1036,9 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         lit.gouraud = dev->vertex_gouraud;
     }
 
-    float mvp[16];
-    sg_mat4_mul(mvp, params->proj, params->world_view);
     sg_assembly a = assembly_of(dev, pso, geom);
+    sg_mat4_mul(a.mvp, params->proj, params->world_view);
+    a.positions = geom->positions; /* the vertex stage keeps no clip positions */
     a.colors = depth_only ? NULL : geom->colors;
     a.texcoords = depth_only ? NULL : geom->texcoords;
     a.tint = tinted && !depth_only ? tint : NULL; /* white multiplies nothing */
@@ -1071,7 +1069,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY,
                         "sgDraw: out of memory to sort %d indices back to front",
                         geom->index_count);
-    transform_vertices(dev, mvp, geom, &a.guard, &a.setup, vattr ? &lit : NULL, a.colors);
+    transform_vertices(dev, a.mvp, geom, &a.guard, &a.setup, vattr ? &lit : NULL, a.colors);
     /* The draw's state is in place before its triangles: a flush may render some of them. */
     sg_draw_state *ds = &dev->draws[dev->draw_count++];
     const bool put_lines = a.lines && pso->raster_line && !depth_only && !shadowed && !sec;

@@ -27,6 +27,14 @@ SG_ASM_INLINE void fetch_attributes(const sg_assembly *a, uint32_t idx, float at
     if (a->setup.nattr > 4) memcpy(attr + 4, a->texcoords + (size_t)idx * 2, 2 * sizeof(float));
 }
 
+/* Vertex idx's clip position (assemble.h: stored, or worked out again). */
+static inline void clip_pos(const sg_assembly *a, uint32_t idx, float pos[4]) {
+    if (a->positions)
+        sg_vertex_clip(a->mvp, a->positions + (size_t)idx * 4, pos);
+    else
+        memcpy(pos, a->clip[idx], 4 * sizeof(float));
+}
+
 /* False when an attribute the draw reads is NaN or infinite: such a triangle is dropped whole,
  * as one with a non-finite position is, so it cannot paint garbage or sample out of range. (The
  * vertex stage makes the same check for vertices inside every clip plane.) */
@@ -118,7 +126,7 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes, i
     sg_cvert poly[SG_CLIP_MAX_VERTS];
     const int lit = a->vattr != NULL;
     for (int i = 0; i < 3; i++) {
-        for (int k = 0; k < 4; k++) poly[i].pos[k] = a->clip[idx[i]][k];
+        clip_pos(a, idx[i], poly[i].pos);
         if (lit ? !attributes_finite(a, idx[i], 1) : !attributes_finite(a, idx[i], 0)) return;
         if (lit)
             fetch_attributes(a, idx[i], poly[i].attr, 1);
@@ -254,9 +262,12 @@ SG_ASM_INLINE void segment(const sg_assembly *a, uint32_t i0, uint32_t i1, int p
     if (a->rebase_texcoords) rebase_texcoords((float *const[2]){attr[0], attr[1]}, 2);
     if (lit == 2) copy_flat(a, (float *const[2]){attr[0], attr[1]}, 2);
     sg_svert s[2];
-    if (c0 | c1)
-        clipped_segment(a, a->clip[i0], a->clip[i1], attr[0], attr[1], c0 | c1, prim);
-    else if (screen_vertex(a, i0, &s[0]) && screen_vertex(a, i1, &s[1]))
+    if (c0 | c1) {
+        float p[2][4];
+        clip_pos(a, i0, p[0]);
+        clip_pos(a, i1, p[1]);
+        clipped_segment(a, p[0], p[1], attr[0], attr[1], c0 | c1, prim);
+    } else if (screen_vertex(a, i0, &s[0]) && screen_vertex(a, i1, &s[1]))
         emit_line(a, s, (const float *const[2]){attr[0], attr[1]}, prim);
 }
 
@@ -293,8 +304,10 @@ SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], un
         return;
     }
     sg_cvert poly[SG_CLIP_MAX_VERTS];
+    float pos[3][4];
     for (int i = 0; i < 3; i++) {
-        memcpy(poly[i].pos, a->clip[idx[i]], sizeof poly[i].pos);
+        clip_pos(a, idx[i], pos[i]);
+        memcpy(poly[i].pos, pos[i], sizeof poly[i].pos);
         memset(poly[i].attr, 0, sizeof poly[i].attr); /* facing needs positions only */
     }
     int n = sg_clip_polygon(poly, 3, c[0] | c[1] | c[2], 0, &a->guard);
@@ -308,9 +321,7 @@ SG_ASM_INLINE void wire_triangle(const sg_assembly *a, const uint32_t idx[3], un
     if (n == 0 || sg_setup_culled(&a->setup, area)) return;
     for (int k = 0; k < 3; k++) {
         int e = k == 0 ? 2 : k - 1, f = e == 2 ? 0 : e + 1;
-        if (edges >> e & 1)
-            clipped_segment(a, a->clip[idx[e]], a->clip[idx[f]], attr[e], attr[f], c[e] | c[f],
-                            prim);
+        if (edges >> e & 1) clipped_segment(a, pos[e], pos[f], attr[e], attr[f], c[e] | c[f], prim);
     }
 }
 

@@ -10,10 +10,15 @@
 typedef struct sg_assembly {
     const uint32_t *indices;
     int index_count;
-    int quads;              /* 4 indices a primitive (a b c d -> a b c, a c d), else 3 */
-    int lines;              /* 2 indices a primitive: segments a -> b (line.h) */
-    int wire;               /* triangles and quads drawn as their edges (polygon mode line) */
-    const float (*clip)[4]; /* transformed positions, from the vertex stage */
+    int quads; /* 4 indices a primitive (a b c d -> a b c, a c d), else 3 */
+    int lines; /* 2 indices a primitive: segments a -> b (line.h) */
+    int wire;  /* triangles and quads drawn as their edges (polygon mode line) */
+    /* Clip positions: `clip` (a shader's vertex stage stores them), or, when `positions` is set
+     * (the fixed stage stores none), worked out again from the geom's positions with `mvp` for
+     * the rare primitive that needs them (sg_vertex_clip: the same bits). */
+    const float (*clip)[4];
+    const float *positions;
+    float mvp[16];
     const uint32_t *outcodes;
     const sg_svert *screen;   /* projections of the vertices inside every plane (vertex stage) */
     const uint8_t *screen_ok; /* 1: that projection fits and the attributes read are finite */

@@ -14,28 +14,95 @@
 #include <emmintrin.h>
 #endif
 
+#if defined(__SSE_MATH__)
+/* The matrix columns in SSE lanes: lane r computes ((m[r][0] x + m[r][1] y) + m[r][2] z) +
+ * m[r][3] w, the products and sums of sg_mat4_transform in its order, so the same bits. */
+typedef struct mvp_cols {
+    __m128 c0, c1, c2, c3;
+} mvp_cols;
+
+static inline mvp_cols cols_of(const float mvp[16]) {
+    mvp_cols m = {_mm_setr_ps(mvp[0], mvp[4], mvp[8], mvp[12]),
+                  _mm_setr_ps(mvp[1], mvp[5], mvp[9], mvp[13]),
+                  _mm_setr_ps(mvp[2], mvp[6], mvp[10], mvp[14]),
+                  _mm_setr_ps(mvp[3], mvp[7], mvp[11], mvp[15])};
+    return m;
+}
+
+static inline __m128 transform1(const mvp_cols *m, const float *position) {
+    __m128 v = _mm_loadu_ps(position);
+    return _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(m->c0, _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0))),
+                              _mm_mul_ps(m->c1, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1)))),
+                   _mm_mul_ps(m->c2, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2)))),
+        _mm_mul_ps(m->c3, _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3))));
+}
+#endif
+
+void sg_vertex_clip(const float mvp[16], const float position[4], float clip[4]) {
+#if defined(__SSE_MATH__)
+    const mvp_cols m = cols_of(mvp);
+    _mm_storeu_ps(clip, transform1(&m, position));
+#else
+    sg_mat4_transform(clip, mvp, position);
+#endif
+}
+
+#if defined(__SSE2__) && defined(__SSE_MATH__)
+/* What projection needs of the setup, in lanes. */
+typedef struct project_consts {
+    __m128 hw, hh, sub, half, lim, fmax, sign, one;
+} project_consts;
+
+static inline project_consts project_consts_of(const sg_setup_params *p) {
+    project_consts c = {_mm_set1_ps(0.5f * (float)p->width),
+                        _mm_set1_ps(0.5f * (float)p->height),
+                        _mm_set1_ps((float)SG_SUBPIXEL_ONE),
+                        _mm_set1_ps(0.5f),
+                        _mm_set1_ps(2147483520.0f),
+                        _mm_set1_ps(FLT_MAX),
+                        _mm_set1_ps(-0.0f),
+                        _mm_set1_ps(1.0f)};
+    return c;
+}
+
+/* Four vertices' clip x, y, z, w (one vertex a lane) and outcodes to their screen records and ok
+ * flags, lane for lane the operations of sg_setup_project in its order (a true division;
+ * cvtps2dq rounds to nearest even as its cvtss2si does), so the same bits. */
+static inline void project4(const project_consts *c, __m128 x, __m128 y, __m128 z, __m128 w,
+                            __m128i outcodes, sg_svert *screen, uint8_t *ok) {
+    __m128 q = _mm_div_ps(c->one, w);
+    __m128 xn = _mm_mul_ps(x, q), yn = _mm_mul_ps(y, q), zn = _mm_mul_ps(z, q);
+    __m128 xf = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(xn, c->hw), c->hw), c->sub);
+    __m128 yf = _mm_mul_ps(_mm_sub_ps(c->hh, _mm_mul_ps(yn, c->hh)), c->sub);
+    __m128 fits = _mm_and_ps(_mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(c->sign, xf), c->lim),
+                                        _mm_cmplt_ps(_mm_andnot_ps(c->sign, yf), c->lim)),
+                             _mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(c->sign, zn), c->fmax),
+                                        _mm_cmple_ps(_mm_andnot_ps(c->sign, q), c->fmax)));
+    __m128i inside = _mm_cmpeq_epi32(outcodes, _mm_setzero_si128());
+    int good = _mm_movemask_ps(_mm_and_ps(fits, _mm_castsi128_ps(inside)));
+    /* sg_svert is {int32 x, y; float z, q}: four lanes back to four records. */
+    __m128 sx = _mm_castsi128_ps(_mm_cvtps_epi32(xf)), sy = _mm_castsi128_ps(_mm_cvtps_epi32(yf));
+    __m128 sz = _mm_add_ps(_mm_mul_ps(zn, c->half), c->half), sq = q;
+    _MM_TRANSPOSE4_PS(sx, sy, sz, sq);
+    _mm_storeu_ps((float *)(void *)&screen[0], sx);
+    _mm_storeu_ps((float *)(void *)&screen[1], sy);
+    _mm_storeu_ps((float *)(void *)&screen[2], sz);
+    _mm_storeu_ps((float *)(void *)&screen[3], sq);
+    for (int k = 0; k < 4; k++) ok[k] = (uint8_t)((good >> k) & 1);
+}
+#endif
+
 void sg_vertex_transform(const float mvp[16], const float *positions, int count, float (*clip)[4],
                          uint32_t *outcodes, const sg_guard *guard) {
     int i = 0;
 #if defined(__SSE_MATH__)
-    /* The matrix columns in SSE lanes: lane r computes ((m[r][0] x + m[r][1] y) + m[r][2] z) +
-     * m[r][3] w, the products and sums of sg_mat4_transform in its order, so the same bits. */
-    const __m128 c0 = _mm_setr_ps(mvp[0], mvp[4], mvp[8], mvp[12]);
-    const __m128 c1 = _mm_setr_ps(mvp[1], mvp[5], mvp[9], mvp[13]);
-    const __m128 c2 = _mm_setr_ps(mvp[2], mvp[6], mvp[10], mvp[14]);
-    const __m128 c3 = _mm_setr_ps(mvp[3], mvp[7], mvp[11], mvp[15]);
-#define SG_TRANSFORM(v)                                                                            \
-    _mm_add_ps(                                                                                    \
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0))),       \
-                              _mm_mul_ps(c1, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1)))),      \
-                   _mm_mul_ps(c2, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2)))),                 \
-        _mm_mul_ps(c3, _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3))))
+    const mvp_cols m = cols_of(mvp);
 #if defined(__SSE2__)
     for (; i + 4 <= count; i += 4) { /* four vertices, then their outcodes four lanes wide */
         __m128 r[4];
         for (int k = 0; k < 4; k++) {
-            __m128 v = _mm_loadu_ps(positions + (size_t)(i + k) * 4);
-            r[k] = SG_TRANSFORM(v);
+            r[k] = transform1(&m, positions + (size_t)(i + k) * 4);
             _mm_storeu_ps(clip[i + k], r[k]);
         }
         _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
@@ -44,11 +111,9 @@ void sg_vertex_transform(const float mvp[16], const float *positions, int count,
     }
 #endif
     for (; i < count; i++) {
-        __m128 v = _mm_loadu_ps(positions + (size_t)i * 4);
-        _mm_storeu_ps(clip[i], SG_TRANSFORM(v));
+        _mm_storeu_ps(clip[i], transform1(&m, positions + (size_t)i * 4));
         outcodes[i] = sg_clip_outcode(clip[i], guard);
     }
-#undef SG_TRANSFORM
 #else
     for (; i < count; i++) {
         sg_mat4_transform(clip[i], mvp, positions + (size_t)i * 4);
@@ -61,41 +126,41 @@ void sg_vertex_project(const sg_setup_params *p, const float (*clip)[4], const u
                        int count, sg_svert *screen, uint8_t *ok) {
     int i = 0;
 #if defined(__SSE2__) && defined(__SSE_MATH__)
-    /* Four vertices at a time, lane for lane the operations of sg_setup_project in its order (a
-     * true division; cvtps2dq rounds to nearest even as its cvtss2si does), so the same bits. */
-    const __m128 hw = _mm_set1_ps(0.5f * (float)p->width),
-                 hh = _mm_set1_ps(0.5f * (float)p->height);
-    const __m128 sub = _mm_set1_ps((float)SG_SUBPIXEL_ONE), half = _mm_set1_ps(0.5f);
-    const __m128 lim = _mm_set1_ps(2147483520.0f), fmax = _mm_set1_ps(FLT_MAX);
-    const __m128 sign = _mm_set1_ps(-0.0f), one = _mm_set1_ps(1.0f);
+    const project_consts c = project_consts_of(p);
     for (; i + 4 <= count; i += 4) {
         __m128 x = _mm_loadu_ps(clip[i]), y = _mm_loadu_ps(clip[i + 1]);
         __m128 z = _mm_loadu_ps(clip[i + 2]), w = _mm_loadu_ps(clip[i + 3]);
         _MM_TRANSPOSE4_PS(x, y, z, w);
-        __m128 q = _mm_div_ps(one, w);
-        __m128 xn = _mm_mul_ps(x, q), yn = _mm_mul_ps(y, q), zn = _mm_mul_ps(z, q);
-        __m128 xf = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(xn, hw), hw), sub);
-        __m128 yf = _mm_mul_ps(_mm_sub_ps(hh, _mm_mul_ps(yn, hh)), sub);
-        __m128 fits = _mm_and_ps(_mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(sign, xf), lim),
-                                            _mm_cmplt_ps(_mm_andnot_ps(sign, yf), lim)),
-                                 _mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, zn), fmax),
-                                            _mm_cmple_ps(_mm_andnot_ps(sign, q), fmax)));
-        __m128i inside = _mm_cmpeq_epi32(
-            _mm_loadu_si128((const __m128i *)(const void *)(outcodes + i)), _mm_setzero_si128());
-        int good = _mm_movemask_ps(_mm_and_ps(fits, _mm_castsi128_ps(inside)));
-        /* sg_svert is {int32 x, y; float z, q}: four lanes back to four records. */
-        __m128 sx = _mm_castsi128_ps(_mm_cvtps_epi32(xf)),
-               sy = _mm_castsi128_ps(_mm_cvtps_epi32(yf));
-        __m128 sz = _mm_add_ps(_mm_mul_ps(zn, half), half), sq = q;
-        _MM_TRANSPOSE4_PS(sx, sy, sz, sq);
-        _mm_storeu_ps((float *)(void *)&screen[i], sx);
-        _mm_storeu_ps((float *)(void *)&screen[i + 1], sy);
-        _mm_storeu_ps((float *)(void *)&screen[i + 2], sz);
-        _mm_storeu_ps((float *)(void *)&screen[i + 3], sq);
-        for (int k = 0; k < 4; k++) ok[i + k] = (uint8_t)((good >> k) & 1);
+        project4(&c, x, y, z, w, _mm_loadu_si128((const __m128i *)(const void *)(outcodes + i)),
+                 screen + i, ok + i);
     }
 #endif
     for (; i < count; i++) ok[i] = outcodes[i] == 0 && sg_setup_project(p, clip[i], &screen[i]);
+}
+
+void sg_vertex_transform_project(const float mvp[16], const float *positions, int count,
+                                 uint32_t *outcodes, const sg_guard *guard,
+                                 const sg_setup_params *p, sg_svert *screen, uint8_t *ok) {
+    int i = 0;
+#if defined(__SSE2__) && defined(__SSE_MATH__)
+    /* sg_vertex_transform's four vertices, projected from the lanes they are in. */
+    const mvp_cols m = cols_of(mvp);
+    const project_consts c = project_consts_of(p);
+    for (; i + 4 <= count; i += 4) {
+        __m128 r[4];
+        for (int k = 0; k < 4; k++) r[k] = transform1(&m, positions + (size_t)(i + k) * 4);
+        _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
+        const __m128i codes = sg_clip_outcode4(r[0], r[1], r[2], r[3], guard);
+        _mm_storeu_si128((__m128i *)(void *)(outcodes + i), codes);
+        project4(&c, r[0], r[1], r[2], r[3], codes, screen + i, ok + i);
+    }
+#endif
+    for (; i < count; i++) {
+        float clip[4];
+        sg_vertex_clip(mvp, positions + (size_t)i * 4, clip);
+        outcodes[i] = sg_clip_outcode(clip, guard);
+        ok[i] = outcodes[i] == 0 && sg_setup_project(p, clip, &screen[i]);
+    }
 }
 
 void sg_vertex_check_attributes(const float *colors, const float *texcoords, int nattr, int count,

@@ -15,6 +15,15 @@
 void sg_vertex_transform(const float mvp[16], const float *positions, int count, float (*clip)[4],
                          uint32_t *outcodes, const sg_guard *guard);
 
+/** One vertex's clip position, the same bits as sg_vertex_transform's. */
+void sg_vertex_clip(const float mvp[16], const float position[4], float clip[4]);
+
+/** sg_vertex_transform then sg_vertex_project, the same outcodes, screen records and flags, with
+ *  no clip position stored: a draw that clips one recomputes it (sg_vertex_clip). */
+void sg_vertex_transform_project(const float mvp[16], const float *positions, int count,
+                                 uint32_t *outcodes, const sg_guard *guard,
+                                 const sg_setup_params *p, sg_svert *screen, uint8_t *ok);
+
 /** For every vertex inside all clip planes (outcode 0): its projection to the screen, and ok[i]
  *  = 1 when it fits the raster's range (else 0; also 0 for vertices outside some plane). */
 void sg_vertex_project(const sg_setup_params *p, const float (*clip)[4], const uint32_t *outcodes,
