@@ -9,63 +9,48 @@
 #include "tex/mip.h"
 #include "tex/sample16.h"
 
-/* A tile through the fragment stage, into RGBA8 pixels px; returns the lanes discarded.
- *
- * The batch: every lane interpolated at its pixel centre (helper lanes too), as the fixed
- * shading does: attribute / w and 1 / w planes, then one division. Varyings past the count and
- * the colour start at 0. The colour: each channel to unorm8 as sg_to_unorm8 rounds it (NaN and
- * below 0 give 0). */
-LANE_CLONES static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0,
-                                       uint32_t mask, uint32_t px[SG_SHADER_LANES]) {
-    const sg_shader_state *s = &c->shader;
-    const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
-    sgFragmentBatch b;
-    b.mask = mask;
-    b.x = x0;
-    b.y = y0;
-    b.front_facing = t->sh.front_facing != 0;
-    b.primitive = t->sh.primitive;
-    b.instance = t->sh.instance;
-    b.discard = 0;
-    b.internal = c;
-    const sg_vf lane_x = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
-    const sg_vf lane_y = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
-    const sg_vf zero = {0}, one = zero + 1.0f;
-    const sg_vf dx = (float)(x0 - t->minx) + lane_x, dy = (float)(y0 - t->miny) + lane_y;
-    const sg_vf z = t->z + t->z_dx * dx + t->z_dy * dy;
-    const sg_vf zc = SEL(z < 0.0f, zero, SEL(z > 1.0f, one, z)); /* sg_tri_depth */
-    memcpy(b.z, &zc, sizeof zc);
-    const sg_vf w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
-    for (int k = 0; k < s->varying_count; k++) {
-        float a, ax, ay;
-        if (k < SG_TRI_ATTRS) {
-            a = t->a[k];
-            ax = t->a_dx[k];
-            ay = t->a_dy[k];
-        } else {
-            a = ext->a[k - SG_TRI_ATTRS];
-            ax = ext->a_dx[k - SG_TRI_ATTRS];
-            ay = ext->a_dy[k - SG_TRI_ATTRS];
-        }
-        const sg_vf v = s->flat >> k & 1 ? zero + a : (a + ax * dx + ay * dy) * w;
-        memcpy(b.varying[k], &v, sizeof v);
-    }
-    /* Vector stores, not a call of memset: a tile is a few hundred cycles in all (a loop from
-     * the count on became one). */
-    for (int k = 0; k < SG_MAX_VARYINGS; k++)
-        if (k >= s->varying_count) memcpy(b.varying[k], &zero, sizeof zero);
-    for (int ch = 0; ch < 4; ch++) memcpy(b.color[ch], &zero, sizeof zero);
-    s->fragment(&b, s->uniforms);
-    sg_vi p = {0};
-    for (int ch = 0; ch < 4; ch++) {
-        sg_vf v;
-        memcpy(&v, b.color[ch], sizeof v);
-        v = SEL(v > 0.0f, v, zero);
-        v = SEL(v < 1.0f, v, one);
-        p |= __builtin_convertvector(v * 255.0f + 0.5f, sg_vi) << (8 * ch);
-    }
-    memcpy(px, &p, sizeof p);
-    return b.discard;
+/* Each lane's column, row and bit in a tile (lane i is pixel i, row by row). */
+static const _Alignas(64) float sg_tile_lane_x[SG_TILE_PIXELS] = {0, 1, 2, 3, 0, 1, 2, 3,
+                                                                  0, 1, 2, 3, 0, 1, 2, 3};
+static const _Alignas(64) float sg_tile_lane_y[SG_TILE_PIXELS] = {0, 0, 0, 0, 1, 1, 1, 1,
+                                                                  2, 2, 2, 2, 3, 3, 3, 3};
+static const _Alignas(64) int32_t sg_tile_lane_bit[SG_TILE_PIXELS] = {
+    1 << 0, 1 << 1, 1 << 2,  1 << 3,  1 << 4,  1 << 5,  1 << 6,  1 << 7,
+    1 << 8, 1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 13, 1 << 14, 1 << 15};
+
+/* The copies of shade_shader_tile.h, one per SG_SAMPLE16_* (the device's instruction set, chosen
+ * once per draw like sgSample's lookups): portable, on 4 lanes, and on x86-64 AVX2 on 8 and
+ * AVX-512 on 16. */
+#define SG_TL_W     4
+#define SG_TL_FN(n) n##_portable
+#define SG_TL_ATTR
+#include "raster/shade_shader_tile.h"
+#undef SG_TL_W
+#undef SG_TL_FN
+#undef SG_TL_ATTR
+#if SG_SAMPLE16_X86
+#define SG_TL_W     8
+#define SG_TL_FN(n) n##_avx2
+#define SG_TL_ATTR  __attribute__((target("avx2")))
+#include "raster/shade_shader_tile.h"
+#undef SG_TL_W
+#undef SG_TL_FN
+#undef SG_TL_ATTR
+#define SG_TL_W     16
+#define SG_TL_FN(n) n##_avx512
+#define SG_TL_ATTR  SG_LANES_AVX512_ATTR
+#include "raster/shade_shader_tile.h"
+#undef SG_TL_W
+#undef SG_TL_FN
+#undef SG_TL_ATTR
+#endif
+
+/* The copy `simd` names (SG_SAMPLE16_*) of name, called with the arguments that follow. */
+#define TILE_CALL(simd, name, ...) SG_SAMPLE16_CALL(simd, name, __VA_ARGS__)
+
+static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                           uint32_t px[SG_SHADER_LANES]) {
+    return TILE_CALL(c->shader.sample16, shade_tile, c, t, x0, y0, mask, px);
 }
 
 uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
@@ -92,71 +77,6 @@ void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uin
     __atomic_fetch_add(c->shader.pass_discards, 1, __ATOMIC_RELAXED);
 }
 
-/* The depth test of a tile shaded in place, on its 16 lanes at once (its own copies per set,
- * since the walk's baseline code would split the vectors lane by lane): each lane's window depth
- * into z (sg_tri_depth's operations, so its bits), and the lanes of mask that pass `op` against
- * the tile's stored depths dp (all of them when dp is NULL). */
-LANE_CLONES static uint32_t tile_depth(const sg_tri *t, int x0, int y0, uint32_t mask,
-                                       const float *dp, sgCompare op, float z[SG_TILE_PIXELS]) {
-    const sg_vf lane_x = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
-    const sg_vf lane_y = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
-    const sg_vf zero = {0}, one = zero + 1.0f;
-    const sg_vf dx = (float)(x0 - t->minx) + lane_x, dy = (float)(y0 - t->miny) + lane_y;
-    const sg_vf zr = t->z + t->z_dx * dx + t->z_dy * dy;
-    const sg_vf zc = SEL(zr < 0.0f, zero, SEL(zr > 1.0f, one, zr));
-    memcpy(z, &zc, sizeof zc);
-    if (!dp) return mask;
-    sg_vf d;
-    memcpy(&d, dp, sizeof d);
-    sg_vi pass;
-    switch (op) { /* sg_depth_passes, lane by lane */
-    case SG_COMPARE_NEVER:
-        return 0;
-    case SG_COMPARE_LESS:
-        pass = zc < d;
-        break;
-    case SG_COMPARE_EQUAL:
-        pass = zc == d;
-        break;
-    case SG_COMPARE_LESS_EQUAL:
-        pass = zc <= d;
-        break;
-    case SG_COMPARE_GREATER:
-        pass = zc > d;
-        break;
-    case SG_COMPARE_NOT_EQUAL:
-        pass = zc != d;
-        break;
-    case SG_COMPARE_GREATER_EQUAL:
-        pass = zc >= d;
-        break;
-    default:
-        return mask;
-    }
-    uint32_t bits = 0; /* lane i in bit i */
-    for (int i = 0; i < SG_TILE_PIXELS; i++) bits |= (uint32_t)(pass[i] & 1) << i;
-    return mask & bits;
-}
-
-/* The lanes of keep written: depth z into dp (when not NULL) and the colours src put into dst. */
-LANE_CLONES static void put_tile(uint32_t keep, const float z[SG_TILE_PIXELS], float *dp,
-                                 const uint32_t src[SG_TILE_PIXELS], uint32_t *dst) {
-    const sg_vi bit = {1 << 0, 1 << 1, 1 << 2,  1 << 3,  1 << 4,  1 << 5,  1 << 6,  1 << 7,
-                       1 << 8, 1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 13, 1 << 14, 1 << 15};
-    const sg_vi m = (bit & (int32_t)keep) != 0;
-    sg_vi a, b;
-    if (dp) {
-        memcpy(&a, z, sizeof a);
-        memcpy(&b, dp, sizeof b);
-        b = SELI(m, a, b);
-        memcpy(dp, &b, sizeof b);
-    }
-    memcpy(&a, src, sizeof a);
-    memcpy(&b, dst, sizeof b);
-    b = SELI(m, a, b);
-    memcpy(dst, &b, sizeof b);
-}
-
 /* A tile of a shader draw shaded in place: the depth test without writing, the fragment stage,
  * then depth (when written) and colour where no lane was discarded. */
 static inline __attribute__((always_inline)) void in_place(const void *vctx, const sg_tri *t,
@@ -166,15 +86,17 @@ static inline __attribute__((always_inline)) void in_place(const void *vctx, con
     const sg_vis_ctx *v = vctx;
     const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
     float *dp = v->depth ? v->depth + base : NULL;
+    const int simd = ((const sg_shade_ctx *)v->shade_ctx)->shader.sample16;
     float z[SG_TILE_PIXELS];
     if (zmode != Z_NONE || zwrite)
-        mask = tile_depth(t, x0, y0, mask, zmode != Z_NONE ? dp : NULL, v->compare, z);
+        mask = TILE_CALL(simd, tile_depth, t, x0, y0, mask, zmode != Z_NONE ? dp : NULL, v->compare,
+                         z);
     if (!mask) return;
     uint32_t src[SG_TILE_PIXELS];
     const uint32_t keep = sg_shader_fragments(v->shade_ctx, t, x0, y0, mask, src);
     uint32_t *dst = v->color + base;
     if (put) {
-        if (keep) put_tile(keep, z, zwrite ? dp : NULL, src, dst);
+        if (keep) TILE_CALL(simd, put_tile, keep, z, zwrite ? dp : NULL, src, dst);
         return;
     }
     for (uint32_t m = keep; m; m &= m - 1) {

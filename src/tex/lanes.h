@@ -17,28 +17,12 @@ typedef int32_t sg_vi __attribute__((vector_size(4 * SG_SHADER_LANES)));
 #define SEL(m, a, b)  ((sg_vf)(((m) & (sg_vi)(a)) | (~(m) & (sg_vi)(b))))
 #define SELI(m, a, b) (((m) & (a)) | (~(m) & (b)))
 
-/* Copies for the baseline, AVX2 and AVX-512, chosen at start: the same bits in each (lane-wise
- * IEEE operations, no FMA). Not under the sanitizers, whose builds need no speed. */
-/* A sanitizer's runtime is not up yet when the program's start runs the copies' resolvers (gcc
- * says so with __SANITIZE_*, clang with __has_feature). */
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
-    __has_feature(memory_sanitizer)
-#define SG_UNDER_SANITIZER 1
-#endif
-#endif
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
-    !defined(__SANITIZE_THREAD__) && !defined(SG_UNDER_SANITIZER)
-#define LANE_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-#else
-#define LANE_CLONES
-#endif
-
 /* GCC (12) turns vector code into scalar code, lane by lane, before it makes a function's
  * target_clones copies, and inside any function whose own target lacks 64-byte vectors (an
  * always_inline helper included): the 16 lanes are one register only in code compiled for
  * AVX-512 from the start. So the sampling code is compiled twice, the second copy a function of
- * its own with this target, chosen by the device's instruction set. */
+ * its own with this target, chosen by the device's instruction set (the fragment stage's tile
+ * code too, raster/shade_shader_tile.h, with a third copy for AVX2 on 8-lane halves). */
 #if defined(__x86_64__) && defined(__GNUC__)
 #define SG_LANES_AVX512      1
 #define SG_LANES_AVX512_ATTR __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))

@@ -1,0 +1,164 @@
+/* shade_shader_tile.h - the 16-lane parts of the fragment stage of shader pipelines (the batch's
+ * set-up and conversion, the in-place depth test and writes), written once over vectors of
+ * SG_TL_W lanes (16, 8 or 4) and compiled by shade_shader.c once per copy: SG_TL_FN(name) names
+ * its functions, SG_TL_ATTR gives them their target. A copy's vectors are its registers' width:
+ * GCC 12 turns a comparison of vectors wider than the target's registers into one compare a lane,
+ * so the AVX2 copy works on two halves of a tile, the portable one on four rows. Every lane does
+ * the scalar operations of its pixel in the same order, so every copy gives the same bits. No
+ * include guard. */
+
+typedef float SG_TL_FN(vf) __attribute__((vector_size(4 * SG_TL_W)));
+typedef int32_t SG_TL_FN(vi) __attribute__((vector_size(4 * SG_TL_W)));
+#define VF            SG_TL_FN(vf)
+#define VI            SG_TL_FN(vi)
+#define TSEL(m, a, b) ((VF)(((m) & (VI)(a)) | (~(m) & (VI)(b))))
+
+/* The tile's lanes h .. h + SG_TL_W - 1: their columns and rows (sg_tile_lanes). */
+SG_TL_ATTR static inline void SG_TL_FN(lanes)(int h, VF *x, VF *y) {
+    memcpy(x, sg_tile_lane_x + h, sizeof *x);
+    memcpy(y, sg_tile_lane_y + h, sizeof *y);
+}
+
+/* A tile through the fragment stage, into RGBA8 pixels px; returns the lanes discarded.
+ *
+ * The batch: every lane interpolated at its pixel centre (helper lanes too), as the fixed
+ * shading does: attribute / w and 1 / w planes, then one division. Varyings past the count and
+ * the colour start at 0. The colour: each channel to unorm8 as sg_to_unorm8 rounds it (NaN and
+ * below 0 give 0). */
+SG_TL_ATTR static uint32_t SG_TL_FN(shade_tile)(const sg_shade_ctx *c, const sg_tri *t, int x0,
+                                                int y0, uint32_t mask,
+                                                uint32_t px[SG_SHADER_LANES]) {
+    const sg_shader_state *s = &c->shader;
+    const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
+    sgFragmentBatch b;
+    b.mask = mask;
+    b.x = x0;
+    b.y = y0;
+    b.front_facing = t->sh.front_facing != 0;
+    b.primitive = t->sh.primitive;
+    b.instance = t->sh.instance;
+    b.discard = 0;
+    b.internal = c;
+    const VF zero = {0}, one = zero + 1.0f;
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_TL_W) {
+        VF lx, ly;
+        SG_TL_FN(lanes)(h, &lx, &ly);
+        const VF dx = (float)(x0 - t->minx) + lx, dy = (float)(y0 - t->miny) + ly;
+        const VF z = t->z + t->z_dx * dx + t->z_dy * dy;
+        const VF zc = TSEL(z < 0.0f, zero, TSEL(z > 1.0f, one, z)); /* sg_tri_depth */
+        memcpy(b.z + h, &zc, sizeof zc);
+        const VF w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+        for (int k = 0; k < s->varying_count; k++) {
+            float a, ax, ay;
+            if (k < SG_TRI_ATTRS) {
+                a = t->a[k];
+                ax = t->a_dx[k];
+                ay = t->a_dy[k];
+            } else {
+                a = ext->a[k - SG_TRI_ATTRS];
+                ax = ext->a_dx[k - SG_TRI_ATTRS];
+                ay = ext->a_dy[k - SG_TRI_ATTRS];
+            }
+            const VF v = s->flat >> k & 1 ? zero + a : (a + ax * dx + ay * dy) * w;
+            memcpy(b.varying[k] + h, &v, sizeof v);
+        }
+    }
+    /* Vector stores, not a call of memset: a tile is a few hundred cycles in all (a loop from
+     * the count on became one). */
+    for (int k = 0; k < SG_MAX_VARYINGS; k++)
+        if (k >= s->varying_count)
+            for (int h = 0; h < SG_SHADER_LANES; h += SG_TL_W)
+                memcpy(b.varying[k] + h, &zero, sizeof zero);
+    for (int ch = 0; ch < 4; ch++)
+        for (int h = 0; h < SG_SHADER_LANES; h += SG_TL_W)
+            memcpy(b.color[ch] + h, &zero, sizeof zero);
+    s->fragment(&b, s->uniforms);
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_TL_W) {
+        VI p = {0};
+        for (int ch = 0; ch < 4; ch++) {
+            VF v;
+            memcpy(&v, b.color[ch] + h, sizeof v);
+            v = TSEL(v > 0.0f, v, zero);
+            v = TSEL(v < 1.0f, v, one);
+            p |= __builtin_convertvector(v * 255.0f + 0.5f, VI) << (8 * ch);
+        }
+        memcpy(px + h, &p, sizeof p);
+    }
+    return b.discard;
+}
+
+/* The depth test of a tile shaded in place: each lane's window depth into z (sg_tri_depth's
+ * operations, so its bits), and the lanes of mask that pass `op` against the tile's stored depths
+ * dp (all of them when dp is NULL). */
+SG_TL_ATTR static uint32_t SG_TL_FN(tile_depth)(const sg_tri *t, int x0, int y0, uint32_t mask,
+                                                const float *dp, sgCompare op,
+                                                float z[SG_TILE_PIXELS]) {
+    const VF zero = {0}, one = zero + 1.0f;
+    const VI none = {0}, all = none - 1;
+    uint32_t bits = 0; /* lane i in bit i */
+    for (int h = 0; h < SG_TILE_PIXELS; h += SG_TL_W) {
+        VF lx, ly;
+        SG_TL_FN(lanes)(h, &lx, &ly);
+        const VF dx = (float)(x0 - t->minx) + lx, dy = (float)(y0 - t->miny) + ly;
+        const VF zr = t->z + t->z_dx * dx + t->z_dy * dy;
+        const VF zc = TSEL(zr < 0.0f, zero, TSEL(zr > 1.0f, one, zr));
+        memcpy(z + h, &zc, sizeof zc);
+        if (!dp) continue;
+        VF d;
+        memcpy(&d, dp + h, sizeof d);
+        VI pass;
+        switch (op) { /* sg_depth_passes, lane by lane */
+        case SG_COMPARE_NEVER:
+            pass = none;
+            break;
+        case SG_COMPARE_LESS:
+            pass = zc < d;
+            break;
+        case SG_COMPARE_EQUAL:
+            pass = zc == d;
+            break;
+        case SG_COMPARE_LESS_EQUAL:
+            pass = zc <= d;
+            break;
+        case SG_COMPARE_GREATER:
+            pass = zc > d;
+            break;
+        case SG_COMPARE_NOT_EQUAL:
+            pass = zc != d;
+            break;
+        case SG_COMPARE_GREATER_EQUAL:
+            pass = zc >= d;
+            break;
+        default:
+            pass = all;
+            break;
+        }
+        for (int i = 0; i < SG_TL_W; i++) bits |= (uint32_t)(pass[i] & 1) << (h + i);
+    }
+    return dp ? mask & bits : mask;
+}
+
+/* The lanes of keep written: depth z into dp (when not NULL) and the colours src put into dst. */
+SG_TL_ATTR static void SG_TL_FN(put_tile)(uint32_t keep, const float z[SG_TILE_PIXELS], float *dp,
+                                          const uint32_t src[SG_TILE_PIXELS], uint32_t *dst) {
+    for (int h = 0; h < SG_TILE_PIXELS; h += SG_TL_W) {
+        VI bit;
+        memcpy(&bit, sg_tile_lane_bit + h, sizeof bit);
+        const VI m = (bit & (int32_t)keep) != 0;
+        VI a, b;
+        if (dp) {
+            memcpy(&a, z + h, sizeof a);
+            memcpy(&b, dp + h, sizeof b);
+            b = SELI(m, a, b);
+            memcpy(dp + h, &b, sizeof b);
+        }
+        memcpy(&a, src + h, sizeof a);
+        memcpy(&b, dst + h, sizeof b);
+        b = SELI(m, a, b);
+        memcpy(dst + h, &b, sizeof b);
+    }
+}
+
+#undef VF
+#undef VI
+#undef TSEL
