@@ -18,39 +18,14 @@ static const _Alignas(64) int32_t sg_tile_lane_bit[SG_TILE_PIXELS] = {
     1 << 0, 1 << 1, 1 << 2,  1 << 3,  1 << 4,  1 << 5,  1 << 6,  1 << 7,
     1 << 8, 1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 13, 1 << 14, 1 << 15};
 
-/* The copies of shade_shader_tile.h, one per SG_SAMPLE16_* (the device's instruction set, chosen
- * once per draw like sgSample's lookups): portable, on 4 lanes, and on x86-64 AVX2 on 8 and
- * AVX-512 on 16. */
-#define SG_TL_W     4
-#define SG_TL_FN(n) n##_portable
-#define SG_TL_ATTR
-#include "raster/shade_shader_tile.h"
-#undef SG_TL_W
-#undef SG_TL_FN
-#undef SG_TL_ATTR
-#if SG_SAMPLE16_X86
-#define SG_TL_W     8
-#define SG_TL_FN(n) n##_avx2
-#define SG_TL_ATTR  __attribute__((target("avx2")))
-#include "raster/shade_shader_tile.h"
-#undef SG_TL_W
-#undef SG_TL_FN
-#undef SG_TL_ATTR
-#define SG_TL_W     16
-#define SG_TL_FN(n) n##_avx512
-#define SG_TL_ATTR  SG_LANES_AVX512_ATTR
-#include "raster/shade_shader_tile.h"
-#undef SG_TL_W
-#undef SG_TL_FN
-#undef SG_TL_ATTR
-#endif
-
-/* The copy `simd` names (SG_SAMPLE16_*) of name, called with the arguments that follow. */
-#define TILE_CALL(simd, name, ...) SG_SAMPLE16_CALL(simd, name, __VA_ARGS__)
+/* shade_shader_tile.h's copies, one per SG_SAMPLE16_* (the device's instruction set, chosen once
+ * per draw, as for sgSample's lookups). */
+#define SG_LANES_BODY "raster/shade_shader_tile.h"
+#include "tex/lanes_copies.h"
 
 static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                            uint32_t px[SG_SHADER_LANES]) {
-    return TILE_CALL(c->shader.sample16, shade_tile, c, t, x0, y0, mask, px);
+    return SG_SAMPLE16_CALL(c->shader.sample16, shade_tile, c, t, x0, y0, mask, px);
 }
 
 uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
@@ -89,14 +64,14 @@ static inline __attribute__((always_inline)) void in_place(const void *vctx, con
     const int simd = ((const sg_shade_ctx *)v->shade_ctx)->shader.sample16;
     float z[SG_TILE_PIXELS];
     if (zmode != Z_NONE || zwrite)
-        mask = TILE_CALL(simd, tile_depth, t, x0, y0, mask, zmode != Z_NONE ? dp : NULL, v->compare,
-                         z);
+        mask = SG_SAMPLE16_CALL(simd, tile_depth, t, x0, y0, mask, zmode != Z_NONE ? dp : NULL,
+                                v->compare, z);
     if (!mask) return;
     uint32_t src[SG_TILE_PIXELS];
     const uint32_t keep = sg_shader_fragments(v->shade_ctx, t, x0, y0, mask, src);
     uint32_t *dst = v->color + base;
     if (put) {
-        if (keep) TILE_CALL(simd, put_tile, keep, z, zwrite ? dp : NULL, src, dst);
+        if (keep) SG_SAMPLE16_CALL(simd, put_tile, keep, z, zwrite ? dp : NULL, src, dst);
         return;
     }
     for (uint32_t m = keep; m; m &= m - 1) {

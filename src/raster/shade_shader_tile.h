@@ -1,20 +1,19 @@
 /* shade_shader_tile.h - the 16-lane parts of the fragment stage of shader pipelines (the batch's
  * set-up and conversion, the in-place depth test and writes), written once over vectors of
- * SG_TL_W lanes (16, 8 or 4) and compiled by shade_shader.c once per copy: SG_TL_FN(name) names
- * its functions, SG_TL_ATTR gives them their target. A copy's vectors are its registers' width:
- * GCC 12 turns a comparison of vectors wider than the target's registers into one compare a lane,
- * so the AVX2 copy works on two halves of a tile, the portable one on four rows. Every lane does
- * the scalar operations of its pixel in the same order, so every copy gives the same bits. No
- * include guard. */
+ * SG_LANES_W lanes and compiled by shade_shader.c once per copy (tex/lanes_copies.h: 4, 8 or 16
+ * lanes). A copy's vectors are its registers' width: GCC 12 turns a comparison of vectors wider
+ * than the target's registers into one compare a lane, so the AVX2 copy works on two halves of a
+ * tile, the portable one on four rows. Every lane does the scalar operations of its pixel in the
+ * same order, so every copy gives the same bits. No include guard. */
 
-typedef float SG_TL_FN(vf) __attribute__((vector_size(4 * SG_TL_W)));
-typedef int32_t SG_TL_FN(vi) __attribute__((vector_size(4 * SG_TL_W)));
-#define VF            SG_TL_FN(vf)
-#define VI            SG_TL_FN(vi)
+typedef float SG_LANES_FN(vf) __attribute__((vector_size(4 * SG_LANES_W)));
+typedef int32_t SG_LANES_FN(vi) __attribute__((vector_size(4 * SG_LANES_W)));
+#define VF            SG_LANES_FN(vf)
+#define VI            SG_LANES_FN(vi)
 #define TSEL(m, a, b) ((VF)(((m) & (VI)(a)) | (~(m) & (VI)(b))))
 
-/* The tile's lanes h .. h + SG_TL_W - 1: their columns and rows (sg_tile_lanes). */
-SG_TL_ATTR static inline void SG_TL_FN(lanes)(int h, VF *x, VF *y) {
+/* The tile's lanes h .. h + SG_LANES_W - 1: their columns and rows (sg_tile_lanes). */
+SG_LANES_ATTR static inline void SG_LANES_FN(lanes)(int h, VF *x, VF *y) {
     memcpy(x, sg_tile_lane_x + h, sizeof *x);
     memcpy(y, sg_tile_lane_y + h, sizeof *y);
 }
@@ -25,9 +24,9 @@ SG_TL_ATTR static inline void SG_TL_FN(lanes)(int h, VF *x, VF *y) {
  * shading does: attribute / w and 1 / w planes, then one division. Varyings past the count and
  * the colour start at 0. The colour: each channel to unorm8 as sg_to_unorm8 rounds it (NaN and
  * below 0 give 0). */
-SG_TL_ATTR static uint32_t SG_TL_FN(shade_tile)(const sg_shade_ctx *c, const sg_tri *t, int x0,
-                                                int y0, uint32_t mask,
-                                                uint32_t px[SG_SHADER_LANES]) {
+SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, const sg_tri *t,
+                                                      int x0, int y0, uint32_t mask,
+                                                      uint32_t px[SG_SHADER_LANES]) {
     const sg_shader_state *s = &c->shader;
     const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
     sgFragmentBatch b;
@@ -40,9 +39,9 @@ SG_TL_ATTR static uint32_t SG_TL_FN(shade_tile)(const sg_shade_ctx *c, const sg_
     b.discard = 0;
     b.internal = c;
     const VF zero = {0}, one = zero + 1.0f;
-    for (int h = 0; h < SG_SHADER_LANES; h += SG_TL_W) {
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
         VF lx, ly;
-        SG_TL_FN(lanes)(h, &lx, &ly);
+        SG_LANES_FN(lanes)(h, &lx, &ly);
         const VF dx = (float)(x0 - t->minx) + lx, dy = (float)(y0 - t->miny) + ly;
         const VF z = t->z + t->z_dx * dx + t->z_dy * dy;
         const VF zc = TSEL(z < 0.0f, zero, TSEL(z > 1.0f, one, z)); /* sg_tri_depth */
@@ -67,13 +66,13 @@ SG_TL_ATTR static uint32_t SG_TL_FN(shade_tile)(const sg_shade_ctx *c, const sg_
      * the count on became one). */
     for (int k = 0; k < SG_MAX_VARYINGS; k++)
         if (k >= s->varying_count)
-            for (int h = 0; h < SG_SHADER_LANES; h += SG_TL_W)
+            for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
                 memcpy(b.varying[k] + h, &zero, sizeof zero);
     for (int ch = 0; ch < 4; ch++)
-        for (int h = 0; h < SG_SHADER_LANES; h += SG_TL_W)
+        for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
             memcpy(b.color[ch] + h, &zero, sizeof zero);
     s->fragment(&b, s->uniforms);
-    for (int h = 0; h < SG_SHADER_LANES; h += SG_TL_W) {
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
         VI p = {0};
         for (int ch = 0; ch < 4; ch++) {
             VF v;
@@ -90,15 +89,15 @@ SG_TL_ATTR static uint32_t SG_TL_FN(shade_tile)(const sg_shade_ctx *c, const sg_
 /* The depth test of a tile shaded in place: each lane's window depth into z (sg_tri_depth's
  * operations, so its bits), and the lanes of mask that pass `op` against the tile's stored depths
  * dp (all of them when dp is NULL). */
-SG_TL_ATTR static uint32_t SG_TL_FN(tile_depth)(const sg_tri *t, int x0, int y0, uint32_t mask,
-                                                const float *dp, sgCompare op,
-                                                float z[SG_TILE_PIXELS]) {
+SG_LANES_ATTR static uint32_t SG_LANES_FN(tile_depth)(const sg_tri *t, int x0, int y0,
+                                                      uint32_t mask, const float *dp, sgCompare op,
+                                                      float z[SG_TILE_PIXELS]) {
     const VF zero = {0}, one = zero + 1.0f;
     const VI none = {0}, all = none - 1;
     uint32_t bits = 0; /* lane i in bit i */
-    for (int h = 0; h < SG_TILE_PIXELS; h += SG_TL_W) {
+    for (int h = 0; h < SG_TILE_PIXELS; h += SG_LANES_W) {
         VF lx, ly;
-        SG_TL_FN(lanes)(h, &lx, &ly);
+        SG_LANES_FN(lanes)(h, &lx, &ly);
         const VF dx = (float)(x0 - t->minx) + lx, dy = (float)(y0 - t->miny) + ly;
         const VF zr = t->z + t->z_dx * dx + t->z_dy * dy;
         const VF zc = TSEL(zr < 0.0f, zero, TSEL(zr > 1.0f, one, zr));
@@ -133,15 +132,16 @@ SG_TL_ATTR static uint32_t SG_TL_FN(tile_depth)(const sg_tri *t, int x0, int y0,
             pass = all;
             break;
         }
-        for (int i = 0; i < SG_TL_W; i++) bits |= (uint32_t)(pass[i] & 1) << (h + i);
+        for (int i = 0; i < SG_LANES_W; i++) bits |= (uint32_t)(pass[i] & 1) << (h + i);
     }
     return dp ? mask & bits : mask;
 }
 
 /* The lanes of keep written: depth z into dp (when not NULL) and the colours src put into dst. */
-SG_TL_ATTR static void SG_TL_FN(put_tile)(uint32_t keep, const float z[SG_TILE_PIXELS], float *dp,
-                                          const uint32_t src[SG_TILE_PIXELS], uint32_t *dst) {
-    for (int h = 0; h < SG_TILE_PIXELS; h += SG_TL_W) {
+SG_LANES_ATTR static void SG_LANES_FN(put_tile)(uint32_t keep, const float z[SG_TILE_PIXELS],
+                                                float *dp, const uint32_t src[SG_TILE_PIXELS],
+                                                uint32_t *dst) {
+    for (int h = 0; h < SG_TILE_PIXELS; h += SG_LANES_W) {
         VI bit;
         memcpy(&bit, sg_tile_lane_bit + h, sizeof bit);
         const VI m = (bit & (int32_t)keep) != 0;
