@@ -232,7 +232,7 @@ static void walks_agree_with_edge_functions(void **state) {
 typedef struct sample_planes {
     _Alignas(64) float depth[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN];
     _Alignas(64) uint32_t ids[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN];
-    uint64_t touched[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN / SG_TILE_PIXELS / 64];
+    uint8_t reached[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN / SG_TILE_PIXELS];
 } sample_planes;
 
 static void sample_walk_matches_walk_per_sample(void **state) {
@@ -277,10 +277,10 @@ static void sample_walk_matches_walk_per_sample(void **state) {
             sg_vis_ctx va[SG_VIS_SAMPLES], vb[SG_VIS_SAMPLES];
             for (int k = 0; k < SG_VIS_SAMPLES; k++) {
                 va[k] =
-                    (sg_vis_ctx){a->depth[k], a->ids[k], a->touched[k], rx0,  ry0, (uint32_t)n + 1,
+                    (sg_vis_ctx){a->depth[k], a->ids[k], a->reached[k], rx0,  ry0, (uint32_t)n + 1,
                                  op,          NULL,      NULL,          NULL, NULL};
                 vb[k] =
-                    (sg_vis_ctx){b->depth[k], b->ids[k], b->touched[k], rx0,  ry0, (uint32_t)n + 1,
+                    (sg_vis_ctx){b->depth[k], b->ids[k], b->reached[k], rx0,  ry0, (uint32_t)n + 1,
                                  op,          NULL,      NULL,          NULL, NULL};
                 sg_depth_select(op, write, isa)(&st[k], rx0, ry0, rx0 + WALK_BIN, ry0 + WALK_BIN,
                                                 &va[k]);

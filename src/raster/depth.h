@@ -39,11 +39,11 @@ typedef struct sg_blend_pending {
 
 /* The bin being rasterised: both buffers hold 64 x 64 pixels as 16 x 16 tiles of 4 x 4. */
 typedef struct sg_vis_ctx {
-    float *depth;      /* NULL when the pass has no depth target */
-    uint32_t *ids;     /* 0: no triangle; else index + 1 of the triangle in the pass */
-    uint64_t *touched; /* 256 bits, one a tile: some triangle reached it */
-    int bx0, by0;      /* the bin's top-left pixel */
-    uint32_t id;       /* id of the triangle being rasterised */
+    float *depth;     /* NULL when the pass has no depth target */
+    uint32_t *ids;    /* 0: no triangle; else index + 1 of the triangle in the pass */
+    uint8_t *reached; /* a byte a tile, 256: not 0 once some triangle reached it */
+    int bx0, by0;     /* the bin's top-left pixel */
+    uint32_t id;      /* id of the triangle being rasterised */
     sgCompare compare;
     /* Blended draws only (blend.c): they shade and blend into the bin's colour at once. */
     uint32_t *color;
@@ -106,11 +106,32 @@ bool sg_depth_passes_all(const sg_tri *t, sgCompare op, int x0, int y0, int x1, 
 
 /** The tile's ids in the bin, the tile marked as reached: shading visits only reached tiles.
  *  (No branch on a first visit: one that mispredicts once per tile costs more than clearing the
- *  bin's ids up front.) */
+ *  bin's ids up front. A byte a tile, stored, not a bit or-ed into a word: a mesh's small
+ *  triangles reach tile after tile of one word, and each or waited for the one before.) */
 static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
-    int tile = base >> 4;
-    v->touched[tile >> 6] |= (uint64_t)1 << (tile & 63);
+    v->reached[base >> 4] = 1;
     return v->ids + base;
+}
+
+/* A bin's tiles in words of 64 (sg_reached_word). */
+enum { SG_REACHED_WORDS = 4 };
+
+/** Tiles 64 word .. 64 word + 63 that the visibility functions reached, a bit a tile. */
+static inline uint64_t sg_reached_word(const uint8_t *reached, int word) {
+    const uint8_t *r = reached + 64 * word;
+#if defined(__SSE2__)
+    uint64_t none = 0;
+    for (int j = 0; j < 4; j++) {
+        __m128i v = _mm_loadu_si128((const __m128i *)(const void *)(r + 16 * j));
+        none |= (uint64_t)(uint32_t)_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128()))
+                << (16 * j);
+    }
+    return ~none;
+#else
+    uint64_t bits = 0;
+    for (int i = 0; i < 64; i++) bits |= (uint64_t)(r[i] != 0) << i;
+    return bits;
+#endif
 }
 
 /* Multisampled passes (rast_msaa.h): a pixel's samples. */

@@ -203,13 +203,13 @@ static inline const sg_draw_state *pair_draw(const sg_bin_pass *p, const uint32_
  * what visibility decided so far is final before a triangle shaded in place (blended, or a line)
  * writes the colour. */
 static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pass *p, run_set *runs,
-                                                                uint32_t *ids, uint64_t *touched,
+                                                                uint32_t *ids, uint8_t *reached,
                                                                 int x0, int y0, uint32_t *color,
                                                                 const bool forget) {
     mixed_set mixed;
     mixed.count = 0;
-    for (int word = 0; word < BIN_TILES * BIN_TILES / 64; word++) {
-        for (uint64_t left = touched[word]; left; left &= left - 1) {
+    for (int word = 0; word < SG_REACHED_WORDS; word++) {
+        for (uint64_t left = sg_reached_word(reached, word); left; left &= left - 1) {
             int tile = word * 64 + __builtin_ctzll(left);
             int tx = tile % BIN_TILES, ty = tile / BIN_TILES;
             uint32_t *tids = ids + tile * SG_TILE_PIXELS;
@@ -230,15 +230,15 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
             }
             if (forget) memset(tids, 0, SG_TILE_PIXELS * sizeof *tids);
         }
-        if (forget) touched[word] = 0;
+        if (forget) memset(reached + 64 * word, 0, 64);
     }
     flush_mixed(&mixed);
     if (runs && runs->n) flush_runs(p, runs, x0, y0, color);
 }
 
-void sg_shade_bin_tiles(const sg_bin_pass *p, uint32_t *ids, uint64_t *touched, int x0, int y0,
+void sg_shade_bin_tiles(const sg_bin_pass *p, uint32_t *ids, uint8_t *reached, int x0, int y0,
                         uint32_t *color) {
-    shade_reached(p, NULL, ids, touched, x0, y0, color, false);
+    shade_reached(p, NULL, ids, reached, x0, y0, color, false);
 }
 
 /* Where a bin's pixels are in the target images. */
@@ -308,7 +308,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     _Alignas(64) uint32_t color[BIN_PIXELS];
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
-    uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
+    _Alignas(64) uint8_t reached[BIN_TILES * BIN_TILES] = {0};
     SG_STAGE_START(clock);
     const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
     start_depth(p, v, depth);
@@ -318,7 +318,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     int x0 = v->x0, y0 = v->y0;
     sg_blend_pending waiting; /* its jobs are written before they are read */
     waiting.n = 0;
-    sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   touched, x0,   y0,      0,
+    sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   reached, x0,   y0,      0,
                       SG_COMPARE_ALWAYS,       color, NULL,    NULL, &waiting};
     bool pending = false; /* ids hold opaque triangles not shaded yet */
     /* The ids are cleared when the first triangle that writes them comes: a bin of lines and
@@ -342,7 +342,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
         const bool redone = shaders_in_place && d->shader_in_place && !d->in_place;
         if (redone) fn = d->shader_in_place;
         if (d->in_place || redone) {
-            if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
+            if (pending) shade_reached(p, runs, ids, reached, x0, y0, color, true);
             pending = false;
             vis.shade = d->shade_fn;
             vis.shade_ctx = &d->ctx;
@@ -357,7 +357,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
         if (d->writes_depth && range.valid) range.known = false;
     }
     if (waiting.n) waiting.flush(&waiting, &vis);
-    if (pending) shade_reached(p, runs, ids, touched, x0, y0, color, true);
+    if (pending) shade_reached(p, runs, ids, reached, x0, y0, color, true);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
     if (!shaders_in_place && p->any_shader &&
         __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) != discards) {
@@ -391,13 +391,13 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
                                                      const bin_view *v) {
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
-    uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
+    _Alignas(64) uint8_t reached[BIN_TILES * BIN_TILES] = {0};
     memset(ids, 0, sizeof ids);
     SG_STAGE_START(clock);
     start_depth(p, v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     int x0 = v->x0, y0 = v->y0;
-    sg_vis_ctx vis = {depth, ids, touched, x0, y0, 0, SG_COMPARE_ALWAYS, NULL, NULL, NULL, NULL};
+    sg_vis_ctx vis = {depth, ids, reached, x0, y0, 0, SG_COMPARE_ALWAYS, NULL, NULL, NULL, NULL};
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
     if (p->store_depth) sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
@@ -456,11 +456,11 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     _Alignas(64) uint32_t color[BIN_PIXELS];
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
-    uint64_t touched[BIN_TILES * BIN_TILES / 64] = {0};
+    _Alignas(64) uint8_t reached[BIN_TILES * BIN_TILES] = {0};
     memset(ids, 0, sizeof ids);
     start_depth(p, &v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
-    sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  touched, x0,   y0,  0,
+    sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  reached, x0,   y0,  0,
                       SG_COMPARE_ALWAYS,      NULL, NULL,    NULL, NULL};
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
@@ -470,7 +470,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     /* Only tiles some triangle reached hold ids (depth.h). */
     run_set run_buf, *runs = start_runs(p, &run_buf);
-    shade_reached(p, runs, ids, touched, x0, y0, color, false);
+    shade_reached(p, runs, ids, reached, x0, y0, color, false);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
     /* A fragment stage discarded (here, or in a bin another thread shades now): what is behind
      * a discarded pixel was never kept, so the bin starts again, shader draws in place. Exact

@@ -117,11 +117,11 @@ sg_bin_view sg_bin_view_of(const sg_bin_pass *pass, int index);
 /** A bin nothing was drawn in: its targets get the pass's clear where the pass does not load. */
 void sg_bin_fill_empty(const sg_bin_pass *pass, const sg_bin_view *v);
 
-/** Shades the visible ids of a bin's reached tiles (touched: a bit a tile, as the visibility
+/** Shades the visible ids of a bin's reached tiles (reached: a byte a tile, as the visibility
  *  functions set it) into its colour as a one-sample bin does, tiles in pairs and shared tiles
- *  in one pass; ids and touched are left as they are. The multisampled bins (rast_msaa.c) shade
+ *  in one pass; ids and reached are left as they are. The multisampled bins (rast_msaa.c) shade
  *  so the tiles whose samples all see what their pixel's first sample sees. */
-void sg_shade_bin_tiles(const sg_bin_pass *p, uint32_t *ids, uint64_t *touched, int x0, int y0,
+void sg_shade_bin_tiles(const sg_bin_pass *p, uint32_t *ids, uint8_t *reached, int x0, int y0,
                         uint32_t *color);
 
 #endif

@@ -38,7 +38,7 @@ typedef struct msaa_bin {
     _Alignas(64) uint32_t color[NS][PLANE];
     _Alignas(64) float depth[NS][PLANE];
     _Alignas(64) uint32_t ids[NS][PLANE];
-    uint64_t touched[NS][TOUCH_WORDS];
+    _Alignas(64) uint8_t reached[NS][BIN_TILES * BIN_TILES]; /* sg_vis_ctx.reached */
     /* A bit a tile: its samples' colours are all plane 0's, and planes 1-3 of the tile are not
      * kept (a cleared or loaded tile, and one that only whole pixels have been written to since).
      * The resolve then takes plane 0, and the other planes are filled in from it only when a
@@ -48,10 +48,10 @@ typedef struct msaa_bin {
     int x0, y0; /* the bin's top-left pixel */
 } msaa_bin;
 
-/* The tiles of touched-word `word` that some sample's walk reached. */
+/* The tiles of word `word` (sg_reached_word) that some sample's walk reached. */
 static inline uint64_t reached_by_any(const msaa_bin *b, int word) {
     uint64_t reached = 0;
-    for (int k = 0; k < NS; k++) reached |= b->touched[k][word];
+    for (int k = 0; k < NS; k++) reached |= sg_reached_word(b->reached[k], word);
     return reached;
 }
 
@@ -93,17 +93,21 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
      * edges): shaded as a one-sample bin's, in plane 0, then copied to the other planes' covered
      * pixels. The others below, triangle by triangle. */
     uint64_t uniform[TOUCH_WORDS], mixed[TOUCH_WORDS];
+    _Alignas(64) uint8_t uniform_tiles[BIN_TILES * BIN_TILES]; /* as sg_vis_ctx.reached */
+    memset(uniform_tiles, 0, sizeof uniform_tiles);
     for (int word = 0; word < TOUCH_WORDS; word++) {
         uniform[word] = mixed[word] = 0;
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int bit = __builtin_ctzll(reached), base = (word * 64 + bit) * SG_TILE_PIXELS;
-            if (!same_ids(b, base))
+            if (!same_ids(b, base)) {
                 mixed[word] |= (uint64_t)1 << bit;
-            else
+            } else {
                 uniform[word] |= (uint64_t)1 << bit;
+                uniform_tiles[word * 64 + bit] = 1;
+            }
         }
     }
-    sg_shade_bin_tiles(p, b->ids[0], uniform, b->x0, b->y0, b->color[0]);
+    sg_shade_bin_tiles(p, b->ids[0], uniform_tiles, b->x0, b->y0, b->color[0]);
     for (int word = 0; word < TOUCH_WORDS; word++) {
         /* A uniform tile's samples take the same colour where covered: a one-colour tile stays. */
         for (uint64_t left = uniform[word] & ~b->one_color[word]; left; left &= left - 1) {
@@ -146,7 +150,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
             for (int k = 0; k < NS; k++)
                 memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
         }
-        for (int k = 0; k < NS; k++) b->touched[k][word] = 0;
+        for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
     }
 }
 
@@ -204,7 +208,7 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
                     p->fb->put_masked(dst, src, mk);
             }
         }
-        for (int k = 0; k < NS; k++) b->touched[k][word] = 0;
+        for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
     }
 }
 
@@ -277,11 +281,11 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
     const sg_bin *bin = &p->binner->bins[index];
     const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
     memset(b->ids, 0, sizeof b->ids);
-    memset(b->touched, 0, sizeof b->touched);
+    memset(b->reached, 0, sizeof b->reached);
     for (int k = 0; k < NS; k++)
         b->vis[k] = (sg_vis_ctx){v->depth ? b->depth[k] : NULL,
                                  b->ids[k],
-                                 b->touched[k],
+                                 b->reached[k],
                                  b->x0,
                                  b->y0,
                                  0,
