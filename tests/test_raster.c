@@ -232,7 +232,7 @@ static void walks_agree_with_edge_functions(void **state) {
 typedef struct sample_planes {
     _Alignas(64) float depth[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN];
     _Alignas(64) uint32_t ids[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN];
-    uint8_t reached[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN / SG_TILE_PIXELS];
+    uint8_t reached[SG_VIS_SAMPLES][SG_REACHED_BYTES];
 } sample_planes;
 
 static void sample_walk_matches_walk_per_sample(void **state) {
@@ -287,6 +287,8 @@ static void sample_walk_matches_walk_per_sample(void **state) {
             }
             sg_depth_samples_select(op, write, isa)(st, rx0, ry0, rx0 + WALK_BIN, ry0 + WALK_BIN,
                                                     vb);
+            /* The one-sample functions may mark the spare byte (sg_vis_tile_ids_of): no tile. */
+            for (int k = 0; k < SG_VIS_SAMPLES; k++) a->reached[k][SG_REACHED_SPARE] = 0;
             if (memcmp(a, b, sizeof *a) != 0)
                 fail_msg("instruction set %d, triangle %d: the sample walk differs", (int)isa, n);
             checked++;

@@ -41,7 +41,7 @@ typedef struct sg_blend_pending {
 typedef struct sg_vis_ctx {
     float *depth;     /* NULL when the pass has no depth target */
     uint32_t *ids;    /* 0: no triangle; else index + 1 of the triangle in the pass */
-    uint8_t *reached; /* a byte a tile, 256: not 0 once some triangle reached it */
+    uint8_t *reached; /* SG_REACHED_BYTES, a byte a tile: not 0 once some triangle reached it */
     int bx0, by0;     /* the bin's top-left pixel */
     uint32_t id;      /* id of the triangle being rasterised */
     sgCompare compare;
@@ -113,8 +113,16 @@ static inline uint32_t *sg_vis_tile_ids(const sg_vis_ctx *v, int base) {
     return v->ids + base;
 }
 
-/* A bin's tiles in words of 64 (sg_reached_word). */
-enum { SG_REACHED_WORDS = 4 };
+/* A bin's tiles in words of 64 (sg_reached_word); the reached bytes of a bin, its 256 tiles' and
+ * a spare one that no word holds, padded to a cache line. */
+enum { SG_REACHED_WORDS = 4, SG_REACHED_SPARE = 256, SG_REACHED_BYTES = 320 };
+
+/** sg_vis_tile_ids for a tile function that the walk also calls with empty masks
+ *  (sg_rast_walk_any): such a tile is not marked (its mark goes to the spare byte). */
+static inline uint32_t *sg_vis_tile_ids_of(const sg_vis_ctx *v, int base, uint32_t mask) {
+    v->reached[mask ? base >> 4 : SG_REACHED_SPARE] = 1;
+    return v->ids + base;
+}
 
 /** Tiles 64 word .. 64 word + 63 that the visibility functions reached, a bit a tile. */
 static inline uint64_t sg_reached_word(const uint8_t *reached, int word) {

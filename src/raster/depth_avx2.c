@@ -38,7 +38,7 @@ static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, con
                                                            const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
-    uint32_t *ids = sg_vis_tile_ids(v, base);
+    uint32_t *ids = sg_vis_tile_ids_of(v, base, mask); /* mask may be empty: SG_WALK_FN_EMPTY */
     const bool depth = zmode != Z_NONE || zwrite;
     float *dp = depth ? v->depth + base : NULL; /* NULL: the pass may have no depth target */
     const sg_zrows8 zr = depth ? sg_zrows8_at(t, x0, y0) : (sg_zrows8){0};
@@ -47,7 +47,7 @@ static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, con
                       depth ? sg_zrows8_half(&zr, h) : _mm256_setzero_ps(), zmode, zwrite);
 }
 
-SG_VIS_SET(vis_avx2, vis_avx2)
+SG_VIS_SET_OF(SG_WALK_FN_EMPTY, vis_avx2, vis_avx2)
 
 /* The four samples of a tile at once (the sample walk's body), as vis4_avx512 in
  * depth_avx512.c: the samples' triangles differ only in their edges and z, so the products of the

@@ -14,7 +14,7 @@ static inline __attribute__((always_inline)) void vis_avx512(const void *vctx, c
                                                              const int zmode, const int zwrite) {
     const sg_vis_ctx *v = vctx;
     int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
-    uint32_t *ids = sg_vis_tile_ids(v, base);
+    uint32_t *ids = sg_vis_tile_ids_of(v, base, mask); /* mask may be empty: SG_WALK_FN_EMPTY */
     __mmask16 pass = (__mmask16)mask;
     if (zmode != Z_NONE || zwrite) {
         float *dp = v->depth + base;
@@ -31,7 +31,7 @@ static inline __attribute__((always_inline)) void vis_avx512(const void *vctx, c
     _mm512_mask_storeu_epi32(ids, pass, _mm512_set1_epi32((int)v->id));
 }
 
-SG_VIS_SET(vis_avx512, vis_avx512)
+SG_VIS_SET_OF(SG_WALK_FN_EMPTY, vis_avx512, vis_avx512)
 
 /* The four samples of a tile at once (the sample walk's body): the samples' triangles differ only
  * in their edges and z (sg_msaa_sample_tri), so the pixels' offsets and the depth slopes' products

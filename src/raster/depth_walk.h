@@ -39,6 +39,16 @@ static inline sg_vis_fns sg_vis_pick(const sg_raster_fn one[3][2],
         sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
     }
 
+/* SG_WALK_FN for a body that takes empty masks too (the walk then calls it for every tile a
+ * small triangle's bounds hold: sg_rast_walk_any). */
+#define SG_WALK_FN_EMPTY(name, body, zm, zw)                                                       \
+    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
+        body(c, t, x0, y0, m, zm, zw);                                                             \
+    }                                                                                              \
+    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
+        sg_rast_walk_any(t, x0, y0, x1, y1, name##_tile, c, true);                                 \
+    }
+
 /* The six visibility functions of a tile body, prefix_none_0 ... prefix_any_1, and their
  * [zmode][depth write] table. */
 #define SG_VIS_SET(prefix, body) SG_VIS_SET_OF(SG_WALK_FN, prefix, body)

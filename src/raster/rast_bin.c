@@ -308,7 +308,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     _Alignas(64) uint32_t color[BIN_PIXELS];
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
-    _Alignas(64) uint8_t reached[BIN_TILES * BIN_TILES] = {0};
+    _Alignas(64) uint8_t reached[SG_REACHED_BYTES] = {0};
     SG_STAGE_START(clock);
     const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
     start_depth(p, v, depth);
@@ -391,7 +391,7 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
                                                      const bin_view *v) {
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
-    _Alignas(64) uint8_t reached[BIN_TILES * BIN_TILES] = {0};
+    _Alignas(64) uint8_t reached[SG_REACHED_BYTES] = {0};
     memset(ids, 0, sizeof ids);
     SG_STAGE_START(clock);
     start_depth(p, v, depth);
@@ -456,7 +456,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     _Alignas(64) uint32_t color[BIN_PIXELS];
     _Alignas(64) float depth[BIN_PIXELS];
     _Alignas(64) uint32_t ids[BIN_PIXELS];
-    _Alignas(64) uint8_t reached[BIN_TILES * BIN_TILES] = {0};
+    _Alignas(64) uint8_t reached[SG_REACHED_BYTES] = {0};
     memset(ids, 0, sizeof ids);
     start_depth(p, &v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);

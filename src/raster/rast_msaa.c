@@ -38,7 +38,7 @@ typedef struct msaa_bin {
     _Alignas(64) uint32_t color[NS][PLANE];
     _Alignas(64) float depth[NS][PLANE];
     _Alignas(64) uint32_t ids[NS][PLANE];
-    _Alignas(64) uint8_t reached[NS][BIN_TILES * BIN_TILES]; /* sg_vis_ctx.reached */
+    _Alignas(64) uint8_t reached[NS][SG_REACHED_BYTES]; /* sg_vis_ctx.reached */
     /* A bit a tile: its samples' colours are all plane 0's, and planes 1-3 of the tile are not
      * kept (a cleared or loaded tile, and one that only whole pixels have been written to since).
      * The resolve then takes plane 0, and the other planes are filled in from it only when a
@@ -93,7 +93,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
      * edges): shaded as a one-sample bin's, in plane 0, then copied to the other planes' covered
      * pixels. The others below, triangle by triangle. */
     uint64_t uniform[TOUCH_WORDS], mixed[TOUCH_WORDS];
-    _Alignas(64) uint8_t uniform_tiles[BIN_TILES * BIN_TILES]; /* as sg_vis_ctx.reached */
+    _Alignas(64) uint8_t uniform_tiles[SG_REACHED_BYTES]; /* as sg_vis_ctx.reached */
     memset(uniform_tiles, 0, sizeof uniform_tiles);
     for (int word = 0; word < TOUCH_WORDS; word++) {
         uniform[word] = mixed[word] = 0;

@@ -265,9 +265,13 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
 /* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512 and AVX2; most of a mesh's):
  * the pixels of those tiles are tested at once in 32-bit edge values, four pixels a vector (a
  * tile with AVX-512, half a tile with AVX2), when every edge's values over the square fit in int32
- * (they are linear, so the square's corners bound them). False: not taken. */
+ * (they are linear, so the square's corners bound them). False: not taken. With `empty` (a
+ * constant), fn takes tiles with an empty mask too (with AVX-512 and AVX2): a triangle of a
+ * tile or two across then has its row's tiles visited without the row's tile test, and no tile
+ * waits on a branch on its mask, which a dense mesh's small triangles set in no pattern a
+ * predictor follows. */
 SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
-                                   sg_tile_fn fn, const void *ctx) {
+                                   sg_tile_fn fn, const void *ctx, const bool empty) {
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
     int64_t hi[3], lo[3];
 #if defined(__AVX512F__)
@@ -297,10 +301,13 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
     const __m512i zero = _mm512_setzero_si512();
     const __mmask16 cols = (__mmask16)((2u << (tx1 - tx0)) - 1);
     for (int ty = ty0; ty <= ty1; ty++) {
-        unsigned cand = _mm512_mask_cmpge_epi32_mask(
-            _mm512_mask_cmpge_epi32_mask(_mm512_mask_cmpge_epi32_mask(cols, best[0], zero), best[1],
-                                         zero),
-            best[2], zero);
+        unsigned cand =
+            empty && tx1 - tx0 < 2
+                ? cols
+                : _mm512_mask_cmpge_epi32_mask(
+                      _mm512_mask_cmpge_epi32_mask(
+                          _mm512_mask_cmpge_epi32_mask(cols, best[0], zero), best[1], zero),
+                      best[2], zero);
         int ty_px = ty << SG_TILE_SHIFT;
         while (cand) {
             int k = __builtin_ctz(cand);
@@ -315,7 +322,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
             int tx_px = (tx0 + k) << SG_TILE_SHIFT;
             uint32_t mask = in;
             if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
-            if (mask) fn(ctx, t, tx_px, ty_px, mask);
+            if (empty || mask) fn(ctx, t, tx_px, ty_px, mask);
         }
         for (int e = 0; e < 3; e++) {
             first[e] = _mm512_add_epi32(first[e], down[e]);
@@ -359,7 +366,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
             out |= (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(
                        _mm256_or_si256(_mm256_or_si256(best[0][1], best[1][1]), best[2][1])))
                    << 8;
-        unsigned cand = ~out & cols;
+        unsigned cand = empty && tx1 - tx0 < 2 ? cols : ~out & cols;
         int ty_px = ty << SG_TILE_SHIFT;
         while (cand) {
             int k = __builtin_ctz(cand);
@@ -373,7 +380,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
             uint32_t mask = sg_walk_in8(v[0][0], v[1][0], v[2][0], v[0][1], v[1][1], v[2][1]);
             int tx_px = (tx0 + k) << SG_TILE_SHIFT;
             if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
-            if (mask) fn(ctx, t, tx_px, ty_px, mask);
+            if (empty || mask) fn(ctx, t, tx_px, ty_px, mask);
         }
         for (int e = 0; e < 3; e++) {
             first[e][0] = _mm256_add_epi32(first[e][0], down[e]);
@@ -384,6 +391,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
     }
     return true;
 #elif defined(__SSE2__)
+    (void)empty; /* here fn is called for tiles with a covered pixel only */
     corners(t, 2 * SG_TILE - 1, hi, lo);
     __m128i v[3], step[3], four[3];
     for (int e = 0; e < 3; e++) {
@@ -419,6 +427,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
     }
     return true;
 #else
+    (void)empty;
     /* As the SSE2 code: per edge, four pixels of a row a vector, the right tile four columns on. */
     corners(t, 2 * SG_TILE - 1, hi, lo);
     int32x4_t v[3], step[3], four[3];
@@ -610,8 +619,10 @@ SG_WALK_INLINE void sg_walk_prepare(const sg_tri *t, walk *w) {
 #endif
 }
 
-SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
-                                 const void *ctx) {
+/* sg_rast_walk, with `empty` (a constant) as small_triangle takes it: fn may be called for a tile
+ * of a small triangle with an empty mask. */
+SG_WALK_INLINE void sg_rast_walk_any(const sg_tri *t, int rx0, int ry0, int rx1, int ry1,
+                                     sg_tile_fn fn, const void *ctx, const bool empty) {
     int tx0 = (t->minx > rx0 ? t->minx : rx0) >> SG_TILE_SHIFT;
     int ty0 = (t->miny > ry0 ? t->miny : ry0) >> SG_TILE_SHIFT;
     int tx1 = (t->maxx < rx1 - 1 ? t->maxx : rx1 - 1) >> SG_TILE_SHIFT;
@@ -619,10 +630,11 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
     if (tx0 > tx1 || ty0 > ty1) return;
 #if defined(__AVX512F__) || defined(__AVX2__)
     if (tx1 - tx0 < SG_SMALL_TILES && ty1 - ty0 < SG_SMALL_TILES &&
-        small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx))
+        small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx, empty))
         return;
 #elif defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
-    if (tx1 - tx0 < 2 && ty1 - ty0 < 2 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx)) return;
+    if (tx1 - tx0 < 2 && ty1 - ty0 < 2 && small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx, empty))
+        return;
 #endif
     if (t->line) {
         line_walk(t, rx0, ry0, rx1, ry1, fn, ctx);
@@ -652,6 +664,13 @@ SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int
             else
                 walk_tiles(&w, x0, y0, x1, y1, fn, ctx);
         }
+}
+
+/* The tiles of triangle t within [rx0, rx1) x [ry0, ry1) that hold a covered pixel, each once
+ * with its mask (fn is never called with an empty one). */
+SG_WALK_INLINE void sg_rast_walk(const sg_tri *t, int rx0, int ry0, int rx1, int ry1, sg_tile_fn fn,
+                                 const void *ctx) {
+    sg_rast_walk_any(t, rx0, ry0, rx1, ry1, fn, ctx, false);
 }
 
 #endif
