@@ -53,10 +53,11 @@ static inline __attribute__((always_inline)) void vis4_avx512(const sg_vis_sampl
         dzy = _mm512_mul_ps(_mm512_set1_ps(st[0].z_dy), dy);
     }
     const __m512i id = _mm512_set1_epi32((int)v0->id);
+    /* No branch on a sample's mask: an edge tile's samples are covered or not in no pattern a
+     * predictor follows, and an empty one writes and marks nothing. */
     for (int k = 0; k < SG_VIS_SAMPLES; k++) {
-        if (!mk[k]) continue;
         const sg_vis_ctx *v = &s->vis[k];
-        uint32_t *ids = sg_vis_tile_ids(v, base);
+        uint32_t *ids = sg_vis_tile_ids_of(v, base, mk[k]);
         __mmask16 pass = (__mmask16)mk[k];
         if (zmode != Z_NONE || zwrite) {
             float *dp = v->depth + base;
