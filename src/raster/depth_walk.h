@@ -31,22 +31,17 @@ static inline sg_vis_fns sg_vis_pick(const sg_raster_fn one[3][2],
 /* The same with the tile function declared `tile_attr` (inline, or always inlined where the
  * compiler would keep a large body out of the walk). */
 #define SG_WALK_FN_AS(name, body, zm, zw, tile_attr)                                               \
+    SG_WALK_FN_ANY(name, body, zm, zw, tile_attr, false)
+/* SG_WALK_FN for a body that takes empty masks too (the walk then calls it for every tile a
+ * small triangle's bounds hold: sg_rast_walk_any). */
+#define SG_WALK_FN_EMPTY(name, body, zm, zw) SG_WALK_FN_ANY(name, body, zm, zw, inline, true)
+#define SG_WALK_FN_ANY(name, body, zm, zw, tile_attr, empty)                                       \
     static tile_attr void name##_tile(const void *c, const sg_tri *t, int x0, int y0,              \
                                       uint32_t m) {                                                \
         body(c, t, x0, y0, m, zm, zw);                                                             \
     }                                                                                              \
     static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk(t, x0, y0, x1, y1, name##_tile, c);                                           \
-    }
-
-/* SG_WALK_FN for a body that takes empty masks too (the walk then calls it for every tile a
- * small triangle's bounds hold: sg_rast_walk_any). */
-#define SG_WALK_FN_EMPTY(name, body, zm, zw)                                                       \
-    static inline void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {   \
-        body(c, t, x0, y0, m, zm, zw);                                                             \
-    }                                                                                              \
-    static void name(const sg_tri *t, int x0, int y0, int x1, int y1, const void *c) {             \
-        sg_rast_walk_any(t, x0, y0, x1, y1, name##_tile, c, true);                                 \
+        sg_rast_walk_any(t, x0, y0, x1, y1, name##_tile, c, empty);                                \
     }
 
 /* The six visibility functions of a tile body, prefix_none_0 ... prefix_any_1, and their

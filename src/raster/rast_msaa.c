@@ -92,31 +92,30 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     /* Tiles where every sample sees what sample 0 sees (inside the triangles, away from their
      * edges): shaded as a one-sample bin's, in plane 0, then copied to the other planes' covered
      * pixels. The others below, triangle by triangle. */
-    uint64_t uniform[TOUCH_WORDS], mixed[TOUCH_WORDS];
-    _Alignas(64) uint8_t uniform_tiles[SG_REACHED_BYTES]; /* as sg_vis_ctx.reached */
-    memset(uniform_tiles, 0, sizeof uniform_tiles);
+    uint64_t mixed[TOUCH_WORDS];
+    _Alignas(64) uint8_t uniform[SG_REACHED_BYTES]; /* as sg_vis_ctx.reached */
+    memset(uniform, 0, sizeof uniform);
     for (int word = 0; word < TOUCH_WORDS; word++) {
-        uniform[word] = mixed[word] = 0;
+        mixed[word] = 0;
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int bit = __builtin_ctzll(reached), base = (word * 64 + bit) * SG_TILE_PIXELS;
-            if (!same_ids(b, base)) {
+            if (!same_ids(b, base))
                 mixed[word] |= (uint64_t)1 << bit;
-            } else {
-                uniform[word] |= (uint64_t)1 << bit;
-                uniform_tiles[word * 64 + bit] = 1;
-            }
+            else
+                uniform[word * 64 + bit] = 1;
         }
     }
-    sg_shade_bin_tiles(p, b->ids[0], uniform_tiles, b->x0, b->y0, b->color[0]);
+    sg_shade_bin_tiles(p, b->ids[0], uniform, b->x0, b->y0, b->color[0]);
     for (int word = 0; word < TOUCH_WORDS; word++) {
+        const uint64_t uniform_word = sg_reached_word(uniform, word);
         /* A uniform tile's samples take the same colour where covered: a one-colour tile stays. */
-        for (uint64_t left = uniform[word] & ~b->one_color[word]; left; left &= left - 1) {
+        for (uint64_t left = uniform_word & ~b->one_color[word]; left; left &= left - 1) {
             const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
             const uint32_t covered = ~sg_tile_same_id(b->ids[0] + base, 0) & 0xffffu;
             for (int k = 1; k < NS; k++)
                 p->fb->put_masked(b->color[k] + base, b->color[0] + base, covered);
         }
-        for (uint64_t left = uniform[word]; left; left &= left - 1) {
+        for (uint64_t left = uniform_word; left; left &= left - 1) {
             const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
             for (int k = 0; k < NS; k++)
                 memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
