@@ -16,6 +16,9 @@
 #endif
 
 enum { BIN_TILES = SG_BIN_SIZE / SG_TILE, BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE };
+_Static_assert(SG_REACHED_WORDS * 64 == BIN_TILES * BIN_TILES &&
+                   SG_REACHED_SPARE == BIN_TILES * BIN_TILES,
+               "a bin's reached bytes (depth.h): a tile each, then the spare one");
 
 /* Runs of partly covered tiles waiting to be shaded, grouped by triangle so that a draw with a
  * runs function (sg_shade_runs_fn) packs each triangle's pixels from several tiles into full

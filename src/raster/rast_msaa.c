@@ -13,7 +13,6 @@
 enum {
     BIN_TILES = SG_BIN_SIZE / SG_TILE,
     BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE,
-    TOUCH_WORDS = BIN_TILES * BIN_TILES / 64,
     NS = SG_MSAA_SAMPLES
 };
 
@@ -43,7 +42,7 @@ typedef struct msaa_bin {
      * kept (a cleared or loaded tile, and one that only whole pixels have been written to since).
      * The resolve then takes plane 0, and the other planes are filled in from it only when a
      * tile's samples first differ (expand). */
-    uint64_t one_color[TOUCH_WORDS];
+    uint64_t one_color[SG_REACHED_WORDS];
     sg_vis_ctx vis[NS];
     int x0, y0; /* the bin's top-left pixel */
 } msaa_bin;
@@ -92,10 +91,10 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     /* Tiles where every sample sees what sample 0 sees (inside the triangles, away from their
      * edges): shaded as a one-sample bin's, in plane 0, then copied to the other planes' covered
      * pixels. The others below, triangle by triangle. */
-    uint64_t mixed[TOUCH_WORDS];
+    uint64_t mixed[SG_REACHED_WORDS];
     _Alignas(64) uint8_t uniform[SG_REACHED_BYTES]; /* as sg_vis_ctx.reached */
     memset(uniform, 0, sizeof uniform);
-    for (int word = 0; word < TOUCH_WORDS; word++) {
+    for (int word = 0; word < SG_REACHED_WORDS; word++) {
         mixed[word] = 0;
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int bit = __builtin_ctzll(reached), base = (word * 64 + bit) * SG_TILE_PIXELS;
@@ -106,7 +105,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
         }
     }
     sg_shade_bin_tiles(p, b->ids[0], uniform, b->x0, b->y0, b->color[0]);
-    for (int word = 0; word < TOUCH_WORDS; word++) {
+    for (int word = 0; word < SG_REACHED_WORDS; word++) {
         const uint64_t uniform_word = sg_reached_word(uniform, word);
         /* A uniform tile's samples take the same colour where covered: a one-colour tile stays. */
         for (uint64_t left = uniform_word & ~b->one_color[word]; left; left &= left - 1) {
@@ -166,7 +165,7 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
     }
     d->test_fn(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, b->vis);
     const bool shader = d->ctx.shader.fragment != NULL;
-    for (int word = 0; word < TOUCH_WORDS; word++) {
+    for (int word = 0; word < SG_REACHED_WORDS; word++) {
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
             const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
@@ -260,7 +259,7 @@ static void end_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int in
     }
     if (v->color) {
         /* A one-colour tile's average is plane 0's colour. */
-        for (int word = 0; word < TOUCH_WORDS; word++)
+        for (int word = 0; word < SG_REACHED_WORDS; word++)
             for (uint64_t left = ~b->one_color[word]; left; left &= left - 1) {
                 const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
                 p->fb->average4(b->color[0] + base, b->color[1] + base, b->color[2] + base,

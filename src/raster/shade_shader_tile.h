@@ -12,7 +12,7 @@ typedef int32_t SG_LANES_FN(vi) __attribute__((vector_size(4 * SG_LANES_W)));
 #define VI            SG_LANES_FN(vi)
 #define TSEL(m, a, b) ((VF)(((m) & (VI)(a)) | (~(m) & (VI)(b))))
 
-/* The tile's lanes h .. h + SG_LANES_W - 1: their columns and rows (sg_tile_lanes). */
+/* The tile's lanes h .. h + SG_LANES_W - 1: their columns and rows (sg_tile_lane_x, _y). */
 SG_LANES_ATTR static inline void SG_LANES_FN(lanes)(int h, VF *x, VF *y) {
     memcpy(x, sg_tile_lane_x + h, sizeof *x);
     memcpy(y, sg_tile_lane_y + h, sizeof *y);
