@@ -1,7 +1,7 @@
 /* test_shader.c - programmable stages (sgShaderDesc): the batches the stages receive, varyings,
  * flat varyings, primitive and instance ids, facing, discard against depth (the bin redone in
- * place), blending, sgSample, the same bytes at every thread count and instruction set, and the
- * refusals of bad input. */
+ * place), batches several triangles share (independent lanes), blending, sgSample, the same bytes
+ * at every thread count and instruction set, and the refusals of bad input. */
 #include "test_objects.h"
 
 #include <math.h>
@@ -129,7 +129,7 @@ static void test_matches_fixed(void **state) {
     assert_int_equal(sgDraw(dev, test_pso(dev, (sgPipelineDesc){0}), g, &p), SG_OK);
     end(dev, &t, a);
     t = begin(dev);
-    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0}};
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0, false}};
     assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
     end(dev, &t, b);
     int worst = 0, covered = 0;
@@ -154,7 +154,7 @@ static void test_ids(void **state) {
     p.uniforms = &u;
     p.uniform_size = sizeof u;
     p.instance_count = 2; /* the second on top of the first: it wins where LESS_EQUAL passes */
-    sgPipelineDesc sd = {.shader = {vs_basic, fs_ids, 6, 1u << 4, 0},
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_ids, 6, 1u << 4, 0, false},
                          .depth = {.compare = SG_COMPARE_LESS_EQUAL, .write = true}};
     static uint8_t img[W * H * 4];
     target t = begin(dev);
@@ -237,7 +237,7 @@ static void render_instances(int threads, size_t budget, sgPolygonMode mode, boo
     p.uniform_size = sizeof u;
     p.instance_count = instances;
     /* Blended, half opaque: every fragment of every triangle shows, in order. */
-    sgPipelineDesc sd = {.shader = {vs_spread, fs_spread, 7, 1u << 4 | 1u << 6, 0},
+    sgPipelineDesc sd = {.shader = {vs_spread, fs_spread, 7, 1u << 4 | 1u << 6, 0, false},
                          .polygon_mode = mode,
                          .blend = SG_BLEND_ALPHA};
     target t = begin(dev);
@@ -295,7 +295,7 @@ static void render_discard(int threads, sgSimd simd, bool with_front, uint8_t *o
     sgPipelineStateObject fixed =
         test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
     sgPipelineStateObject checker =
-        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0},
+        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false},
                                        .depth = {.compare = SG_COMPARE_LESS, .write = true}});
     for (int frame = 0; frame < 2; frame++) { /* the second frame starts in place */
         target t = begin(dev);
@@ -372,7 +372,7 @@ static void test_in_place_compare(void **state) {
             test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
         for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
             sgPipelineStateObject checker =
-                test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0},
+                test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false},
                                                .depth = {.compare = cases[c].op, .write = true}});
             for (int k = 0; k < 3; k++) {
                 sgGeom g = quad(dev, depths[k]);
@@ -397,6 +397,114 @@ static void test_in_place_compare(void **state) {
     }
 }
 
+/* Each lane from its own inputs alone (independent lanes): the colour varyings, blue from the
+ * facing; discards where red is below u[0] (with u[0] > 0). Counts its calls in *u[1]'s int. */
+typedef struct lanes_uniforms {
+    float discard_below;
+    int *calls;
+} lanes_uniforms;
+
+static void fs_lanes(sgFragmentBatch *b, const void *uniforms) {
+    const lanes_uniforms *u = uniforms;
+    __atomic_fetch_add(u->calls, 1, __ATOMIC_RELAXED);
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        b->color[0][i] = b->varying[0][i];
+        b->color[1][i] = b->varying[1][i] * b->z[i];
+        b->color[2][i] = b->front_facing ? 1.0f : 0.25f;
+        b->color[3][i] = 1.0f;
+        if (b->varying[0][i] < u->discard_below) b->discard |= 1u << i;
+    }
+}
+
+/* A 13 x 11 grid of quads over the target, two triangles each (every other quad wound the other
+ * way: both facings in a tile), vertex colours from a hash, drawn with fs_lanes in front of a
+ * fixed-function quad (what discarded pixels show); returns fs_lanes' calls. */
+static int render_lanes(int threads, sgSimd simd, bool independent, float discard_below,
+                        uint8_t *out) {
+    sgDevice *dev;
+    sgResult r = sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .simd = simd}, &dev);
+    if (r == SG_ERROR_UNSUPPORTED) return -1;
+    assert_int_equal(r, SG_OK);
+    enum { GX = 13, GY = 11, NV = (GX + 1) * (GY + 1) };
+    static float pos[NV * 4], col[NV * 4];
+    static uint32_t idx[GX * GY * 6];
+    for (int j = 0; j <= GY; j++)
+        for (int i = 0; i <= GX; i++) {
+            const int v = j * (GX + 1) + i;
+            const uint32_t h = (uint32_t)v * 2654435761u;
+            pos[v * 4] = -0.97f + 1.94f * (float)i / GX + 0.011f * (float)(h >> 28);
+            pos[v * 4 + 1] = -0.95f + 1.9f * (float)j / GY + 0.007f * (float)(h >> 24 & 15);
+            pos[v * 4 + 2] = 0.3f + 0.02f * (float)(h >> 20 & 15);
+            pos[v * 4 + 3] = 1.0f;
+            for (int k = 0; k < 3; k++) col[v * 4 + k] = (float)(h >> (8 * k) & 255) / 255.0f;
+            col[v * 4 + 3] = 1.0f;
+        }
+    int n = 0;
+    for (int j = 0; j < GY; j++)
+        for (int i = 0; i < GX; i++) {
+            const uint32_t a = (uint32_t)(j * (GX + 1) + i), b = a + 1, c = a + GX + 1, d = c + 1;
+            const bool flip = (i + j) % 2;
+            const uint32_t q[6] = {a, flip ? c : b, flip ? b : c, b, flip ? c : d, flip ? d : c};
+            memcpy(idx + n, q, sizeof q);
+            n += 6;
+        }
+    sgGeom g;
+    sgGeomDesc gd = {
+        .vertex_count = NV, .positions = pos, .colors = col, .index_count = n, .indices = idx};
+    assert_int_equal(sgCreateGeom(dev, &gd, &g), SG_OK);
+    int calls = 0;
+    const lanes_uniforms u = {discard_below, &calls};
+    sgDrawParams p = params();
+    p.uniforms = &u;
+    p.uniform_size = sizeof u;
+    sgPipelineDesc sd = {.shader = {.vertex = vs_basic,
+                                    .fragment = fs_lanes,
+                                    .varying_count = 6,
+                                    .independent_lanes = independent},
+                         .depth = {.compare = SG_COMPARE_LESS, .write = true}};
+    sgGeom back = quad(dev, 0.9f);
+    sgDrawParams bp = params();
+    target t = begin(dev);
+    assert_int_equal(sgDraw(dev,
+                            test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS,
+                                                                     .write = true}}),
+                            back, &bp),
+                     SG_OK);
+    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
+    end(dev, &t, out);
+    sgDestroyDevice(dev);
+    return calls;
+}
+
+/* Independent lanes: the tiles that several triangles share are one batch a facing, fewer calls
+ * for the same bytes at every thread count and instruction set, discards included. */
+static void test_independent_lanes(void **state) {
+    (void)state;
+    static uint8_t want[W * H * 4], got[W * H * 4];
+    static const sgSimd sets[] = {SG_SIMD_SCALAR, SG_SIMD_AVX2, SG_SIMD_AVX512, SG_SIMD_NEON};
+    for (int d = 0; d < 2; d++) {
+        const float below = d ? 0.3f : 0.0f;
+        const int one_each = render_lanes(1, SG_SIMD_SCALAR, false, below, want);
+        int drawn = 0, blue = 0;
+        for (int i = 0; i < W * H; i++) {
+            drawn += (want[i * 4] | want[i * 4 + 1]) != 0;
+            blue += want[i * 4 + 2] == 255;
+        }
+        assert_true(drawn > W * H / 2);
+        assert_true(blue > W * H / 4 && blue < W * H * 3 / 4); /* both facings show */
+        const int shared = render_lanes(1, SG_SIMD_SCALAR, true, below, got);
+        assert_memory_equal(want, got, sizeof want);
+        if (!d) assert_true(shared < one_each * 3 / 4);
+        for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++)
+            for (int threads = 1; threads <= 3; threads += 2) {
+                if (render_lanes(threads, sets[k], true, below, got) < 0) continue;
+                if (memcmp(want, got, sizeof want) != 0)
+                    fail_msg("discard below %g, set %d, %d threads: differs", (double)below,
+                             (int)sets[k], threads);
+            }
+    }
+}
+
 /* sgSample reads the bound texture with the pipeline's filter; an empty slot gives (0, 0, 0, 1). */
 static void test_sample(void **state) {
     (void)state;
@@ -415,7 +523,8 @@ static void test_sample(void **state) {
     sgGeom g = quad(dev, 0.5f);
     sgDrawParams p = params();
     p.textures[0] = tex;
-    sgPipelineDesc sd = {.shader = {vs_basic, fs_sample, 6, 0, 1}, .wrap = SG_WRAP_CLAMP_TO_EDGE};
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_sample, 6, 0, 1, false},
+                         .wrap = SG_WRAP_CLAMP_TO_EDGE};
     static uint8_t img[W * H * 4];
     target t = begin(dev);
     assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
@@ -457,7 +566,7 @@ static void test_blend(void **state) {
                      SG_OK);
     end(dev, &t, a);
     t = begin(dev);
-    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0}, .blend = SG_BLEND_ALPHA};
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0, false}, .blend = SG_BLEND_ALPHA};
     assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
     end(dev, &t, b);
     assert_memory_equal(a, b, sizeof a);
@@ -474,23 +583,26 @@ static void test_refusals(void **state) {
         sgCreatePipelineStateObject(dev, &(sgPipelineDesc){.shader = {.vertex = vs_basic}}, &pso),
         SG_ERROR_NULL_POINTER);
     assert_non_null(strstr(sgGetLastError(dev), "shader.fragment"));
-    assert_int_equal(
-        sgCreatePipelineStateObject(dev,
-                                    &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0},
-                                                      .lighting = SG_LIGHTING_PHONG},
-                                    &pso),
-        SG_ERROR_INVALID_VALUE);
     assert_int_equal(sgCreatePipelineStateObject(
-                         dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 17, 0, 0}}, &pso),
-                     SG_ERROR_INVALID_COUNT);
-    assert_int_equal(sgCreatePipelineStateObject(
-                         dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 2, 4u, 0}}, &pso),
+                         dev,
+                         &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0, false},
+                                           .lighting = SG_LIGHTING_PHONG},
+                         &pso),
                      SG_ERROR_INVALID_VALUE);
-    assert_int_equal(sgCreatePipelineStateObject(
-                         dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 9}}, &pso),
-                     SG_ERROR_INVALID_COUNT);
+    assert_int_equal(
+        sgCreatePipelineStateObject(
+            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 17, 0, 0, false}}, &pso),
+        SG_ERROR_INVALID_COUNT);
+    assert_int_equal(
+        sgCreatePipelineStateObject(
+            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 2, 4u, 0, false}}, &pso),
+        SG_ERROR_INVALID_VALUE);
+    assert_int_equal(
+        sgCreatePipelineStateObject(
+            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 9, false}}, &pso),
+        SG_ERROR_INVALID_COUNT);
     sgPipelineStateObject sh =
-        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0}});
+        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0, false}});
     sgPipelineStateObject fixed = test_pso(dev, (sgPipelineDesc){0});
     sgGeom g = quad(dev, 0.5f);
     target t = begin(dev);
@@ -533,7 +645,8 @@ static void test_nan(void **state) {
     static uint8_t img[W * H * 4];
     target t = begin(dev);
     assert_int_equal(
-        sgDraw(dev, test_pso(dev, (sgPipelineDesc){.shader = {vs_nan, fs_color, 6, 0, 0}}), g, &p),
+        sgDraw(dev, test_pso(dev, (sgPipelineDesc){.shader = {vs_nan, fs_color, 6, 0, 0, false}}),
+               g, &p),
         SG_OK);
     end(dev, &t, img);
     const uint8_t *lr = img + ((size_t)(H * 3 / 4) * W + W * 3 / 4) * 4;
@@ -545,15 +658,11 @@ static void test_nan(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_matches_fixed),
-        cmocka_unit_test(test_ids),
-        cmocka_unit_test(test_instance_rounds),
-        cmocka_unit_test(test_discard),
-        cmocka_unit_test(test_in_place_compare),
-        cmocka_unit_test(test_sample),
-        cmocka_unit_test(test_blend),
-        cmocka_unit_test(test_refusals),
-        cmocka_unit_test(test_nan),
+        cmocka_unit_test(test_matches_fixed),    cmocka_unit_test(test_ids),
+        cmocka_unit_test(test_instance_rounds),  cmocka_unit_test(test_discard),
+        cmocka_unit_test(test_in_place_compare), cmocka_unit_test(test_independent_lanes),
+        cmocka_unit_test(test_sample),           cmocka_unit_test(test_blend),
+        cmocka_unit_test(test_refusals),         cmocka_unit_test(test_nan),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -81,7 +81,10 @@ static const char unlit_glsl_fragment[] =
 
 const sgShaderInfo SGS_NAME(sg_shader_unlit) = {
     .name = "unlit",
-    .desc = {.vertex = unlit_vertex, .fragment = unlit_fragment, .varying_count = 6},
+    .desc = {.vertex = unlit_vertex,
+             .fragment = unlit_fragment,
+             .varying_count = 6,
+             .independent_lanes = true},
     .uniform_count = 1,
     .glsl_vertex = unlit_glsl_vertex,
     .glsl_fragment = unlit_glsl_fragment,

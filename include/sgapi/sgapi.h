@@ -291,6 +291,12 @@ typedef struct sgShaderDesc {
     int varying_count;      /* 0 .. SG_MAX_VARYINGS */
     uint32_t flat_varyings; /* bit k: varying k is not interpolated (the first vertex's value) */
     int texture_count;      /* 0 .. SG_MAX_DRAW_TEXTURES: the draw binds at least that many */
+    /* true: the fragment stage computes each lane from that lane's inputs alone (no 2 x 2
+     * differences, no neighbour's values) and reads neither primitive nor instance. sgapi may
+     * then shade the pixels that several triangles of the draw leave in one tile in one batch,
+     * each lane interpolated from its own triangle (not with mipmaps, whose levels come from
+     * 2 x 2 differences). false (default): a batch is one triangle's. */
+    bool independent_lanes;
 } sgShaderDesc;
 
 /* ---- pipeline state ----------------------------------------------------------------------------

@@ -166,7 +166,10 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
         p.shade_fn = sg_shade_shader;
         p.shade2_fn = p.shade2_sec = NULL;
         p.runs_fn = p.runs_sec = NULL;
-        p.mixed_fn = NULL;
+        /* Tiles several triangles share in one batch where lanes are independent; mipmapped
+         * sampling takes its levels from 2 x 2 differences, which need one triangle a batch. */
+        p.mixed_fn =
+            sh->independent_lanes && d->mipmap == SG_MIPMAP_NONE ? sg_shade_shader_shared : NULL;
         p.raster_line = NULL;
         p.raster_pass = NULL;
         p.shader_in_place =

@@ -43,13 +43,53 @@ uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int
     return keep;
 }
 
-void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
-                     uint32_t *dst) {
-    if (sg_shader_fragments(c, t, x0, y0, mask, dst) == mask) return;
-    /* A discard: what visibility found behind these pixels is unknown, so the bin is redone
-     * with the draw shaded in place. The state is the draw's, shared by the bins' threads. */
+/* Visibility first, a lane discarded: what visibility found behind it is unknown, so the bin is
+ * redone with the draw shaded in place. The state is the draw's, shared by the bins' threads. */
+static void note_discard(const sg_shade_ctx *c) {
     __atomic_store_n((int *)&c->shader.discarded, 1, __ATOMIC_RELAXED);
     __atomic_fetch_add(c->shader.pass_discards, 1, __ATOMIC_RELAXED);
+}
+
+void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                     uint32_t *dst) {
+    if (sg_shader_fragments(c, t, x0, y0, mask, dst) != mask) note_discard(c);
+}
+
+/* Triangles whose fragments may share a batch: the batch tells one facing (a stage with
+ * independent lanes reads neither primitive nor instance). */
+static bool same_batch(const sg_tri *a, const sg_tri *b) {
+    return a->sh.front_facing == b->sh.front_facing;
+}
+
+void sg_shade_shader_shared(const sg_shade_ctx *c, const sg_mixed_tile *tiles, int count) {
+    for (int i = 0; i < count; i++) {
+        const sg_mixed_tile *mt = &tiles[i];
+        uint32_t left = (1u << mt->n) - 1u; /* bit j: ts[j] not shaded yet */
+        while (left) {
+            const sg_tri *ts[SG_TILE_PIXELS];
+            uint32_t masks[SG_TILE_PIXELS], mask = 0;
+            const int first = __builtin_ctz(left);
+            int n = 0;
+            for (uint32_t m = left; m; m &= m - 1) {
+                const int j = __builtin_ctz(m);
+                if (!same_batch(mt->ts[j], mt->ts[first])) continue;
+                ts[n] = mt->ts[j];
+                masks[n++] = mt->masks[j];
+                mask |= mt->masks[j];
+                left &= ~(1u << j);
+            }
+            uint32_t px[SG_SHADER_LANES];
+            const uint32_t keep =
+                mask & ~(n == 1 ? shade_tile(c, ts[0], mt->x0, mt->y0, mask, px)
+                                : SG_SAMPLE16_CALL(c->shader.sample16, shade_shared, c, ts, masks,
+                                                   n, mt->x0, mt->y0, mask, px));
+            for (uint32_t m = keep; m; m &= m - 1) {
+                const int l = __builtin_ctz(m);
+                mt->dst[l] = px[l];
+            }
+            if (keep != mask) note_discard(c);
+        }
+    }
 }
 
 /* A tile of a shader draw shaded in place: the depth test without writing, the fragment stage,

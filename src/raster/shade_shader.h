@@ -23,6 +23,10 @@ uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int
  *  draw and the pass (sg_shader_state), and the bin is then redone in place (rast_bin.c). */
 void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                      uint32_t *dst);
+/** The sg_shade_mixed_fn of shader draws whose lanes are independent (sgShaderDesc): the
+ *  triangles of a tile that share a facing in one batch, each lane interpolated
+ *  from its own triangle; the same bytes as sg_shade_shader on each triangle's pixels. */
+void sg_shade_shader_shared(const sg_shade_ctx *c, const sg_mixed_tile *tiles, int count);
 /** The raster function shading a shader draw in place: blended, or its fragments put. */
 sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write);
 

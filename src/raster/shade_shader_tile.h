@@ -18,72 +18,124 @@ SG_LANES_ATTR static inline void SG_LANES_FN(lanes)(int h, VF *x, VF *y) {
     memcpy(y, sg_tile_lane_y + h, sizeof *y);
 }
 
-/* A tile through the fragment stage, into RGBA8 pixels px; returns the lanes discarded.
- *
- * The batch: every lane interpolated at its pixel centre (helper lanes too), as the fixed
- * shading does: attribute / w and 1 / w planes, then one division. Varyings past the count and
- * the colour start at 0. The colour: each channel to unorm8 as sg_to_unorm8 rounds it (NaN and
- * below 0 give 0). */
-SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, const sg_tri *t,
-                                                      int x0, int y0, uint32_t mask,
-                                                      uint32_t px[SG_SHADER_LANES]) {
+/* Triangle t interpolated at lanes h .. h + SG_LANES_W - 1 of the tile at (x0, y0), into the
+ * batch's depth and varyings: every lane its pixel centre (helper lanes too), as the fixed shading
+ * does (attribute / w and 1 / w planes, then one division); `all`: every lane written, else those
+ * of `sel` only (a lane's value is the same either way). */
+SG_LANES_ATTR static inline __attribute__((always_inline)) void
+SG_LANES_FN(interp)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int h, VI sel,
+                    const bool all, sgFragmentBatch *b) {
     const sg_shader_state *s = &c->shader;
     const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
-    sgFragmentBatch b;
-    b.mask = mask;
-    b.x = x0;
-    b.y = y0;
-    b.front_facing = t->sh.front_facing != 0;
-    b.primitive = t->sh.primitive;
-    b.instance = t->sh.instance;
-    b.discard = 0;
-    b.internal = c;
     const VF zero = {0}, one = zero + 1.0f;
-    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
-        VF lx, ly;
-        SG_LANES_FN(lanes)(h, &lx, &ly);
-        const VF dx = (float)(x0 - t->minx) + lx, dy = (float)(y0 - t->miny) + ly;
-        const VF z = t->z + t->z_dx * dx + t->z_dy * dy;
-        const VF zc = TSEL(z < 0.0f, zero, TSEL(z > 1.0f, one, z)); /* sg_tri_depth */
-        memcpy(b.z + h, &zc, sizeof zc);
-        const VF w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
-        for (int k = 0; k < s->varying_count; k++) {
-            float a, ax, ay;
-            if (k < SG_TRI_ATTRS) {
-                a = t->a[k];
-                ax = t->a_dx[k];
-                ay = t->a_dy[k];
-            } else {
-                a = ext->a[k - SG_TRI_ATTRS];
-                ax = ext->a_dx[k - SG_TRI_ATTRS];
-                ay = ext->a_dy[k - SG_TRI_ATTRS];
-            }
-            const VF v = s->flat >> k & 1 ? zero + a : (a + ax * dx + ay * dy) * w;
-            memcpy(b.varying[k] + h, &v, sizeof v);
+#define PUT(dst, v)                                                                                \
+    do {                                                                                           \
+        VF o_ = (v);                                                                               \
+        if (!all) {                                                                                \
+            VF d_;                                                                                 \
+            memcpy(&d_, (dst), sizeof d_);                                                         \
+            o_ = TSEL(sel, o_, d_);                                                                \
+        }                                                                                          \
+        memcpy((dst), &o_, sizeof o_);                                                             \
+    } while (0)
+    VF lx, ly;
+    SG_LANES_FN(lanes)(h, &lx, &ly);
+    const VF dx = (float)(x0 - t->minx) + lx, dy = (float)(y0 - t->miny) + ly;
+    const VF z = t->z + t->z_dx * dx + t->z_dy * dy;
+    PUT(b->z + h, TSEL(z < 0.0f, zero, TSEL(z > 1.0f, one, z))); /* sg_tri_depth */
+    const VF w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+    for (int k = 0; k < s->varying_count; k++) {
+        float a, ax, ay;
+        if (k < SG_TRI_ATTRS) {
+            a = t->a[k];
+            ax = t->a_dx[k];
+            ay = t->a_dy[k];
+        } else {
+            a = ext->a[k - SG_TRI_ATTRS];
+            ax = ext->a_dx[k - SG_TRI_ATTRS];
+            ay = ext->a_dy[k - SG_TRI_ATTRS];
         }
+        PUT(b->varying[k] + h, s->flat >> k & 1 ? zero + a : (a + ax * dx + ay * dy) * w);
     }
+#undef PUT
+}
+
+/* The batch's fixed fields from t, its mask and tile. */
+SG_LANES_ATTR static inline void SG_LANES_FN(batch)(const sg_shade_ctx *c, const sg_tri *t, int x0,
+                                                    int y0, uint32_t mask, sgFragmentBatch *b) {
+    b->mask = mask;
+    b->x = x0;
+    b->y = y0;
+    b->front_facing = t->sh.front_facing != 0;
+    b->primitive = t->sh.primitive;
+    b->instance = t->sh.instance;
+    b->discard = 0;
+    b->internal = c;
+}
+
+/* The interpolated batch through the fragment stage, into RGBA8 pixels px; returns the lanes
+ * discarded. Varyings past the count and the colour start at 0; each colour channel goes to
+ * unorm8 as sg_to_unorm8 rounds it (NaN and below 0 give 0). */
+SG_LANES_ATTR static inline __attribute__((always_inline)) uint32_t
+SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t px[SG_SHADER_LANES]) {
+    const sg_shader_state *s = &c->shader;
+    const VF zero = {0}, one = zero + 1.0f;
     /* Vector stores, not a call of memset: a tile is a few hundred cycles in all (a loop from
      * the count on became one). */
     for (int k = 0; k < SG_MAX_VARYINGS; k++)
         if (k >= s->varying_count)
             for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
-                memcpy(b.varying[k] + h, &zero, sizeof zero);
+                memcpy(b->varying[k] + h, &zero, sizeof zero);
     for (int ch = 0; ch < 4; ch++)
         for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
-            memcpy(b.color[ch] + h, &zero, sizeof zero);
-    s->fragment(&b, s->uniforms);
+            memcpy(b->color[ch] + h, &zero, sizeof zero);
+    s->fragment(b, s->uniforms);
     for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
         VI p = {0};
         for (int ch = 0; ch < 4; ch++) {
             VF v;
-            memcpy(&v, b.color[ch] + h, sizeof v);
+            memcpy(&v, b->color[ch] + h, sizeof v);
             v = TSEL(v > 0.0f, v, zero);
             v = TSEL(v < 1.0f, v, one);
             p |= __builtin_convertvector(v * 255.0f + 0.5f, VI) << (8 * ch);
         }
         memcpy(px + h, &p, sizeof p);
     }
-    return b.discard;
+    return b->discard;
+}
+
+/* A tile of one triangle through the fragment stage, into RGBA8 pixels px; returns the lanes
+ * discarded. */
+SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, const sg_tri *t,
+                                                      int x0, int y0, uint32_t mask,
+                                                      uint32_t px[SG_SHADER_LANES]) {
+    sgFragmentBatch b;
+    SG_LANES_FN(batch)(c, t, x0, y0, mask, &b);
+    const VI none = {0};
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
+        SG_LANES_FN(interp)(c, t, x0, y0, h, none, true, &b);
+    return SG_LANES_FN(run)(c, &b, px);
+}
+
+/* The same for a tile that n triangles of a draw with independent lanes share, in one batch:
+ * ts[j] covers the lanes of masks[j] and each lane takes its own triangle's values (the lanes
+ * of none take ts[0]'s); facing, primitive and instance are ts[0]'s (the facing is
+ * every triangle's). */
+SG_LANES_ATTR static uint32_t
+SG_LANES_FN(shade_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const uint32_t *masks,
+                          int n, int x0, int y0, uint32_t mask, uint32_t px[SG_SHADER_LANES]) {
+    sgFragmentBatch b;
+    SG_LANES_FN(batch)(c, ts[0], x0, y0, mask, &b);
+    const VI none = {0};
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
+        SG_LANES_FN(interp)(c, ts[0], x0, y0, h, none, true, &b);
+        VI bit;
+        memcpy(&bit, sg_tile_lane_bit + h, sizeof bit);
+        for (int j = 1; j < n; j++)
+            if (masks[j] >> h & ((1u << SG_LANES_W) - 1u))
+                SG_LANES_FN(interp)(c, ts[j], x0, y0, h, (bit & (int32_t)masks[j]) != 0, false, &b);
+    }
+    return SG_LANES_FN(run)(c, &b, px);
 }
 
 /* The depth test of a tile shaded in place: each lane's window depth into z (sg_tri_depth's

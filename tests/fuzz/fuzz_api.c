@@ -433,9 +433,12 @@ static void one_run(run *R, const uint8_t *data, size_t size) {
                 unsigned x = u8(r);
                 pd.shade = (x & 0x80) ? SG_SHADE_TEXTURE_MODULATE : SG_SHADE_DEFAULT;
                 if (!(x & 0x40)) pd.lighting = SG_LIGHTING_DEFAULT;
-                pd.shader = (sgShaderDesc){(x & 1) ? NULL : fuzz_vs, (x & 2) ? NULL : fuzz_fs,
-                                           (int)(u8(r) % 19) - 1, u8(r) & 0x3fu,
-                                           (int)((x >> 2) % 4) - ((x & 0x20) ? 2 : 0)};
+                pd.shader = (sgShaderDesc){(x & 1) ? NULL : fuzz_vs,
+                                           (x & 2) ? NULL : fuzz_fs,
+                                           (int)(u8(r) % 19) - 1,
+                                           u8(r) & 0x3fu,
+                                           (int)((x >> 2) % 4) - ((x & 0x20) ? 2 : 0),
+                                           (x & 0x10) != 0};
                 if ((x & 3) == 3) pd.shader.varying_count = 0;
             }
             sgPipelineStateObject h = {0x1234u};

@@ -71,7 +71,11 @@ static const char stripes_glsl_fragment[] =
 
 static const sgShaderInfo shaders[] = {{
     .name = "stripes",
-    .desc = {.vertex = stripes_vertex, .fragment = stripes_fragment, .varying_count = 4},
+    /* The fragment stage reads each lane's own varyings only: batches may span triangles. */
+    .desc = {.vertex = stripes_vertex,
+             .fragment = stripes_fragment,
+             .varying_count = 4,
+             .independent_lanes = true},
     .uniform_count = 4,
     .glsl_vertex = stripes_glsl_vertex,
     .glsl_fragment = stripes_glsl_fragment,
