@@ -2,10 +2,11 @@
 """shader-vs-fixed.py - what a shader pipeline costs against the fixed path on the same scenes.
 
 Rewrites every draw of a scene file that a built-in shader expresses exactly into that shader's
-draw: unlit vertex-coloured and textured draws into "unlit", Phong-lit ones into "phong" (the
-fixed equations as shaders, apps/shaders/unlit.c and phong.c), and times each scene, fixed and
-rewritten, with sgapi-render in turns. Scenes with a draw no shader expresses (flat or Gouraud
-lighting, a draw colour, a shadow) are listed as skipped.
+draw: unlit vertex-coloured and textured draws into "unlit", Phong-lit untextured ones under a
+single directional light into "phong" (the fixed equations as shaders, apps/shaders/unlit.c and
+phong.c), and times each scene, fixed and rewritten, with sgapi-render in turns. Scenes with a
+draw no shader expresses (flat or Gouraud lighting, Phong with a texture, a point light or several
+lights, an unlit draw colour, a shadow) are listed as skipped.
 
   tools/shader-vs-fixed.py [--build DIR] [--frames N] [--rounds R] [--threads T] SCENES.json...
 
@@ -21,34 +22,31 @@ import subprocess
 import sys
 import tempfile
 
-PHONG_LIGHTS = 8  # phong's uniforms: 13 floats, then 10 for each of 8 lights
-
 
 def absolute(base, path):
     return path if os.path.isabs(path) else os.path.normpath(os.path.join(base, path))
 
 
 def phong_uniforms(draw, scene, top):
-    color = draw.get("color", [1, 1, 1, 1])
+    """phong's 17 uniforms (apps/shaders/phong.c) for a Phong-lit draw, or None where phong cannot
+    express it: it takes one directional light and no texture."""
     lights = scene.get("lights", top.get("lights", []))
-    if len(lights) > PHONG_LIGHTS:
+    if len(lights) != 1 or lights[0].get("type") != "directional":
         return None
-    u = list(color) + list(scene.get("ambient", top.get("ambient", [0, 0, 0])))
+    if draw.get("mode") == "texture" and draw.get("texture"):
+        return None
+    light = lights[0]
+    u = list(draw.get("color", [1, 1, 1, 1]))
+    u += list(scene.get("ambient", top.get("ambient", [0, 0, 0])))
+    u += list(light["direction"]) + list(light.get("color", [1, 1, 1]))
     u += list(draw.get("specular", [0, 0, 0])) + [draw.get("shininess", 0)]
-    u += [1 if draw.get("mode") == "texture" and draw.get("texture") else 0, len(lights)]
-    for i in range(PHONG_LIGHTS):
-        if i < len(lights):
-            l = lights[i]
-            point = l.get("type") == "point"
-            u += [1 if point else 0] + list(l["position"] if point else l["direction"])
-            u += list(l.get("color", [1, 1, 1])) + list(l.get("attenuation", [1, 0, 0]))
-        else:
-            u += [0] * 10
     return u
 
 
 def rewrite(draw, scene, top):
     """The shader draw that draws `draw` as the fixed path does, or None."""
+    if "shader" in draw:  # a shader draw already: nothing fixed to compare with
+        return None
     if draw.get("receives_shadow") is True or draw.get("casts_shadow") is True:
         return None
     if "shadow" in scene or "shadow" in top:
@@ -86,6 +84,9 @@ def convert(path, workdir):
             for key in ("mesh", "texture"):
                 if isinstance(d.get(key), str):
                     d[key] = absolute(base, d[key])
+            if isinstance(d.get("textures"), list):
+                d["textures"] = [absolute(base, t) if isinstance(t, str) else t
+                                 for t in d["textures"]]
             if isinstance(d.get("mesh"), dict):  # a generated mesh may name a file (heightmap)
                 for k, v in d["mesh"].items():
                     if isinstance(v, str) and os.path.exists(os.path.join(base, v)):
