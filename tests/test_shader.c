@@ -416,93 +416,115 @@ static void fs_lanes(sgFragmentBatch *b, const void *uniforms) {
     }
 }
 
-/* A 13 x 11 grid of quads over the target, two triangles each (every other quad wound the other
- * way: both facings in a tile), vertex colours from a hash, drawn with fs_lanes in front of a
- * fixed-function quad (what discarded pixels show); returns fs_lanes' calls. */
+typedef struct depth_state {
+    sgCompare compare;
+    bool write;
+} depth_state;
+
+/* Two 13 x 11 grids of quads over the target, two triangles each (every other quad wound the
+ * other way: both facings in a tile), the second shifted by part of a quad and at depths that
+ * cross the first's (a draw's own triangles overlap, in both orders), vertex colours from a hash,
+ * drawn with fs_lanes and depth state `ds` in front of a fixed-function quad (what discarded
+ * pixels show) and before another that cuts through them, two frames (after a discard the second
+ * starts in place) into out; returns fs_lanes' calls. */
 static int render_lanes(int threads, sgSimd simd, bool independent, float discard_below,
-                        uint8_t *out) {
+                        depth_state ds, uint8_t *out) {
     sgDevice *dev;
     sgResult r = sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .simd = simd}, &dev);
     if (r == SG_ERROR_UNSUPPORTED) return -1;
     assert_int_equal(r, SG_OK);
     enum { GX = 13, GY = 11, NV = (GX + 1) * (GY + 1) };
-    static float pos[NV * 4], col[NV * 4];
-    static uint32_t idx[GX * GY * 6];
-    for (int j = 0; j <= GY; j++)
-        for (int i = 0; i <= GX; i++) {
-            const int v = j * (GX + 1) + i;
-            const uint32_t h = (uint32_t)v * 2654435761u;
-            pos[v * 4] = -0.97f + 1.94f * (float)i / GX + 0.011f * (float)(h >> 28);
-            pos[v * 4 + 1] = -0.95f + 1.9f * (float)j / GY + 0.007f * (float)(h >> 24 & 15);
-            pos[v * 4 + 2] = 0.3f + 0.02f * (float)(h >> 20 & 15);
-            pos[v * 4 + 3] = 1.0f;
-            for (int k = 0; k < 3; k++) col[v * 4 + k] = (float)(h >> (8 * k) & 255) / 255.0f;
-            col[v * 4 + 3] = 1.0f;
-        }
+    static float pos[2 * NV * 4], col[2 * NV * 4];
+    static uint32_t idx[2 * GX * GY * 6];
     int n = 0;
-    for (int j = 0; j < GY; j++)
-        for (int i = 0; i < GX; i++) {
-            const uint32_t a = (uint32_t)(j * (GX + 1) + i), b = a + 1, c = a + GX + 1, d = c + 1;
-            const bool flip = (i + j) % 2;
-            const uint32_t q[6] = {a, flip ? c : b, flip ? b : c, b, flip ? c : d, flip ? d : c};
-            memcpy(idx + n, q, sizeof q);
-            n += 6;
-        }
+    for (int layer = 0; layer < 2; layer++) {
+        const int v0 = layer * NV;
+        for (int j = 0; j <= GY; j++)
+            for (int i = 0; i <= GX; i++) {
+                const int v = v0 + j * (GX + 1) + i;
+                const uint32_t h = (uint32_t)v * 2654435761u;
+                pos[v * 4] = -0.97f + 1.94f * ((float)i + 0.5f * (float)layer) / GX +
+                             0.011f * (float)(h >> 28);
+                pos[v * 4 + 1] = -0.95f + 1.9f * ((float)j + 0.3f * (float)layer) / GY +
+                                 0.007f * (float)(h >> 24 & 15);
+                pos[v * 4 + 2] = 0.3f - 0.05f * (float)layer + 0.02f * (float)(h >> 20 & 15);
+                pos[v * 4 + 3] = 1.0f;
+                for (int k = 0; k < 3; k++) col[v * 4 + k] = (float)(h >> (8 * k) & 255) / 255.0f;
+                col[v * 4 + 3] = 1.0f;
+            }
+        for (int j = 0; j < GY; j++)
+            for (int i = 0; i < GX; i++) {
+                const uint32_t a = (uint32_t)(v0 + j * (GX + 1) + i), b = a + 1, c = a + GX + 1,
+                               d = c + 1;
+                const bool flip = (i + j + layer) % 2;
+                const uint32_t q[6] = {a, flip ? c : b, flip ? b : c,
+                                       b, flip ? c : d, flip ? d : c};
+                memcpy(idx + n, q, sizeof q);
+                n += 6;
+            }
+    }
     sgGeom g;
     sgGeomDesc gd = {
-        .vertex_count = NV, .positions = pos, .colors = col, .index_count = n, .indices = idx};
+        .vertex_count = 2 * NV, .positions = pos, .colors = col, .index_count = n, .indices = idx};
     assert_int_equal(sgCreateGeom(dev, &gd, &g), SG_OK);
     int calls = 0;
     const lanes_uniforms u = {discard_below, &calls};
     sgDrawParams p = params();
     p.uniforms = &u;
     p.uniform_size = sizeof u;
-    sgPipelineDesc sd = {.shader = {.vertex = vs_basic,
-                                    .fragment = fs_lanes,
-                                    .varying_count = 6,
-                                    .independent_lanes = independent},
-                         .depth = {.compare = SG_COMPARE_LESS, .write = true}};
-    sgGeom back = quad(dev, 0.9f);
+    sgPipelineStateObject lanes =
+        test_pso(dev, (sgPipelineDesc){.shader = {.vertex = vs_basic,
+                                                  .fragment = fs_lanes,
+                                                  .varying_count = 6,
+                                                  .independent_lanes = independent},
+                                       .depth = {.compare = ds.compare, .write = ds.write}});
+    sgPipelineStateObject fixed =
+        test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
+    sgGeom back = quad(dev, 0.9f), middle = quad(dev, 0.45f);
     sgDrawParams bp = params();
-    target t = begin(dev);
-    assert_int_equal(sgDraw(dev,
-                            test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS,
-                                                                     .write = true}}),
-                            back, &bp),
-                     SG_OK);
-    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
-    end(dev, &t, out);
+    for (int frame = 0; frame < 2; frame++) {
+        target t = begin(dev);
+        assert_int_equal(sgDraw(dev, fixed, back, &bp), SG_OK);
+        assert_int_equal(sgDraw(dev, lanes, g, &p), SG_OK);
+        assert_int_equal(sgDraw(dev, fixed, middle, &bp), SG_OK); /* after the waiting ones */
+        end(dev, &t, out + (size_t)frame * W * H * 4);
+    }
     sgDestroyDevice(dev);
     return calls;
 }
 
 /* Independent lanes: the tiles that several triangles share are one batch a facing, fewer calls
- * for the same bytes at every thread count and instruction set, discards included. */
+ * for the same bytes at every thread count and instruction set; with discards (shaded in place,
+ * the fragments of a tile waiting to be shaded together) too, under several depth states. */
 static void test_independent_lanes(void **state) {
     (void)state;
-    static uint8_t want[W * H * 4], got[W * H * 4];
+    static uint8_t want[2 * W * H * 4], got[2 * W * H * 4];
     static const sgSimd sets[] = {SG_SIMD_SCALAR, SG_SIMD_AVX2, SG_SIMD_AVX512, SG_SIMD_NEON};
-    for (int d = 0; d < 2; d++) {
-        const float below = d ? 0.3f : 0.0f;
-        const int one_each = render_lanes(1, SG_SIMD_SCALAR, false, below, want);
-        int drawn = 0, blue = 0;
-        for (int i = 0; i < W * H; i++) {
-            drawn += (want[i * 4] | want[i * 4 + 1]) != 0;
-            blue += want[i * 4 + 2] == 255;
-        }
-        assert_true(drawn > W * H / 2);
-        assert_true(blue > W * H / 4 && blue < W * H * 3 / 4); /* both facings show */
-        const int shared = render_lanes(1, SG_SIMD_SCALAR, true, below, got);
-        assert_memory_equal(want, got, sizeof want);
-        if (!d) assert_true(shared < one_each * 3 / 4);
-        for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++)
-            for (int threads = 1; threads <= 3; threads += 2) {
-                if (render_lanes(threads, sets[k], true, below, got) < 0) continue;
-                if (memcmp(want, got, sizeof want) != 0)
-                    fail_msg("discard below %g, set %d, %d threads: differs", (double)below,
-                             (int)sets[k], threads);
+    static const depth_state depths[] = {
+        {SG_COMPARE_LESS, true}, {SG_COMPARE_LESS_EQUAL, false}, {SG_COMPARE_ALWAYS, true}};
+    for (size_t z = 0; z < sizeof depths / sizeof depths[0]; z++)
+        for (int d = 0; d < 2; d++) {
+            const float below = d ? 0.3f : 0.0f;
+            const int one_each = render_lanes(1, SG_SIMD_SCALAR, false, below, depths[z], want);
+            int drawn = 0, blue = 0;
+            for (int i = 0; i < W * H; i++) {
+                drawn += (want[i * 4] | want[i * 4 + 1]) != 0;
+                blue += want[i * 4 + 2] == 255;
             }
-    }
+            assert_true(drawn > W * H / 2);
+            assert_true(blue > W * H / 10 && blue < W * H * 3 / 4); /* both facings show */
+            const int shared = render_lanes(1, SG_SIMD_SCALAR, true, below, depths[z], got);
+            if (memcmp(want, got, sizeof want) != 0)
+                fail_msg("depth state %zu, discard below %g: differs", z, (double)below);
+            assert_true(shared < one_each * 3 / 4);
+            for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++)
+                for (int threads = 1; threads <= 3; threads += 2) {
+                    if (render_lanes(threads, sets[k], true, below, depths[z], got) < 0) continue;
+                    if (memcmp(want, got, sizeof want) != 0)
+                        fail_msg("depth state %zu, discard below %g, set %d, %d threads: differs",
+                                 z, (double)below, (int)sets[k], threads);
+                }
+        }
 }
 
 /* sgSample reads the bound texture with the pipeline's filter; an empty slot gives (0, 0, 0, 1). */

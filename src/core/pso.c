@@ -172,8 +172,8 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
             sh->independent_lanes && d->mipmap == SG_MIPMAP_NONE ? sg_shade_shader_shared : NULL;
         p.raster_line = NULL;
         p.raster_pass = NULL;
-        p.shader_in_place =
-            sg_shader_in_place_select(d->blend == SG_BLEND_ALPHA, d->depth.compare, d->depth.write);
+        p.shader_in_place = sg_shader_in_place_select(d->blend == SG_BLEND_ALPHA, d->depth.compare,
+                                                      d->depth.write, p.mixed_fn != NULL);
     }
     p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;
 

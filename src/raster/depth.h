@@ -34,6 +34,8 @@ typedef struct sg_blend_pending {
     int n;         /* jobs waiting */
     uint32_t draw; /* their draw */
     int flat;      /* their triangles' sg_tri.flat, all the same */
+    /* Shader draws' fragments waiting in the ids (shade_shader.c) write depth. */
+    bool depth_write;
     _Alignas(64) unsigned char jobs[SG_PENDING_BYTES];
 } sg_blend_pending;
 

@@ -347,6 +347,10 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
         if (d->in_place || redone) {
             if (pending) shade_reached(p, runs, ids, reached, x0, y0, color, true);
             pending = false;
+            if (d->shader_in_place && !ids_clear) { /* a shader draw's fragments may wait there */
+                memset(ids, 0, sizeof ids);
+                ids_clear = true;
+            }
             vis.shade = d->shade_fn;
             vis.shade_ctx = &d->ctx;
             if (d->raster_pass_fn && passes_bin(p, &range, depth, t, d->compare, x0, y0))

@@ -61,35 +61,46 @@ static bool same_batch(const sg_tri *a, const sg_tri *b) {
     return a->sh.front_facing == b->sh.front_facing;
 }
 
-void sg_shade_shader_shared(const sg_shade_ctx *c, const sg_mixed_tile *tiles, int count) {
-    for (int i = 0; i < count; i++) {
-        const sg_mixed_tile *mt = &tiles[i];
-        uint32_t left = (1u << mt->n) - 1u; /* bit j: ts[j] not shaded yet */
-        while (left) {
-            const sg_tri *ts[SG_TILE_PIXELS];
-            uint32_t masks[SG_TILE_PIXELS], mask = 0;
-            const int first = __builtin_ctz(left);
-            int n = 0;
-            for (uint32_t m = left; m; m &= m - 1) {
-                const int j = __builtin_ctz(m);
-                if (!same_batch(mt->ts[j], mt->ts[first])) continue;
-                ts[n] = mt->ts[j];
-                masks[n++] = mt->masks[j];
-                mask |= mt->masks[j];
-                left &= ~(1u << j);
-            }
-            uint32_t px[SG_SHADER_LANES];
-            const uint32_t keep =
-                mask & ~(n == 1 ? shade_tile(c, ts[0], mt->x0, mt->y0, mask, px)
-                                : SG_SAMPLE16_CALL(c->shader.sample16, shade_shared, c, ts, masks,
-                                                   n, mt->x0, mt->y0, mask, px));
-            for (uint32_t m = keep; m; m &= m - 1) {
-                const int l = __builtin_ctz(m);
-                mt->dst[l] = px[l];
-            }
-            if (keep != mask) note_discard(c);
+/* The triangles of a tile of a draw with independent lanes (mt), one batch a facing. Visibility
+ * first (deferred false): the colours of the lanes not discarded into mt->dst, and a discard
+ * noted. In place (deferred): their depth into dp too (when not NULL). */
+static void shade_groups(const sg_shade_ctx *c, const sg_mixed_tile *mt, float *dp,
+                         const bool deferred) {
+    uint32_t left = (1u << mt->n) - 1u; /* bit j: ts[j] not shaded yet */
+    while (left) {
+        const sg_tri *ts[SG_TILE_PIXELS];
+        uint32_t masks[SG_TILE_PIXELS], mask = 0;
+        const int first = __builtin_ctz(left);
+        int n = 0;
+        for (uint32_t m = left; m; m &= m - 1) {
+            const int j = __builtin_ctz(m);
+            if (!same_batch(mt->ts[j], mt->ts[first])) continue;
+            ts[n] = mt->ts[j];
+            masks[n++] = mt->masks[j];
+            mask |= mt->masks[j];
+            left &= ~(1u << j);
         }
+        uint32_t px[SG_SHADER_LANES];
+        _Alignas(64) float z[SG_TILE_PIXELS];
+        const uint32_t keep =
+            mask & ~(n == 1 && !deferred
+                         ? shade_tile(c, ts[0], mt->x0, mt->y0, mask, px)
+                         : SG_SAMPLE16_CALL(c->shader.sample16, shade_shared, c, ts, masks, n,
+                                            mt->x0, mt->y0, mask, px, deferred ? z : NULL));
+        if (deferred) {
+            if (keep) SG_SAMPLE16_CALL(c->shader.sample16, put_tile, keep, z, dp, px, mt->dst);
+            continue;
+        }
+        for (uint32_t m = keep; m; m &= m - 1) {
+            const int l = __builtin_ctz(m);
+            mt->dst[l] = px[l];
+        }
+        if (keep != mask) note_discard(c);
     }
+}
+
+void sg_shade_shader_shared(const sg_shade_ctx *c, const sg_mixed_tile *tiles, int count) {
+    for (int i = 0; i < count; i++) shade_groups(c, &tiles[i], NULL, false);
 }
 
 /* A tile of a shader draw shaded in place: the depth test without writing, the fragment stage,
@@ -121,15 +132,78 @@ static inline __attribute__((always_inline)) void in_place(const void *vctx, con
     }
 }
 
+/* Opaque in-place draws with independent lanes put their fragments off: those that pass the
+ * depth test wait in the bin's ids (the triangle's id at each waiting pixel, the tile marked in
+ * reached), and a tile's waiting fragments are shaded together, one batch a facing, when a
+ * triangle of the draw covers one of its waiting pixels, when another draw's triangle comes or
+ * when the bin ends (the bin's sg_blend_pending.flush); then their depth and colour are written
+ * where nothing was discarded. A pixel still sees the draw's triangles in order, and a waiting
+ * fragment's depth test stays right: nothing else writes its pixel before it is shaded. */
+static void flush_tile(const sg_vis_ctx *v, int tile) {
+    const int base = tile * SG_TILE_PIXELS;
+    uint32_t *ids = v->ids + base;
+    const sg_shade_ctx *c = v->shade_ctx;
+    sg_mixed_tile mt;
+    int n = 0;
+    for (uint32_t left = ~sg_tile_same_id(ids, 0) & 0xffffu; left; n++) {
+        const uint32_t id = ids[__builtin_ctz(left)];
+        mt.ts[n] = &c->tris[id - 1];
+        mt.masks[n] = sg_tile_same_id(ids, id);
+        left &= ~mt.masks[n];
+    }
+    mt.n = n;
+    mt.x0 = v->bx0 + (tile % 16) * SG_TILE;
+    mt.y0 = v->by0 + (tile / 16) * SG_TILE;
+    mt.dst = v->color + base;
+    shade_groups(c, &mt, v->pending->depth_write && v->depth ? v->depth + base : NULL, true);
+    memset(ids, 0, SG_TILE_PIXELS * sizeof *ids);
+    v->reached[tile] = 0;
+}
+
+static void flush_waiting(sg_blend_pending *w, const sg_vis_ctx *v) {
+    for (int word = 0; word < SG_REACHED_WORDS; word++)
+        for (uint64_t left = sg_reached_word(v->reached, word); left; left &= left - 1)
+            flush_tile(v, word * 64 + __builtin_ctzll(left));
+    w->n = 0;
+}
+
+static inline __attribute__((always_inline)) void deferred(const void *vctx, const sg_tri *t,
+                                                           int x0, int y0, uint32_t mask,
+                                                           const int zmode, const int zwrite,
+                                                           const int put) {
+    (void)put;
+    const sg_vis_ctx *v = vctx;
+    const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0), tile = base / SG_TILE_PIXELS;
+    uint32_t *ids = v->ids + base;
+    if (v->reached[tile] && (mask & ~sg_tile_same_id(ids, 0))) flush_tile(v, tile);
+    if (zmode != Z_NONE) {
+        float z[SG_TILE_PIXELS];
+        mask = SG_SAMPLE16_CALL(((const sg_shade_ctx *)v->shade_ctx)->shader.sample16, tile_depth,
+                                t, x0, y0, mask, v->depth ? v->depth + base : NULL, v->compare, z);
+    }
+    if (!mask) return;
+    for (uint32_t m = mask; m; m &= m - 1) ids[__builtin_ctz(m)] = v->id;
+    v->reached[tile] = 1;
+    sg_blend_pending *w = v->pending;
+    w->n = 1;
+    w->draw = t->draw;
+    w->depth_write = zwrite;
+    w->flush = flush_waiting;
+}
+
 SG_IN_PLACE_BODY(shader_blend_body, in_place, 0)
 SG_IN_PLACE_BODY(shader_put_body, in_place, 1)
+SG_IN_PLACE_BODY(shader_defer_body, deferred, 1)
 SG_IN_PLACE_SET(shader_blend, shader_blend_body)
 SG_IN_PLACE_SET(shader_put, shader_put_body)
+SG_IN_PLACE_SET(shader_defer, shader_defer_body)
 
-sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write) {
-    static const sg_raster_fn fns[2][2][2] = {SG_IN_PLACE_TABLE(shader_put),
-                                              SG_IN_PLACE_TABLE(shader_blend)};
-    return fns[blend][compare != SG_COMPARE_ALWAYS][depth_write];
+sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write,
+                                       bool defer) {
+    static const sg_raster_fn fns[3][2][2] = {SG_IN_PLACE_TABLE(shader_put),
+                                              SG_IN_PLACE_TABLE(shader_blend),
+                                              SG_IN_PLACE_TABLE(shader_defer)};
+    return fns[blend ? 1 : defer ? 2 : 0][compare != SG_COMPARE_ALWAYS][depth_write];
 }
 
 /* ---- sgSample ---- */

@@ -27,7 +27,9 @@ void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uin
  *  triangles of a tile that share a facing in one batch, each lane interpolated
  *  from its own triangle; the same bytes as sg_shade_shader on each triangle's pixels. */
 void sg_shade_shader_shared(const sg_shade_ctx *c, const sg_mixed_tile *tiles, int count);
-/** The raster function shading a shader draw in place: blended, or its fragments put. */
-sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write);
+/** The raster function shading a shader draw in place: blended, or its fragments put (with
+ *  `defer`, an opaque draw with independent lanes: its fragments wait in the bin's ids and are
+ *  shaded a tile at a time, see shade_shader.c). */
+sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write, bool defer);
 
 #endif

@@ -120,10 +120,12 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, con
 /* The same for a tile that n triangles of a draw with independent lanes share, in one batch:
  * ts[j] covers the lanes of masks[j] and each lane takes its own triangle's values (the lanes
  * of none take ts[0]'s); facing, primitive and instance are ts[0]'s (the facing is
- * every triangle's). */
-SG_LANES_ATTR static uint32_t
-SG_LANES_FN(shade_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const uint32_t *masks,
-                          int n, int x0, int y0, uint32_t mask, uint32_t px[SG_SHADER_LANES]) {
+ * every triangle's). z, when not NULL, receives each lane's window depth. */
+SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_shared)(const sg_shade_ctx *c,
+                                                        const sg_tri *const *ts,
+                                                        const uint32_t *masks, int n, int x0,
+                                                        int y0, uint32_t mask,
+                                                        uint32_t px[SG_SHADER_LANES], float *z) {
     sgFragmentBatch b;
     SG_LANES_FN(batch)(c, ts[0], x0, y0, mask, &b);
     const VI none = {0};
@@ -135,6 +137,7 @@ SG_LANES_FN(shade_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const 
             if (masks[j] >> h & ((1u << SG_LANES_W) - 1u))
                 SG_LANES_FN(interp)(c, ts[j], x0, y0, h, (bit & (int32_t)masks[j]) != 0, false, &b);
     }
+    if (z) memcpy(z, b.z, sizeof b.z);
     return SG_LANES_FN(run)(c, &b, px);
 }
 
