@@ -23,11 +23,12 @@
 
 struct sg_vis_ctx;
 
-/* Work the vector blend functions leave for later in a bin (blend_avx2.c, blend_avx512.c): the
- * shading jobs of a textured blended draw's triangles, batched across its triangles (the pixels
- * of one job are shaded and blended in the order the jobs came, so a pixel still sees the
- * triangles in order). The bin runs them (flush) before anything else touches its colour: a
- * triangle of another draw, the opaque ids' shading, the bin's end. */
+/* Work a draw shaded in place leaves for later in a bin: the shading jobs of a textured blended
+ * draw's triangles, batched across its triangles (blend_avx2.c, blend_avx512.c: the pixels of
+ * one job are shaded and blended in the order the jobs came, so a pixel still sees the triangles
+ * in order), or the fragments of an opaque shader draw with independent lanes waiting in the
+ * bin's ids (shade_shader.c). The bin runs them (flush) before anything else touches its colour:
+ * a triangle of another draw, the opaque ids' shading, the bin's end. */
 enum { SG_PENDING_BYTES = 8192 };
 typedef struct sg_blend_pending {
     void (*flush)(struct sg_blend_pending *p, const struct sg_vis_ctx *v);

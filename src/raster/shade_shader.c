@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "raster/bin.h"
 #include "raster/blend.h"
 #include "raster/blend_walk.h"
 #include "tex/lanes.h"
@@ -152,8 +153,9 @@ static void flush_tile(const sg_vis_ctx *v, int tile) {
         left &= ~mt.masks[n];
     }
     mt.n = n;
-    mt.x0 = v->bx0 + (tile % 16) * SG_TILE;
-    mt.y0 = v->by0 + (tile / 16) * SG_TILE;
+    const int row = SG_BIN_SIZE / SG_TILE; /* tiles a row of the bin */
+    mt.x0 = v->bx0 + (tile % row) * SG_TILE;
+    mt.y0 = v->by0 + (tile / row) * SG_TILE;
     mt.dst = v->color + base;
     shade_groups(c, &mt, v->pending->depth_write && v->depth ? v->depth + base : NULL, true);
     memset(ids, 0, SG_TILE_PIXELS * sizeof *ids);
