@@ -262,27 +262,28 @@ static inline void sgs_transform_from(sgVertexBatch *b, const float (*p)[SGS_LAN
     const float *m = b->world_view, *pr = b->proj;
     float nm[9];
     sgs_normal_matrix(m, nm);
-    for (int i = 0; i < SGS_LANES; i++) {
-        float x = p[0][i], y = p[1][i], z = p[2][i], w = p[3][i];
-        float v0 = ((m[0] * x + m[1] * y) + m[2] * z) + m[3] * w;
-        float v1 = ((m[4] * x + m[5] * y) + m[6] * z) + m[7] * w;
-        float v2 = ((m[8] * x + m[9] * y) + m[10] * z) + m[11] * w;
-        float v3 = ((m[12] * x + m[13] * y) + m[14] * z) + m[15] * w;
-        b->clip[0][i] = ((pr[0] * v0 + pr[1] * v1) + pr[2] * v2) + pr[3] * v3;
-        b->clip[1][i] = ((pr[4] * v0 + pr[5] * v1) + pr[6] * v2) + pr[7] * v3;
-        b->clip[2][i] = ((pr[8] * v0 + pr[9] * v1) + pr[10] * v2) + pr[11] * v3;
-        b->clip[3][i] = ((pr[12] * v0 + pr[13] * v1) + pr[14] * v2) + pr[15] * v3;
-        if (vp >= 0) {
-            b->varying[vp][i] = v0;
-            b->varying[vp + 1][i] = v1;
-            b->varying[vp + 2][i] = v2;
-        }
-        if (vn >= 0) {
-            float nx = n[0][i], ny = n[1][i], nz = n[2][i];
-            b->varying[vn][i] = (nm[0] * nx + nm[1] * ny) + nm[2] * nz;
-            b->varying[vn + 1][i] = (nm[3] * nx + nm[4] * ny) + nm[5] * nz;
-            b->varying[vn + 2][i] = (nm[6] * nx + nm[7] * ny) + nm[8] * nz;
-        }
+    /* On whole vectors: as a loop over lanes, the compiler could not rule out that the stores
+     * into the batch change the inputs p and n, and kept it scalar. */
+    const sgs_vf x = sgs_vload(p[0]), y = sgs_vload(p[1]), z = sgs_vload(p[2]), w = sgs_vload(p[3]);
+    const sgs_vf v0 = ((m[0] * x + m[1] * y) + m[2] * z) + m[3] * w;
+    const sgs_vf v1 = ((m[4] * x + m[5] * y) + m[6] * z) + m[7] * w;
+    const sgs_vf v2 = ((m[8] * x + m[9] * y) + m[10] * z) + m[11] * w;
+    const sgs_vf v3 = ((m[12] * x + m[13] * y) + m[14] * z) + m[15] * w;
+    sgs_vf nx = {0}, ny = {0}, nz = {0};
+    if (vn >= 0) nx = sgs_vload(n[0]), ny = sgs_vload(n[1]), nz = sgs_vload(n[2]);
+    sgs_vstore(b->clip[0], ((pr[0] * v0 + pr[1] * v1) + pr[2] * v2) + pr[3] * v3);
+    sgs_vstore(b->clip[1], ((pr[4] * v0 + pr[5] * v1) + pr[6] * v2) + pr[7] * v3);
+    sgs_vstore(b->clip[2], ((pr[8] * v0 + pr[9] * v1) + pr[10] * v2) + pr[11] * v3);
+    sgs_vstore(b->clip[3], ((pr[12] * v0 + pr[13] * v1) + pr[14] * v2) + pr[15] * v3);
+    if (vp >= 0) {
+        sgs_vstore(b->varying[vp], v0);
+        sgs_vstore(b->varying[vp + 1], v1);
+        sgs_vstore(b->varying[vp + 2], v2);
+    }
+    if (vn >= 0) {
+        sgs_vstore(b->varying[vn], (nm[0] * nx + nm[1] * ny) + nm[2] * nz);
+        sgs_vstore(b->varying[vn + 1], (nm[3] * nx + nm[4] * ny) + nm[5] * nz);
+        sgs_vstore(b->varying[vn + 2], (nm[6] * nx + nm[7] * ny) + nm[8] * nz);
     }
 }
 
