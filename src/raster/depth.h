@@ -196,6 +196,29 @@ static inline uint32_t sg_tile_same_id(const uint32_t *ids, uint32_t id) {
 #endif
 }
 
+/* id into the pixels of mask of a tile's ids (lane i is pixel i), the others kept. */
+static inline void sg_tile_put_id(uint32_t *ids, uint32_t mask, uint32_t id) {
+#if defined(__SSE2__)
+    const __m128i v = _mm_set1_epi32((int32_t)id), lanes = _mm_setr_epi32(1, 2, 4, 8);
+    for (int j = 0; j < 4; j++) {
+        const uint32_t bits = mask >> (4 * j) & 15u;
+        if (!bits) continue;
+        const __m128i m =
+            _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int32_t)bits), lanes), lanes);
+        __m128i *row = (__m128i *)(void *)(ids + 4 * j);
+        _mm_store_si128(row, _mm_or_si128(_mm_and_si128(m, v), _mm_andnot_si128(m, *row)));
+    }
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+    const uint32x4_t v = vdupq_n_u32(id), lanes = {1, 2, 4, 8};
+    for (int j = 0; j < 4; j++) {
+        const uint32x4_t m = vtstq_u32(vdupq_n_u32(mask >> (4 * j) & 15u), lanes);
+        vst1q_u32(ids + 4 * j, vbslq_u32(m, v, vld1q_u32(ids + 4 * j)));
+    }
+#else
+    for (uint32_t m = mask; m; m &= m - 1) ids[__builtin_ctz(m)] = id;
+#endif
+}
+
 /** Offset of the tile holding pixel (x, y) in a bin's buffers, relative to the bin's origin. */
 static inline int sg_bin_tile_offset(int x, int y) {
     return ((y >> 2) * 16 + (x >> 2)) * 16;

@@ -184,7 +184,7 @@ static inline __attribute__((always_inline)) void deferred(const void *vctx, con
                                 t, x0, y0, mask, v->depth ? v->depth + base : NULL, v->compare, z);
     }
     if (!mask) return;
-    for (uint32_t m = mask; m; m &= m - 1) ids[__builtin_ctz(m)] = v->id;
+    sg_tile_put_id(ids, mask, v->id);
     v->reached[tile] = 1;
     sg_blend_pending *w = v->pending;
     w->n = 1;
