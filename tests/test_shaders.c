@@ -97,6 +97,36 @@ static void test_pow_unit(void **state) {
     assert_true(sgs_pow_unit(1.0f, 128.0f) == 1.0f);
 }
 
+/* A light without specular skips that term: the same bits as computing it. */
+static void test_light_without_specular(void **state) {
+    (void)state;
+    uint32_t seed = 7;
+    for (int round = 0; round < 200; round++) {
+        float u[17];
+        for (int k = 0; k < 17; k++) u[k] = rnd(&seed, -1.5f, 1.5f);
+        for (int k = 11; k < 14; k++) u[k] = round % 3 == 0 ? -0.0f : 0.0f; /* specular */
+        u[16] = round % 5 == 0 ? 0.0f : rnd(&seed, 0.0f, 128.0f);           /* shininess */
+        sgs_light skip = sgs_light_read(u, 0, 3, 6, 11, 16), full = skip;
+        assert_int_equal(skip.specular_on, 0);
+        full.specular_on = 1;
+        sgs_vf p[3], n[3], base[3], a[3], b[3];
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < SGS_LANES; i++) {
+                p[k][i] = rnd(&seed, -3.0f, 3.0f);
+                n[k][i] = i == 5 ? 0.0f : rnd(&seed, -1.0f, 1.0f); /* a zero normal too */
+                base[k][i] = rnd(&seed, 0.0f, 1.2f);
+            }
+        sgs_vlight_eval(&skip, p[0], p[1], p[2], n[0], n[1], n[2], base, a);
+        sgs_vlight_eval(&full, p[0], p[1], p[2], n[0], n[1], n[2], base, b);
+        assert_memory_equal(a, b, sizeof a);
+    }
+    /* a light colour that is not finite keeps the term: 0 times it is NaN */
+    float u[17] = {0.2f, 0.2f, 0.2f, 0, 0, -1, INFINITY, 1, 1, 0, 0, 0, 0, 0, 0, 0, 8};
+    assert_int_equal(sgs_light_read(u, 0, 3, 6, 11, 16).specular_on, 1);
+    u[6] = 1.0f, u[13] = 0.5f;
+    assert_int_equal(sgs_light_read(u, 0, 3, 6, 11, 16).specular_on, 1);
+}
+
 static void test_noise(void **state) {
     (void)state;
     /* At lattice points the noise is the hash; values in [0, 1); the same twice. */
@@ -498,12 +528,13 @@ static void test_twins_compile(void **state) {
 int main(int argc, char **argv) {
     if (argc == 3) validator = argv[1], scratch = argv[2];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_floor),           cmocka_unit_test(test_sin),
-        cmocka_unit_test(test_pow_unit),        cmocka_unit_test(test_noise),
-        cmocka_unit_test(test_phong),           cmocka_unit_test(test_toon_bands),
-        cmocka_unit_test(test_normal_map_flat), cmocka_unit_test(test_waves),
-        cmocka_unit_test(test_dissolve),        cmocka_unit_test(test_instanced_grid),
-        cmocka_unit_test(test_all_finite),      cmocka_unit_test(test_twins_compile),
+        cmocka_unit_test(test_floor),          cmocka_unit_test(test_sin),
+        cmocka_unit_test(test_pow_unit),       cmocka_unit_test(test_light_without_specular),
+        cmocka_unit_test(test_noise),          cmocka_unit_test(test_phong),
+        cmocka_unit_test(test_toon_bands),     cmocka_unit_test(test_normal_map_flat),
+        cmocka_unit_test(test_waves),          cmocka_unit_test(test_dissolve),
+        cmocka_unit_test(test_instanced_grid), cmocka_unit_test(test_all_finite),
+        cmocka_unit_test(test_twins_compile),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -38,6 +38,10 @@ SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms
     sgs_vf n =
         sgs_vfbm(sgs_vload(b->varying[0]), sgs_vload(b->varying[1]), sgs_vload(b->varying[2]));
     const sgs_vi gone = n < threshold;
+    uint32_t discard = 0;
+    for (int i = 0; i < SGS_LANES; i++) discard |= ((uint32_t)gone[i] & 1u) << i;
+    b->discard = discard;
+    if ((discard & b->mask) == b->mask) return; /* nothing of the tile is drawn */
     /* 1 at the cut, 0 from the band's top up */
     sgs_vf e = 1.0f - sgs_vclamp01((n - threshold) * inv_width);
     const sgs_vf base[3] = {sgs_vload(b->varying[9]), sgs_vload(b->varying[10]),
@@ -48,9 +52,6 @@ SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms
                     sgs_vload(b->varying[7]) * flip, sgs_vload(b->varying[8]) * flip, base, c);
     for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k] + (glow[k] - c[k]) * e);
     sgs_vstore(b->color[3], sgs_vsplat(1.0f));
-    uint32_t discard = 0;
-    for (int i = 0; i < SGS_LANES; i++) discard |= ((uint32_t)gone[i] & 1u) << i;
-    b->discard = discard;
 }
 
 static const char dissolve_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS

@@ -304,6 +304,9 @@ static inline void sgs_transform(sgVertexBatch *b, int vp, int vn) {
 typedef struct sgs_light {
     float ambient[3], dir[3], color[3], specular[3], shininess;
     float min_x; /* the least base sgs_pow_unit is given: FLT_MIN when shininess is 0, else 0 */
+    /* 0: the specular term adds +0 or -0 to every lane (specular 0, the light's colour finite),
+     * which changes no sum, so it is not computed */
+    int specular_on;
 } sgs_light;
 
 /* Reads ambient, direction (the way the light travels, view space), colour, specular and
@@ -322,16 +325,27 @@ static inline sgs_light sgs_light_read(const float *u, int ambient, int directio
     if (!(l.shininess >= 0.0f)) l.shininess = 0.0f;
     if (l.shininess > 128.0f) l.shininess = 128.0f;
     l.min_x = l.shininess == 0.0f ? FLT_MIN : 0.0f;
+    l.specular_on = 0;
+    for (int k = 0; k < 3; k++)
+        l.specular_on |=
+            l.specular[k] != 0.0f || !(l.color[k] >= -FLT_MAX && l.color[k] <= FLT_MAX);
     return l;
 }
 
 /* The equation for 16 lanes: view-space point (px, py, pz), normal (nx, ny, nz), base colour. */
 static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs_vf pz, sgs_vf nx,
                                    sgs_vf ny, sgs_vf nz, const sgs_vf base[3], sgs_vf out[3]) {
-    sgs_vf in = sgs_vinv_len(nx, ny, nz), iv = sgs_vinv_len(px, py, pz);
+    sgs_vf in = sgs_vinv_len(nx, ny, nz);
     nx *= in, ny *= in, nz *= in;
-    sgs_vf vx = -px * iv, vy = -py * iv, vz = -pz * iv;
     sgs_vf ndotl = (nx * l->dir[0] + ny * l->dir[1]) + nz * l->dir[2];
+    if (!l->specular_on) {
+        const sgs_vf d = sgs_vsel(ndotl > 0.0f, ndotl, sgs_vsplat(0.0f));
+        for (int k = 0; k < 3; k++)
+            out[k] = sgs_vclamp01(base[k] * l->ambient[k] + base[k] * (d * l->color[k]));
+        return;
+    }
+    sgs_vf iv = sgs_vinv_len(px, py, pz);
+    sgs_vf vx = -px * iv, vy = -py * iv, vz = -pz * iv;
     sgs_vf hx = l->dir[0] + vx, hy = l->dir[1] + vy, hz = l->dir[2] + vz;
     sgs_vf ih = sgs_vinv_len(hx, hy, hz);
     hx *= ih, hy *= ih, hz *= ih;
