@@ -109,20 +109,29 @@ INLINE void pair_fetch(const tex16 *tx, __m512i idx, __mmask16 m, __m512i *first
     *second = _mm512_permutex2var_epi32(lo, _mm512_add_epi32(even, _mm512_set1_epi32(1)), hi);
 }
 
-/* Texels from an 8 x 8 window of the texture around the tile's first pixel's texel, when every
- * texel the pixels of m need lies in it (a magnified or about 1:1 texture, away from the texture's
- * edge): eight row loads and two-source permutes instead of gathers; the same texels, so the same
- * bytes. a and b are the split's columns and rows before any wrap or clamp: where every pixel of m
- * has a - wx and b - wy in [0, 6], columns a, a + 1 and rows b, b + 1 are all inside the texture
- * and the window, so no wrap or clamp would change them, in either mode, and the four texels are
- * window entries k, k + 1, k + 8 and k + 9. False: the footprint is wider or crosses an edge; the
- * caller wraps and gathers. */
-INLINE bool window_fetch(const tex16 *tx, __m512i a, __m512i b, __mmask16 m, __m512i *t00,
-                         __m512i *t10, __m512i *t01, __m512i *t11) {
+/* Texels from an 8 x 8 window of the texture, when every texel the pixels of m need lies in it (a
+ * magnified or about 1:1 texture, away from the texture's edge): eight row loads and two-source
+ * permutes instead of gathers; the same texels, so the same bytes. The window starts 3 texels
+ * before the tile's first pixel's texel, or, with `least`, at the least column and row that m's
+ * pixels read: the shader stage's lookups take that (they come one tile at a time, and the first
+ * misses most footprints of textures whose rows run up the screen); the fixed shading, two tiles
+ * at a time, is quicker without the reductions. a and b are the split's columns and rows before
+ * any wrap or clamp: where every pixel of m has a - wx and b - wy in [0, 6], columns a, a + 1 and
+ * rows b, b + 1 are all inside the texture and the window, so no wrap or clamp would change them,
+ * in either mode, and the four texels are window entries k, k + 1, k + 8 and k + 9. False: the
+ * footprint is wider or crosses an edge; the caller wraps and gathers. */
+INLINE bool window_fetch(const tex16 *tx, __m512i a, __m512i b, __mmask16 m, const int least,
+                         __m512i *t00, __m512i *t10, __m512i *t01, __m512i *t11) {
     const int tw = tx->width, th = tx->height;
     if (tw < 8 || th < 8) return false;
-    int wx = _mm_cvtsi128_si32(_mm512_castsi512_si128(a)) - 3;
-    int wy = _mm_cvtsi128_si32(_mm512_castsi512_si128(b)) - 3;
+    int wx, wy;
+    if (least) {
+        wx = _mm512_mask_reduce_min_epi32(m, a);
+        wy = _mm512_mask_reduce_min_epi32(m, b);
+    } else {
+        wx = _mm_cvtsi128_si32(_mm512_castsi512_si128(a)) - 3;
+        wy = _mm_cvtsi128_si32(_mm512_castsi512_si128(b)) - 3;
+    }
     wx = wx < 0 ? 0 : (wx > tw - 8 ? tw - 8 : wx);
     wy = wy < 0 ? 0 : (wy > th - 8 ? th - 8 : wy);
     __m512i c = _mm512_sub_epi32(a, _mm512_set1_epi32(wx));
@@ -175,9 +184,9 @@ INLINE tex16 tex16_of(const sg_texview *tv, const int bilinear) {
 /* The four texels of each pixel of m's bilinear footprint (t00, t10, t01, t11) for the split
  * coordinates gx, gy: from the texel window where it holds them, else gathered. */
 INLINE void bilinear_fetch16(const tex16 *tx, __m512i gx, __m512i gy, __mmask16 m, const int repeat,
-                             __m512i t[4]) {
+                             const int least, __m512i t[4]) {
     __m512i a = _mm512_srai_epi32(gx, 8);
-    if (window_fetch(tx, a, _mm512_srai_epi32(gy, 8), m, &t[0], &t[1], &t[2], &t[3])) return;
+    if (window_fetch(tx, a, _mm512_srai_epi32(gy, 8), m, least, &t[0], &t[1], &t[2], &t[3])) return;
     __m512i i0, i1, j0, j1;
     bilinear_wrap(gx, tx->n_x, tx->last_x, repeat, &i0, &i1);
     bilinear_wrap(gy, tx->n_y, tx->last_y, repeat, &j0, &j1);
@@ -223,11 +232,11 @@ INLINE void bilinear_filter16(__m512i gx, __m512i gy, const __m512i t[4], __m512
 
 /* bilinear8 of shade_avx2.c on a whole tile: x[k] gets channel k in bits 16 to 23 of each lane. */
 INLINE void bilinear16(const tex16 *tx, __m512 s, __m512 u, __mmask16 m, const int repeat,
-                       __m512i x[4]) {
+                       const int least, __m512i x[4]) {
     __m512i gx = bilinear_split(s, tx->scale_x, tx->hi_x, repeat);
     __m512i gy = bilinear_split(u, tx->scale_y, tx->hi_y, repeat);
     __m512i t[4];
-    bilinear_fetch16(tx, gx, gy, m, repeat, t);
+    bilinear_fetch16(tx, gx, gy, m, repeat, least, t);
     bilinear_filter16(gx, gy, t, x);
 }
 
@@ -241,14 +250,14 @@ INLINE void unpack_texels(__m512i t, __m512i c[4]) {
 
 /* Channel k (0 .. 255) of each lane of m in c[k] (others may be 0): nearest or bilinear. */
 INLINE void lookup16(const sg_texview *tv, __m512 s, __m512 u, __mmask16 m, const int bilinear,
-                     const int repeat, __m512i c[4]) {
+                     const int repeat, const int least, __m512i c[4]) {
     const tex16 tx = tex16_of(tv, bilinear);
     if (bilinear) { /* repeat as a constant in each call, where a caller's is not */
         __m512i x[4];
         if (repeat)
-            bilinear16(&tx, s, u, m, 1, x);
+            bilinear16(&tx, s, u, m, 1, least, x);
         else
-            bilinear16(&tx, s, u, m, 0, x);
+            bilinear16(&tx, s, u, m, 0, least, x);
         for (int k = 0; k < 4; k++) c[k] = _mm512_srli_epi32(x[k], 16);
     } else {
         unpack_texels(repeat ? nearest16(&tx, s, u, m, 1) : nearest16(&tx, s, u, m, 0), c);
@@ -328,7 +337,7 @@ INLINE void mip16_lookup(const sg_mip_chain *m, __m512i l0, __m512i l1, __m512i 
         const __mmask16 in0 = _mm512_cmpeq_epi32_mask(l0, lv),
                         in1 = _mm512_cmpeq_epi32_mask(l1, lv);
         __m512i t[4];
-        lookup16(&m->level[level], s, u, in0 | (in1 & weighed), bilinear, repeat, t);
+        lookup16(&m->level[level], s, u, in0 | (in1 & weighed), bilinear, repeat, 0, t);
         for (int k = 0; k < 4; k++) {
             a[k] = _mm512_mask_blend_epi32(in0, a[k], t[k]);
             b[k] = _mm512_mask_blend_epi32(in1, b[k], t[k]);
@@ -417,7 +426,7 @@ INLINE bool texture16_tiles(const sg_shade_ctx *c, const int n, const __m512 s[]
             gy[i] = bilinear_split(u[i], tx.scale_y, tx.hi_y, repeat);
         }
         for (int i = 0; i < n; i++)
-            bilinear_fetch16(&tx, gx[i], gy[i], (__mmask16)mask[i], repeat, texels[i]);
+            bilinear_fetch16(&tx, gx[i], gy[i], (__mmask16)mask[i], repeat, 0, texels[i]);
         for (int i = 0; i < n; i++) bilinear_filter16(gx[i], gy[i], texels[i], x[i]);
         if (flat == SG_FLAT_WHITE && !sec) {
             for (int i = 0; i < n; i++) out[i] = pack_hi8(x[i]);

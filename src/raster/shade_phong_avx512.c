@@ -52,7 +52,7 @@ INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
         __m512i tc[4];
         if (bilinear) {
             __m512i x[4];
-            bilinear16(&tx, s, u, (__mmask16)mask, repeat, x);
+            bilinear16(&tx, s, u, (__mmask16)mask, repeat, 0, x);
             for (int k = 0; k < 4; k++) tc[k] = _mm512_srli_epi32(x[k], 16);
         } else {
             unpack_texels(nearest16(&tx, s, u, (__mmask16)mask, repeat), tc);

@@ -15,7 +15,7 @@
 INLINE void lookup_all(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
                        const float *s, const float *t, __m512i c[4]) {
     const sg_texview tv = {texels, w, h};
-    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, c);
+    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, 1, c);
 }
 
 void sg_sample16_avx512(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
