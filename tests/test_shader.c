@@ -343,6 +343,52 @@ static void test_discard(void **state) {
     }
 }
 
+/* A discarding draw that covers the whole target, in front of a fixed one: every tile is whole and
+ * one triangle's (shaded two at a time), and a discard there must still send the bin in place.
+ * Both frames: the checker's white on even pixels, the fixed draw alone's colours on the others. */
+static void test_discard_whole_tiles(void **state) {
+    (void)state;
+    for (int threads = 1; threads <= 2; threads++) {
+        sgDevice *dev;
+        assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads}, &dev), SG_OK);
+        float pos[16];
+        for (int i = 0; i < 16; i++) pos[i] = QUAD_POS[i] * (i % 4 < 2 ? 1.5f : 1.0f);
+        sgGeom geoms[2];
+        for (int k = 0; k < 2; k++) {
+            for (int i = 0; i < 4; i++) pos[i * 4 + 2] = k ? 0.2f : 0.8f;
+            sgGeomDesc d = {.vertex_count = 4,
+                            .positions = pos,
+                            .colors = QUAD_COL,
+                            .index_count = 6,
+                            .indices = QUAD_IDX};
+            assert_int_equal(sgCreateGeom(dev, &d, &geoms[k]), SG_OK);
+        }
+        sgDrawParams p = params();
+        sgPipelineStateObject fixed =
+            test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
+        sgPipelineStateObject checker =
+            test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false},
+                                           .depth = {.compare = SG_COMPARE_LESS, .write = true}});
+        static uint8_t behind[W * H * 4], img[W * H * 4];
+        for (int frame = -1; frame < 2; frame++) { /* -1: the fixed draw alone */
+            target t = begin(dev);
+            assert_int_equal(sgDraw(dev, fixed, geoms[0], &p), SG_OK);
+            if (frame >= 0) assert_int_equal(sgDraw(dev, checker, geoms[1], &p), SG_OK);
+            end(dev, &t, frame < 0 ? behind : img);
+            if (frame < 0) continue;
+            for (int y = 0; y < H; y++)
+                for (int x = 0; x < W; x++) {
+                    const size_t at = ((size_t)y * W + x) * 4;
+                    static const uint8_t white[4] = {255, 255, 255, 255};
+                    if (memcmp(img + at, (x + y) & 1 ? behind + at : white, 4) != 0)
+                        fail_msg("%d threads, frame %d, pixel (%d, %d): %d %d %d %d", threads,
+                                 frame, x, y, img[at], img[at + 1], img[at + 2], img[at + 3]);
+                }
+        }
+        sgDestroyDevice(dev);
+    }
+}
+
 /* Every depth compare of a draw shaded in place (a discarding one): a fixed draw at depth 0.5,
  * then the checker shader at 0.2, 0.5 and 0.8 with the compare under test: its white pixels show
  * exactly where the compare passes. */
@@ -680,11 +726,17 @@ static void test_nan(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_matches_fixed),    cmocka_unit_test(test_ids),
-        cmocka_unit_test(test_instance_rounds),  cmocka_unit_test(test_discard),
-        cmocka_unit_test(test_in_place_compare), cmocka_unit_test(test_independent_lanes),
-        cmocka_unit_test(test_sample),           cmocka_unit_test(test_blend),
-        cmocka_unit_test(test_refusals),         cmocka_unit_test(test_nan),
+        cmocka_unit_test(test_matches_fixed),
+        cmocka_unit_test(test_ids),
+        cmocka_unit_test(test_instance_rounds),
+        cmocka_unit_test(test_discard),
+        cmocka_unit_test(test_discard_whole_tiles),
+        cmocka_unit_test(test_in_place_compare),
+        cmocka_unit_test(test_independent_lanes),
+        cmocka_unit_test(test_sample),
+        cmocka_unit_test(test_blend),
+        cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_nan),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

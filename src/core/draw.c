@@ -820,6 +820,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     ds->shader_in_place = pso->shader_in_place;
     ds->writes_depth = pso->desc.depth.write;
     ds->shade_fn = pso->shade_fn;
+    ds->shade2_fn = pso->shade2_fn;
     ds->mixed_fn = pso->mixed_fn;
     ds->ctx = ctx;
     ds->compare = pso->desc.depth.compare;
@@ -827,6 +828,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     ds->blend = pso->desc.blend == SG_BLEND_ALPHA;
     dev->pass.any_in_place |= ds->in_place;
     dev->pass.any_mixed |= ds->mixed_fn != NULL;
+    dev->pass.any_pair |= ds->shade2_fn != NULL;
     dev->pass.any_shader = true;
     sgResult r = run_front_end(dev, &a, &vs, instances, slots);
     if (r != SG_OK) return r;

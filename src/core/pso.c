@@ -164,7 +164,8 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
         p.nattr = sh->varying_count;
         p.raster_fn = p.depth_fn;
         p.shade_fn = sg_shade_shader;
-        p.shade2_fn = p.shade2_sec = NULL;
+        p.shade2_fn = sg_shade_shader2;
+        p.shade2_sec = NULL;
         p.runs_fn = p.runs_sec = NULL;
         /* Tiles several triangles share in one batch where lanes are independent; mipmapped
          * sampling takes its levels from 2 x 2 differences, which need one triangle a batch. */

@@ -29,18 +29,23 @@ static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, int x0, int y
     return SG_SAMPLE16_CALL(c->shader.sample16, shade_tile, c, t, x0, y0, mask, px);
 }
 
+/* The lanes of keep of px into dst. */
+static void put_kept(uint32_t keep, const uint32_t px[SG_SHADER_LANES], uint32_t *dst) {
+    if (keep == 0xffffu) {
+        memcpy(dst, px, SG_SHADER_LANES * sizeof *px);
+        return;
+    }
+    for (uint32_t m = keep; m; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        dst[i] = px[i];
+    }
+}
+
 uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                              uint32_t *dst) {
     uint32_t px[SG_SHADER_LANES];
     const uint32_t keep = mask & ~shade_tile(c, t, x0, y0, mask, px);
-    if (keep == 0xffffu) {
-        memcpy(dst, px, sizeof px);
-    } else {
-        for (uint32_t m = keep; m; m &= m - 1) {
-            const int i = __builtin_ctz(m);
-            dst[i] = px[i];
-        }
-    }
+    put_kept(keep, px, dst);
     return keep;
 }
 
@@ -54,6 +59,15 @@ static void note_discard(const sg_shade_ctx *c) {
 void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                      uint32_t *dst) {
     if (sg_shader_fragments(c, t, x0, y0, mask, dst) != mask) note_discard(c);
+}
+
+void sg_shade_shader2(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int x1, int y1,
+                      uint32_t *dst0, uint32_t *dst1) {
+    uint32_t px[2][SG_SHADER_LANES];
+    const uint32_t d = SG_SAMPLE16_CALL(c->shader.sample16, shade_tile2, c, t, x0, y0, x1, y1, px);
+    put_kept(0xffffu & ~d, px[0], dst0);
+    put_kept(0xffffu & ~(d >> 16), px[1], dst1);
+    if (d) note_discard(c);
 }
 
 /* Triangles whose fragments may share a batch: the batch tells one facing (a stage with

@@ -23,6 +23,9 @@ uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int
  *  draw and the pass (sg_shader_state), and the bin is then redone in place (rast_bin.c). */
 void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                      uint32_t *dst);
+/** Their sg_shade2_fn: two whole tiles of a triangle, each as sg_shade_shader shades it. */
+void sg_shade_shader2(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int x1, int y1,
+                      uint32_t *dst0, uint32_t *dst1);
 /** The sg_shade_mixed_fn of shader draws whose lanes are independent (sgShaderDesc): the
  *  triangles of a tile that share a facing in one batch, each lane interpolated
  *  from its own triangle; the same bytes as sg_shade_shader on each triangle's pixels. */

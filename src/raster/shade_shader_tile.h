@@ -73,13 +73,10 @@ SG_LANES_ATTR static inline void SG_LANES_FN(batch)(const sg_shade_ctx *c, const
     b->internal = c;
 }
 
-/* The interpolated batch through the fragment stage, into RGBA8 pixels px; returns the lanes
- * discarded. Varyings past the count and the colour start at 0; each colour channel goes to
- * unorm8 as sg_to_unorm8 rounds it (NaN and below 0 give 0). */
-SG_LANES_ATTR static inline __attribute__((always_inline)) uint32_t
-SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t px[SG_SHADER_LANES]) {
-    const sg_shader_state *s = &c->shader;
-    const VF zero = {0}, one = zero + 1.0f;
+/* The batch's outputs and the varyings past the count set to 0, before the call. */
+SG_LANES_ATTR static inline __attribute__((always_inline)) void
+SG_LANES_FN(prepare)(const sg_shader_state *s, sgFragmentBatch *b) {
+    const VF zero = {0};
     /* Vector stores, not a call of memset: a tile is a few hundred cycles in all (a loop from
      * the count on became one). */
     for (int k = 0; k < SG_MAX_VARYINGS; k++)
@@ -89,7 +86,13 @@ SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t px[SG_SHADE
     for (int ch = 0; ch < 4; ch++)
         for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
             memcpy(b->color[ch] + h, &zero, sizeof zero);
-    s->fragment(b, s->uniforms);
+}
+
+/* The batch's colours after the call into RGBA8 pixels px: each channel to unorm8 as
+ * sg_to_unorm8 rounds it (NaN and below 0 give 0). */
+SG_LANES_ATTR static inline __attribute__((always_inline)) void
+SG_LANES_FN(convert)(const sgFragmentBatch *b, uint32_t px[SG_SHADER_LANES]) {
+    const VF zero = {0}, one = zero + 1.0f;
     for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
         VI p = {0};
         for (int ch = 0; ch < 4; ch++) {
@@ -101,6 +104,16 @@ SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t px[SG_SHADE
         }
         memcpy(px + h, &p, sizeof p);
     }
+}
+
+/* The interpolated batch through the fragment stage, into RGBA8 pixels px; returns the lanes
+ * discarded. */
+SG_LANES_ATTR static inline __attribute__((always_inline)) uint32_t
+SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t px[SG_SHADER_LANES]) {
+    const sg_shader_state *s = &c->shader;
+    SG_LANES_FN(prepare)(s, b);
+    s->fragment(b, s->uniforms);
+    SG_LANES_FN(convert)(b, px);
     return b->discard;
 }
 
@@ -115,6 +128,30 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, con
     for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
         SG_LANES_FN(interp)(c, t, x0, y0, h, none, true, &b);
     return SG_LANES_FN(run)(c, &b, px);
+}
+
+/* Two whole tiles of one triangle, at (x0, y0) and (x1, y1), into px[0] and px[1]: set up both,
+ * then the two calls, then both conversions, so that the second tile's work overlaps the end of
+ * the first's (each tile the bytes shade_tile gives it); returns the lanes discarded, the
+ * second tile's in bits 16 to 31. */
+SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, const sg_tri *t,
+                                                       int x0, int y0, int x1, int y1,
+                                                       uint32_t px[2][SG_SHADER_LANES]) {
+    const sg_shader_state *s = &c->shader;
+    sgFragmentBatch b[2];
+    const int xs[2] = {x0, x1}, ys[2] = {y0, y1};
+    const VI none = {0};
+    for (int j = 0; j < 2; j++) {
+        SG_LANES_FN(batch)(c, t, xs[j], ys[j], 0xffffu, &b[j]);
+        for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
+            SG_LANES_FN(interp)(c, t, xs[j], ys[j], h, none, true, &b[j]);
+        SG_LANES_FN(prepare)(s, &b[j]);
+    }
+    s->fragment(&b[0], s->uniforms);
+    s->fragment(&b[1], s->uniforms);
+    SG_LANES_FN(convert)(&b[0], px[0]);
+    SG_LANES_FN(convert)(&b[1], px[1]);
+    return b[0].discard | b[1].discard << 16;
 }
 
 /* The same for a tile that n triangles of a draw with independent lanes share, in one batch:
