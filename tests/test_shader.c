@@ -95,9 +95,10 @@ static void end(sgDevice *dev, target *t, uint8_t *out) {
     sgDestroyImage2D(dev, t->depth);
 }
 
-static sgGeom quad(sgDevice *dev, float z) {
+/* The quad at depth z, its x and y times `scale` (1: QUAD_POS). */
+static sgGeom quad_scaled(sgDevice *dev, float z, float scale) {
     float pos[16];
-    memcpy(pos, QUAD_POS, sizeof pos);
+    for (int i = 0; i < 16; i++) pos[i] = QUAD_POS[i] * (i % 4 < 2 ? scale : 1.0f);
     for (int i = 0; i < 4; i++) pos[i * 4 + 2] = z;
     sgGeom g;
     sgGeomDesc d = {.vertex_count = 4,
@@ -108,6 +109,10 @@ static sgGeom quad(sgDevice *dev, float z) {
                     .indices = QUAD_IDX};
     assert_int_equal(sgCreateGeom(dev, &d, &g), SG_OK);
     return g;
+}
+
+static sgGeom quad(sgDevice *dev, float z) {
+    return quad_scaled(dev, z, 1.0f);
 }
 
 static sgDrawParams params(void) {
@@ -286,17 +291,23 @@ static void test_instance_rounds(void **state) {
 /* A discarding draw over a background: the background shows through the discarded pixels, and
  * the discarded pixels wrote no depth (a third draw behind the first two but in front of the
  * background's depth shows there). */
+/* The discard tests' pipelines: fixed vertex colour and the checker shader, depth LESS, written. */
+static void discard_psos(sgDevice *dev, sgPipelineStateObject *fixed,
+                         sgPipelineStateObject *checker) {
+    *fixed = test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
+    *checker =
+        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false},
+                                       .depth = {.compare = SG_COMPARE_LESS, .write = true}});
+}
+
 static void render_discard(int threads, sgSimd simd, bool with_front, uint8_t *out) {
     sgDevice *dev;
     assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .simd = simd}, &dev),
                      SG_OK);
     sgGeom back = quad(dev, 0.8f), front = quad(dev, 0.2f), middle = quad(dev, 0.5f);
     sgDrawParams p = params();
-    sgPipelineStateObject fixed =
-        test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
-    sgPipelineStateObject checker =
-        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false},
-                                       .depth = {.compare = SG_COMPARE_LESS, .write = true}});
+    sgPipelineStateObject fixed, checker;
+    discard_psos(dev, &fixed, &checker);
     for (int frame = 0; frame < 2; frame++) { /* the second frame starts in place */
         target t = begin(dev);
         assert_int_equal(sgDraw(dev, fixed, back, &p), SG_OK);
@@ -351,24 +362,11 @@ static void test_discard_whole_tiles(void **state) {
     for (int threads = 1; threads <= 2; threads++) {
         sgDevice *dev;
         assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads}, &dev), SG_OK);
-        float pos[16];
-        for (int i = 0; i < 16; i++) pos[i] = QUAD_POS[i] * (i % 4 < 2 ? 1.5f : 1.0f);
-        sgGeom geoms[2];
-        for (int k = 0; k < 2; k++) {
-            for (int i = 0; i < 4; i++) pos[i * 4 + 2] = k ? 0.2f : 0.8f;
-            sgGeomDesc d = {.vertex_count = 4,
-                            .positions = pos,
-                            .colors = QUAD_COL,
-                            .index_count = 6,
-                            .indices = QUAD_IDX};
-            assert_int_equal(sgCreateGeom(dev, &d, &geoms[k]), SG_OK);
-        }
+        /* 1.5 times the quad: wider than the target */
+        const sgGeom geoms[2] = {quad_scaled(dev, 0.8f, 1.5f), quad_scaled(dev, 0.2f, 1.5f)};
         sgDrawParams p = params();
-        sgPipelineStateObject fixed =
-            test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
-        sgPipelineStateObject checker =
-            test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false},
-                                           .depth = {.compare = SG_COMPARE_LESS, .write = true}});
+        sgPipelineStateObject fixed, checker;
+        discard_psos(dev, &fixed, &checker);
         static uint8_t behind[W * H * 4], img[W * H * 4];
         for (int frame = -1; frame < 2; frame++) { /* -1: the fixed draw alone */
             target t = begin(dev);
