@@ -7,29 +7,14 @@
 
 #include "pipeline/vertex.h"
 
-/* Zeroes n floats (a multiple of 16) with vector stores: a call of memset becomes a string
+/* n floats (a multiple of 4) of value c, with vector stores: a call of memset becomes a string
  * instruction here, whose start-up cost more than a batch's other filling. */
-static inline void zero_floats(float *p, size_t n) {
-#if defined(__SSE2__)
-    for (size_t i = 0; i < n; i += 16) {
-        const __m128 z = _mm_setzero_ps();
-        _mm_storeu_ps(p + i, z);
-        _mm_storeu_ps(p + i + 4, z);
-        _mm_storeu_ps(p + i + 8, z);
-        _mm_storeu_ps(p + i + 12, z);
-    }
-#else
-    memset(p, 0, n * sizeof *p);
-#endif
-}
-
-/* 16 floats of value c. */
-static inline void fill_floats(float *p, float c) {
+static inline void fill_floats(float *p, size_t n, float c) {
 #if defined(__SSE2__)
     const __m128 v = _mm_set1_ps(c);
-    for (int i = 0; i < SG_SHADER_LANES; i += 4) _mm_storeu_ps(p + i, v);
+    for (size_t i = 0; i < n; i += 4) _mm_storeu_ps(p + i, v);
 #else
-    for (int i = 0; i < SG_SHADER_LANES; i++) p[i] = c;
+    for (size_t i = 0; i < n; i++) p[i] = c;
 #endif
 }
 
@@ -74,7 +59,7 @@ static void fill_batch(const sg_vertex_shader_run *r, int first, int n, sgVertex
         if (src)                                                                                   \
             fill_stream((dst), (src), (comps), v);                                                 \
         else                                                                                       \
-            for (int k = 0; k < (comps); k++) fill_floats((dst)[k], (absent));                     \
+            fill_floats(&(dst)[0][0], sizeof(dst) / sizeof(float), (absent));                      \
     } while (0)
     SG_FILL(b->position, r->positions, 4, 0.0f);
     SG_FILL(b->color, r->colors, 4, 1.0f);
@@ -96,8 +81,8 @@ void sg_vertex_shade(const sg_vertex_shader_run *r, int first, int count) {
         int n = first + count - at < SG_SHADER_LANES ? first + count - at : SG_SHADER_LANES;
         fill_batch(r, at, n, &b);
         /* The outputs start defined: a shader that leaves a varying unwritten gets 0 there. */
-        zero_floats(&b.clip[0][0], 4 * SG_SHADER_LANES);
-        zero_floats(&b.varying[0][0], (size_t)r->varying_count * SG_SHADER_LANES);
+        fill_floats(&b.clip[0][0], 4 * SG_SHADER_LANES, 0.0f);
+        fill_floats(&b.varying[0][0], (size_t)r->varying_count * SG_SHADER_LANES, 0.0f);
         r->vertex(&b, r->uniforms);
 #if defined(__SSE2__) && defined(__SSE_MATH__)
         for (int g = 0; g < n; g += 4) { /* four lanes' positions transposed to four vertices */
