@@ -106,10 +106,7 @@ static void shade_groups(const sg_shade_ctx *c, const sg_mixed_tile *mt, float *
             if (keep) SG_SAMPLE16_CALL(c->shader.sample16, put_tile, keep, z, dp, px, mt->dst);
             continue;
         }
-        for (uint32_t m = keep; m; m &= m - 1) {
-            const int l = __builtin_ctz(m);
-            mt->dst[l] = px[l];
-        }
+        put_kept(keep, px, mt->dst);
         if (keep != mask) note_discard(c);
     }
 }

@@ -117,16 +117,24 @@ SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t px[SG_SHADE
     return b->discard;
 }
 
+/* Batch b of the tile at (x0, y0) of one triangle: its fixed fields and every lane
+ * interpolated. */
+SG_LANES_ATTR static inline __attribute__((always_inline)) void
+SG_LANES_FN(one_triangle)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
+                          sgFragmentBatch *b) {
+    SG_LANES_FN(batch)(c, t, x0, y0, mask, b);
+    const VI none = {0};
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
+        SG_LANES_FN(interp)(c, t, x0, y0, h, none, true, b);
+}
+
 /* A tile of one triangle through the fragment stage, into RGBA8 pixels px; returns the lanes
  * discarded. */
 SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, const sg_tri *t,
                                                       int x0, int y0, uint32_t mask,
                                                       uint32_t px[SG_SHADER_LANES]) {
     sgFragmentBatch b;
-    SG_LANES_FN(batch)(c, t, x0, y0, mask, &b);
-    const VI none = {0};
-    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
-        SG_LANES_FN(interp)(c, t, x0, y0, h, none, true, &b);
+    SG_LANES_FN(one_triangle)(c, t, x0, y0, mask, &b);
     return SG_LANES_FN(run)(c, &b, px);
 }
 
@@ -140,11 +148,8 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, co
     const sg_shader_state *s = &c->shader;
     sgFragmentBatch b[2];
     const int xs[2] = {x0, x1}, ys[2] = {y0, y1};
-    const VI none = {0};
     for (int j = 0; j < 2; j++) {
-        SG_LANES_FN(batch)(c, t, xs[j], ys[j], 0xffffu, &b[j]);
-        for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
-            SG_LANES_FN(interp)(c, t, xs[j], ys[j], h, none, true, &b[j]);
+        SG_LANES_FN(one_triangle)(c, t, xs[j], ys[j], 0xffffu, &b[j]);
         SG_LANES_FN(prepare)(s, &b[j]);
     }
     s->fragment(&b[0], s->uniforms);
