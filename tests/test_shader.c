@@ -562,12 +562,15 @@ static void test_independent_lanes(void **state) {
                 fail_msg("depth state %zu, discard below %g: differs", z, (double)below);
             assert_true(shared < one_each * 3 / 4);
             for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++)
-                for (int threads = 1; threads <= 3; threads += 2) {
-                    if (render_lanes(threads, sets[k], true, below, depths[z], got) < 0) continue;
-                    if (memcmp(want, got, sizeof want) != 0)
-                        fail_msg("depth state %zu, discard below %g, set %d, %d threads: differs",
-                                 z, (double)below, (int)sets[k], threads);
-                }
+                for (int threads = 1; threads <= 3; threads += 2)
+                    for (int independent = 0; independent < 2; independent++) {
+                        if (render_lanes(threads, sets[k], independent, below, depths[z], got) < 0)
+                            continue;
+                        if (memcmp(want, got, sizeof want) != 0)
+                            fail_msg("depth state %zu, discard below %g, set %d, %d threads, "
+                                     "independent %d: differs",
+                                     z, (double)below, (int)sets[k], threads, independent);
+                    }
         }
 }
 
@@ -611,32 +614,47 @@ static void test_sample(void **state) {
     sgDestroyDevice(dev);
 }
 
-/* Blended shader draws blend like fixed ones. */
+/* Blended shader draws blend like fixed ones at every instruction set and depth state: the quad
+ * drawn twice, the second time over the first (with LESS and depth written it fails there, else
+ * it blends again). */
 static void test_blend(void **state) {
     (void)state;
-    sgDevice *dev;
-    assert_int_equal(sgCreateDevice(NULL, &dev), SG_OK);
+    static const depth_state depths[] = {
+        {SG_COMPARE_ALWAYS, false}, {SG_COMPARE_LESS, true}, {SG_COMPARE_LESS_EQUAL, false}};
     float col[16];
     for (int i = 0; i < 16; i++) col[i] = (i % 4 == 3) ? 0.5f : 1.0f;
-    sgGeom g;
-    sgGeomDesc d = {.vertex_count = 4,
-                    .positions = QUAD_POS,
-                    .colors = col,
-                    .index_count = 6,
-                    .indices = QUAD_IDX};
-    assert_int_equal(sgCreateGeom(dev, &d, &g), SG_OK);
-    sgDrawParams p = params();
     static uint8_t a[W * H * 4], b[W * H * 4];
-    target t = begin(dev);
-    assert_int_equal(sgDraw(dev, test_pso(dev, (sgPipelineDesc){.blend = SG_BLEND_ALPHA}), g, &p),
-                     SG_OK);
-    end(dev, &t, a);
-    t = begin(dev);
-    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0, false}, .blend = SG_BLEND_ALPHA};
-    assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
-    end(dev, &t, b);
-    assert_memory_equal(a, b, sizeof a);
-    sgDestroyDevice(dev);
+    for (int simd = SG_SIMD_SCALAR; simd <= SG_SIMD_NEON; simd++) {
+        if (!test_simd_runs((sgSimd)simd)) continue;
+        sgDevice *dev;
+        assert_int_equal(
+            sgCreateDevice(&(sgDeviceDesc){.thread_count = 1, .simd = (sgSimd)simd}, &dev), SG_OK);
+        sgGeom g;
+        sgGeomDesc d = {.vertex_count = 4,
+                        .positions = QUAD_POS,
+                        .colors = col,
+                        .index_count = 6,
+                        .indices = QUAD_IDX};
+        assert_int_equal(sgCreateGeom(dev, &d, &g), SG_OK);
+        sgDrawParams p = params();
+        for (size_t z = 0; z < sizeof depths / sizeof depths[0]; z++) {
+            sgPipelineDesc fixed = {.blend = SG_BLEND_ALPHA};
+            fixed.depth.compare = depths[z].compare;
+            fixed.depth.write = depths[z].write;
+            sgPipelineDesc shader = fixed;
+            shader.shader = (sgShaderDesc){vs_basic, fs_color, 6, 0, 0, false};
+            const sgPipelineStateObject psos[2] = {test_pso(dev, fixed), test_pso(dev, shader)};
+            for (int k = 0; k < 2; k++) {
+                target t = begin(dev);
+                for (int twice = 0; twice < 2; twice++)
+                    assert_int_equal(sgDraw(dev, psos[k], g, &p), SG_OK);
+                end(dev, &t, k ? b : a);
+            }
+            if (memcmp(a, b, sizeof a) != 0)
+                fail_msg("simd %d, depth state %zu: the shader's blend differs", simd, z);
+        }
+        sgDestroyDevice(dev);
+    }
 }
 
 /* Bad input: each a specific code, nothing drawn. */

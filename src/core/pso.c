@@ -174,7 +174,7 @@ sgResult sgCreatePipelineStateObject(sgDevice *dev, const sgPipelineDesc *desc,
         p.raster_line = NULL;
         p.raster_pass = NULL;
         p.shader_in_place = sg_shader_in_place_select(d->blend == SG_BLEND_ALPHA, d->depth.compare,
-                                                      d->depth.write, p.mixed_fn != NULL);
+                                                      d->depth.write, p.mixed_fn != NULL, dev->isa);
     }
     p.uses_depth = d->depth.compare != SG_COMPARE_ALWAYS || d->depth.write;
 

@@ -396,7 +396,53 @@ sg_raster_fn sg_put_avx2(int variant, bool depth_test, bool depth_write) {
     return (variant == 0 ? inlined : call)[depth_test][depth_write];
 }
 
+/* Shader draws in place (shade_shader_walk.h): tile_depth and put_tile of shade_shader_tile.h two
+ * rows a vector, in depth_simd.h's operations (the same as tile_depth's, so its bits). */
+static inline uint32_t shader_tile_depth(const sg_tri *t, int x0, int y0, uint32_t mask,
+                                         const float *dp, sgCompare op, float *z) {
+    const __m256 dx = _mm256_add_ps(_mm256_set1_ps((float)(x0 - t->minx)),
+                                    _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
+    uint32_t pass = 0;
+    for (int h = 0; h < 2; h++) {
+        const float r0 = (float)(2 * h), r1 = (float)(2 * h + 1);
+        const __m256 dy = _mm256_add_ps(_mm256_set1_ps((float)(y0 - t->miny)),
+                                        _mm256_setr_ps(r0, r0, r0, r0, r1, r1, r1, r1));
+        const __m256 zc = sg_z8(t, dx, dy);
+        _mm256_store_ps(z + 8 * h, zc);
+        if (dp)
+            pass |= (uint32_t)_mm256_movemask_ps(sg_compare8(op, zc, _mm256_loadu_ps(dp + 8 * h)))
+                    << (8 * h);
+    }
+    return dp ? mask & pass : mask;
+}
+
+static inline void shader_put_tile(uint32_t keep, const float *z, float *dp, const uint32_t *src,
+                                   uint32_t *dst) {
+    for (int h = 0; h < 2; h++) {
+        const __m256i m = lanes_of((keep >> (8 * h)) & 255u);
+        if (dp) _mm256_maskstore_ps(dp + 8 * h, m, _mm256_load_ps(z + 8 * h));
+        _mm256_maskstore_epi32((int *)(void *)(dst + 8 * h), m,
+                               _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h)));
+    }
+}
+
+#define SG_SHADER_TILE_DEPTH(v, t, x0, y0, mask, dp, op, z)                                        \
+    shader_tile_depth(t, x0, y0, mask, dp, op, z)
+#define SG_SHADER_PUT_TILE(v, keep, z, dp, src, dst) shader_put_tile(keep, z, dp, src, dst)
+#include "raster/shade_shader_walk.h"
+
+sg_raster_fn sg_shader_in_place_avx2(int kind, bool depth_test, bool depth_write) {
+    return sg_shader_walks[kind][depth_test][depth_write];
+}
+
 #else
+
+sg_raster_fn sg_shader_in_place_avx2(int kind, bool depth_test, bool depth_write) {
+    (void)kind;
+    (void)depth_test;
+    (void)depth_write;
+    return NULL;
+}
 
 sg_raster_fn sg_blend_avx2(int variant, bool depth_test, bool depth_write) {
     (void)variant;

@@ -307,7 +307,40 @@ sg_raster_fn sg_put_avx512(bool depth_test, bool depth_write) {
     return fns[depth_test][depth_write];
 }
 
+/* Shader draws in place (shade_shader_walk.h): tile_depth and put_tile of shade_shader_tile.h a
+ * whole tile a vector, in depth_simd.h's operations (the same as tile_depth's, so its bits). */
+static inline uint32_t shader_tile_depth(const sg_tri *t, int x0, int y0, uint32_t mask,
+                                         const float *dp, sgCompare op, float *z) {
+    __m512 dx, dy;
+    sg_tile_dxdy16(t, x0, y0, &dx, &dy);
+    const __m512 zc = sg_z16(t, dx, dy);
+    _mm512_store_ps(z, zc);
+    return dp ? sg_compare16(op, (__mmask16)mask, zc, _mm512_loadu_ps(dp)) : mask;
+}
+
+static inline void shader_put_tile(uint32_t keep, const float *z, float *dp, const uint32_t *src,
+                                   uint32_t *dst) {
+    if (dp) _mm512_mask_storeu_ps(dp, (__mmask16)keep, _mm512_load_ps(z));
+    _mm512_mask_storeu_epi32(dst, (__mmask16)keep, _mm512_load_si512(src));
+}
+
+#define SG_SHADER_TILE_DEPTH(v, t, x0, y0, mask, dp, op, z)                                        \
+    shader_tile_depth(t, x0, y0, mask, dp, op, z)
+#define SG_SHADER_PUT_TILE(v, keep, z, dp, src, dst) shader_put_tile(keep, z, dp, src, dst)
+#include "raster/shade_shader_walk.h"
+
+sg_raster_fn sg_shader_in_place_avx512(int kind, bool depth_test, bool depth_write) {
+    return sg_shader_walks[kind][depth_test][depth_write];
+}
+
 #else
+
+sg_raster_fn sg_shader_in_place_avx512(int kind, bool depth_test, bool depth_write) {
+    (void)kind;
+    (void)depth_test;
+    (void)depth_write;
+    return NULL;
+}
 
 sg_raster_fn sg_blend_avx512(int variant, bool depth_test, bool depth_write) {
     (void)variant;

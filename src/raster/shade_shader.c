@@ -115,35 +115,6 @@ void sg_shade_shader_shared(const sg_shade_ctx *c, const sg_mixed_tile *tiles, i
     for (int i = 0; i < count; i++) shade_groups(c, &tiles[i], NULL, false);
 }
 
-/* A tile of a shader draw shaded in place: the depth test without writing, the fragment stage,
- * then depth (when written) and colour where no lane was discarded. */
-static inline __attribute__((always_inline)) void in_place(const void *vctx, const sg_tri *t,
-                                                           int x0, int y0, uint32_t mask,
-                                                           const int zmode, const int zwrite,
-                                                           const int put) {
-    const sg_vis_ctx *v = vctx;
-    const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0);
-    float *dp = v->depth ? v->depth + base : NULL;
-    const int simd = ((const sg_shade_ctx *)v->shade_ctx)->shader.sample16;
-    float z[SG_TILE_PIXELS];
-    if (zmode != Z_NONE || zwrite)
-        mask = SG_SAMPLE16_CALL(simd, tile_depth, t, x0, y0, mask, zmode != Z_NONE ? dp : NULL,
-                                v->compare, z);
-    if (!mask) return;
-    uint32_t src[SG_TILE_PIXELS];
-    const uint32_t keep = sg_shader_fragments(v->shade_ctx, t, x0, y0, mask, src);
-    uint32_t *dst = v->color + base;
-    if (put) {
-        if (keep) SG_SAMPLE16_CALL(simd, put_tile, keep, z, zwrite ? dp : NULL, src, dst);
-        return;
-    }
-    for (uint32_t m = keep; m; m &= m - 1) {
-        const int bit = __builtin_ctz(m);
-        if (zwrite) dp[bit] = z[bit];
-        dst[bit] = sg_blend_rgba8(src[bit], dst[bit]);
-    }
-}
-
 /* Opaque in-place draws with independent lanes put their fragments off: those that pass the
  * depth test wait in the bin's ids (the triangle's id at each waiting pixel, the tile marked in
  * reached), and a tile's waiting fragments are shaded together, one batch a facing, when a
@@ -151,7 +122,7 @@ static inline __attribute__((always_inline)) void in_place(const void *vctx, con
  * when the bin ends (the bin's sg_blend_pending.flush); then their depth and colour are written
  * where nothing was discarded. A pixel still sees the draw's triangles in order, and a waiting
  * fragment's depth test stays right: nothing else writes its pixel before it is shaded. */
-static void flush_tile(const sg_vis_ctx *v, int tile) {
+void sg_shader_flush_tile(const sg_vis_ctx *v, int tile) {
     const int base = tile * SG_TILE_PIXELS;
     uint32_t *ids = v->ids + base;
     const sg_shade_ctx *c = v->shade_ctx;
@@ -173,50 +144,31 @@ static void flush_tile(const sg_vis_ctx *v, int tile) {
     v->reached[tile] = 0;
 }
 
-static void flush_waiting(sg_blend_pending *w, const sg_vis_ctx *v) {
+void sg_shader_flush_waiting(sg_blend_pending *w, const sg_vis_ctx *v) {
     for (int word = 0; word < SG_REACHED_WORDS; word++)
         for (uint64_t left = sg_reached_word(v->reached, word); left; left &= left - 1)
-            flush_tile(v, word * 64 + __builtin_ctzll(left));
+            sg_shader_flush_tile(v, word * 64 + __builtin_ctzll(left));
     w->n = 0;
 }
 
-static inline __attribute__((always_inline)) void deferred(const void *vctx, const sg_tri *t,
-                                                           int x0, int y0, uint32_t mask,
-                                                           const int zmode, const int zwrite,
-                                                           const int put) {
-    (void)put;
-    const sg_vis_ctx *v = vctx;
-    const int base = sg_bin_tile_offset(x0 - v->bx0, y0 - v->by0), tile = base / SG_TILE_PIXELS;
-    uint32_t *ids = v->ids + base;
-    if (v->reached[tile] && (mask & ~sg_tile_same_id(ids, 0))) flush_tile(v, tile);
-    if (zmode != Z_NONE) {
-        float z[SG_TILE_PIXELS];
-        mask = SG_SAMPLE16_CALL(((const sg_shade_ctx *)v->shade_ctx)->shader.sample16, tile_depth,
-                                t, x0, y0, mask, v->depth ? v->depth + base : NULL, v->compare, z);
-    }
-    if (!mask) return;
-    sg_tile_put_id(ids, mask, v->id);
-    v->reached[tile] = 1;
-    sg_blend_pending *w = v->pending;
-    w->n = 1;
-    w->draw = t->draw;
-    w->depth_write = zwrite;
-    w->flush = flush_waiting;
-}
+/* The portable walks, their depth test and writes in the draw's copies (shade_shader_tile.h). */
+#define SG_SHADER_TILE_DEPTH(v, t, x0, y0, mask, dp, op, z)                                        \
+    SG_SAMPLE16_CALL(((const sg_shade_ctx *)(v)->shade_ctx)->shader.sample16, tile_depth, t, x0,   \
+                     y0, mask, dp, op, z)
+#define SG_SHADER_PUT_TILE(v, keep, z, dp, src, dst)                                               \
+    SG_SAMPLE16_CALL(((const sg_shade_ctx *)(v)->shade_ctx)->shader.sample16, put_tile, keep, z,   \
+                     dp, src, dst)
+#include "raster/shade_shader_walk.h"
 
-SG_IN_PLACE_BODY(shader_blend_body, in_place, 0)
-SG_IN_PLACE_BODY(shader_put_body, in_place, 1)
-SG_IN_PLACE_BODY(shader_defer_body, deferred, 1)
-SG_IN_PLACE_SET(shader_blend, shader_blend_body)
-SG_IN_PLACE_SET(shader_put, shader_put_body)
-SG_IN_PLACE_SET(shader_defer, shader_defer_body)
-
-sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write,
-                                       bool defer) {
-    static const sg_raster_fn fns[3][2][2] = {SG_IN_PLACE_TABLE(shader_put),
-                                              SG_IN_PLACE_TABLE(shader_blend),
-                                              SG_IN_PLACE_TABLE(shader_defer)};
-    return fns[blend ? 1 : defer ? 2 : 0][compare != SG_COMPARE_ALWAYS][depth_write];
+sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write, bool defer,
+                                       sg_isa isa) {
+    const int kind = blend ? SG_SHADER_BLEND : defer ? SG_SHADER_DEFER : SG_SHADER_PUT;
+    const bool test = compare != SG_COMPARE_ALWAYS;
+    const sg_raster_fn fn = isa == SG_ISA_AVX512
+                                ? sg_shader_in_place_avx512(kind, test, depth_write)
+                            : isa == SG_ISA_AVX2 ? sg_shader_in_place_avx2(kind, test, depth_write)
+                                                 : NULL;
+    return fn ? fn : sg_shader_walks[kind][test][depth_write];
 }
 
 /* ---- sgSample ---- */

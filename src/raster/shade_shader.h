@@ -32,7 +32,18 @@ void sg_shade_shader2(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, in
 void sg_shade_shader_shared(const sg_shade_ctx *c, const sg_mixed_tile *tiles, int count);
 /** The raster function shading a shader draw in place: blended, or its fragments put (with
  *  `defer`, an opaque draw with independent lanes: its fragments wait in the bin's ids and are
- *  shaded a tile at a time, see shade_shader.c). */
-sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write, bool defer);
+ *  shaded a tile at a time, see shade_shader.c); isa: the device's. */
+sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write, bool defer,
+                                       sg_isa isa);
+/** The kinds of those functions. */
+enum { SG_SHADER_PUT, SG_SHADER_BLEND, SG_SHADER_DEFER };
+/** AVX-512's and AVX2's (blend_avx512.c, blend_avx2.c; NULL where not built); depth_test: the
+ *  draw's compare is not ALWAYS. */
+sg_raster_fn sg_shader_in_place_avx512(int kind, bool depth_test, bool depth_write);
+sg_raster_fn sg_shader_in_place_avx2(int kind, bool depth_test, bool depth_write);
+/** The put-off fragments of tile `tile` of the bin v shaded, their depth and colour written. */
+void sg_shader_flush_tile(const sg_vis_ctx *v, int tile);
+/** Every tile's (the bin's sg_blend_pending.flush). */
+void sg_shader_flush_waiting(sg_blend_pending *w, const sg_vis_ctx *v);
 
 #endif
