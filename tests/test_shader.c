@@ -740,6 +740,70 @@ static void test_nan(void **state) {
     sgDestroyDevice(dev);
 }
 
+/* A tile's colours: lane i's red conversion_values[i], its green the values in reverse: NaN,
+ * infinities, zeros of both signs, values below 0, above 1 and between. With *uniforms not 0,
+ * pixel (0, 0) is discarded, so that its bin is shaded in place. */
+static const float conversion_values[SG_SHADER_LANES] = {
+    NAN,   -NAN, -INFINITY, -1.0f,  -0.0f, 0.0f, 1e-30f,   0.0019f,
+    0.25f, 0.5f, 0.75f,     0.998f, 1.0f,  1.5f, INFINITY, 0.001f};
+
+static void fs_values(sgFragmentBatch *b, const void *uniforms) {
+    const int *discard_origin = uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        b->color[0][i] = conversion_values[i];
+        b->color[1][i] = conversion_values[SG_SHADER_LANES - 1 - i];
+        b->color[2][i] = 0.5f;
+        b->color[3][i] = 1.0f;
+    }
+    if (*discard_origin && b->x == 0 && b->y == 0) b->discard = 1;
+}
+
+/* The documented conversion: clamped to [0, 1], NaN written as 0, rounded to nearest. */
+static uint8_t unorm8_of(float v) {
+    return v > 0.0f ? (v < 1.0f ? (uint8_t)(v * 255.0f + 0.5f) : 255) : 0;
+}
+
+/* The fragment stage's colours reach the target clamped, NaN as 0, at every instruction set,
+ * shaded visibility first (whole tiles in pairs) and in place. */
+static void test_color_conversion(void **state) {
+    (void)state;
+    static uint8_t img[W * H * 4];
+    for (int simd = SG_SIMD_SCALAR; simd <= SG_SIMD_NEON; simd++) {
+        if (!test_simd_runs((sgSimd)simd)) continue;
+        for (int discard_origin = 0; discard_origin < 2; discard_origin++) {
+            sgDevice *dev;
+            assert_int_equal(
+                sgCreateDevice(&(sgDeviceDesc){.thread_count = 1, .simd = (sgSimd)simd}, &dev),
+                SG_OK);
+            sgGeom g = quad_scaled(dev, 0.5f, 1.5f);
+            sgDrawParams p = params();
+            p.uniforms = &discard_origin;
+            p.uniform_size = sizeof discard_origin;
+            sgPipelineStateObject pso =
+                test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_values, 6, 0, 0, false}});
+            for (int frame = 0; frame < 2; frame++) { /* after a discard, the second in place */
+                target t = begin(dev);
+                assert_int_equal(sgDraw(dev, pso, g, &p), SG_OK);
+                end(dev, &t, img);
+                for (int y = 0; y < H; y++)
+                    for (int x = 0; x < W; x++) {
+                        if (discard_origin && x == 0 && y == 0) continue;
+                        const int lane = (x & 3) + (y & 3) * 4;
+                        const uint8_t want[4] = {
+                            unorm8_of(conversion_values[lane]),
+                            unorm8_of(conversion_values[SG_SHADER_LANES - 1 - lane]), 128, 255};
+                        const uint8_t *got = img + ((size_t)y * W + x) * 4;
+                        if (memcmp(got, want, 4) != 0)
+                            fail_msg("simd %d, discard %d, frame %d, pixel (%d, %d): %d %d %d %d",
+                                     simd, discard_origin, frame, x, y, got[0], got[1], got[2],
+                                     got[3]);
+                    }
+            }
+            sgDestroyDevice(dev);
+        }
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_matches_fixed),
@@ -753,6 +817,7 @@ int main(void) {
         cmocka_unit_test(test_blend),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_nan),
+        cmocka_unit_test(test_color_conversion),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -3,6 +3,10 @@
 
 #include <string.h>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "raster/bin.h"
 #include "raster/blend.h"
 #include "raster/blend_walk.h"
