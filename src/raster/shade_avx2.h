@@ -410,9 +410,17 @@ INLINE void mip8_lookup(const sg_mip_chain *m, __m256i l0, __m256i l1, __m256i f
     __m128i x = _mm_or_si128(_mm256_castsi256_si128(bits), _mm256_extracti128_si256(bits, 1));
     x = _mm_or_si128(x, _mm_shuffle_epi32(x, 0x4e));
     x = _mm_or_si128(x, _mm_shuffle_epi32(x, 0xb1));
+    uint32_t want = (uint32_t)_mm_cvtsi128_si32(x);
+    /* Every weight 0 (nearest mipmaps, magnified sets): each lane's first level's texel, which
+     * the blend below would give; and with one level for all, that level's lookup as it is. */
+    const bool weighed = _mm256_movemask_epi8(unweighed) != -1;
+    if (!weighed && !(want & (want - 1))) {
+        lookup8(&m->level[__builtin_ctz(want)], s, u, bilinear, repeat, c);
+        return;
+    }
     __m256i a[4], b[4];
     for (int k = 0; k < 4; k++) a[k] = b[k] = _mm256_setzero_si256();
-    for (uint32_t want = (uint32_t)_mm_cvtsi128_si32(x); want; want &= want - 1) {
+    for (; want; want &= want - 1) {
         const int level = __builtin_ctz(want);
         const __m256i lv = _mm256_set1_epi32(level);
         const __m256i in0 = _mm256_cmpeq_epi32(l0, lv), in1 = _mm256_cmpeq_epi32(l1, lv);
@@ -424,6 +432,10 @@ INLINE void mip8_lookup(const sg_mip_chain *m, __m256i l0, __m256i l1, __m256i f
         }
     }
     for (int k = 0; k < 4; k++) {
+        if (!weighed) {
+            c[k] = a[k];
+            continue;
+        }
         const __m256i d = _mm256_mullo_epi32(_mm256_sub_epi32(b[k], a[k]), f);
         c[k] = _mm256_add_epi32(a[k], _mm256_srai_epi32(d, 8));
     }

@@ -329,6 +329,12 @@ INLINE void mip16_lookup(const sg_mip_chain *m, __m512i l0, __m512i l1, __m512i 
         _mm512_mask_or_epi32(_mm512_sllv_epi32(one, l0), weighed, _mm512_sllv_epi32(one, l0),
                              _mm512_sllv_epi32(one, l1));
     uint32_t want = (uint32_t)_mm512_reduce_or_epi32(bits);
+    /* Every weight 0 (nearest mipmaps, magnified tiles): each lane's first level's texel, which
+     * the blend below would give; and with one level for all, that level's lookup as it is. */
+    if (!weighed && !(want & (want - 1))) {
+        lookup16(&m->level[__builtin_ctz(want)], s, u, 0xffff, bilinear, repeat, 0, c);
+        return;
+    }
     __m512i a[4], b[4];
     for (int k = 0; k < 4; k++) a[k] = b[k] = _mm512_setzero_si512();
     for (; want; want &= want - 1) {
@@ -344,6 +350,10 @@ INLINE void mip16_lookup(const sg_mip_chain *m, __m512i l0, __m512i l1, __m512i 
         }
     }
     for (int k = 0; k < 4; k++) {
+        if (!weighed) {
+            c[k] = a[k];
+            continue;
+        }
         const __m512i d = _mm512_mullo_epi32(_mm512_sub_epi32(b[k], a[k]), f);
         c[k] = _mm512_add_epi32(a[k], _mm512_srai_epi32(d, 8));
     }
