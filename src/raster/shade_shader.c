@@ -155,13 +155,10 @@ void sg_shader_flush_waiting(sg_blend_pending *w, const sg_vis_ctx *v) {
     w->n = 0;
 }
 
-/* The portable walks, their depth test and writes in the draw's copies (shade_shader_tile.h). */
+/* The portable walks: their depth test and writes from shade_shader_tile.h's portable copy. */
 #define SG_SHADER_TILE_DEPTH(v, t, x0, y0, mask, dp, op, z)                                        \
-    SG_SAMPLE16_CALL(((const sg_shade_ctx *)(v)->shade_ctx)->shader.sample16, tile_depth, t, x0,   \
-                     y0, mask, dp, op, z)
-#define SG_SHADER_PUT_TILE(v, keep, z, dp, src, dst)                                               \
-    SG_SAMPLE16_CALL(((const sg_shade_ctx *)(v)->shade_ctx)->shader.sample16, put_tile, keep, z,   \
-                     dp, src, dst)
+    tile_depth_portable(t, x0, y0, mask, dp, op, z)
+#define SG_SHADER_PUT_TILE(v, keep, z, dp, src, dst) put_tile_portable(keep, z, dp, src, dst)
 #include "raster/shade_shader_walk.h"
 
 sg_raster_fn sg_shader_in_place_select(bool blend, sgCompare compare, bool depth_write, bool defer,

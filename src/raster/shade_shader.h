@@ -4,8 +4,8 @@
  * an sg_shade_fn), or in place (sg_shader_in_place_select): blended draws, and draws whose
  * fragments discard, test depth, shade, then write depth and colour only where nothing was
  * discarded. One C body for every instruction set, its 16-lane parts (the batch's set-up and
- * conversion, the in-place depth test and writes) in copies per set: the user's function is the
- * work. */
+ * conversion, the in-place walks with their depth test and writes) in copies per set: the user's
+ * function is the work. */
 #ifndef SG_SHADE_SHADER_H
 #define SG_SHADE_SHADER_H
 

@@ -1,10 +1,10 @@
 /* shade_shader_tile.h - the 16-lane parts of the fragment stage of shader pipelines (the batch's
- * set-up and conversion, the in-place depth test and writes), written once over vectors of
- * SG_LANES_W lanes and compiled by shade_shader.c once per copy (tex/lanes_copies.h: 4, 8 or 16
- * lanes). A copy's vectors are its registers' width: GCC 12 turns a comparison of vectors wider
- * than the target's registers into one compare a lane, so the AVX2 copy works on two halves of a
- * tile, the portable one on four rows. Every lane does the scalar operations of its pixel in the
- * same order, so every copy gives the same bits. No include guard. */
+ * set-up and conversion, the in-place writes, the portable walks' depth test), written once over
+ * vectors of SG_LANES_W lanes and compiled by shade_shader.c once per copy (tex/lanes_copies.h: 4,
+ * 8 or 16 lanes). A copy's vectors are its registers' width: GCC 12 turns a comparison of vectors
+ * wider than the target's registers into one compare a lane, so the AVX2 copy works on two halves
+ * of a tile, the portable one on four rows. Every lane does the scalar operations of its pixel in
+ * the same order, so every copy gives the same bits. No include guard. */
 
 typedef float SG_LANES_FN(vf) __attribute__((vector_size(4 * SG_LANES_W)));
 typedef int32_t SG_LANES_FN(vi) __attribute__((vector_size(4 * SG_LANES_W)));
@@ -197,6 +197,8 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_shared)(const sg_shade_ctx *c,
     return SG_LANES_FN(run)(c, &b, px);
 }
 
+/* The portable walks' (shade_shader_walk.h); blend_avx2.c and blend_avx512.c have their own. */
+#if SG_LANES_W == 4
 /* The depth test of a tile shaded in place: each lane's window depth into z (sg_tri_depth's
  * operations, so its bits), and the lanes of mask that pass `op` against the tile's stored depths
  * dp (all of them when dp is NULL). */
@@ -247,6 +249,8 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(tile_depth)(const sg_tri *t, int x0, i
     }
     return dp ? mask & bits : mask;
 }
+
+#endif
 
 /* The lanes of keep written: depth z into dp (when not NULL) and the colours src put into dst. */
 SG_LANES_ATTR static void SG_LANES_FN(put_tile)(uint32_t keep, const float z[SG_TILE_PIXELS],
