@@ -400,14 +400,10 @@ sg_raster_fn sg_put_avx2(int variant, bool depth_test, bool depth_write) {
  * rows a vector, in depth_simd.h's operations (the same as tile_depth's, so its bits). */
 static inline uint32_t shader_tile_depth(const sg_tri *t, int x0, int y0, uint32_t mask,
                                          const float *dp, sgCompare op, float *z) {
-    const __m256 dx = _mm256_add_ps(_mm256_set1_ps((float)(x0 - t->minx)),
-                                    _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 0.0f, 1.0f, 2.0f, 3.0f));
+    const sg_zrows8 zr = sg_zrows8_at(t, x0, y0);
     uint32_t pass = 0;
     for (int h = 0; h < 2; h++) {
-        const float r0 = (float)(2 * h), r1 = (float)(2 * h + 1);
-        const __m256 dy = _mm256_add_ps(_mm256_set1_ps((float)(y0 - t->miny)),
-                                        _mm256_setr_ps(r0, r0, r0, r0, r1, r1, r1, r1));
-        const __m256 zc = sg_z8(t, dx, dy);
+        const __m256 zc = sg_zrows8_half(&zr, h);
         _mm256_store_ps(z + 8 * h, zc);
         if (dp)
             pass |= (uint32_t)_mm256_movemask_ps(sg_compare8(op, zc, _mm256_loadu_ps(dp + 8 * h)))

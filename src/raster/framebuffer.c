@@ -91,11 +91,7 @@ bool sg_fb_depth_range(const float *src, size_t n, float *lo, float *hi) {
 }
 
 void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
-    if (mask == 0xffffu) {
-        memcpy(dst, src, SG_TILE_PIXELS * sizeof *dst);
-        return;
-    }
-    for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
+    sg_fb_put_lanes(dst, src, mask);
 }
 
 void sg_fb_blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {

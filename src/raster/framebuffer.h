@@ -81,7 +81,16 @@ static inline uint32_t sg_fb_average4(uint32_t a, uint32_t b, uint32_t c, uint32
     return (lo >> 2 & m) | (hi >> 2 & m) << 8;
 }
 
-/** The portable put_masked, blend_masked and average4 of sg_fb_ops. */
+/** The pixels of `mask` of a tile's src into dst (lane i is pixel i), the others kept. */
+static inline void sg_fb_put_lanes(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+    if (mask == 0xffffu) {
+        memcpy(dst, src, SG_TILE_PIXELS * sizeof *dst);
+        return;
+    }
+    for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
+}
+
+/** The portable put_masked (sg_fb_put_lanes), blend_masked and average4 of sg_fb_ops. */
 void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,

@@ -10,6 +10,7 @@
 #include "raster/bin.h"
 #include "raster/blend.h"
 #include "raster/blend_walk.h"
+#include "raster/framebuffer.h"
 #include "tex/lanes.h"
 #include "tex/mip.h"
 #include "tex/sample16.h"
@@ -33,23 +34,11 @@ static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, int x0, int y
     return SG_SAMPLE16_CALL(c->shader.sample16, shade_tile, c, t, x0, y0, mask, px);
 }
 
-/* The lanes of keep of px into dst. */
-static void put_kept(uint32_t keep, const uint32_t px[SG_SHADER_LANES], uint32_t *dst) {
-    if (keep == 0xffffu) {
-        memcpy(dst, px, SG_SHADER_LANES * sizeof *px);
-        return;
-    }
-    for (uint32_t m = keep; m; m &= m - 1) {
-        const int i = __builtin_ctz(m);
-        dst[i] = px[i];
-    }
-}
-
 uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                              uint32_t *dst) {
     uint32_t px[SG_SHADER_LANES];
     const uint32_t keep = mask & ~shade_tile(c, t, x0, y0, mask, px);
-    put_kept(keep, px, dst);
+    sg_fb_put_lanes(dst, px, keep);
     return keep;
 }
 
@@ -69,8 +58,8 @@ void sg_shade_shader2(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, in
                       uint32_t *dst0, uint32_t *dst1) {
     uint32_t px[2][SG_SHADER_LANES];
     const uint32_t d = SG_SAMPLE16_CALL(c->shader.sample16, shade_tile2, c, t, x0, y0, x1, y1, px);
-    put_kept(0xffffu & ~d, px[0], dst0);
-    put_kept(0xffffu & ~(d >> 16), px[1], dst1);
+    sg_fb_put_lanes(dst0, px[0], 0xffffu & ~d);
+    sg_fb_put_lanes(dst1, px[1], 0xffffu & ~(d >> 16));
     if (d) note_discard(c);
 }
 
@@ -110,7 +99,7 @@ static void shade_groups(const sg_shade_ctx *c, const sg_mixed_tile *mt, float *
             if (keep) SG_SAMPLE16_CALL(c->shader.sample16, put_tile, keep, z, dp, px, mt->dst);
             continue;
         }
-        put_kept(keep, px, mt->dst);
+        sg_fb_put_lanes(mt->dst, px, keep);
         if (keep != mask) note_discard(c);
     }
 }
