@@ -277,11 +277,11 @@ static void sample_walk_matches_walk_per_sample(void **state) {
             sg_vis_ctx va[SG_VIS_SAMPLES], vb[SG_VIS_SAMPLES];
             for (int k = 0; k < SG_VIS_SAMPLES; k++) {
                 va[k] =
-                    (sg_vis_ctx){a->depth[k], a->ids[k], a->reached[k], rx0,  ry0, (uint32_t)n + 1,
-                                 op,          NULL,      NULL,          NULL, NULL};
+                    (sg_vis_ctx){a->depth[k], a->ids[k], a->reached[k], rx0,  ry0,  (uint32_t)n + 1,
+                                 op,          NULL,      NULL,          NULL, NULL, NULL};
                 vb[k] =
-                    (sg_vis_ctx){b->depth[k], b->ids[k], b->reached[k], rx0,  ry0, (uint32_t)n + 1,
-                                 op,          NULL,      NULL,          NULL, NULL};
+                    (sg_vis_ctx){b->depth[k], b->ids[k], b->reached[k], rx0,  ry0,  (uint32_t)n + 1,
+                                 op,          NULL,      NULL,          NULL, NULL, NULL};
                 sg_depth_select(op, write, isa)(&st[k], rx0, ry0, rx0 + WALK_BIN, ry0 + WALK_BIN,
                                                 &va[k]);
             }

@@ -11,6 +11,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #elif defined(__aarch64__) && defined(__ARM_NEON)
@@ -53,6 +54,11 @@ typedef struct sg_vis_ctx {
     sg_shade_fn shade;
     const sg_shade_ctx *shade_ctx;
     sg_blend_pending *pending;
+    /* Multisampled bins only, vis[0]'s (NULL elsewhere): bits a tile, SG_REACHED_WORDS words of
+     * tiles whose ids are taken as 0 (never written, or shaded since), then as many of tiles
+     * whose planes 1-3 of depth are taken as plane 0's; the walks set both at a tile's touch
+     * (sg_vis_samples_touch), so a bin clears and copies only the tiles it draws. */
+    uint64_t *fresh;
 } sg_vis_ctx;
 
 /* Rasterises a triangle's part in the rectangle [x0, x1) x [y0, y1) into the bin's buffers (ctx:
@@ -222,6 +228,25 @@ static inline void sg_tile_put_id(uint32_t *ids, uint32_t mask, uint32_t id) {
 /** Offset of the tile holding pixel (x, y) in a bin's buffers, relative to the bin's origin. */
 static inline int sg_bin_tile_offset(int x, int y) {
     return ((y >> 2) * 16 + (x >> 2)) * 16;
+}
+
+/* The tile at (x0, y0) made ready for a walk (sg_vis_ctx.fresh): its ids 0 and every sample's
+ * depth plane 0's, where they are only taken so. */
+static inline void sg_vis_samples_touch(sg_vis_ctx *vis, int x0, int y0) {
+    uint64_t *fresh = vis[0].fresh;
+    if (!fresh) return;
+    const int base = sg_bin_tile_offset(x0 - vis[0].bx0, y0 - vis[0].by0), tile = base >> 4;
+    uint64_t *ids = fresh + (tile >> 6), *depth = ids + SG_REACHED_WORDS;
+    const uint64_t bit = (uint64_t)1 << (tile & 63);
+    if (!((*ids | *depth) & bit)) return;
+    if (*ids & bit)
+        for (int k = 0; k < SG_VIS_SAMPLES; k++)
+            memset(vis[k].ids + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
+    if (*depth & bit && vis[0].depth)
+        for (int k = 1; k < SG_VIS_SAMPLES; k++)
+            memcpy(vis[k].depth + base, vis[0].depth + base, SG_TILE_PIXELS * sizeof(float));
+    *ids &= ~bit;
+    *depth &= ~bit;
 }
 
 #endif

@@ -181,6 +181,7 @@ SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, 
     SG_WALK_INLINE void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {  \
         const sg_vis_samples *s = c;                                                               \
         uint32_t mk[SG_VIS_SAMPLES];                                                               \
+        sg_vis_samples_touch(s->vis, x0, y0);                                                      \
         if (t->line)                                                                               \
             for (int k = 0; k < SG_VIS_SAMPLES; k++) mk[k] = m;                                    \
         else                                                                                       \

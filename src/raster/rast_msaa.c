@@ -43,6 +43,9 @@ typedef struct msaa_bin {
      * The resolve then takes plane 0, and the other planes are filled in from it only when a
      * tile's samples first differ (expand). */
     uint64_t one_color[SG_REACHED_WORDS];
+    /* Bits a tile: its ids taken as 0, then its planes 1-3 of depth taken as plane 0's, set at
+     * a walk's touch (sg_vis_ctx.fresh). */
+    uint64_t fresh[2 * SG_REACHED_WORDS];
     sg_vis_ctx vis[NS];
     int x0, y0; /* the bin's top-left pixel */
 } msaa_bin;
@@ -86,7 +89,7 @@ static inline void expand(msaa_bin *b, int word, int bit, int base) {
 
 /* Shades the ids the samples hold: per tile, each triangle seen by some sample once, for the
  * pixels where one of its samples sees it, at the pixel centre, its colour then written to those
- * samples. The ids are set back to 0 and the tiles to unreached. */
+ * samples. The ids are taken as 0 from then on (fresh), the tiles as unreached. */
 static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     /* Tiles where every sample sees what sample 0 sees (inside the triangles, away from their
      * edges): shaded as a one-sample bin's, in plane 0, then copied to the other planes' covered
@@ -114,11 +117,6 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
             for (int k = 1; k < NS; k++)
                 p->fb->put_masked(b->color[k] + base, b->color[0] + base, covered);
         }
-        for (uint64_t left = uniform_word; left; left &= left - 1) {
-            const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
-            for (int k = 0; k < NS; k++)
-                memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
-        }
         for (uint64_t reached = mixed[word]; reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
             const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
@@ -145,9 +143,9 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
                     any |= left[k] &= ~m[k];
                 }
             }
-            for (int k = 0; k < NS; k++)
-                memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
         }
+        /* The shaded tiles' ids are done with: taken as 0 from here (fresh). */
+        b->fresh[word] |= uniform_word | mixed[word];
         for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
     }
 }
@@ -156,7 +154,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
  * sample's depth test without write (its ids mark the passing samples), then per tile one
  * shading of the pixels with a passing sample, then each passing sample's depth (when the draw
  * writes it) and colour, blended or put, where the fragment was not discarded. The ids planes
- * hold nothing else here (shade_ids ran before) and are left empty. */
+ * hold nothing else here (shade_ids ran before) and are taken as empty after it (fresh). */
 static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
                      const sg_draw_state *d, uint32_t id) {
     for (int k = 0; k < NS; k++) {
@@ -173,8 +171,7 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
             const int base = tile * SG_TILE_PIXELS;
             uint32_t m[NS], u = 0;
             for (int k = 0; k < NS; k++) u |= m[k] = sg_tile_same_id(b->ids[k] + base, id);
-            for (int k = 0; k < NS; k++)
-                memset(b->ids[k] + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
+            b->fresh[word] |= (uint64_t)1 << (tile & 63); /* its ids are done with */
             if (!u) continue;
             _Alignas(64) uint32_t src[SG_TILE_PIXELS];
             uint32_t keep = u;
@@ -216,8 +213,12 @@ typedef sg_bin_view bin_view;
 /* The bin's samples from the pass's load or clear, or from the sample buffers after a flush. */
 static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index) {
     const size_t at = (size_t)index * SG_MSAA_BIN_SAMPLES;
-    /* Cleared or loaded, every tile is one colour: plane 0 alone is filled. */
+    /* Cleared or loaded, every tile is one colour: plane 0 alone is filled. And the ids and the
+     * other planes of depth are set tile by tile as the walks first touch them (fresh), but for
+     * samples that come back from a flush. */
     memset(b->one_color, v->color && !p->msaa_load ? 0xff : 0, sizeof b->one_color);
+    memset(b->fresh, 0xff, sizeof b->fresh / 2);
+    memset(b->fresh + SG_REACHED_WORDS, p->msaa_load ? 0 : 0xff, sizeof b->fresh / 2);
     if (v->color) {
         if (p->msaa_load) {
             for (int k = 0; k < NS; k++)
@@ -236,9 +237,8 @@ static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int 
                        BIN_PIXELS * sizeof(float));
         } else if (p->load_depth) {
             sg_tile_from_linear_f32(b->depth[0], v->depth, v->pitch, v->w, v->h, BIN_TILES);
-            for (int k = 1; k < NS; k++) memcpy(b->depth[k], b->depth[0], sizeof b->depth[0]);
         } else {
-            p->fb->fill_depth(b->depth[0], (size_t)NS * PLANE, p->clear_depth);
+            p->fb->fill_depth(b->depth[0], BIN_PIXELS, p->clear_depth);
         }
     }
 }
@@ -248,8 +248,11 @@ static void start_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int 
 static void end_bin(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int index) {
     const size_t at = (size_t)index * SG_MSAA_BIN_SAMPLES;
     if (p->msaa_store) {
-        for (int tile = 0; tile < BIN_TILES * BIN_TILES; tile++)
+        for (int tile = 0; tile < BIN_TILES * BIN_TILES; tile++) {
             expand(b, tile >> 6, tile & 63, tile * SG_TILE_PIXELS);
+            sg_vis_samples_touch(b->vis, b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT),
+                                 b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT));
+        }
         for (int k = 0; k < NS; k++) {
             const size_t to = at + (size_t)k * BIN_PIXELS;
             if (v->color) memcpy(p->msaa_color + to, b->color[k], BIN_PIXELS * sizeof(uint32_t));
@@ -278,7 +281,6 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
                    const bool shaders_in_place) {
     const sg_bin *bin = &p->binner->bins[index];
     const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
-    memset(b->ids, 0, sizeof b->ids);
     memset(b->reached, 0, sizeof b->reached);
     for (int k = 0; k < NS; k++)
         b->vis[k] = (sg_vis_ctx){v->depth ? b->depth[k] : NULL,
@@ -291,7 +293,8 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
                                  NULL,
                                  NULL,
                                  NULL,
-                                 NULL};
+                                 NULL,
+                                 b->fresh};
     start_bin(p, v, b, index);
     const bool depth_only = v->color == NULL;
     bool pending = false; /* the ids hold triangles not shaded yet */
