@@ -38,6 +38,7 @@ typedef struct msaa_bin {
     _Alignas(64) float depth[NS][PLANE];
     _Alignas(64) uint32_t ids[NS][PLANE];
     _Alignas(64) uint8_t reached[NS][SG_REACHED_BYTES]; /* sg_vis_ctx.reached */
+    _Alignas(64) uint32_t shaded[PLANE]; /* a triangle's pixels shaded at once (in_place) */
     /* A bit a tile: its samples' colours are all plane 0's, and planes 1-3 of the tile are not
      * kept (a cleared or loaded tile, and one that only whole pixels have been written to since).
      * The resolve then takes plane 0, and the other planes are filled in from it only when a
@@ -151,59 +152,85 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
 }
 
 /* A triangle shaded in place (a blend, or a shader draw whose fragments may discard): each
- * sample's depth test without write (its ids mark the passing samples), then per tile one
- * shading of the pixels with a passing sample, then each passing sample's depth (when the draw
- * writes it) and colour, blended or put, where the fragment was not discarded. The ids planes
- * hold nothing else here (shade_ids ran before) and are taken as empty after it (fresh). */
+ * sample's depth test (its ids mark the passing samples), then the pixels with a passing sample
+ * shaded once, then each passing sample's depth (when the draw writes it: by the test itself for
+ * a fixed draw) and colour, blended or put, where the fragment was not discarded. A fixed draw
+ * with a runs function shades its partly covered tiles' pixels at once, packed (b->shaded), else
+ * each tile is shaded on its own. The ids planes hold nothing else here (shade_ids ran before) and
+ * are taken as empty after it (fresh). */
 static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
                      const sg_draw_state *d, uint32_t id) {
     for (int k = 0; k < NS; k++) {
         b->vis[k].id = id;
         b->vis[k].compare = d->compare;
     }
-    d->test_fn(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, b->vis);
     const bool shader = d->ctx.shader.fragment != NULL;
+    (shader ? d->test_fn : d->vis_fn)(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE,
+                                      b->vis);
+    /* The tiles with a passing sample: their pixels (runs) and each sample's. */
+    sg_run runs[BIN_TILES * BIN_TILES];
+    uint16_t samples[BIN_TILES * BIN_TILES][NS];
+    int n = 0;
     for (int word = 0; word < SG_REACHED_WORDS; word++) {
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
-            const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
-            const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
-            const int base = tile * SG_TILE_PIXELS;
-            uint32_t m[NS], u = 0;
-            for (int k = 0; k < NS; k++) u |= m[k] = sg_tile_same_id(b->ids[k] + base, id);
-            b->fresh[word] |= (uint64_t)1 << (tile & 63); /* its ids are done with */
-            if (!u) continue;
-            _Alignas(64) uint32_t src[SG_TILE_PIXELS];
-            uint32_t keep = u;
-            if (shader)
-                keep = sg_shader_fragments(&d->ctx, t, px, py, u, src);
-            else
-                d->shade_fn(&d->ctx, t, px, py, u, src);
-            if (d->writes_depth && b->vis[0].depth)
-                for (int k = 0; k < NS; k++) {
-                    const float ox = (float)(px - st[k].minx), oy = (float)(py - st[k].miny);
-                    for (uint32_t left = m[k] & keep; left; left &= left - 1) {
-                        int bit = __builtin_ctz(left);
-                        b->depth[k][base + bit] =
-                            sg_tri_depth(&st[k], ox + (float)(bit & 3), oy + (float)(bit >> 2));
-                    }
-                }
-            /* Every sample of a one-colour tile's pixels written alike: it stays one colour. */
-            bool alike = b->one_color[word] >> (tile & 63) & 1;
-            for (int k = 0; k < NS; k++) alike &= m[k] == u;
-            const int n = alike ? 1 : NS;
-            if (!alike) expand(b, word, tile & 63, base);
-            for (int k = 0; k < n; k++) {
-                const uint32_t mk = m[k] & keep;
-                uint32_t *dst = b->color[k] + base;
-                if (!mk) continue;
-                if (d->blend)
-                    p->fb->blend_masked(dst, src, mk);
-                else
-                    p->fb->put_masked(dst, src, mk);
+            uint32_t u = 0;
+            for (int k = 0; k < NS; k++) {
+                const uint32_t m = sg_tile_same_id(b->ids[k] + tile * SG_TILE_PIXELS, id);
+                samples[n][k] = (uint16_t)m;
+                u |= m;
             }
+            if (u) runs[n++] = (sg_run){(uint16_t)tile, (uint16_t)u};
         }
+        b->fresh[word] |= reached_by_any(b, word); /* their ids are done with */
         for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
+    }
+    /* Partly covered tiles packed, whole ones each on its own (its shading is made for them). */
+    const bool packs = !shader && d->runs_fn;
+    if (packs) {
+        sg_run part[BIN_TILES * BIN_TILES];
+        int parts = 0;
+        for (int r = 0; r < n; r++)
+            if (runs[r].mask != 0xffffu) part[parts++] = runs[r];
+        if (parts) d->runs_fn(&d->ctx, t, b->x0, b->y0, part, parts, b->shaded);
+    }
+    for (int r = 0; r < n; r++) {
+        const int tile = runs[r].tile, word = tile >> 6;
+        const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
+        const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
+        const int base = tile * SG_TILE_PIXELS;
+        const uint32_t u = runs[r].mask;
+        const bool packed = packs && u != 0xffffu;
+        _Alignas(64) uint32_t own[SG_TILE_PIXELS];
+        const uint32_t *src = packed ? b->shaded + base : own;
+        uint32_t keep = u;
+        if (shader)
+            keep = sg_shader_fragments(&d->ctx, t, px, py, u, own);
+        else if (!packed)
+            d->shade_fn(&d->ctx, t, px, py, u, own);
+        if (shader && d->writes_depth && b->vis[0].depth)
+            for (int k = 0; k < NS; k++) {
+                const float ox = (float)(px - st[k].minx), oy = (float)(py - st[k].miny);
+                for (uint32_t left = samples[r][k] & keep; left; left &= left - 1) {
+                    int bit = __builtin_ctz(left);
+                    b->depth[k][base + bit] =
+                        sg_tri_depth(&st[k], ox + (float)(bit & 3), oy + (float)(bit >> 2));
+                }
+            }
+        /* Every sample of a one-colour tile's pixels written alike: it stays one colour. */
+        bool alike = b->one_color[word] >> (tile & 63) & 1;
+        for (int k = 0; k < NS; k++) alike &= samples[r][k] == u;
+        const int planes = alike ? 1 : NS;
+        if (!alike) expand(b, word, tile & 63, base);
+        for (int k = 0; k < planes; k++) {
+            const uint32_t mk = samples[r][k] & keep;
+            uint32_t *dst = b->color[k] + base;
+            if (!mk) continue;
+            if (d->blend)
+                p->fb->blend_masked(dst, src, mk);
+            else
+                p->fb->put_masked(dst, src, mk);
+        }
     }
 }
 
@@ -335,7 +362,8 @@ void sg_rast_bin_msaa(const sg_bin_pass *p, int index) {
         sg_bin_fill_empty(p, &v);
         return;
     }
-    /* About 193 KB of samples and ids: the same stack for every bin of the thread. */
+    /* About 215 KB of samples, ids and shaded pixels: the same stack for every bin of the thread.
+     */
     msaa_bin b;
     b.x0 = v.x0;
     b.y0 = v.y0;
