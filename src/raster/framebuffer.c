@@ -2,6 +2,7 @@
 #include "raster/framebuffer.h"
 
 #include "raster/blend.h"
+#include "raster/depth.h"
 
 #include <string.h>
 
@@ -105,5 +106,16 @@ void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2,
     for (size_t i = 0; i < n; i++) p0[i] = sg_fb_average4(p0[i], p1[i], p2[i], p3[i]);
 }
 
+static uint32_t same_portable(const void *vecs, int k, uint32_t id) {
+    return sg_tile_same_id(((const uint32_t *const *)vecs)[k], id);
+}
+
+int sg_fb_split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *samples) {
+    uint32_t left[4];
+    for (int k = 0; k < 4; k++) left[k] = ~sg_tile_same_id(planes[k], 0) & 0xffffu;
+    return sg_fb_split_ids_with(planes, planes, left, same_portable, ids, samples);
+}
+
 const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
-                                      sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes};
+                                      sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
+                                      sg_fb_split_ids};

@@ -71,6 +71,10 @@ typedef struct sg_fb_ops {
     void (*blend_masked)(uint32_t *dst, const uint32_t *src, uint32_t mask);
     void (*average4)(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
                      size_t n);
+    /* The triangles a tile's four sample planes of ids see (16 ids each, 64-byte aligned; 0 is
+     * none), each once, in the order sg_fb_split_ids_with finds them: ids[j] and, in samples[j],
+     * its pixels per sample (sample k's in bits 16 k .. 16 k + 15); returns how many (<= 64). */
+    int (*split_ids)(const uint32_t *const planes[4], uint32_t *ids, uint64_t *samples);
 } sg_fb_ops;
 
 /** The average of four packed RGBA8 values, each channel rounded to nearest (halves up). */
@@ -90,11 +94,39 @@ static inline void sg_fb_put_lanes(uint32_t *dst, const uint32_t *src, uint32_t 
     for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
 }
 
-/** The portable put_masked (sg_fb_put_lanes), blend_masked and average4 of sg_fb_ops. */
+/* split_ids's walk for a set: left[k], the pixels of plane k not 0; same(vecs, k, id), the
+ * pixels of plane k that hold id (vecs: the set's copy of the planes). The first triangle is the
+ * first plane's with pixels left, at its first such pixel. */
+static inline __attribute__((always_inline)) int
+sg_fb_split_ids_with(const uint32_t *const planes[4], const void *vecs, uint32_t left[4],
+                     uint32_t (*same)(const void *vecs, int k, uint32_t id), uint32_t *ids,
+                     uint64_t *samples) {
+    uint32_t any = left[0] | left[1] | left[2] | left[3];
+    int n = 0;
+    while (any) {
+        int first = 0;
+        while (!left[first]) first++;
+        const uint32_t id = planes[first][__builtin_ctz(left[first])];
+        uint64_t s = 0;
+        any = 0;
+        for (int k = 0; k < 4; k++) {
+            const uint32_t m = left[k] ? same(vecs, k, id) & left[k] : 0;
+            s |= (uint64_t)m << (16 * k);
+            any |= left[k] &= ~m;
+        }
+        ids[n] = id;
+        samples[n++] = s;
+    }
+    return n;
+}
+
+/** The portable put_masked (sg_fb_put_lanes), blend_masked, average4 and split_ids of sg_fb_ops.
+ */
 void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
                            size_t n);
+int sg_fb_split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *samples);
 
 /* The body of every set's sg_fb_depth_range: floats in [+0, +inf] order as their bit patterns
  * do, and an integer min and max vectorise on every set; a negative value or -0 (below 0 as

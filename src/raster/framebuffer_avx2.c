@@ -29,10 +29,28 @@ static void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
     put_masked(dst, px, mask);
 }
 
+static uint32_t same(const void *vecs, int k, uint32_t id) {
+    const __m256i *v = (const __m256i *)vecs + 2 * k, b = _mm256_set1_epi32((int)id);
+    return (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(v[0], b))) |
+           (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(v[1], b))) << 8;
+}
+
+static int split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *samples) {
+    __m256i v[8];
+    uint32_t left[4];
+    for (int k = 0; k < 4; k++) {
+        for (int h = 0; h < 2; h++)
+            v[2 * k + h] = _mm256_load_si256((const __m256i *)(const void *)(planes[k] + 8 * h));
+        left[k] = ~same(v, k, 0) & 0xffffu;
+    }
+    return sg_fb_split_ids_with(planes, v, left, same, ids, samples);
+}
+
 #define SG_FB_VECTOR_BYTES 32
 #define SG_FB_TABLE        sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
 #else
 const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
-                                  sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes};
+                                  sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
+                                  sg_fb_split_ids};
 #endif

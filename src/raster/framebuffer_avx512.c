@@ -23,10 +23,25 @@ static void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
     _mm512_mask_store_epi32(dst, (__mmask16)mask, px);
 }
 
+static uint32_t same(const void *vecs, int k, uint32_t id) {
+    return _mm512_cmpeq_epi32_mask(((const __m512i *)vecs)[k], _mm512_set1_epi32((int)id));
+}
+
+static int split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *samples) {
+    __m512i v[4];
+    uint32_t left[4];
+    for (int k = 0; k < 4; k++) {
+        v[k] = _mm512_load_si512(planes[k]);
+        left[k] = _mm512_test_epi32_mask(v[k], v[k]);
+    }
+    return sg_fb_split_ids_with(planes, v, left, same, ids, samples);
+}
+
 #define SG_FB_VECTOR_BYTES 64
 #define SG_FB_TABLE        sg_fb_ops_avx512
 #include "raster/framebuffer_table.h"
 #else
 const sg_fb_ops sg_fb_ops_avx512 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
-                                    sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes};
+                                    sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
+                                    sg_fb_split_ids};
 #endif

@@ -8,6 +8,7 @@
 #include "raster/depth.h"
 #include "raster/framebuffer.h"
 #include "raster/rast_msaa.h"
+#include "raster/runs.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -20,84 +21,15 @@ _Static_assert(SG_REACHED_WORDS * 64 == BIN_TILES * BIN_TILES &&
                    SG_REACHED_SPARE == BIN_TILES * BIN_TILES,
                "a bin's reached bytes (depth.h): a tile each, then the spare one");
 
-/* Runs of partly covered tiles waiting to be shaded, grouped by triangle so that a draw with a
- * runs function (sg_shade_runs_fn) packs each triangle's pixels from several tiles into full
- * vectors: small triangles cover most of their tiles partly. A group per triangle id, found by
- * a hash of the id (open addressing); the runs are put in group order when shaded. */
-enum { RUN_CAP = 1024, RUN_SLOTS = 2 * RUN_CAP };
-typedef struct run_set {
-    int n, groups;
-    bool fresh;                   /* slot not emptied yet */
-    uint16_t slot[RUN_SLOTS];     /* group + 1, 0 empty */
-    uint32_t group_id[RUN_CAP];   /* the triangle id of each group */
-    uint16_t group_slot[RUN_CAP]; /* its slot, emptied after the shading */
-    uint16_t group_n[RUN_CAP];    /* its runs */
-    uint16_t run_group[RUN_CAP];
-    sg_run run[RUN_CAP];
-} run_set;
-
-/* s ready to collect runs, or NULL when no draw of the pass packs them (its slots are emptied at
- * the first run: bins without one skip that). */
-static run_set *start_runs(const sg_bin_pass *p, run_set *s) {
-    if (!p->any_runs) return NULL;
-    s->n = s->groups = 0;
-    s->fresh = true;
-    return s;
-}
-
-/* Shades the runs collected so far, group by group, and empties the set. */
-static __attribute__((noinline)) void flush_runs(const sg_bin_pass *p, run_set *s, int x0, int y0,
-                                                 uint32_t *color) {
-    uint16_t start[RUN_CAP];
-    sg_run sorted[RUN_CAP];
-    int at = 0;
-    for (int g = 0; g < s->groups; g++) {
-        start[g] = (uint16_t)at;
-        at += s->group_n[g];
-    }
-    for (int i = 0; i < s->n; i++) sorted[start[s->run_group[i]]++] = s->run[i];
-    at = 0;
-    for (int g = 0; g < s->groups; g++) {
-        const sg_tri *t = &p->binner->tris[s->group_id[g] - 1];
-        const sg_draw_state *d = &p->draws[t->draw];
-        d->runs_fn(&d->ctx, t, x0, y0, sorted + at, s->group_n[g], color);
-        at += s->group_n[g];
-        s->slot[s->group_slot[g]] = 0;
-    }
-    s->n = s->groups = 0;
-}
-
-/* Adds a run of triangle `id` to its group (shading what the set holds first when it is full). */
-static inline void add_run(const sg_bin_pass *p, run_set *s, uint32_t id, int tile, uint32_t mask,
-                           int x0, int y0, uint32_t *color) {
-    if (s->n == RUN_CAP) flush_runs(p, s, x0, y0, color);
-    if (s->fresh) {
-        memset(s->slot, 0, sizeof s->slot);
-        s->fresh = false;
-    }
-    unsigned h = (id * 2654435761u) >> (32 - 11); /* RUN_SLOTS = 2^11 */
-    while (s->slot[h] && s->group_id[s->slot[h] - 1] != id) h = (h + 1) & (RUN_SLOTS - 1);
-    int g = s->slot[h] - 1;
-    if (g < 0) { /* a new group: fewer groups than runs, so fewer than half the slots are used */
-        g = s->groups++;
-        s->slot[h] = (uint16_t)(g + 1);
-        s->group_id[g] = id;
-        s->group_slot[g] = (uint16_t)h;
-        s->group_n[g] = 0;
-    }
-    s->group_n[g]++;
-    s->run_group[s->n] = (uint16_t)g;
-    s->run[s->n++] = (sg_run){(uint16_t)tile, (uint16_t)mask};
-}
-
 /* The pixels of `mask` of a tile that see triangle `id`: shaded now, or collected in s when the
  * draw packs runs and the tile is partly covered (s is NULL when no draw of the pass does). */
-static inline void shade_run(const sg_bin_pass *p, run_set *s, uint32_t id, int tile, int x0,
+static inline void shade_run(const sg_bin_pass *p, sg_run_set *s, uint32_t id, int tile, int x0,
                              int y0, uint32_t mask, uint32_t *color) {
     const sg_tri *t = &p->binner->tris[id - 1];
     const sg_draw_state *d = &p->draws[t->draw];
     if (s && d->runs_fn && mask != 0xffffu) {
-        add_run(p, s, id, tile, mask, x0, y0, color);
+        const sg_run_target to = {color, NULL, x0, y0};
+        sg_runs_add(p, s, id, tile, mask, 0, &to);
         return;
     }
     d->shade_fn(&d->ctx, t, x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT),
@@ -156,7 +88,7 @@ static inline bool shade_mixed(const sg_bin_pass *p, mixed_set *m, const uint32_
 /* Shades the visible pixels of one tile: in one pass when several triangles share it and
  * shade_mixed takes it, else each run of pixels that see the same triangle is one call of that
  * triangle's shading function (or collected in s, see shade_run). */
-static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *p, run_set *s,
+static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *p, sg_run_set *s,
                                                              mixed_set *m, const uint32_t *ids,
                                                              int tile, int x0, int y0,
                                                              uint32_t *color) {
@@ -205,10 +137,9 @@ static inline const sg_draw_state *pair_draw(const sg_bin_pass *p, const uint32_
  * (all before this returns). With `forget`, also sets them back to 0 and the tiles to unreached:
  * what visibility decided so far is final before a triangle shaded in place (blended, or a line)
  * writes the colour. */
-static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pass *p, run_set *runs,
-                                                                uint32_t *ids, uint8_t *reached,
-                                                                int x0, int y0, uint32_t *color,
-                                                                const bool forget) {
+static inline __attribute__((always_inline)) void
+shade_reached(const sg_bin_pass *p, sg_run_set *runs, uint32_t *ids, uint8_t *reached, int x0,
+              int y0, uint32_t *color, const bool forget) {
     mixed_set mixed;
     mixed.count = 0;
     for (int word = 0; word < SG_REACHED_WORDS; word++) {
@@ -236,7 +167,10 @@ static inline __attribute__((always_inline)) void shade_reached(const sg_bin_pas
         if (forget) memset(reached + 64 * word, 0, 64);
     }
     flush_mixed(&mixed);
-    if (runs && runs->n) flush_runs(p, runs, x0, y0, color);
+    if (runs && runs->n) {
+        const sg_run_target to = {color, NULL, x0, y0};
+        sg_runs_flush(p, runs, &to);
+    }
 }
 
 void sg_shade_bin_tiles(const sg_bin_pass *p, uint32_t *ids, uint8_t *reached, int x0, int y0,
@@ -327,7 +261,7 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     /* The ids are cleared when the first triangle that writes them comes: a bin of lines and
      * blends alone never reads them (16 KB a bin not cleared). */
     bool ids_clear = false;
-    run_set run_buf, *runs = start_runs(p, &run_buf);
+    sg_run_set run_buf, *runs = sg_runs_start(p, &run_buf);
     /* The bin's depth range, worked out when a blend first asks for it after a depth write
      * (passes_bin). It takes every value of the buffer: a loaded bin's pixels outside the target
      * were never written, so such bins have none. */
@@ -477,7 +411,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     start_color(p, &v, color);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     /* Only tiles some triangle reached hold ids (depth.h). */
-    run_set run_buf, *runs = start_runs(p, &run_buf);
+    sg_run_set run_buf, *runs = sg_runs_start(p, &run_buf);
     shade_reached(p, runs, ids, reached, x0, y0, color, false);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_SHADE, clock);
     /* A fragment stage discarded (here, or in a bin another thread shades now): what is behind

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "raster/framebuffer.h"
+#include "raster/runs.h"
 #include "raster/shade_shader.h"
 
 #if defined(__SSE2__)
@@ -38,7 +39,9 @@ typedef struct msaa_bin {
     _Alignas(64) float depth[NS][PLANE];
     _Alignas(64) uint32_t ids[NS][PLANE];
     _Alignas(64) uint8_t reached[NS][SG_REACHED_BYTES]; /* sg_vis_ctx.reached */
-    _Alignas(64) uint32_t shaded[PLANE]; /* a triangle's pixels shaded at once (in_place) */
+    /* Pixels shaded at once: a blended triangle's (in_place), or the runs of the tiles where
+     * the samples see several triangles, triangle by triangle (shade_ids, runs.h). */
+    _Alignas(64) uint32_t shaded[PLANE];
     /* A bit a tile: its samples' colours are all plane 0's, and planes 1-3 of the tile are not
      * kept (a cleared or loaded tile, and one that only whole pixels have been written to since).
      * The resolve then takes plane 0, and the other planes are filled in from it only when a
@@ -109,6 +112,10 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
         }
     }
     sg_shade_bin_tiles(p, b->ids[0], uniform, b->x0, b->y0, b->color[0]);
+    /* A mixed tile's triangles whose draw packs runs are shaded as runs, triangle by triangle. */
+    sg_run_set run_buf, *runs = sg_runs_start(p, &run_buf);
+    uint32_t *const planes[NS] = {b->color[0], b->color[1], b->color[2], b->color[3]};
+    const sg_run_target to = {b->shaded, planes, b->x0, b->y0};
     for (int word = 0; word < SG_REACHED_WORDS; word++) {
         const uint64_t uniform_word = sg_reached_word(uniform, word);
         /* A uniform tile's samples take the same colour where covered: a one-colour tile stays. */
@@ -124,31 +131,32 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
             const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
             const int base = tile * SG_TILE_PIXELS;
             expand(b, word, tile & 63, base);
-            uint32_t left[NS], any = 0;
-            for (int k = 0; k < NS; k++)
-                any |= left[k] = ~sg_tile_same_id(b->ids[k] + base, 0) & 0xffffu;
-            while (any) {
-                int first = 0;
-                while (!left[first]) first++;
-                const uint32_t id = b->ids[first][base + __builtin_ctz(left[first])];
+            const uint32_t *const tids[NS] = {b->ids[0] + base, b->ids[1] + base, b->ids[2] + base,
+                                              b->ids[3] + base};
+            uint32_t ids[NS * SG_TILE_PIXELS];
+            uint64_t samples[NS * SG_TILE_PIXELS];
+            const int n = p->fb->split_ids(tids, ids, samples);
+            for (int j = 0; j < n; j++) {
+                const sg_tri *t = &p->binner->tris[ids[j] - 1];
+                const sg_draw_state *d = &p->draws[t->draw];
                 uint32_t m[NS], u = 0;
                 for (int k = 0; k < NS; k++)
-                    u |= m[k] = left[k] ? sg_tile_same_id(b->ids[k] + base, id) : 0;
-                const sg_tri *t = &p->binner->tris[id - 1];
-                const sg_draw_state *d = &p->draws[t->draw];
+                    u |= m[k] = (uint32_t)(samples[j] >> (16 * k)) & 0xffffu;
+                if (runs && d->runs_fn) {
+                    sg_runs_add(p, runs, ids[j], tile, u, samples[j], &to);
+                    continue;
+                }
                 _Alignas(64) uint32_t src[SG_TILE_PIXELS];
                 d->shade_fn(&d->ctx, t, px, py, u, src);
-                any = 0;
-                for (int k = 0; k < NS; k++) {
-                    p->fb->put_masked(b->color[k] + base, src, m[k]);
-                    any |= left[k] &= ~m[k];
-                }
+                for (int k = 0; k < NS; k++)
+                    if (m[k]) p->fb->put_masked(b->color[k] + base, src, m[k]);
             }
         }
         /* The shaded tiles' ids are done with: taken as 0 from here (fresh). */
         b->fresh[word] |= uniform_word | mixed[word];
         for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
     }
+    if (runs && runs->n) sg_runs_flush(p, runs, &to);
 }
 
 /* A triangle shaded in place (a blend, or a shader draw whose fragments may discard): each
