@@ -179,7 +179,12 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
     sg_run runs[BIN_TILES * BIN_TILES];
     uint16_t samples[BIN_TILES * BIN_TILES][NS];
     int n = 0;
-    for (int word = 0; word < SG_REACHED_WORDS; word++) {
+    /* Only the words of the tile rows the triangle's bounds cross can hold reached tiles (a small
+     * triangle's: one or two of the four). */
+    const int row0 = t->miny > b->y0 ? (t->miny - b->y0) >> SG_TILE_SHIFT : 0;
+    const int row1 =
+        t->maxy < b->y0 + SG_BIN_SIZE - 1 ? (t->maxy - b->y0) >> SG_TILE_SHIFT : BIN_TILES - 1;
+    for (int word = row0 * BIN_TILES / 64; word <= row1 * BIN_TILES / 64; word++) {
         for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
             uint32_t u = 0;
