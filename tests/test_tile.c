@@ -103,6 +103,47 @@ static void fb_sample_ops_match_portable(void **state) {
     }
 }
 
+/* A tile's four sample planes of ids split into their triangles (sg_fb_ops.split_ids): each id
+ * but 0 once, with exactly the pixels of each plane that hold it, in the same order on every set;
+ * tiles of one id to 64 different ones. */
+static void fb_split_ids_per_triangle(void **state) {
+    (void)state;
+    const sg_fb_ops *sets[] = {&sg_fb_ops_portable, &sg_fb_ops_avx2, &sg_fb_ops_avx512};
+    const sg_isa isas[] = {SG_ISA_SCALAR, SG_ISA_AVX2, SG_ISA_AVX512};
+    _Alignas(64) uint32_t planes[4][16];
+    const uint32_t *const p[4] = {planes[0], planes[1], planes[2], planes[3]};
+    uint32_t seed = 11;
+    for (int round = 0; round < 400; round++) {
+        const uint32_t kinds = 1u + (uint32_t)round % 70; /* ids 1 .. kinds, and 0 */
+        for (int k = 0; k < 4; k++)
+            for (int i = 0; i < 16; i++) {
+                seed = seed * 1664525u + 1013904223u;
+                planes[k][i] = (seed >> 8) % (kinds + 1);
+            }
+        uint32_t want_ids[64], ids[64];
+        uint64_t want[64], got[64];
+        const int n = sg_fb_ops_portable.split_ids(p, want_ids, want);
+        uint64_t all = 0;
+        for (int j = 0; j < n; j++) {
+            assert_int_not_equal(want_ids[j], 0);
+            assert_int_equal(all & want[j], 0); /* each sample's pixel once */
+            all |= want[j];
+            for (int k = 0; k < 4; k++)
+                for (int i = 0; i < 16; i++)
+                    assert_int_equal(want[j] >> (16 * k + i) & 1, planes[k][i] == want_ids[j]);
+        }
+        for (int k = 0; k < 4; k++)
+            for (int i = 0; i < 16; i++)
+                assert_int_equal(all >> (16 * k + i) & 1, planes[k][i] != 0);
+        for (size_t s = 1; s < sizeof sets / sizeof sets[0]; s++) {
+            if (!sg_isa_runs(isas[s])) continue;
+            assert_int_equal(sets[s]->split_ids(p, ids, got), n);
+            assert_memory_equal(ids, want_ids, (size_t)n * sizeof ids[0]);
+            assert_memory_equal(got, want, (size_t)n * sizeof got[0]);
+        }
+    }
+}
+
 /* Every set's depth range of a bin buffer is its smallest and largest value, and none is given
  * when a value is negative, -0 or NaN (+inf is a value). */
 static void depth_range_of_bin(void **state) {
@@ -177,9 +218,13 @@ static void bin_writes_stay_in_place(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(index_layout),          cmocka_unit_test(round_trip_odd_sizes),
-        cmocka_unit_test(fb_ops_match_portable), cmocka_unit_test(fb_sample_ops_match_portable),
-        cmocka_unit_test(depth_range_of_bin),    cmocka_unit_test(bin_writes_stay_in_place),
+        cmocka_unit_test(index_layout),
+        cmocka_unit_test(round_trip_odd_sizes),
+        cmocka_unit_test(fb_ops_match_portable),
+        cmocka_unit_test(fb_sample_ops_match_portable),
+        cmocka_unit_test(fb_split_ids_per_triangle),
+        cmocka_unit_test(depth_range_of_bin),
+        cmocka_unit_test(bin_writes_stay_in_place),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -185,7 +185,8 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
     const int row1 =
         t->maxy < b->y0 + SG_BIN_SIZE - 1 ? (t->maxy - b->y0) >> SG_TILE_SHIFT : BIN_TILES - 1;
     for (int word = row0 * BIN_TILES / 64; word <= row1 * BIN_TILES / 64; word++) {
-        for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
+        const uint64_t reached_word = reached_by_any(b, word);
+        for (uint64_t reached = reached_word; reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
             uint32_t u = 0;
             for (int k = 0; k < NS; k++) {
@@ -195,7 +196,7 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
             }
             if (u) runs[n++] = (sg_run){(uint16_t)tile, (uint16_t)u};
         }
-        b->fresh[word] |= reached_by_any(b, word); /* their ids are done with */
+        b->fresh[word] |= reached_word; /* their ids are done with */
         for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
     }
     /* Partly covered tiles packed, whole ones each on its own (its shading is made for them). */
