@@ -566,6 +566,9 @@ enum { OS = 150, NPRIM = 168, PER_DRAW = 8, KINDS = 7 };
 typedef struct order_scene {
     float pos[NPRIM * 3 * 4], col[NPRIM * 3 * 4], uv[NPRIM * 3 * 2];
     uint32_t idx[NPRIM * 3];
+    int kind_shift;    /* primitive p is of kind (p / PER_DRAW + kind_shift) % KINDS */
+    int samples;       /* the pass's (0: one) */
+    size_t bin_memory; /* the device's bin_memory_limit (0: the default) */
 } order_scene;
 
 /* Draw kinds, by draw index mod KINDS: the primitive, the pipeline. */
@@ -601,12 +604,17 @@ static float unit(uint32_t *x) {
     return (float)(*x >> 8) / 16777216.0f;
 }
 
-static void make_order_scene(order_scene *s) {
+static int kind_of(const order_scene *s, int p) {
+    return (p / PER_DRAW + s->kind_shift) % KINDS;
+}
+
+/* line_reach: how far a line's ends spread (2.4: across several bins). */
+static void make_order_scene(order_scene *s, float line_reach) {
     uint32_t x = 4242;
     for (int p = 0; p < NPRIM; p++) {
-        const bool line = kind_is_line(p / PER_DRAW % KINDS);
+        const bool line = kind_is_line(kind_of(s, p));
         float cx = unit(&x) * 2.2f - 1.1f, cy = unit(&x) * 2.2f - 1.1f, z = unit(&x) * 1.6f - 0.8f;
-        const float reach = line ? 2.4f : 1.0f; /* lines cross several bins */
+        const float reach = line ? line_reach : 1.0f;
         for (int v = 0; v < 3; v++) {
             float *q = s->pos + (p * 3 + v) * 4;
             q[0] = cx + (unit(&x) - 0.5f) * reach;
@@ -627,7 +635,10 @@ static void render_order(const void *scene, int threads, sgSimd simd, bool per_p
                          uint8_t *out) {
     const order_scene *s = scene;
     sgDevice *dev;
-    assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .simd = simd}, &dev),
+    assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = threads,
+                                                    .simd = simd,
+                                                    .bin_memory_limit = s->bin_memory},
+                                    &dev),
                      SG_OK);
     sgImage2D color = test_image(dev, OS, OS, SG_FORMAT_RGBA8_UNORM);
     sgImage2D depth = test_image(dev, OS, OS, SG_FORMAT_D32_FLOAT);
@@ -650,11 +661,12 @@ static void render_order(const void *scene, int threads, sgSimd simd, bool per_p
     sgPassDesc pass = {.color = color,
                        .depth = depth,
                        .clear_color = {0.1f, 0.2f, 0.3f, 1.0f},
-                       .clear_depth = 1.0f};
+                       .clear_depth = 1.0f,
+                       .samples = s->samples};
     const int per = per_primitive ? 1 : PER_DRAW;
     if (!per_primitive) assert_int_equal(sgBeginRenderPass(dev, &pass), SG_OK);
     for (int first = 0; first < NPRIM; first += per) {
-        const int kind = first / PER_DRAW % KINDS, n = kind_is_line(kind) ? 2 : 3;
+        const int kind = kind_of(s, first), n = kind_is_line(kind) ? 2 : 3;
         uint32_t idx[PER_DRAW * 3];
         for (int p = 0; p < per; p++)
             for (int v = 0; v < n; v++) idx[p * n + v] = s->idx[(first + p) * 3 + v];
@@ -686,7 +698,7 @@ static void render_order(const void *scene, int threads, sgSimd simd, bool per_p
 static void lines_in_submission_order(void **state) {
     (void)state;
     order_scene *s = calloc(1, sizeof *s);
-    make_order_scene(s);
+    make_order_scene(s, 2.4f);
     uint8_t *want = malloc(OS * OS * 4), *got = malloc(OS * OS * 4);
     render_order(s, 1, SG_SIMD_SCALAR, true, want);
     /* The lines show: against the same scene with every line behind the eye (clipped away),
@@ -696,7 +708,7 @@ static void lines_in_submission_order(void **state) {
         order_scene *t = calloc(1, sizeof *t);
         memcpy(t, s, sizeof *t);
         for (int p = 0; p < NPRIM; p++)
-            if (kind_is_line(p / PER_DRAW % KINDS))
+            if (kind_is_line(kind_of(t, p)))
                 for (int v = 0; v < 3; v++) t->pos[(p * 3 + v) * 4 + 3] = -1.0f; /* behind */
         uint8_t *bare = malloc(OS * OS * 4);
         render_order(t, 1, SG_SIMD_SCALAR, true, bare);
@@ -705,6 +717,27 @@ static void lines_in_submission_order(void **state) {
         free(t);
     }
     assert_true(changed > OS * OS / 20);
+    test_same_in_one_pass(render_order, s, want, got, OS * OS * 4);
+    free(want);
+    free(got);
+    free(s);
+}
+
+/* With 4 samples a pixel, an opaque line over tiles that hold one colour and one depth a pixel is
+ * drawn in place into their first sample (rast_msaa.c), and elsewhere visibility first, as after
+ * a flush, when a bin's samples come back from the sample buffers: a pass that flushes after
+ * every few primitives gives the bytes of one that never does, with every set and thread count.
+ */
+static void lines_in_submission_order_4_samples(void **state) {
+    (void)state;
+    order_scene *s = calloc(1, sizeof *s);
+    s->kind_shift = 1; /* lines first, and short: most of them on tiles nothing else drew yet */
+    make_order_scene(s, 0.5f);
+    s->samples = 4;
+    s->bin_memory = 16384;
+    uint8_t *want = malloc(OS * OS * 4), *got = malloc(OS * OS * 4);
+    render_order(s, 1, SG_SIMD_SCALAR, false, want);
+    s->bin_memory = 0;
     test_same_in_one_pass(render_order, s, want, got, OS * OS * 4);
     free(want);
     free(got);
@@ -723,6 +756,7 @@ int main(void) {
         cmocka_unit_test(clipped_lines),
         cmocka_unit_test(flat_lit_lines_are_refused),
         cmocka_unit_test(lines_in_submission_order),
+        cmocka_unit_test(lines_in_submission_order_4_samples),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -248,6 +248,42 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
     }
 }
 
+/* Whether plane 0 holds every sample of the tiles in t's bounds: their colour is one colour a
+ * pixel (one_color) and, with a depth target, their planes 1-3 of depth are plane 0's (fresh). An
+ * opaque line covers its pixels' four samples alike, at one depth, so there it can be drawn in
+ * place into plane 0 alone and the tiles stay so. */
+static bool plane0_holds(const msaa_bin *b, const sg_tri *t, const bool depth) {
+    const int c0 = (t->minx > b->x0 ? t->minx - b->x0 : 0) >> SG_TILE_SHIFT;
+    const int c1 =
+        (t->maxx < b->x0 + SG_BIN_SIZE - 1 ? t->maxx - b->x0 : SG_BIN_SIZE - 1) >> SG_TILE_SHIFT;
+    const int r0 = (t->miny > b->y0 ? t->miny - b->y0 : 0) >> SG_TILE_SHIFT;
+    const int r1 =
+        (t->maxy < b->y0 + SG_BIN_SIZE - 1 ? t->maxy - b->y0 : SG_BIN_SIZE - 1) >> SG_TILE_SHIFT;
+    if (c0 > c1) return true;
+    const uint64_t cols = (((uint64_t)2 << (c1 - c0)) - 1) << c0;
+    for (int r = r0; r <= r1; r++) {
+        const int word = r * BIN_TILES / 64;
+        const uint64_t m = cols << (r * BIN_TILES % 64);
+        if ((b->one_color[word] & m) != m) return false;
+        if (depth && (b->fresh[SG_REACHED_WORDS + word] & m) != m) return false;
+    }
+    return true;
+}
+
+/* An opaque line drawn in place into plane 0 (plane0_holds): the draw's put function, as a
+ * one-sample bin draws it. */
+static void put_line(msaa_bin *b, const sg_tri *t, const sg_draw_state *d, uint32_t id) {
+    sg_vis_ctx v = b->vis[0];
+    v.id = id;
+    v.compare = d->compare;
+    v.color = b->color[0];
+    v.shade = d->shade_fn;
+    v.shade_ctx = &d->ctx;
+    v.pending = NULL;
+    v.fresh = NULL;
+    d->raster_fn(t, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, &v);
+}
+
 /* Where a bin's pixels are in the target images. */
 typedef sg_bin_view bin_view;
 
@@ -345,8 +381,15 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
         sg_prefetch_tri(p->binner, bin, i + SG_PREFETCH_AHEAD);
         const sg_tri *t = &p->binner->tris[ti];
         const sg_draw_state *d = &p->draws[t->draw];
-        for (int k = 0; k < NS; k++) sg_msaa_sample_tri(t, k, &st[k]);
         const bool shader = d->ctx.shader.fragment != NULL;
+        if (d->in_place && !d->blend && !shader && t->line && !depth_only &&
+            plane0_holds(b, t, v->depth != NULL)) {
+            if (pending) shade_ids(p, b);
+            pending = false;
+            put_line(b, t, d, ti + 1);
+            continue;
+        }
+        for (int k = 0; k < NS; k++) sg_msaa_sample_tri(t, k, &st[k]);
         if (!depth_only && (d->blend || (shader && (d->in_place || shaders_in_place)))) {
             if (pending) shade_ids(p, b);
             pending = false;
