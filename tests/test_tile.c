@@ -144,6 +144,41 @@ static void fb_split_ids_per_triangle(void **state) {
     }
 }
 
+/* A word of 64 tiles' four sample planes of ids (sg_fb_ops.alike_tiles): a tile is alike when the
+ * four planes are equal, and one different id in one pixel of one plane makes it not; every set
+ * gives the tiles the bits say, and only those asked for. */
+static void fb_alike_tiles_per_tile(void **state) {
+    (void)state;
+    enum { TILES = 64, N = TILES * 16 };
+    const sg_fb_ops *sets[] = {&sg_fb_ops_portable, &sg_fb_ops_avx2, &sg_fb_ops_avx512};
+    const sg_isa isas[] = {SG_ISA_SCALAR, SG_ISA_AVX2, SG_ISA_AVX512};
+    _Alignas(64) static uint32_t planes[4][N];
+    const uint32_t *const p[4] = {planes[0], planes[1], planes[2], planes[3]};
+    uint32_t seed = 5;
+    for (int round = 0; round < 50; round++) {
+        uint64_t want = 0, asked = 0;
+        for (int tile = 0; tile < TILES; tile++) {
+            for (int i = 0; i < 16; i++) {
+                seed = seed * 1664525u + 1013904223u;
+                for (int k = 0; k < 4; k++) planes[k][tile * 16 + i] = (seed >> 8) % 5;
+            }
+            seed = seed * 1664525u + 1013904223u;
+            const bool differ = seed >> 31, ask = seed >> 30 & 1;
+            if (differ) { /* one pixel of one plane other than plane 0's */
+                const int k = 1 + (int)(seed >> 8) % 3, i = (int)(seed >> 12) % 16;
+                planes[k][tile * 16 + i] ^= 1u << (seed >> 16) % 32;
+            }
+            want |= (uint64_t)(!differ && ask) << tile;
+            asked |= (uint64_t)ask << tile;
+        }
+        for (size_t s = 0; s < sizeof sets / sizeof sets[0]; s++) {
+            if (!sg_isa_runs(isas[s])) continue;
+            assert_int_equal(sets[s]->alike_tiles(p, asked), want);
+            assert_int_equal(sets[s]->alike_tiles(p, 0), 0);
+        }
+    }
+}
+
 /* Every set's depth range of a bin buffer is its smallest and largest value, and none is given
  * when a value is negative, -0 or NaN (+inf is a value). */
 static void depth_range_of_bin(void **state) {
@@ -223,6 +258,7 @@ int main(void) {
         cmocka_unit_test(fb_ops_match_portable),
         cmocka_unit_test(fb_sample_ops_match_portable),
         cmocka_unit_test(fb_split_ids_per_triangle),
+        cmocka_unit_test(fb_alike_tiles_per_tile),
         cmocka_unit_test(depth_range_of_bin),
         cmocka_unit_test(bin_writes_stay_in_place),
     };

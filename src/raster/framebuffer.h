@@ -75,6 +75,9 @@ typedef struct sg_fb_ops {
      * none), each once, in the order sg_fb_split_ids_with finds them: ids[j] and, in samples[j],
      * its pixels per sample (sample k's in bits 16 k .. 16 k + 15); returns how many (<= 64). */
     int (*split_ids)(const uint32_t *const planes[4], uint32_t *ids, uint64_t *samples);
+    /* Of the tiles of `tiles` (bit i: tile i from planes[k], 16 ids a tile), those whose four
+     * sample planes of ids are alike. */
+    uint64_t (*alike_tiles)(const uint32_t *const planes[4], uint64_t tiles);
 } sg_fb_ops;
 
 /** The average of four packed RGBA8 values, each channel rounded to nearest (halves up). */
@@ -120,13 +123,14 @@ sg_fb_split_ids_with(const uint32_t *const planes[4], const void *vecs, uint32_t
     return n;
 }
 
-/** The portable put_masked (sg_fb_put_lanes), blend_masked, average4 and split_ids of sg_fb_ops.
- */
+/** The portable put_masked (sg_fb_put_lanes), blend_masked, average4, split_ids and alike_tiles
+ *  of sg_fb_ops. */
 void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
                            size_t n);
 int sg_fb_split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *samples);
+uint64_t sg_fb_alike_tiles(const uint32_t *const planes[4], uint64_t tiles);
 
 /* The body of every set's sg_fb_depth_range: floats in [+0, +inf] order as their bit patterns
  * do, and an integer min and max vectorise on every set; a negative value or -0 (below 0 as

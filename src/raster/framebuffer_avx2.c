@@ -46,11 +46,32 @@ static int split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *s
     return sg_fb_split_ids_with(planes, v, left, same, ids, samples);
 }
 
+static uint64_t alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
+    uint64_t alike = 0;
+    for (; tiles; tiles &= tiles - 1) {
+        const int bit = __builtin_ctzll(tiles);
+        const size_t base = (size_t)bit * SG_TILE_PIXELS;
+        __m256i diff = _mm256_setzero_si256();
+        for (int h = 0; h < 2; h++) {
+            const __m256i first =
+                _mm256_load_si256((const __m256i *)(const void *)(planes[0] + base + 8 * h));
+            for (int k = 1; k < 4; k++)
+                diff = _mm256_or_si256(
+                    diff,
+                    _mm256_xor_si256(
+                        first, _mm256_load_si256(
+                                   (const __m256i *)(const void *)(planes[k] + base + 8 * h))));
+        }
+        alike |= (uint64_t)_mm256_testz_si256(diff, diff) << bit;
+    }
+    return alike;
+}
+
 #define SG_FB_VECTOR_BYTES 32
 #define SG_FB_TABLE        sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
 #else
 const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
                                   sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
-                                  sg_fb_split_ids};
+                                  sg_fb_split_ids,  sg_fb_alike_tiles};
 #endif

@@ -37,11 +37,26 @@ static int split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *s
     return sg_fb_split_ids_with(planes, v, left, same, ids, samples);
 }
 
+static uint64_t alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
+    uint64_t alike = 0;
+    for (; tiles; tiles &= tiles - 1) {
+        const int bit = __builtin_ctzll(tiles);
+        const size_t base = (size_t)bit * SG_TILE_PIXELS;
+        const __m512i first = _mm512_load_si512(planes[0] + base);
+        const __m512i diff = _mm512_or_si512(
+            _mm512_xor_si512(first, _mm512_load_si512(planes[1] + base)),
+            _mm512_or_si512(_mm512_xor_si512(first, _mm512_load_si512(planes[2] + base)),
+                            _mm512_xor_si512(first, _mm512_load_si512(planes[3] + base))));
+        alike |= (uint64_t)(_mm512_test_epi32_mask(diff, diff) == 0) << bit;
+    }
+    return alike;
+}
+
 #define SG_FB_VECTOR_BYTES 64
 #define SG_FB_TABLE        sg_fb_ops_avx512
 #include "raster/framebuffer_table.h"
 #else
 const sg_fb_ops sg_fb_ops_avx512 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
                                     sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
-                                    sg_fb_split_ids};
+                                    sg_fb_split_ids,  sg_fb_alike_tiles};
 #endif

@@ -7,10 +7,6 @@
 #include "raster/runs.h"
 #include "raster/shade_shader.h"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 enum {
     BIN_TILES = SG_BIN_SIZE / SG_TILE,
     BIN_PIXELS = SG_BIN_SIZE * SG_BIN_SIZE,
@@ -61,27 +57,6 @@ static inline uint64_t reached_by_any(const msaa_bin *b, int word) {
     return reached;
 }
 
-/* Whether every sample of tile `base` sees what sample 0 sees. */
-static inline bool same_ids(const msaa_bin *b, int base) {
-#if defined(__SSE2__)
-    __m128i diff = _mm_setzero_si128();
-    for (int j = 0; j < SG_TILE_PIXELS; j += 4) {
-        const __m128i first = _mm_load_si128((const __m128i *)(const void *)(b->ids[0] + base + j));
-        for (int k = 1; k < NS; k++)
-            diff = _mm_or_si128(
-                diff,
-                _mm_xor_si128(
-                    first, _mm_load_si128((const __m128i *)(const void *)(b->ids[k] + base + j))));
-    }
-    return _mm_movemask_epi8(_mm_cmpeq_epi32(diff, _mm_setzero_si128())) == 0xffff;
-#else
-    uint32_t diff = 0;
-    for (int k = 1; k < NS; k++)
-        for (int i = 0; i < SG_TILE_PIXELS; i++) diff |= b->ids[k][base + i] ^ b->ids[0][base + i];
-    return diff == 0;
-#endif
-}
-
 /* Planes 1-3 of tile `base` (word, bit) filled in from plane 0, if they are not kept. */
 static inline void expand(msaa_bin *b, int word, int bit, int base) {
     const uint64_t flag = (uint64_t)1 << bit;
@@ -102,14 +77,14 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     _Alignas(64) uint8_t uniform[SG_REACHED_BYTES]; /* as sg_vis_ctx.reached */
     memset(uniform, 0, sizeof uniform);
     for (int word = 0; word < SG_REACHED_WORDS; word++) {
-        mixed[word] = 0;
-        for (uint64_t reached = reached_by_any(b, word); reached; reached &= reached - 1) {
-            const int bit = __builtin_ctzll(reached), base = (word * 64 + bit) * SG_TILE_PIXELS;
-            if (!same_ids(b, base))
-                mixed[word] |= (uint64_t)1 << bit;
-            else
-                uniform[word * 64 + bit] = 1;
-        }
+        const uint64_t reached = reached_by_any(b, word);
+        const size_t at = (size_t)word * 64 * SG_TILE_PIXELS;
+        const uint32_t *const ids[NS] = {b->ids[0] + at, b->ids[1] + at, b->ids[2] + at,
+                                         b->ids[3] + at};
+        const uint64_t alike = reached ? p->fb->alike_tiles(ids, reached) : 0;
+        mixed[word] = reached & ~alike;
+        for (uint64_t left = alike; left; left &= left - 1)
+            uniform[word * 64 + __builtin_ctzll(left)] = 1;
     }
     sg_shade_bin_tiles(p, b->ids[0], uniform, b->x0, b->y0, b->color[0]);
     /* A mixed tile's triangles whose draw packs runs are shaded as runs, triangle by triangle. */
