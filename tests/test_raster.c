@@ -228,7 +228,9 @@ static void walks_agree_with_edge_functions(void **state) {
  * each sample's plane of ids, depth and reached tiles as the one-sample visibility function of
  * the same depth state does walking that sample's triangle: every instruction set, compares with
  * and without a test and a write, random triangles from a pixel to far past the target (edge
- * values past 32 bits), over random stored depths. */
+ * values past 32 bits), over random stored depths. Where the set has a recording walk
+ * (sg_depth_record_select), it leaves the same depth, no id and no reached mark, and lists each
+ * tile with a written id once, with exactly those pixels per sample. */
 typedef struct sample_planes {
     _Alignas(64) float depth[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN];
     _Alignas(64) uint32_t ids[SG_VIS_SAMPLES][WALK_BIN * WALK_BIN];
@@ -239,8 +241,11 @@ static void sample_walk_matches_walk_per_sample(void **state) {
     (void)state;
     /* Aligned as a bin's planes are: the vector sets load them whole. */
     sample_planes *a = aligned_alloc(64, sizeof *a), *b = aligned_alloc(64, sizeof *b);
+    sample_planes *c = aligned_alloc(64, sizeof *c);
     assert_non_null(a);
     assert_non_null(b);
+    assert_non_null(c);
+    long recorded = 0;
     const sgCompare ops[] = {SG_COMPARE_ALWAYS, SG_COMPARE_LESS, SG_COMPARE_GREATER_EQUAL};
     uint32_t seed = 20261129;
     for (sg_isa isa = SG_ISA_SCALAR; isa <= sg_isa_detect(); isa++) {
@@ -274,14 +279,30 @@ static void sample_walk_matches_walk_per_sample(void **state) {
                 for (int i = 0; i < WALK_BIN * WALK_BIN; i++)
                     a->depth[k][i] = (float)walk_rand(&seed);
             memcpy(b, a, sizeof *a);
-            sg_vis_ctx va[SG_VIS_SAMPLES], vb[SG_VIS_SAMPLES];
+            memcpy(c, a, sizeof *a);
+            sg_vis_ctx va[SG_VIS_SAMPLES], vb[SG_VIS_SAMPLES], vc[SG_VIS_SAMPLES];
             for (int k = 0; k < SG_VIS_SAMPLES; k++) {
-                va[k] =
-                    (sg_vis_ctx){a->depth[k], a->ids[k], a->reached[k], rx0,  ry0,  (uint32_t)n + 1,
-                                 op,          NULL,      NULL,          NULL, NULL, NULL};
-                vb[k] =
-                    (sg_vis_ctx){b->depth[k], b->ids[k], b->reached[k], rx0,  ry0,  (uint32_t)n + 1,
-                                 op,          NULL,      NULL,          NULL, NULL, NULL};
+                va[k] = (sg_vis_ctx){.depth = a->depth[k],
+                                     .ids = a->ids[k],
+                                     .reached = a->reached[k],
+                                     .bx0 = rx0,
+                                     .by0 = ry0,
+                                     .id = (uint32_t)n + 1,
+                                     .compare = op};
+                vb[k] = (sg_vis_ctx){.depth = b->depth[k],
+                                     .ids = b->ids[k],
+                                     .reached = b->reached[k],
+                                     .bx0 = rx0,
+                                     .by0 = ry0,
+                                     .id = (uint32_t)n + 1,
+                                     .compare = op};
+                vc[k] = (sg_vis_ctx){.depth = c->depth[k],
+                                     .ids = c->ids[k],
+                                     .reached = c->reached[k],
+                                     .bx0 = rx0,
+                                     .by0 = ry0,
+                                     .id = (uint32_t)n + 1,
+                                     .compare = op};
                 sg_depth_select(op, write, isa)(&st[k], rx0, ry0, rx0 + WALK_BIN, ry0 + WALK_BIN,
                                                 &va[k]);
             }
@@ -293,11 +314,49 @@ static void sample_walk_matches_walk_per_sample(void **state) {
             if (memcmp(a, b, sizeof *a) != 0)
                 fail_msg("instruction set %d, triangle %d: the sample walk differs", (int)isa, n);
             checked++;
+            const sg_raster_samples_fn record = sg_depth_record_select(op, write, isa);
+            if (!record) continue;
+            sg_vis_record rec;
+            rec.n = 0;
+            vc[0].record = &rec;
+            record(st, rx0, ry0, rx0 + WALK_BIN, ry0 + WALK_BIN, vc);
+            for (int k = 0; k < SG_VIS_SAMPLES; k++) c->reached[k][SG_REACHED_SPARE] = 0;
+            if (memcmp(c->depth, b->depth, sizeof c->depth) != 0)
+                fail_msg("instruction set %d, triangle %d: the recording walk's depth differs",
+                         (int)isa, n);
+            uint8_t listed[WALK_BIN * WALK_BIN / SG_TILE_PIXELS] = {0};
+            for (int r = 0; r < rec.n; r++) {
+                const int tile = rec.tile[r];
+                assert_true(tile < WALK_BIN * WALK_BIN / SG_TILE_PIXELS);
+                if (tile >= WALK_BIN * WALK_BIN / SG_TILE_PIXELS) break;
+                assert_false(listed[tile]);
+                listed[tile] = 1;
+            }
+            for (int tile = 0; tile < WALK_BIN * WALK_BIN / SG_TILE_PIXELS; tile++) {
+                uint32_t want[SG_VIS_SAMPLES], any = 0;
+                for (int k = 0; k < SG_VIS_SAMPLES; k++) {
+                    want[k] = sg_tile_same_id(b->ids[k] + tile * SG_TILE_PIXELS, (uint32_t)n + 1);
+                    any |= want[k];
+                }
+                assert_int_equal(listed[tile], any != 0);
+                for (int r = 0; r < rec.n; r++)
+                    if (rec.tile[r] == tile)
+                        for (int k = 0; k < SG_VIS_SAMPLES; k++)
+                            assert_int_equal(rec.mask[r][k], want[k]);
+            }
+            for (int k = 0; k < SG_VIS_SAMPLES; k++)
+                for (int i = 0; i < WALK_BIN * WALK_BIN; i++) assert_int_equal(c->ids[k][i], 0);
+            for (int k = 0; k < SG_VIS_SAMPLES; k++)
+                for (int i = 0; i < SG_REACHED_BYTES; i++) assert_int_equal(c->reached[k][i], 0);
+            recorded++;
         }
         assert_true(checked > 2000);
     }
+    /* The recording walks of AVX2 and AVX-512, where this CPU runs them. */
+    assert_true(recorded > 0 || sg_isa_detect() < SG_ISA_AVX2);
     free(a);
     free(b);
+    free(c);
 }
 
 static void culling_and_zero_area(void **state) {

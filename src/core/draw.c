@@ -678,6 +678,9 @@ static void sample_fns(const sgDevice *dev, const sg_pso *pso, sg_draw_state *ds
     if (dev->pass.samples <= 1) return;
     ds->vis_fn = sg_depth_samples_select(pso->desc.depth.compare, pso->desc.depth.write, dev->isa);
     ds->test_fn = sg_depth_samples_select(pso->desc.depth.compare, false, dev->isa);
+    ds->vis_record_fn =
+        sg_depth_record_select(pso->desc.depth.compare, pso->desc.depth.write, dev->isa);
+    ds->test_record_fn = sg_depth_record_select(pso->desc.depth.compare, false, dev->isa);
 }
 
 static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject pso_h, sg_geom *geom,

@@ -85,7 +85,7 @@ static sg_vis_fns vis_select(sgCompare compare, bool depth_write, sg_isa isa) {
     static const sg_raster_fn one[3][2] = SG_VIS_TABLE(vis);
     static const sg_raster_samples_fn samples[3][2] = SG_VIS_TABLE(vis_samples);
     const int zmode = sg_zmode(compare);
-    sg_vis_fns f = {NULL, NULL};
+    sg_vis_fns f = {NULL, NULL, NULL};
     if (isa == SG_ISA_NEON) {
         if (zmode == Z_LESS) f = sg_depth_less_neon(depth_write);
     } else {
@@ -93,11 +93,11 @@ static sg_vis_fns vis_select(sgCompare compare, bool depth_write, sg_isa isa) {
         if (!f.one && isa >= SG_ISA_AVX2) f = sg_depth_avx2(compare, depth_write);
 #if defined(__SSE2__)
         if (!f.one && isa >= SG_ISA_SSE2 && zmode == Z_LESS)
-            f = depth_write ? (sg_vis_fns){vis_less_1_sse2, vis_samples_less_1_sse2}
-                            : (sg_vis_fns){vis_less_0_sse2, vis_samples_less_0_sse2};
+            f = depth_write ? (sg_vis_fns){vis_less_1_sse2, vis_samples_less_1_sse2, NULL}
+                            : (sg_vis_fns){vis_less_0_sse2, vis_samples_less_0_sse2, NULL};
 #endif
     }
-    return f.one ? f : sg_vis_pick(one, samples, compare, depth_write);
+    return f.one ? f : sg_vis_pick(one, samples, NULL, compare, depth_write);
 }
 
 sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
@@ -106,6 +106,10 @@ sg_raster_fn sg_depth_select(sgCompare compare, bool depth_write, sg_isa isa) {
 
 sg_raster_samples_fn sg_depth_samples_select(sgCompare compare, bool depth_write, sg_isa isa) {
     return vis_select(compare, depth_write, isa).samples;
+}
+
+sg_raster_samples_fn sg_depth_record_select(sgCompare compare, bool depth_write, sg_isa isa) {
+    return vis_select(compare, depth_write, isa).record;
 }
 
 sg_walk_fn sg_walk_select(sg_isa isa) {

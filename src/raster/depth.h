@@ -41,6 +41,15 @@ typedef struct sg_blend_pending {
     _Alignas(64) unsigned char jobs[SG_PENDING_BYTES];
 } sg_blend_pending;
 
+/* A triangle's tiles where some sample passed, as a recording sample walk found them (a
+ * multisampled bin's triangles shaded in place, rast_msaa.c): tile[i]'s passing pixels of sample
+ * k in mask[i][k]; such a walk writes depth as its draw does, but neither ids nor reached marks. */
+typedef struct sg_vis_record {
+    int n;
+    uint16_t tile[256];
+    uint16_t mask[256][4];
+} sg_vis_record;
+
 /* The bin being rasterised: both buffers hold 64 x 64 pixels as 16 x 16 tiles of 4 x 4. */
 typedef struct sg_vis_ctx {
     float *depth;     /* NULL when the pass has no depth target */
@@ -59,6 +68,8 @@ typedef struct sg_vis_ctx {
      * whose planes 1-3 of depth are taken as plane 0's; the walks set both at a tile's touch
      * (sg_vis_samples_touch), so a bin clears and copies only the tiles it draws. */
     uint64_t *fresh;
+    /* vis[0]'s, for a recording sample walk (sg_vis_fns.record); NULL elsewhere. */
+    sg_vis_record *record;
 } sg_vis_ctx;
 
 /* Rasterises a triangle's part in the rectangle [x0, x1) x [y0, y1) into the bin's buffers (ctx:
@@ -163,11 +174,14 @@ typedef void (*sg_raster_samples_fn)(const sg_tri *st, int x0, int y0, int x1, i
 
 /** The sample visibility function for a resolved depth state. */
 sg_raster_samples_fn sg_depth_samples_select(sgCompare compare, bool depth_write, sg_isa isa);
+/** The recording one (sg_vis_record), or NULL where the set has none. */
+sg_raster_samples_fn sg_depth_record_select(sgCompare compare, bool depth_write, sg_isa isa);
 
 /* A set's visibility functions of one depth state: one sample, and the four samples at once. */
 typedef struct sg_vis_fns {
     sg_raster_fn one; /* NULL: the set has none for this state, or is not built */
     sg_raster_samples_fn samples;
+    sg_raster_samples_fn record; /* samples, recording (sg_vis_record); NULL where none */
 } sg_vis_fns;
 
 /** The AVX2 visibility functions of a compare (depth_avx2.c); NULLs where AVX2 code is not built.

@@ -10,14 +10,13 @@
 #include <immintrin.h>
 
 /* Half h of a tile (rows 2h and 2h + 1), the lanes of bits: the depth test of z against the
- * stored depth dp, then depth (when written) and the id where it passes. Both halves are tested
- * and written whatever their masks, no branch: a lane that does not pass writes back what it
- * read, and a small triangle's halves pass or fail in no pattern a branch predictor follows
- * (docs/performance.md, "Four shading chains"). */
-static inline __attribute__((always_inline)) void vis_half_avx2(const sg_vis_ctx *v, uint32_t *ids,
-                                                                float *dp, int h, uint32_t bits,
-                                                                __m256 z, const int zmode,
-                                                                const int zwrite) {
+ * stored depth dp, then depth (when written) and the id where it passes (ids NULL: no id);
+ * returns the passing lanes. Both halves are tested and written whatever their masks, no branch:
+ * a lane that does not pass writes back what it read, and a small triangle's halves pass or fail
+ * in no pattern a branch predictor follows (docs/performance.md, "Four shading chains"). */
+static inline __attribute__((always_inline)) uint32_t
+vis_half_avx2(const sg_vis_ctx *v, uint32_t *ids, float *dp, int h, uint32_t bits, __m256 z,
+              const int zmode, const int zwrite) {
     const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     __m256 pass = _mm256_castsi256_ps(
         _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes));
@@ -28,9 +27,13 @@ static inline __attribute__((always_inline)) void vis_half_avx2(const sg_vis_ctx
                                  sg_compare8(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, z, d));
         if (zwrite) _mm256_store_ps(dp + 8 * h, _mm256_blendv_ps(d, z, pass));
     }
-    __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
-    _mm256_store_si256(ip, _mm256_blendv_epi8(_mm256_load_si256(ip), _mm256_set1_epi32((int)v->id),
+    if (ids) {
+        __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
+        _mm256_store_si256(ip,
+                           _mm256_blendv_epi8(_mm256_load_si256(ip), _mm256_set1_epi32((int)v->id),
                                               _mm256_castps_si256(pass)));
+    }
+    return (uint32_t)_mm256_movemask_ps(pass);
 }
 
 static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, const sg_tri *t,
@@ -49,15 +52,14 @@ static inline __attribute__((always_inline)) void vis_avx2(const void *vctx, con
 
 SG_VIS_SET_OF(SG_WALK_FN_EMPTY, vis_avx2, vis_avx2)
 
-/* The four samples of a tile at once (the sample walk's body), as vis4_avx512 in
- * depth_avx512.c: the samples' triangles differ only in their edges and z, so the products of the
- * depth slopes with the pixels' offsets are computed once, and each sample's z is its own z plus
- * them, added in sg_zrows8's order: the same bits as vis_avx2. */
-static inline __attribute__((always_inline)) void vis4_avx2(const sg_vis_samples *s,
-                                                            const sg_tri *t, int x0, int y0,
+/* The four samples of a tile at once (the sample walk's body), as vis4_with in depth_avx512.c:
+ * the samples' triangles differ only in their edges and z, so the products of the depth slopes
+ * with the pixels' offsets are computed once, and each sample's z is its own z plus them, added
+ * in sg_zrows8's order: the same bits as vis_avx2. With `rec` the passing pixels are recorded
+ * (sg_vis_record) instead of written as ids. */
+static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples *s, int x0, int y0,
                                                             const uint32_t *mk, const int zmode,
-                                                            const int zwrite) {
-    (void)t; /* the union's (a line's: every sample's), its edges only differ */
+                                                            const int zwrite, const int rec) {
     const sg_tri *st = s->st;
     const sg_vis_ctx *v0 = &s->vis[0];
     const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
@@ -76,29 +78,64 @@ static inline __attribute__((always_inline)) void vis4_avx2(const sg_vis_samples
             zdy[h] = _mm256_mul_ps(_mm256_set1_ps(st[0].z_dy), dy);
         }
     }
+    sg_vis_record *r = v0->record;
+    uint32_t any = 0;
     for (int k = 0; k < SG_VIS_SAMPLES; k++) {
-        if (!mk[k]) continue;
-        const sg_vis_ctx *v = &s->vis[k];
-        uint32_t *ids = sg_vis_tile_ids(v, base);
-        const __m256 zx = _mm256_add_ps(_mm256_set1_ps(st[k].z), zdx);
-        for (int h = 0; h < 2; h++) {
-            const __m256 z = _mm256_add_ps(zx, zdy[h]);
-            vis_half_avx2(
-                v, ids, depth ? v->depth + base : NULL, h, (mk[k] >> (8 * h)) & 255u,
-                _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z)), zmode,
-                zwrite);
+        uint32_t pass = 0;
+        if (mk[k]) {
+            const sg_vis_ctx *v = &s->vis[k];
+            uint32_t *ids = rec ? NULL : sg_vis_tile_ids(v, base);
+            const __m256 zx = _mm256_add_ps(_mm256_set1_ps(st[k].z), zdx);
+            for (int h = 0; h < 2; h++) {
+                const __m256 z = _mm256_add_ps(zx, zdy[h]);
+                pass |=
+                    vis_half_avx2(
+                        v, ids, depth ? v->depth + base : NULL, h, (mk[k] >> (8 * h)) & 255u,
+                        _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z)),
+                        zmode, zwrite)
+                    << (8 * h);
+            }
+        }
+        if (rec) {
+            r->mask[r->n][k] = (uint16_t)pass;
+            any |= pass;
         }
     }
+    if (rec) {
+        r->tile[r->n] = (uint16_t)(base >> 4);
+        r->n += any != 0;
+    }
+}
+
+/* The walk's two bodies: ids written (the union's t: its edges only differ), or recorded. */
+static inline __attribute__((always_inline)) void vis4_avx2(const sg_vis_samples *s,
+                                                            const sg_tri *t, int x0, int y0,
+                                                            const uint32_t *mk, const int zmode,
+                                                            const int zwrite) {
+    (void)t;
+    vis4_with(s, x0, y0, mk, zmode, zwrite, 0);
+}
+static inline __attribute__((always_inline)) void rec4_avx2(const sg_vis_samples *s,
+                                                            const sg_tri *t, int x0, int y0,
+                                                            const uint32_t *mk, const int zmode,
+                                                            const int zwrite) {
+    (void)t;
+    vis4_with(s, x0, y0, mk, zmode, zwrite, 1);
 }
 
 #define VIS4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, vis4_avx2, zm, zw)
 SG_VIS_SET_OF(VIS4_FN, vis_samples_avx2, vis_avx2)
 #undef VIS4_FN
+#define REC4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, rec4_avx2, zm, zw)
+SG_VIS_SET_OF(REC4_FN, rec_samples_avx2, vis_avx2)
+#undef REC4_FN
+#undef VIS4_FN
 
 sg_vis_fns sg_depth_avx2(sgCompare compare, bool depth_write) {
     static const sg_raster_fn one[3][2] = SG_VIS_TABLE(vis_avx2);
     static const sg_raster_samples_fn samples[3][2] = SG_VIS_TABLE(vis_samples_avx2);
-    return sg_vis_pick(one, samples, compare, depth_write);
+    static const sg_raster_samples_fn record[3][2] = SG_VIS_TABLE(rec_samples_avx2);
+    return sg_vis_pick(one, samples, record, compare, depth_write);
 }
 
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
@@ -115,7 +152,7 @@ sg_walk_fn sg_walk_avx2(void) {
 sg_vis_fns sg_depth_avx2(sgCompare compare, bool depth_write) {
     (void)compare;
     (void)depth_write;
-    return (sg_vis_fns){NULL, NULL};
+    return (sg_vis_fns){NULL, NULL, NULL};
 }
 
 sg_walk_fn sg_walk_avx2(void) {

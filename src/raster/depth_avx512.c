@@ -36,12 +36,11 @@ SG_VIS_SET_OF(SG_WALK_FN_EMPTY, vis_avx512, vis_avx512)
 /* The four samples of a tile at once (the sample walk's body): the samples' triangles differ only
  * in their edges and z (sg_msaa_sample_tri), so the pixels' offsets and the depth slopes' products
  * with them are computed once, and each sample's z is its own z plus those products, added in
- * vis_avx512's order: the same bits. */
-static inline __attribute__((always_inline)) void vis4_avx512(const sg_vis_samples *s,
-                                                              const sg_tri *t, int x0, int y0,
-                                                              const uint32_t *mk, const int zmode,
-                                                              const int zwrite) {
-    (void)t; /* the union's (a line's: every sample's), its edges only differ */
+ * vis_avx512's order: the same bits. With `rec` the passing pixels are recorded (sg_vis_record)
+ * instead of written as ids. */
+static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples *s, int x0, int y0,
+                                                            const uint32_t *mk, const int zmode,
+                                                            const int zwrite, const int rec) {
     const sg_tri *st = s->st;
     const sg_vis_ctx *v0 = &s->vis[0];
     const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
@@ -53,11 +52,12 @@ static inline __attribute__((always_inline)) void vis4_avx512(const sg_vis_sampl
         dzy = _mm512_mul_ps(_mm512_set1_ps(st[0].z_dy), dy);
     }
     const __m512i id = _mm512_set1_epi32((int)v0->id);
+    sg_vis_record *r = v0->record;
+    uint32_t any = 0;
     /* No branch on a sample's mask: an edge tile's samples are covered or not in no pattern a
      * predictor follows, and an empty one writes and marks nothing. */
     for (int k = 0; k < SG_VIS_SAMPLES; k++) {
         const sg_vis_ctx *v = &s->vis[k];
-        uint32_t *ids = sg_vis_tile_ids_of(v, base, mk[k]);
         __mmask16 pass = (__mmask16)mk[k];
         if (zmode != Z_NONE || zwrite) {
             float *dp = v->depth + base;
@@ -68,18 +68,47 @@ static inline __attribute__((always_inline)) void vis4_avx512(const sg_vis_sampl
                                     _mm512_loadu_ps(dp));
             if (zwrite) _mm512_mask_storeu_ps(dp, pass, z);
         }
-        _mm512_mask_storeu_epi32(ids, pass, id);
+        if (rec) {
+            r->mask[r->n][k] = pass;
+            any |= pass;
+        } else {
+            _mm512_mask_storeu_epi32(sg_vis_tile_ids_of(v, base, mk[k]), pass, id);
+        }
     }
+    if (rec) {
+        r->tile[r->n] = (uint16_t)(base >> 4);
+        r->n += any != 0;
+    }
+}
+
+/* The walk's two bodies: ids written (the union's t: its edges only differ), or recorded. */
+static inline __attribute__((always_inline)) void vis4_avx512(const sg_vis_samples *s,
+                                                              const sg_tri *t, int x0, int y0,
+                                                              const uint32_t *mk, const int zmode,
+                                                              const int zwrite) {
+    (void)t;
+    vis4_with(s, x0, y0, mk, zmode, zwrite, 0);
+}
+static inline __attribute__((always_inline)) void rec4_avx512(const sg_vis_samples *s,
+                                                              const sg_tri *t, int x0, int y0,
+                                                              const uint32_t *mk, const int zmode,
+                                                              const int zwrite) {
+    (void)t;
+    vis4_with(s, x0, y0, mk, zmode, zwrite, 1);
 }
 
 #define VIS4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, vis4_avx512, zm, zw)
 SG_VIS_SET_OF(VIS4_FN, vis_samples_avx512, vis_avx512)
 #undef VIS4_FN
+#define REC4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, rec4_avx512, zm, zw)
+SG_VIS_SET_OF(REC4_FN, rec_samples_avx512, vis_avx512)
+#undef REC4_FN
 
 sg_vis_fns sg_depth_avx512(sgCompare compare, bool depth_write) {
     static const sg_raster_fn one[3][2] = SG_VIS_TABLE(vis_avx512);
     static const sg_raster_samples_fn samples[3][2] = SG_VIS_TABLE(vis_samples_avx512);
-    return sg_vis_pick(one, samples, compare, depth_write);
+    static const sg_raster_samples_fn record[3][2] = SG_VIS_TABLE(rec_samples_avx512);
+    return sg_vis_pick(one, samples, record, compare, depth_write);
 }
 
 static void walk_any(const sg_tri *t, int x0, int y0, int x1, int y1, sg_tile_fn fn,
@@ -96,7 +125,7 @@ sg_walk_fn sg_walk_avx512(void) {
 sg_vis_fns sg_depth_avx512(sgCompare compare, bool depth_write) {
     (void)compare;
     (void)depth_write;
-    return (sg_vis_fns){NULL, NULL};
+    return (sg_vis_fns){NULL, NULL, NULL};
 }
 
 sg_walk_fn sg_walk_avx512(void) {

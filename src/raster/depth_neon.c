@@ -48,15 +48,15 @@ SG_VIS_SAMPLES_FN(vis_samples_less_0_neon, vis_neon_less, Z_LESS, 0)
 SG_VIS_SAMPLES_FN(vis_samples_less_1_neon, vis_neon_less, Z_LESS, 1)
 
 sg_vis_fns sg_depth_less_neon(bool depth_write) {
-    return depth_write ? (sg_vis_fns){vis_less_1_neon, vis_samples_less_1_neon}
-                       : (sg_vis_fns){vis_less_0_neon, vis_samples_less_0_neon};
+    return depth_write ? (sg_vis_fns){vis_less_1_neon, vis_samples_less_1_neon, NULL}
+                       : (sg_vis_fns){vis_less_0_neon, vis_samples_less_0_neon, NULL};
 }
 
 #else
 
 sg_vis_fns sg_depth_less_neon(bool depth_write) {
     (void)depth_write;
-    return (sg_vis_fns){NULL, NULL};
+    return (sg_vis_fns){NULL, NULL, NULL};
 }
 
 #endif

@@ -15,13 +15,14 @@ static inline int sg_zmode(sgCompare compare) {
     return compare == SG_COMPARE_ALWAYS ? Z_NONE : (compare == SG_COMPARE_LESS ? Z_LESS : Z_ANY);
 }
 
-/* A depth state's functions in a set's tables of both kinds ([zmode][depth write], SG_VIS_TABLE).
- */
+/* A depth state's functions in a set's tables of each kind ([zmode][depth write], SG_VIS_TABLE;
+ * record may be NULL: the set has no recording walk). */
 static inline sg_vis_fns sg_vis_pick(const sg_raster_fn one[3][2],
-                                     const sg_raster_samples_fn samples[3][2], sgCompare compare,
+                                     const sg_raster_samples_fn samples[3][2],
+                                     const sg_raster_samples_fn (*record)[2], sgCompare compare,
                                      bool depth_write) {
     const int z = sg_zmode(compare), w = depth_write ? 1 : 0;
-    return (sg_vis_fns){one[z][w], samples[z][w]};
+    return (sg_vis_fns){one[z][w], samples[z][w], record ? record[z][w] : NULL};
 }
 
 /* name(): a raster function (sg_raster_fn) that walks with body(ctx, t, x0, y0, mask, zmode,

@@ -255,8 +255,14 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     int x0 = v->x0, y0 = v->y0;
     sg_blend_pending waiting; /* its jobs are written before they are read */
     waiting.n = 0;
-    sg_vis_ctx vis = {v->depth ? depth : NULL, ids,   reached, x0,   y0,       0,
-                      SG_COMPARE_ALWAYS,       color, NULL,    NULL, &waiting, NULL};
+    sg_vis_ctx vis = {.depth = v->depth ? depth : NULL,
+                      .ids = ids,
+                      .reached = reached,
+                      .bx0 = x0,
+                      .by0 = y0,
+                      .compare = SG_COMPARE_ALWAYS,
+                      .color = color,
+                      .pending = &waiting};
     bool pending = false; /* ids hold opaque triangles not shaded yet */
     /* The ids are cleared when the first triangle that writes them comes: a bin of lines and
      * blends alone never reads them (16 KB a bin not cleared). */
@@ -338,8 +344,12 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
     start_depth(p, v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     int x0 = v->x0, y0 = v->y0;
-    sg_vis_ctx vis = {depth, ids,  reached, x0,   y0,  0, SG_COMPARE_ALWAYS,
-                      NULL,  NULL, NULL,    NULL, NULL};
+    sg_vis_ctx vis = {.depth = depth,
+                      .ids = ids,
+                      .reached = reached,
+                      .bx0 = x0,
+                      .by0 = y0,
+                      .compare = SG_COMPARE_ALWAYS};
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
     if (p->store_depth) sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
@@ -402,8 +412,12 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     memset(ids, 0, sizeof ids);
     start_depth(p, &v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
-    sg_vis_ctx vis = {v.depth ? depth : NULL, ids,  reached, x0,   y0,   0,
-                      SG_COMPARE_ALWAYS,      NULL, NULL,    NULL, NULL, NULL};
+    sg_vis_ctx vis = {.depth = v.depth ? depth : NULL,
+                      .ids = ids,
+                      .reached = reached,
+                      .bx0 = x0,
+                      .by0 = y0,
+                      .compare = SG_COMPARE_ALWAYS};
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
 

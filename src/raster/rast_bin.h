@@ -41,6 +41,9 @@ typedef struct sg_draw_state {
      * state (ids and depth, per sample), the same without depth write (a depth test for the draws
      * shaded in place), and whether the draw blends. */
     sg_raster_samples_fn vis_fn, test_fn;
+    /* The same recording (sg_vis_record; NULL where the set has none), for triangles shaded in
+     * place. */
+    sg_raster_samples_fn vis_record_fn, test_record_fn;
     bool blend;
 } sg_draw_state;
 

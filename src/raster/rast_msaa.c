@@ -134,6 +134,10 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     if (runs && runs->n) sg_runs_flush(p, runs, &to);
 }
 
+static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
+                           const sg_draw_state *d, const sg_run *runs,
+                           const uint16_t (*samples)[NS], int n);
+
 /* A triangle shaded in place (a blend, or a shader draw whose fragments may discard): each
  * sample's depth test (its ids mark the passing samples), then the pixels with a passing sample
  * shaded once, then each passing sample's depth (when the draw writes it: by the test itself for
@@ -148,12 +152,27 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
         b->vis[k].compare = d->compare;
     }
     const bool shader = d->ctx.shader.fragment != NULL;
-    (shader ? d->test_fn : d->vis_fn)(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE,
-                                      b->vis);
     /* The tiles with a passing sample: their pixels (runs) and each sample's. */
     sg_run runs[BIN_TILES * BIN_TILES];
     uint16_t samples[BIN_TILES * BIN_TILES][NS];
     int n = 0;
+    const sg_raster_samples_fn record = shader ? d->test_record_fn : d->vis_record_fn;
+    if (record) { /* the walk lists them */
+        sg_vis_record rec;
+        rec.n = 0;
+        b->vis[0].record = &rec;
+        record(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, b->vis);
+        b->vis[0].record = NULL;
+        for (; n < rec.n; n++) {
+            uint32_t u = 0;
+            for (int k = 0; k < NS; k++) u |= samples[n][k] = rec.mask[n][k];
+            runs[n] = (sg_run){rec.tile[n], (uint16_t)u};
+        }
+        shade_in_place(p, b, t, st, d, runs, samples, n);
+        return;
+    }
+    (shader ? d->test_fn : d->vis_fn)(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE,
+                                      b->vis);
     /* Only the words of the tile rows the triangle's bounds cross can hold reached tiles (a small
      * triangle's: one or two of the four). */
     const int row0 = t->miny > b->y0 ? (t->miny - b->y0) >> SG_TILE_SHIFT : 0;
@@ -174,6 +193,15 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
         b->fresh[word] |= reached_word; /* their ids are done with */
         for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
     }
+    shade_in_place(p, b, t, st, d, runs, samples, n);
+}
+
+/* in_place's shading of the n tiles of runs (their pixels with a passing sample) and samples
+ * (each sample's passing pixels) and its writes. */
+static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
+                           const sg_draw_state *d, const sg_run *runs,
+                           const uint16_t (*samples)[NS], int n) {
+    const bool shader = d->ctx.shader.fragment != NULL;
     /* Partly covered tiles packed, whole ones each on its own (its shading is made for them). */
     const bool packs = !shader && d->runs_fn;
     if (packs) {
@@ -335,18 +363,13 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
     const int discards = p->any_shader ? __atomic_load_n(p->shader_discards, __ATOMIC_RELAXED) : 0;
     memset(b->reached, 0, sizeof b->reached);
     for (int k = 0; k < NS; k++)
-        b->vis[k] = (sg_vis_ctx){v->depth ? b->depth[k] : NULL,
-                                 b->ids[k],
-                                 b->reached[k],
-                                 b->x0,
-                                 b->y0,
-                                 0,
-                                 SG_COMPARE_ALWAYS,
-                                 NULL,
-                                 NULL,
-                                 NULL,
-                                 NULL,
-                                 b->fresh};
+        b->vis[k] = (sg_vis_ctx){.depth = v->depth ? b->depth[k] : NULL,
+                                 .ids = b->ids[k],
+                                 .reached = b->reached[k],
+                                 .bx0 = b->x0,
+                                 .by0 = b->y0,
+                                 .compare = SG_COMPARE_ALWAYS,
+                                 .fresh = b->fresh};
     start_bin(p, v, b, index);
     const bool depth_only = v->color == NULL;
     bool pending = false; /* the ids hold triangles not shaded yet */
