@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/blend.h"
 #include "raster/framebuffer.h"
 #include "raster/shade.h"
 
@@ -100,6 +101,16 @@ static void fb_sample_ops_match_portable(void **state) {
         memcpy(a, planes[0], 64);
         sets[s]->put_masked(a, planes[2], 0xffffu);
         assert_memory_equal(a, planes[2], 64);
+        /* blend_masked: sg_blend_rgba8 of the selected pixels, the others kept. */
+        for (int t = 0; t + 16 <= N; t += 16)
+            for (uint32_t mask = 0; mask < 0x10000u; mask += 0x1ffdu) {
+                memcpy(a, planes[3] + t, 64);
+                sets[s]->blend_masked(a, planes[1] + t, mask);
+                for (int i = 0; i < 16; i++)
+                    assert_int_equal(a[i], mask >> i & 1
+                                               ? sg_blend_rgba8(planes[1][t + i], planes[3][t + i])
+                                               : planes[3][t + i]);
+            }
     }
 }
 

@@ -12,21 +12,44 @@ static void fill_color(uint32_t *dst, size_t n, uint32_t value) {
     for (size_t i = 0; i < n; i += 8) _mm256_store_si256((__m256i *)(void *)(dst + i), v);
 }
 
-static void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+/* The lanes of the 8 pixels at dst that bits (one a pixel) selects, as 32-bit masks. */
+static inline __m256i lanes_of(uint32_t bits) {
     const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    for (int h = 0; h < 2; h++) {
-        const __m256i bits = _mm256_set1_epi32((int)((mask >> (8 * h)) & 255u));
-        _mm256_maskstore_epi32((int *)(void *)(dst + 8 * h),
-                               _mm256_cmpeq_epi32(_mm256_and_si256(bits, lanes), lanes),
-                               _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h)));
-    }
+    return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes);
 }
 
-/* The blend on whole vectors (blend.h's code, compiled for the set), stored under the mask. */
+static void put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
+    for (int h = 0; h < 2; h++)
+        _mm256_maskstore_epi32((int *)(void *)(dst + 8 * h), lanes_of((mask >> (8 * h)) & 255u),
+                               _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h)));
+}
+
+/* x y / 255 as sg_mul_unorm8 rounds it, in 16-bit lanes (x, y <= 255: no lane overflows). */
+static inline __m256i mul8(__m256i x, __m256i y) {
+    const __m256i t = _mm256_mullo_epi16(x, y);
+    return _mm256_srli_epi16(
+        _mm256_add_epi16(_mm256_add_epi16(t, _mm256_srli_epi16(t, 8)), _mm256_set1_epi16(128)), 8);
+}
+
+/* sg_blend16_rgba8 on 8 pixels a vector (the same operations on the same 16-bit halves), stored
+ * under the mask. sg_blend16_rgba8 itself works on 64-byte vectors, which GCC 12 builds for AVX2
+ * with 16-byte spills and reloads of whole 32-byte vectors: several times slower. */
 static void blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask) {
-    _Alignas(64) uint32_t px[SG_TILE_PIXELS];
-    sg_blend16_rgba8(src, dst, px);
-    put_masked(dst, px, mask);
+    const __m256i m8 = _mm256_set1_epi32(0x00ff00ff);
+    for (int h = 0; h < 2; h++) {
+        __m256i *dp = (__m256i *)(void *)(dst + 8 * h);
+        const __m256i s = _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h));
+        const __m256i d = _mm256_load_si256(dp);
+        const __m256i lo = _mm256_srli_epi32(s, 24);
+        const __m256i a = _mm256_or_si256(lo, _mm256_slli_epi32(lo, 16));
+        const __m256i ia = _mm256_sub_epi16(_mm256_set1_epi16(255), a);
+        const __m256i r =
+            _mm256_add_epi16(mul8(_mm256_and_si256(s, m8), a), mul8(_mm256_and_si256(d, m8), ia));
+        const __m256i g = _mm256_add_epi16(mul8(_mm256_and_si256(_mm256_srli_epi32(s, 8), m8), a),
+                                           mul8(_mm256_and_si256(_mm256_srli_epi32(d, 8), m8), ia));
+        const __m256i out = _mm256_or_si256(r, _mm256_slli_epi32(g, 8));
+        _mm256_maskstore_epi32((int *)(void *)dp, lanes_of((mask >> (8 * h)) & 255u), out);
+    }
 }
 
 static uint32_t same(const void *vecs, int k, uint32_t id) {
