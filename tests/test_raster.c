@@ -237,6 +237,17 @@ typedef struct sample_planes {
     uint8_t reached[SG_VIS_SAMPLES][SG_REACHED_BYTES];
 } sample_planes;
 
+/* Sample k's plane of p as a bin at (rx0, ry0) rasterising triangle `id` with compare op. */
+static sg_vis_ctx plane_ctx(sample_planes *p, int k, int rx0, int ry0, uint32_t id, sgCompare op) {
+    return (sg_vis_ctx){.depth = p->depth[k],
+                        .ids = p->ids[k],
+                        .reached = p->reached[k],
+                        .bx0 = rx0,
+                        .by0 = ry0,
+                        .id = id,
+                        .compare = op};
+}
+
 static void sample_walk_matches_walk_per_sample(void **state) {
     (void)state;
     /* Aligned as a bin's planes are: the vector sets load them whole. */
@@ -282,27 +293,9 @@ static void sample_walk_matches_walk_per_sample(void **state) {
             memcpy(c, a, sizeof *a);
             sg_vis_ctx va[SG_VIS_SAMPLES], vb[SG_VIS_SAMPLES], vc[SG_VIS_SAMPLES];
             for (int k = 0; k < SG_VIS_SAMPLES; k++) {
-                va[k] = (sg_vis_ctx){.depth = a->depth[k],
-                                     .ids = a->ids[k],
-                                     .reached = a->reached[k],
-                                     .bx0 = rx0,
-                                     .by0 = ry0,
-                                     .id = (uint32_t)n + 1,
-                                     .compare = op};
-                vb[k] = (sg_vis_ctx){.depth = b->depth[k],
-                                     .ids = b->ids[k],
-                                     .reached = b->reached[k],
-                                     .bx0 = rx0,
-                                     .by0 = ry0,
-                                     .id = (uint32_t)n + 1,
-                                     .compare = op};
-                vc[k] = (sg_vis_ctx){.depth = c->depth[k],
-                                     .ids = c->ids[k],
-                                     .reached = c->reached[k],
-                                     .bx0 = rx0,
-                                     .by0 = ry0,
-                                     .id = (uint32_t)n + 1,
-                                     .compare = op};
+                va[k] = plane_ctx(a, k, rx0, ry0, (uint32_t)n + 1, op);
+                vb[k] = plane_ctx(b, k, rx0, ry0, (uint32_t)n + 1, op);
+                vc[k] = plane_ctx(c, k, rx0, ry0, (uint32_t)n + 1, op);
                 sg_depth_select(op, write, isa)(&st[k], rx0, ry0, rx0 + WALK_BIN, ry0 + WALK_BIN,
                                                 &va[k]);
             }
@@ -352,8 +345,12 @@ static void sample_walk_matches_walk_per_sample(void **state) {
         }
         assert_true(checked > 2000);
     }
+#if defined(__x86_64__)
     /* The recording walks of AVX2 and AVX-512, where this CPU runs them. */
-    assert_true(recorded > 0 || sg_isa_detect() < SG_ISA_AVX2);
+    if (sg_isa_detect() >= SG_ISA_AVX2) assert_true(recorded > 0);
+#else
+    (void)recorded;
+#endif
     free(a);
     free(b);
     free(c);

@@ -107,28 +107,7 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
     }
 }
 
-/* The walk's two bodies: ids written (the union's t: its edges only differ), or recorded. */
-static inline __attribute__((always_inline)) void vis4_avx2(const sg_vis_samples *s,
-                                                            const sg_tri *t, int x0, int y0,
-                                                            const uint32_t *mk, const int zmode,
-                                                            const int zwrite) {
-    (void)t;
-    vis4_with(s, x0, y0, mk, zmode, zwrite, 0);
-}
-static inline __attribute__((always_inline)) void rec4_avx2(const sg_vis_samples *s,
-                                                            const sg_tri *t, int x0, int y0,
-                                                            const uint32_t *mk, const int zmode,
-                                                            const int zwrite) {
-    (void)t;
-    vis4_with(s, x0, y0, mk, zmode, zwrite, 1);
-}
-
-#define VIS4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, vis4_avx2, zm, zw)
-SG_VIS_SET_OF(VIS4_FN, vis_samples_avx2, vis_avx2)
-#undef VIS4_FN
-#define REC4_FN(name, body, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, rec4_avx2, zm, zw)
-SG_VIS_SET_OF(REC4_FN, rec_samples_avx2, vis_avx2)
-#undef REC4_FN
+SG_VIS4_SETS(vis_samples_avx2, rec_samples_avx2)
 #undef VIS4_FN
 
 sg_vis_fns sg_depth_avx2(sgCompare compare, bool depth_write) {

@@ -213,4 +213,21 @@ SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, 
 /* The six sample visibility functions of a tile body (their table: SG_VIS_TABLE). */
 #define SG_VIS_SAMPLES_SET(prefix, body) SG_VIS_SET_OF(SG_VIS_SAMPLES_FN, prefix, body)
 
+/* The sample walks of a set's four-sample body vis4_with(s, x0, y0, mk, zmode, zwrite, rec),
+ * defined before: vis_prefix_... write the passing pixels' ids, rec_prefix_... record them
+ * (sg_vis_record) instead; six of each (SG_VIS_TABLE). The walk's t, the union of the samples'
+ * triangles, differs from theirs in its edges only, so the bodies take the samples' own. */
+#define SG_VIS4_BODY(name, rec)                                                                    \
+    SG_WALK_INLINE void name(const sg_vis_samples *s, const sg_tri *t, int x0, int y0,             \
+                             const uint32_t *mk, const int zmode, const int zwrite) {              \
+        (void)t;                                                                                   \
+        vis4_with(s, x0, y0, mk, zmode, zwrite, rec);                                              \
+    }
+#define SG_VIS4_FN(name, body4, zm, zw) SG_VIS_SAMPLES_FN_WITH(name, body4, zm, zw)
+#define SG_VIS4_SETS(vis_prefix, rec_prefix)                                                       \
+    SG_VIS4_BODY(vis_prefix##_body4, 0)                                                            \
+    SG_VIS4_BODY(rec_prefix##_body4, 1)                                                            \
+    SG_VIS_SET_OF(SG_VIS4_FN, vis_prefix, vis_prefix##_body4)                                      \
+    SG_VIS_SET_OF(SG_VIS4_FN, rec_prefix, rec_prefix##_body4)
+
 #endif

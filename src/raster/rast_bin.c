@@ -235,6 +235,16 @@ static bool passes_bin(const sg_bin_pass *p, depth_range *r, const float *depth,
                                            y0 + SG_BIN_SIZE - 1, r->lo, r->hi);
 }
 
+/* The visibility context of a bin at (x0, y0) with these buffers (depth NULL: no depth target). */
+static sg_vis_ctx bin_vis(float *depth, uint32_t *ids, uint8_t *reached, int x0, int y0) {
+    return (sg_vis_ctx){.depth = depth,
+                        .ids = ids,
+                        .reached = reached,
+                        .bx0 = x0,
+                        .by0 = y0,
+                        .compare = SG_COMPARE_ALWAYS};
+}
+
 /* A bin of a pass with draws shaded in place (blended ones, lines: blend.h): the colour starts
  * from the pass's load or clear, other triangles go through visibility as usual, and before each
  * run of triangles shaded in place the visible ids so far are shaded (shade_reached), so every
@@ -255,14 +265,9 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     int x0 = v->x0, y0 = v->y0;
     sg_blend_pending waiting; /* its jobs are written before they are read */
     waiting.n = 0;
-    sg_vis_ctx vis = {.depth = v->depth ? depth : NULL,
-                      .ids = ids,
-                      .reached = reached,
-                      .bx0 = x0,
-                      .by0 = y0,
-                      .compare = SG_COMPARE_ALWAYS,
-                      .color = color,
-                      .pending = &waiting};
+    sg_vis_ctx vis = bin_vis(v->depth ? depth : NULL, ids, reached, x0, y0);
+    vis.color = color;
+    vis.pending = &waiting;
     bool pending = false; /* ids hold opaque triangles not shaded yet */
     /* The ids are cleared when the first triangle that writes them comes: a bin of lines and
      * blends alone never reads them (16 KB a bin not cleared). */
@@ -344,12 +349,7 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
     start_depth(p, v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
     int x0 = v->x0, y0 = v->y0;
-    sg_vis_ctx vis = {.depth = depth,
-                      .ids = ids,
-                      .reached = reached,
-                      .bx0 = x0,
-                      .by0 = y0,
-                      .compare = SG_COMPARE_ALWAYS};
+    sg_vis_ctx vis = bin_vis(depth, ids, reached, x0, y0);
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
     if (p->store_depth) sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
@@ -412,12 +412,7 @@ void sg_rast_bin(const sg_bin_pass *p, int index) {
     memset(ids, 0, sizeof ids);
     start_depth(p, &v, depth);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_BIN_START, clock);
-    sg_vis_ctx vis = {.depth = v.depth ? depth : NULL,
-                      .ids = ids,
-                      .reached = reached,
-                      .bx0 = x0,
-                      .by0 = y0,
-                      .compare = SG_COMPARE_ALWAYS};
+    sg_vis_ctx vis = bin_vis(v.depth ? depth : NULL, ids, reached, x0, y0);
     visibility(p, bin, &vis);
     SG_STAGE_ADD(p->stage_times, SG_STAGE_VISIBILITY, clock);
 
