@@ -116,33 +116,28 @@ int sg_fb_split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *sa
     return sg_fb_split_ids_with(planes, planes, left, same_portable, ids, samples);
 }
 
-uint64_t sg_fb_alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
-    uint64_t alike = 0;
-    for (; tiles; tiles &= tiles - 1) {
-        const int bit = __builtin_ctzll(tiles);
-        const size_t base = (size_t)bit * SG_TILE_PIXELS;
+static inline bool tile_alike(const uint32_t *const planes[4], size_t base) {
 #if defined(__SSE2__)
-        __m128i diff = _mm_setzero_si128();
-        for (int j = 0; j < SG_TILE_PIXELS; j += 4) {
-            const __m128i first =
-                _mm_load_si128((const __m128i *)(const void *)(planes[0] + base + j));
-            for (int k = 1; k < 4; k++)
-                diff = _mm_or_si128(
-                    diff, _mm_xor_si128(first,
-                                        _mm_load_si128((const __m128i *)(const void *)(planes[k] +
-                                                                                       base + j))));
-        }
-        const bool same = _mm_movemask_epi8(_mm_cmpeq_epi32(diff, _mm_setzero_si128())) == 0xffff;
-#else
-        uint32_t diff = 0;
+    __m128i diff = _mm_setzero_si128();
+    for (int j = 0; j < SG_TILE_PIXELS; j += 4) {
+        const __m128i first = _mm_load_si128((const __m128i *)(const void *)(planes[0] + base + j));
         for (int k = 1; k < 4; k++)
-            for (int i = 0; i < SG_TILE_PIXELS; i++)
-                diff |= planes[k][base + i] ^ planes[0][base + i];
-        const bool same = diff == 0;
-#endif
-        alike |= (uint64_t)same << bit;
+            diff = _mm_or_si128(
+                diff,
+                _mm_xor_si128(
+                    first, _mm_load_si128((const __m128i *)(const void *)(planes[k] + base + j))));
     }
-    return alike;
+    return _mm_movemask_epi8(_mm_cmpeq_epi32(diff, _mm_setzero_si128())) == 0xffff;
+#else
+    uint32_t diff = 0;
+    for (int k = 1; k < 4; k++)
+        for (int i = 0; i < SG_TILE_PIXELS; i++) diff |= planes[k][base + i] ^ planes[0][base + i];
+    return diff == 0;
+#endif
+}
+
+uint64_t sg_fb_alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
+    return sg_fb_alike_tiles_with(planes, tiles, tile_alike);
 }
 
 const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,

@@ -123,6 +123,19 @@ sg_fb_split_ids_with(const uint32_t *const planes[4], const void *vecs, uint32_t
     return n;
 }
 
+/* alike_tiles's loop for a set: alike(planes, base), whether tile `base`'s four planes (16 ids
+ * from base in each) are equal. */
+static inline __attribute__((always_inline)) uint64_t
+sg_fb_alike_tiles_with(const uint32_t *const planes[4], uint64_t tiles,
+                       bool (*alike)(const uint32_t *const planes[4], size_t base)) {
+    uint64_t out = 0;
+    for (; tiles; tiles &= tiles - 1) {
+        const int bit = __builtin_ctzll(tiles);
+        out |= (uint64_t)alike(planes, (size_t)bit * SG_TILE_PIXELS) << bit;
+    }
+    return out;
+}
+
 /** The portable put_masked (sg_fb_put_lanes), blend_masked, average4, split_ids and alike_tiles
  *  of sg_fb_ops. */
 void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);

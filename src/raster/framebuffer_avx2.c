@@ -69,25 +69,22 @@ static int split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *s
     return sg_fb_split_ids_with(planes, v, left, same, ids, samples);
 }
 
-static uint64_t alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
-    uint64_t alike = 0;
-    for (; tiles; tiles &= tiles - 1) {
-        const int bit = __builtin_ctzll(tiles);
-        const size_t base = (size_t)bit * SG_TILE_PIXELS;
-        __m256i diff = _mm256_setzero_si256();
-        for (int h = 0; h < 2; h++) {
-            const __m256i first =
-                _mm256_load_si256((const __m256i *)(const void *)(planes[0] + base + 8 * h));
-            for (int k = 1; k < 4; k++)
-                diff = _mm256_or_si256(
-                    diff,
-                    _mm256_xor_si256(
-                        first, _mm256_load_si256(
-                                   (const __m256i *)(const void *)(planes[k] + base + 8 * h))));
-        }
-        alike |= (uint64_t)_mm256_testz_si256(diff, diff) << bit;
+static inline bool tile_alike(const uint32_t *const planes[4], size_t base) {
+    __m256i diff = _mm256_setzero_si256();
+    for (int h = 0; h < 2; h++) {
+        const __m256i first =
+            _mm256_load_si256((const __m256i *)(const void *)(planes[0] + base + 8 * h));
+        for (int k = 1; k < 4; k++)
+            diff = _mm256_or_si256(
+                diff, _mm256_xor_si256(
+                          first, _mm256_load_si256(
+                                     (const __m256i *)(const void *)(planes[k] + base + 8 * h))));
     }
-    return alike;
+    return _mm256_testz_si256(diff, diff);
+}
+
+static uint64_t alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
+    return sg_fb_alike_tiles_with(planes, tiles, tile_alike);
 }
 
 #define SG_FB_VECTOR_BYTES 32

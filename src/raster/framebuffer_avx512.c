@@ -37,19 +37,17 @@ static int split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *s
     return sg_fb_split_ids_with(planes, v, left, same, ids, samples);
 }
 
+static inline bool tile_alike(const uint32_t *const planes[4], size_t base) {
+    const __m512i first = _mm512_load_si512(planes[0] + base);
+    const __m512i diff = _mm512_or_si512(
+        _mm512_xor_si512(first, _mm512_load_si512(planes[1] + base)),
+        _mm512_or_si512(_mm512_xor_si512(first, _mm512_load_si512(planes[2] + base)),
+                        _mm512_xor_si512(first, _mm512_load_si512(planes[3] + base))));
+    return _mm512_test_epi32_mask(diff, diff) == 0;
+}
+
 static uint64_t alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
-    uint64_t alike = 0;
-    for (; tiles; tiles &= tiles - 1) {
-        const int bit = __builtin_ctzll(tiles);
-        const size_t base = (size_t)bit * SG_TILE_PIXELS;
-        const __m512i first = _mm512_load_si512(planes[0] + base);
-        const __m512i diff = _mm512_or_si512(
-            _mm512_xor_si512(first, _mm512_load_si512(planes[1] + base)),
-            _mm512_or_si512(_mm512_xor_si512(first, _mm512_load_si512(planes[2] + base)),
-                            _mm512_xor_si512(first, _mm512_load_si512(planes[3] + base))));
-        alike |= (uint64_t)(_mm512_test_epi32_mask(diff, diff) == 0) << bit;
-    }
-    return alike;
+    return sg_fb_alike_tiles_with(planes, tiles, tile_alike);
 }
 
 #define SG_FB_VECTOR_BYTES 64
