@@ -108,7 +108,6 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
 }
 
 SG_VIS4_SETS(vis_samples_avx2, rec_samples_avx2)
-#undef VIS4_FN
 
 sg_vis_fns sg_depth_avx2(sgCompare compare, bool depth_write) {
     static const sg_raster_fn one[3][2] = SG_VIS_TABLE(vis_avx2);

@@ -134,70 +134,9 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     if (runs && runs->n) sg_runs_flush(p, runs, &to);
 }
 
-static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
-                           const sg_draw_state *d, const sg_run *runs,
-                           const uint16_t (*samples)[NS], int n);
-
-/* A triangle shaded in place (a blend, or a shader draw whose fragments may discard): each
- * sample's depth test (its ids mark the passing samples), then the pixels with a passing sample
- * shaded once, then each passing sample's depth (when the draw writes it: by the test itself for
- * a fixed draw) and colour, blended or put, where the fragment was not discarded. A fixed draw
- * with a runs function shades its partly covered tiles' pixels at once, packed (b->shaded), else
- * each tile is shaded on its own. The ids planes hold nothing else here (shade_ids ran before) and
- * are taken as empty after it (fresh). */
-static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
-                     const sg_draw_state *d, uint32_t id) {
-    for (int k = 0; k < NS; k++) {
-        b->vis[k].id = id;
-        b->vis[k].compare = d->compare;
-    }
-    const bool shader = d->ctx.shader.fragment != NULL;
-    /* The tiles with a passing sample: their pixels (runs) and each sample's. */
-    sg_run runs[BIN_TILES * BIN_TILES];
-    uint16_t samples[BIN_TILES * BIN_TILES][NS];
-    int n = 0;
-    const sg_raster_samples_fn record = shader ? d->test_record_fn : d->vis_record_fn;
-    if (record) { /* the walk lists them */
-        sg_vis_record rec;
-        rec.n = 0;
-        b->vis[0].record = &rec;
-        record(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, b->vis);
-        b->vis[0].record = NULL;
-        for (; n < rec.n; n++) {
-            uint32_t u = 0;
-            for (int k = 0; k < NS; k++) u |= samples[n][k] = rec.mask[n][k];
-            runs[n] = (sg_run){rec.tile[n], (uint16_t)u};
-        }
-        shade_in_place(p, b, t, st, d, runs, samples, n);
-        return;
-    }
-    (shader ? d->test_fn : d->vis_fn)(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE,
-                                      b->vis);
-    /* Only the words of the tile rows the triangle's bounds cross can hold reached tiles (a small
-     * triangle's: one or two of the four). */
-    const int row0 = t->miny > b->y0 ? (t->miny - b->y0) >> SG_TILE_SHIFT : 0;
-    const int row1 =
-        t->maxy < b->y0 + SG_BIN_SIZE - 1 ? (t->maxy - b->y0) >> SG_TILE_SHIFT : BIN_TILES - 1;
-    for (int word = row0 * BIN_TILES / 64; word <= row1 * BIN_TILES / 64; word++) {
-        const uint64_t reached_word = reached_by_any(b, word);
-        for (uint64_t reached = reached_word; reached; reached &= reached - 1) {
-            const int tile = word * 64 + __builtin_ctzll(reached);
-            uint32_t u = 0;
-            for (int k = 0; k < NS; k++) {
-                const uint32_t m = sg_tile_same_id(b->ids[k] + tile * SG_TILE_PIXELS, id);
-                samples[n][k] = (uint16_t)m;
-                u |= m;
-            }
-            if (u) runs[n++] = (sg_run){(uint16_t)tile, (uint16_t)u};
-        }
-        b->fresh[word] |= reached_word; /* their ids are done with */
-        for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
-    }
-    shade_in_place(p, b, t, st, d, runs, samples, n);
-}
-
 /* in_place's shading of the n tiles of runs (their pixels with a passing sample) and samples
- * (each sample's passing pixels) and its writes. */
+ * (each sample's passing pixels) and its writes. A fixed draw with a runs function shades its
+ * partly covered tiles' pixels at once, packed (b->shaded), else each tile is shaded on its own. */
 static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
                            const sg_draw_state *d, const sg_run *runs,
                            const uint16_t (*samples)[NS], int n) {
@@ -249,6 +188,64 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
                 p->fb->put_masked(dst, src, mk);
         }
     }
+}
+
+/* A triangle shaded in place (a blend, or a shader draw whose fragments may discard): each
+ * sample's depth test, then the pixels with a passing sample shaded once, then each passing
+ * sample's depth (when the draw writes it: by the test itself for a fixed draw) and colour,
+ * blended or put, where the fragment was not discarded (shade_in_place). A set's recording walk
+ * lists the passing pixels (sg_vis_record); elsewhere the walk's ids mark them and are read back:
+ * the ids planes hold nothing else here (shade_ids ran before) and are taken as empty after it
+ * (fresh). */
+static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
+                     const sg_draw_state *d, uint32_t id) {
+    for (int k = 0; k < NS; k++) {
+        b->vis[k].id = id;
+        b->vis[k].compare = d->compare;
+    }
+    const bool shader = d->ctx.shader.fragment != NULL;
+    /* The tiles with a passing sample: their pixels (runs) and each sample's. */
+    sg_run runs[BIN_TILES * BIN_TILES];
+    uint16_t samples[BIN_TILES * BIN_TILES][NS];
+    int n = 0;
+    const sg_raster_samples_fn record = shader ? d->test_record_fn : d->vis_record_fn;
+    if (record) { /* the walk lists them */
+        sg_vis_record rec;
+        rec.n = 0;
+        b->vis[0].record = &rec;
+        record(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, b->vis);
+        b->vis[0].record = NULL;
+        for (; n < rec.n; n++) {
+            uint32_t u = 0;
+            for (int k = 0; k < NS; k++) u |= samples[n][k] = rec.mask[n][k];
+            runs[n] = (sg_run){rec.tile[n], (uint16_t)u};
+        }
+        shade_in_place(p, b, t, st, d, runs, samples, n);
+        return;
+    }
+    (shader ? d->test_fn : d->vis_fn)(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE,
+                                      b->vis);
+    /* Only the words of the tile rows the triangle's bounds cross can hold reached tiles (a small
+     * triangle's: one or two of the four). */
+    const int row0 = t->miny > b->y0 ? (t->miny - b->y0) >> SG_TILE_SHIFT : 0;
+    const int row1 =
+        t->maxy < b->y0 + SG_BIN_SIZE - 1 ? (t->maxy - b->y0) >> SG_TILE_SHIFT : BIN_TILES - 1;
+    for (int word = row0 * BIN_TILES / 64; word <= row1 * BIN_TILES / 64; word++) {
+        const uint64_t reached_word = reached_by_any(b, word);
+        for (uint64_t reached = reached_word; reached; reached &= reached - 1) {
+            const int tile = word * 64 + __builtin_ctzll(reached);
+            uint32_t u = 0;
+            for (int k = 0; k < NS; k++) {
+                const uint32_t m = sg_tile_same_id(b->ids[k] + tile * SG_TILE_PIXELS, id);
+                samples[n][k] = (uint16_t)m;
+                u |= m;
+            }
+            if (u) runs[n++] = (sg_run){(uint16_t)tile, (uint16_t)u};
+        }
+        b->fresh[word] |= reached_word; /* their ids are done with */
+        for (int k = 0; k < NS; k++) memset(b->reached[k] + 64 * word, 0, 64);
+    }
+    shade_in_place(p, b, t, st, d, runs, samples, n);
 }
 
 /* Whether plane 0 holds every sample of the tiles in t's bounds: their colour is one colour a
