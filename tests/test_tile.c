@@ -101,6 +101,28 @@ static void fb_sample_ops_match_portable(void **state) {
         memcpy(a, planes[0], 64);
         sets[s]->put_masked(a, planes[2], 0xffffu);
         assert_memory_equal(a, planes[2], 64);
+        /* put_samples: put_masked into each of four planes with its own 16 bits of the mask. */
+        uint64_t x = 99;
+        for (int round = 0; round < 64; round++) {
+            x = x * 6364136223846793005u + 1442695040888963407u;
+            /* some planes' masks empty, some whole, the others random */
+            uint64_t samples = x;
+            for (int k = 0; k < 4; k++) {
+                const int kind = (int)(x >> (60 - 2 * k)) & 3;
+                if (kind == 0) samples &= ~((uint64_t)0xffffu << (16 * k));
+                if (kind == 1) samples |= (uint64_t)0xffffu << (16 * k);
+            }
+            _Alignas(64) uint32_t got[4][32], want[4][32];
+            uint32_t *const planes_got[4] = {got[0], got[1], got[2], got[3]};
+            for (int k = 0; k < 4; k++) {
+                memcpy(got[k], planes[k], sizeof got[k]);
+                memcpy(want[k], planes[k], sizeof want[k]);
+                for (int i = 0; i < 16; i++)
+                    if (samples >> (16 * k + i) & 1) want[k][16 + i] = planes[3][i];
+            }
+            sets[s]->put_samples(planes_got, 16, planes[3], samples);
+            assert_memory_equal(got, want, sizeof got);
+        }
         /* blend_masked: sg_blend_rgba8 of the selected pixels, the others kept. */
         for (int t = 0; t + 16 <= N; t += 16)
             for (uint32_t mask = 0; mask < 0x10000u; mask += 0x1ffdu) {

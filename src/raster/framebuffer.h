@@ -78,6 +78,10 @@ typedef struct sg_fb_ops {
     /* Of the tiles of `tiles` (bit i: tile i from planes[k], 16 ids a tile), those whose four
      * sample planes of ids are alike. */
     uint64_t (*alike_tiles)(const uint32_t *const planes[4], uint64_t tiles);
+    /* put_masked of src into the tile at `base` of each plane k, with mask bits 16 k .. 16 k + 15
+     * of samples (one load of src for the four). */
+    void (*put_samples)(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                        uint64_t samples);
 } sg_fb_ops;
 
 /** The average of four packed RGBA8 values, each channel rounded to nearest (halves up). */
@@ -136,14 +140,16 @@ sg_fb_alike_tiles_with(const uint32_t *const planes[4], uint64_t tiles,
     return out;
 }
 
-/** The portable put_masked (sg_fb_put_lanes), blend_masked, average4, split_ids and alike_tiles
- *  of sg_fb_ops. */
+/** The portable put_masked (sg_fb_put_lanes), blend_masked, average4, split_ids, alike_tiles and
+ *  put_samples of sg_fb_ops. */
 void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
                            size_t n);
 int sg_fb_split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *samples);
 uint64_t sg_fb_alike_tiles(const uint32_t *const planes[4], uint64_t tiles);
+void sg_fb_put_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                       uint64_t samples);
 
 /* The body of every set's sg_fb_depth_range: floats in [+0, +inf] order as their bit patterns
  * do, and an integer min and max vectorise on every set; a negative value or -0 (below 0 as

@@ -87,11 +87,24 @@ static uint64_t alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
     return sg_fb_alike_tiles_with(planes, tiles, tile_alike);
 }
 
+static void put_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                        uint64_t samples) {
+    const __m256i v[2] = {_mm256_load_si256((const __m256i *)(const void *)src),
+                          _mm256_load_si256((const __m256i *)(const void *)(src + 8))};
+    for (int k = 0; k < 4; k++) {
+        const uint32_t m = (uint32_t)(samples >> (16 * k)) & 0xffffu;
+        if (!m) continue;
+        for (int h = 0; h < 2; h++)
+            _mm256_maskstore_epi32((int *)(void *)(planes[k] + base + 8 * h),
+                                   lanes_of((m >> (8 * h)) & 255u), v[h]);
+    }
+}
+
 #define SG_FB_VECTOR_BYTES 32
 #define SG_FB_TABLE        sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
 #else
 const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
                                   sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
-                                  sg_fb_split_ids,  sg_fb_alike_tiles};
+                                  sg_fb_split_ids,  sg_fb_alike_tiles,  sg_fb_put_samples};
 #endif

@@ -50,11 +50,18 @@ static uint64_t alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
     return sg_fb_alike_tiles_with(planes, tiles, tile_alike);
 }
 
+static void put_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                        uint64_t samples) {
+    const __m512i v = _mm512_load_si512(src);
+    for (int k = 0; k < 4; k++) /* an empty mask stores nothing */
+        _mm512_mask_store_epi32(planes[k] + base, (__mmask16)(samples >> (16 * k)), v);
+}
+
 #define SG_FB_VECTOR_BYTES 64
 #define SG_FB_TABLE        sg_fb_ops_avx512
 #include "raster/framebuffer_table.h"
 #else
 const sg_fb_ops sg_fb_ops_avx512 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
                                     sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
-                                    sg_fb_split_ids,  sg_fb_alike_tiles};
+                                    sg_fb_split_ids,  sg_fb_alike_tiles,  sg_fb_put_samples};
 #endif

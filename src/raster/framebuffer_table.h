@@ -1,8 +1,8 @@
 /* framebuffer_table.h - the part of an instruction set's sg_fb_ops that only adapts its
  * fill_color or compiles the portable code for the set: the depth fill and range, then the table
  * itself. Included once, at the end of framebuffer_<set>.c, after that file defines fill_color,
- * put_masked, blend_masked, split_ids and alike_tiles, and sets SG_FB_VECTOR_BYTES to its vectors'
- * width and SG_FB_TABLE to the table's name. */
+ * put_masked, blend_masked, split_ids, alike_tiles and put_samples, and sets SG_FB_VECTOR_BYTES to
+ * its vectors' width and SG_FB_TABLE to the table's name. */
 #include <string.h>
 
 static void fill_depth(float *dst, size_t n, float value) {
@@ -35,5 +35,5 @@ static void average4(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const
     }
 }
 
-const sg_fb_ops SG_FB_TABLE = {fill_color,   fill_depth, depth_range, put_masked,
-                               blend_masked, average4,   split_ids,   alike_tiles};
+const sg_fb_ops SG_FB_TABLE = {fill_color, fill_depth, depth_range, put_masked, blend_masked,
+                               average4,   split_ids,  alike_tiles, put_samples};

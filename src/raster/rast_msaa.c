@@ -96,9 +96,9 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
         /* A uniform tile's samples take the same colour where covered: a one-colour tile stays. */
         for (uint64_t left = uniform_word & ~b->one_color[word]; left; left &= left - 1) {
             const int base = (word * 64 + __builtin_ctzll(left)) * SG_TILE_PIXELS;
-            const uint32_t covered = ~sg_tile_same_id(b->ids[0] + base, 0) & 0xffffu;
-            for (int k = 1; k < NS; k++)
-                p->fb->put_masked(b->color[k] + base, b->color[0] + base, covered);
+            const uint64_t covered = ~sg_tile_same_id(b->ids[0] + base, 0) & 0xffffu;
+            p->fb->put_samples(planes, (size_t)base, b->color[0] + base,
+                               covered << 16 | covered << 32 | covered << 48);
         }
         for (uint64_t reached = mixed[word]; reached; reached &= reached - 1) {
             const int tile = word * 64 + __builtin_ctzll(reached);
@@ -114,17 +114,15 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
             for (int j = 0; j < n; j++) {
                 const sg_tri *t = &p->binner->tris[ids[j] - 1];
                 const sg_draw_state *d = &p->draws[t->draw];
-                uint32_t m[NS], u = 0;
-                for (int k = 0; k < NS; k++)
-                    u |= m[k] = (uint32_t)(samples[j] >> (16 * k)) & 0xffffu;
+                const uint64_t sj = samples[j]; /* its pixels: any sample's */
+                const uint32_t u = (uint32_t)(sj | sj >> 16 | sj >> 32 | sj >> 48) & 0xffffu;
                 if (runs && d->runs_fn) {
                     sg_runs_add(p, runs, ids[j], tile, u, samples[j], &to);
                     continue;
                 }
                 _Alignas(64) uint32_t src[SG_TILE_PIXELS];
                 d->shade_fn(&d->ctx, t, px, py, u, src);
-                for (int k = 0; k < NS; k++)
-                    if (m[k]) p->fb->put_masked(b->color[k] + base, src, m[k]);
+                p->fb->put_samples(planes, (size_t)base, src, samples[j]);
             }
         }
         /* The shaded tiles' ids are done with: taken as 0 from here (fresh). */

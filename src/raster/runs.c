@@ -27,11 +27,8 @@ void sg_runs_flush(const sg_bin_pass *p, sg_run_set *s, const sg_run_target *to)
         d->runs_fn(&d->ctx, t, to->x0, to->y0, sorted + at, s->group_n[g], to->color);
         if (to->planes) /* before the next group's pixels take the scratch plane's place */
             for (int i = at; i < at + s->group_n[g]; i++) {
-                const int base = sorted[i].tile * SG_TILE_PIXELS;
-                for (int k = 0; k < SG_VIS_SAMPLES; k++) {
-                    const uint32_t m = (uint32_t)(sorted_samples[i] >> (16 * k)) & 0xffffu;
-                    if (m) p->fb->put_masked(to->planes[k] + base, to->color + base, m);
-                }
+                const size_t base = (size_t)sorted[i].tile * SG_TILE_PIXELS;
+                p->fb->put_samples(to->planes, base, to->color + base, sorted_samples[i]);
             }
         at += s->group_n[g];
         s->slot[s->group_slot[g]] = 0;
