@@ -75,6 +75,45 @@ SG_LANES_FN(interp)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int 
 #undef PUT
 }
 
+/* interp of every lane of two tiles of one triangle, at (xs[j], ys[j]), into b[j]: the same
+ * operations on each lane, so the same bits, with each plane's coefficients read and spread
+ * once for both tiles and the two tiles' chains (the division, then the varyings) side by
+ * side. */
+SG_LANES_ATTR static inline __attribute__((always_inline)) void
+SG_LANES_FN(interp2)(const sg_shade_ctx *c, const sg_tri *t, const int xs[2], const int ys[2],
+                     int h, sgFragmentBatch b[2]) {
+    const sg_shader_state *s = &c->shader;
+    const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
+    const VF zero = {0}, one = zero + 1.0f;
+    VF lx, ly, dx[2], dy[2], w[2];
+    SG_LANES_FN(lanes)(h, &lx, &ly);
+    for (int j = 0; j < 2; j++) {
+        dx[j] = (float)(xs[j] - t->minx) + lx;
+        dy[j] = (float)(ys[j] - t->miny) + ly;
+    }
+    for (int j = 0; j < 2; j++) {
+        const VF z = t->z + t->z_dx * dx[j] + t->z_dy * dy[j];
+        const VF zc = VMIN(one, VMAX(zero, z)); /* sg_tri_depth */
+        memcpy(b[j].z + h, &zc, sizeof zc);
+        w[j] = 1.0f / (t->q + t->q_dx * dx[j] + t->q_dy * dy[j]);
+    }
+    for (int k = 0; k < s->varying_count; k++) {
+        const float *a = k < SG_TRI_ATTRS ? &t->a[k] : &ext->a[k - SG_TRI_ATTRS];
+        const float *ax = k < SG_TRI_ATTRS ? &t->a_dx[k] : &ext->a_dx[k - SG_TRI_ATTRS];
+        const float *ay = k < SG_TRI_ATTRS ? &t->a_dy[k] : &ext->a_dy[k - SG_TRI_ATTRS];
+        const VF va = zero + *a;
+        if (s->flat >> k & 1) {
+            for (int j = 0; j < 2; j++) memcpy(b[j].varying[k] + h, &va, sizeof va);
+            continue;
+        }
+        const VF vx = zero + *ax, vy = zero + *ay;
+        for (int j = 0; j < 2; j++) {
+            const VF v = (va + vx * dx[j] + vy * dy[j]) * w[j];
+            memcpy(b[j].varying[k] + h, &v, sizeof v);
+        }
+    }
+}
+
 /* The batch's fixed fields from t, its mask and tile. */
 SG_LANES_ATTR static inline void SG_LANES_FN(batch)(const sg_shade_ctx *c, const sg_tri *t, int x0,
                                                     int y0, uint32_t mask, sgFragmentBatch *b) {
@@ -107,6 +146,53 @@ SG_LANES_FN(prepare)(const sg_shader_state *s, sgFragmentBatch *b) {
  * sg_to_unorm8 rounds it (NaN and below 0 give 0). */
 SG_LANES_ATTR static inline __attribute__((always_inline)) void
 SG_LANES_FN(convert)(const sgFragmentBatch *b, uint32_t px[SG_SHADER_LANES]) {
+#if defined(__x86_64__) && (SG_LANES_W == 16 || SG_LANES_W == 8)
+    /* Saturating packs instead of the clamp: min(2, v) keeps NaN (the second operand) and takes
+     * infinities and large values to 2; then v 255 + 0.5 truncated is at most 510, and negative
+     * (below 0, NaN, -inf) where sg_to_unorm8 gives 0; the two unsigned packs saturate to 0 ..
+     * 255, as the clamp did. Each 128-bit lane packs pixels 4l .. 4l + 3 as R0-3 G0-3 B0-3 A0-3,
+     * which one byte shuffle puts in pixel order. */
+#if SG_LANES_W == 16
+#define CV_PS(v)       ((__m512)(v))
+#define CV_MIN         _mm512_min_ps
+#define CV_SET         _mm512_set1_ps
+#define CV_CVT         _mm512_cvttps_epi32
+#define CV_PACK32      _mm512_packus_epi32
+#define CV_PACK16      _mm512_packus_epi16
+#define CV_SHUF(v)     _mm512_shuffle_epi8(v, _mm512_broadcast_i32x4(order))
+#define CV_STORE(p, v) _mm512_storeu_si512((void *)(p), v)
+    typedef __m512i cv_i;
+#else
+#define CV_PS(v)       ((__m256)(v))
+#define CV_MIN         _mm256_min_ps
+#define CV_SET         _mm256_set1_ps
+#define CV_CVT         _mm256_cvttps_epi32
+#define CV_PACK32      _mm256_packus_epi32
+#define CV_PACK16      _mm256_packus_epi16
+#define CV_SHUF(v)     _mm256_shuffle_epi8(v, _mm256_broadcastsi128_si256(order))
+#define CV_STORE(p, v) _mm256_storeu_si256((void *)(p), v)
+    typedef __m256i cv_i;
+#endif
+    const __m128i order = _mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
+        cv_i q[4];
+        for (int ch = 0; ch < 4; ch++) {
+            VF v;
+            memcpy(&v, b->color[ch] + h, sizeof v);
+            v = (VF)CV_MIN(CV_SET(2.0f), CV_PS(v));
+            q[ch] = CV_CVT(CV_PS(v * 255.0f + 0.5f));
+        }
+        CV_STORE(px + h, CV_SHUF(CV_PACK16(CV_PACK32(q[0], q[1]), CV_PACK32(q[2], q[3]))));
+    }
+#undef CV_PS
+#undef CV_MIN
+#undef CV_SET
+#undef CV_CVT
+#undef CV_PACK32
+#undef CV_PACK16
+#undef CV_SHUF
+#undef CV_STORE
+#else
     const VF zero = {0}, one = zero + 1.0f;
     for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
         VI p = {0};
@@ -118,6 +204,7 @@ SG_LANES_FN(convert)(const sgFragmentBatch *b, uint32_t px[SG_SHADER_LANES]) {
         }
         memcpy(px + h, &p, sizeof p);
     }
+#endif
 }
 
 /* The interpolated batch through the fragment stage, into RGBA8 pixels px; returns the lanes
@@ -162,10 +249,9 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, co
     const sg_shader_state *s = &c->shader;
     sgFragmentBatch b[2];
     const int xs[2] = {x0, x1}, ys[2] = {y0, y1};
-    for (int j = 0; j < 2; j++) {
-        SG_LANES_FN(one_triangle)(c, t, xs[j], ys[j], 0xffffu, &b[j]);
-        SG_LANES_FN(prepare)(s, &b[j]);
-    }
+    for (int j = 0; j < 2; j++) SG_LANES_FN(batch)(c, t, xs[j], ys[j], 0xffffu, &b[j]);
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) SG_LANES_FN(interp2)(c, t, xs, ys, h, b);
+    for (int j = 0; j < 2; j++) SG_LANES_FN(prepare)(s, &b[j]);
     s->fragment(&b[0], s->uniforms);
     s->fragment(&b[1], s->uniforms);
     SG_LANES_FN(convert)(&b[0], px[0]);
