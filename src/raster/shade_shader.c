@@ -56,11 +56,9 @@ void sg_shade_shader(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uin
 
 void sg_shade_shader2(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int x1, int y1,
                       uint32_t *dst0, uint32_t *dst1) {
-    uint32_t px[2][SG_SHADER_LANES];
-    const uint32_t d = SG_SAMPLE16_CALL(c->shader.sample16, shade_tile2, c, t, x0, y0, x1, y1, px);
-    sg_fb_put_lanes(dst0, px[0], 0xffffu & ~d);
-    sg_fb_put_lanes(dst1, px[1], 0xffffu & ~(d >> 16));
-    if (d) note_discard(c);
+    uint32_t *const dst[2] = {dst0, dst1};
+    if (SG_SAMPLE16_CALL(c->shader.sample16, shade_tile2, c, t, x0, y0, x1, y1, dst))
+        note_discard(c);
 }
 
 /* Triangles whose fragments may share a batch: the batch tells one facing (a stage with

@@ -239,13 +239,14 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, con
     return SG_LANES_FN(run)(c, &b, px);
 }
 
-/* Two whole tiles of one triangle, at (x0, y0) and (x1, y1), into px[0] and px[1]: set up both,
- * then the two calls, then both conversions, so that the second tile's work overlaps the end of
- * the first's (each tile the bytes shade_tile gives it); returns the lanes discarded, the
- * second tile's in bits 16 to 31. */
+/* Two whole tiles of one triangle, at (x0, y0) and (x1, y1), into dst[0] and dst[1]: set up
+ * both, then the two calls, then both conversions, so that the second tile's work overlaps the
+ * end of the first's (each tile the bytes shade_tile gives it); a tile that discards nothing is
+ * converted straight into its pixels, else its lanes not discarded are put. Returns the lanes
+ * discarded, the second tile's in bits 16 to 31. */
 SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, const sg_tri *t,
                                                        int x0, int y0, int x1, int y1,
-                                                       uint32_t px[2][SG_SHADER_LANES]) {
+                                                       uint32_t *const dst[2]) {
     const sg_shader_state *s = &c->shader;
     sgFragmentBatch b[2];
     const int xs[2] = {x0, x1}, ys[2] = {y0, y1};
@@ -254,8 +255,15 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, co
     for (int j = 0; j < 2; j++) SG_LANES_FN(prepare)(s, &b[j]);
     s->fragment(&b[0], s->uniforms);
     s->fragment(&b[1], s->uniforms);
-    SG_LANES_FN(convert)(&b[0], px[0]);
-    SG_LANES_FN(convert)(&b[1], px[1]);
+    for (int j = 0; j < 2; j++) {
+        if (!b[j].discard) {
+            SG_LANES_FN(convert)(&b[j], dst[j]);
+            continue;
+        }
+        uint32_t px[SG_SHADER_LANES];
+        SG_LANES_FN(convert)(&b[j], px);
+        sg_fb_put_lanes(dst[j], px, 0xffffu & ~b[j].discard);
+    }
     return b[0].discard | b[1].discard << 16;
 }
 
