@@ -101,6 +101,13 @@ static inline void sg_fb_put_lanes(uint32_t *dst, const uint32_t *src, uint32_t 
     for (; mask; mask &= mask - 1) dst[__builtin_ctz(mask)] = src[__builtin_ctz(mask)];
 }
 
+/* Whether a shader tile of pixels `mask` is converted straight into its pixels `direct` (not
+ * NULL) instead of through a local array and sg_fb_put_lanes: the whole tile, no lane
+ * discarded. */
+static inline bool sg_shade_direct(const uint32_t *direct, uint32_t mask, uint32_t discard) {
+    return direct && mask == 0xffffu && !(discard & 0xffffu);
+}
+
 /* split_ids's walk for a set: left[k], the pixels of plane k not 0; same(vecs, k, id), the
  * pixels of plane k that hold id (vecs: the set's copy of the planes). The first triangle is the
  * first plane's with pixels left, at its first such pixel. */

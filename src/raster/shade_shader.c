@@ -30,16 +30,16 @@ static const _Alignas(64) int32_t sg_tile_lane_bit[SG_TILE_PIXELS] = {
 #include "tex/lanes_copies.h"
 
 static uint32_t shade_tile(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
-                           uint32_t px[SG_SHADER_LANES]) {
-    return SG_SAMPLE16_CALL(c->shader.sample16, shade_tile, c, t, x0, y0, mask, px);
+                           uint32_t px[SG_SHADER_LANES], uint32_t *direct) {
+    return SG_SAMPLE16_CALL(c->shader.sample16, shade_tile, c, t, x0, y0, mask, px, direct);
 }
 
 uint32_t sg_shader_fragments(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
                              uint32_t *dst) {
     uint32_t px[SG_SHADER_LANES];
-    const uint32_t keep = mask & ~shade_tile(c, t, x0, y0, mask, px);
-    sg_fb_put_lanes(dst, px, keep);
-    return keep;
+    const uint32_t discard = shade_tile(c, t, x0, y0, mask, px, dst);
+    if (!sg_shade_direct(dst, mask, discard)) sg_fb_put_lanes(dst, px, mask & ~discard);
+    return mask & ~discard;
 }
 
 /* Visibility first, a lane discarded: what visibility found behind it is unknown, so the bin is
@@ -88,16 +88,18 @@ static void shade_groups(const sg_shade_ctx *c, const sg_mixed_tile *mt, float *
         }
         uint32_t px[SG_SHADER_LANES];
         _Alignas(64) float z[SG_TILE_PIXELS];
-        const uint32_t keep =
-            mask & ~(n == 1 && !deferred
-                         ? shade_tile(c, ts[0], mt->x0, mt->y0, mask, px)
-                         : SG_SAMPLE16_CALL(c->shader.sample16, shade_shared, c, ts, masks, n,
-                                            mt->x0, mt->y0, mask, px, deferred ? z : NULL));
+        uint32_t *const direct = deferred ? NULL : mt->dst;
+        const uint32_t discard =
+            n == 1 && !deferred
+                ? shade_tile(c, ts[0], mt->x0, mt->y0, mask, px, direct)
+                : SG_SAMPLE16_CALL(c->shader.sample16, shade_shared, c, ts, masks, n, mt->x0,
+                                   mt->y0, mask, px, deferred ? z : NULL, direct);
+        const uint32_t keep = mask & ~discard;
         if (deferred) {
             if (keep) SG_SAMPLE16_CALL(c->shader.sample16, put_tile, keep, z, dp, px, mt->dst);
             continue;
         }
-        sg_fb_put_lanes(mt->dst, px, keep);
+        if (!sg_shade_direct(direct, mask, discard)) sg_fb_put_lanes(mt->dst, px, keep);
         if (keep != mask) note_discard(c);
     }
 }

@@ -207,14 +207,16 @@ SG_LANES_FN(convert)(const sgFragmentBatch *b, uint32_t px[SG_SHADER_LANES]) {
 #endif
 }
 
-/* The interpolated batch through the fragment stage, into RGBA8 pixels px; returns the lanes
- * discarded. */
+/* The interpolated batch of the tile's pixels `mask` through the fragment stage, into RGBA8
+ * pixels px, or, when direct is not NULL, mask the whole tile and no lane discarded, straight
+ * into direct (sg_shade_direct); returns the lanes discarded. */
 SG_LANES_ATTR static inline __attribute__((always_inline)) uint32_t
-SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t px[SG_SHADER_LANES]) {
+SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t mask,
+                 uint32_t px[SG_SHADER_LANES], uint32_t *direct) {
     const sg_shader_state *s = &c->shader;
     SG_LANES_FN(prepare)(s, b);
     s->fragment(b, s->uniforms);
-    SG_LANES_FN(convert)(b, px);
+    SG_LANES_FN(convert)(b, sg_shade_direct(direct, mask, b->discard) ? direct : px);
     return b->discard;
 }
 
@@ -229,14 +231,15 @@ SG_LANES_FN(one_triangle)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0
         SG_LANES_FN(interp)(c, t, x0, y0, h, none, true, b);
 }
 
-/* A tile of one triangle through the fragment stage, into RGBA8 pixels px; returns the lanes
- * discarded. */
+/* A tile of one triangle through the fragment stage, into RGBA8 pixels px or direct (run);
+ * returns the lanes discarded. */
 SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, const sg_tri *t,
                                                       int x0, int y0, uint32_t mask,
-                                                      uint32_t px[SG_SHADER_LANES]) {
+                                                      uint32_t px[SG_SHADER_LANES],
+                                                      uint32_t *direct) {
     sgFragmentBatch b;
     SG_LANES_FN(one_triangle)(c, t, x0, y0, mask, &b);
-    return SG_LANES_FN(run)(c, &b, px);
+    return SG_LANES_FN(run)(c, &b, mask, px, direct);
 }
 
 /* Two whole tiles of one triangle, at (x0, y0) and (x1, y1), into dst[0] and dst[1]: set up
@@ -256,7 +259,7 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, co
     s->fragment(&b[0], s->uniforms);
     s->fragment(&b[1], s->uniforms);
     for (int j = 0; j < 2; j++) {
-        if (!b[j].discard) {
+        if (sg_shade_direct(dst[j], 0xffffu, b[j].discard)) {
             SG_LANES_FN(convert)(&b[j], dst[j]);
             continue;
         }
@@ -270,12 +273,11 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, co
 /* The same for a tile that n triangles of a draw with independent lanes share, in one batch:
  * ts[j] covers the lanes of masks[j] and each lane takes its own triangle's values (the lanes
  * of none take ts[0]'s); facing, primitive and instance are ts[0]'s (the facing is
- * every triangle's). z, when not NULL, receives each lane's window depth. */
-SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_shared)(const sg_shade_ctx *c,
-                                                        const sg_tri *const *ts,
-                                                        const uint32_t *masks, int n, int x0,
-                                                        int y0, uint32_t mask,
-                                                        uint32_t px[SG_SHADER_LANES], float *z) {
+ * every triangle's). z, when not NULL, receives each lane's window depth; direct as run's. */
+SG_LANES_ATTR static uint32_t
+SG_LANES_FN(shade_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const uint32_t *masks,
+                          int n, int x0, int y0, uint32_t mask, uint32_t px[SG_SHADER_LANES],
+                          float *z, uint32_t *direct) {
     sgFragmentBatch b;
     SG_LANES_FN(batch)(c, ts[0], x0, y0, mask, &b);
     const VI none = {0};
@@ -288,7 +290,7 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_shared)(const sg_shade_ctx *c,
                 SG_LANES_FN(interp)(c, ts[j], x0, y0, h, (bit & (int32_t)masks[j]) != 0, false, &b);
     }
     if (z) memcpy(z, b.z, sizeof b.z);
-    return SG_LANES_FN(run)(c, &b, px);
+    return SG_LANES_FN(run)(c, &b, mask, px, direct);
 }
 
 /* The portable walks' (shade_shader_walk.h); blend_avx2.c and blend_avx512.c have their own. */
