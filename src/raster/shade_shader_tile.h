@@ -33,13 +33,15 @@ SG_LANES_ATTR static inline void SG_LANES_FN(lanes)(int h, VF *x, VF *y) {
     memcpy(y, sg_tile_lane_y + h, sizeof *y);
 }
 
-/* Triangle t interpolated at lanes h .. h + SG_LANES_W - 1 of the tile at (x0, y0), into the
- * batch's depth and varyings: every lane its pixel centre (helper lanes too), as the fixed shading
- * does (attribute / w and 1 / w planes, then one division); `all`: every lane written, else those
- * of `sel` only (a lane's value is the same either way). */
+/* Triangle t interpolated at lanes h .. h + SG_LANES_W - 1 of n tiles (1 or 2, a constant) at
+ * (xs[j], ys[j]), into b[j]'s depth and varyings: every lane its pixel centre (helper lanes too),
+ * as the fixed shading does (attribute / w and 1 / w planes, then one division). Each plane's
+ * coefficients are read and spread once for the n tiles, whose chains (the division, then the
+ * varyings) run side by side; every lane does the same operations whatever n, so the same bits.
+ * `all`: every lane written, else those of `sel` only (a lane's value is the same either way). */
 SG_LANES_ATTR static inline __attribute__((always_inline)) void
-SG_LANES_FN(interp)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int h, VI sel,
-                    const bool all, sgFragmentBatch *b) {
+SG_LANES_FN(interp_n)(const sg_shade_ctx *c, const sg_tri *t, const int n, const int *xs,
+                      const int *ys, int h, VI sel, const bool all, sgFragmentBatch *b) {
     const sg_shader_state *s = &c->shader;
     const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
     const VF zero = {0}, one = zero + 1.0f;
@@ -53,65 +55,36 @@ SG_LANES_FN(interp)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int 
         }                                                                                          \
         memcpy((dst), &o_, sizeof o_);                                                             \
     } while (0)
-    VF lx, ly;
+    VF lx, ly, dx[2], dy[2], w[2];
     SG_LANES_FN(lanes)(h, &lx, &ly);
-    const VF dx = (float)(x0 - t->minx) + lx, dy = (float)(y0 - t->miny) + ly;
-    const VF z = t->z + t->z_dx * dx + t->z_dy * dy;
-    PUT(b->z + h, VMIN(one, VMAX(zero, z))); /* sg_tri_depth */
-    const VF w = 1.0f / (t->q + t->q_dx * dx + t->q_dy * dy);
+    for (int j = 0; j < n; j++) {
+        dx[j] = (float)(xs[j] - t->minx) + lx;
+        dy[j] = (float)(ys[j] - t->miny) + ly;
+    }
+    for (int j = 0; j < n; j++) {
+        const VF z = t->z + t->z_dx * dx[j] + t->z_dy * dy[j];
+        PUT(b[j].z + h, VMIN(one, VMAX(zero, z))); /* sg_tri_depth */
+        w[j] = 1.0f / (t->q + t->q_dx * dx[j] + t->q_dy * dy[j]);
+    }
     for (int k = 0; k < s->varying_count; k++) {
-        float a, ax, ay;
-        if (k < SG_TRI_ATTRS) {
-            a = t->a[k];
-            ax = t->a_dx[k];
-            ay = t->a_dy[k];
-        } else {
-            a = ext->a[k - SG_TRI_ATTRS];
-            ax = ext->a_dx[k - SG_TRI_ATTRS];
-            ay = ext->a_dy[k - SG_TRI_ATTRS];
+        const bool own = k < SG_TRI_ATTRS;
+        const VF va = zero + (own ? t->a[k] : ext->a[k - SG_TRI_ATTRS]);
+        if (s->flat >> k & 1) {
+            for (int j = 0; j < n; j++) PUT(b[j].varying[k] + h, va);
+            continue;
         }
-        PUT(b->varying[k] + h, s->flat >> k & 1 ? zero + a : (a + ax * dx + ay * dy) * w);
+        const VF vx = zero + (own ? t->a_dx[k] : ext->a_dx[k - SG_TRI_ATTRS]);
+        const VF vy = zero + (own ? t->a_dy[k] : ext->a_dy[k - SG_TRI_ATTRS]);
+        for (int j = 0; j < n; j++) PUT(b[j].varying[k] + h, (va + vx * dx[j] + vy * dy[j]) * w[j]);
     }
 #undef PUT
 }
 
-/* interp of every lane of two tiles of one triangle, at (xs[j], ys[j]), into b[j]: the same
- * operations on each lane, so the same bits, with each plane's coefficients read and spread
- * once for both tiles and the two tiles' chains (the division, then the varyings) side by
- * side. */
+/* interp_n of one tile, at (x0, y0), into b. */
 SG_LANES_ATTR static inline __attribute__((always_inline)) void
-SG_LANES_FN(interp2)(const sg_shade_ctx *c, const sg_tri *t, const int xs[2], const int ys[2],
-                     int h, sgFragmentBatch b[2]) {
-    const sg_shader_state *s = &c->shader;
-    const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
-    const VF zero = {0}, one = zero + 1.0f;
-    VF lx, ly, dx[2], dy[2], w[2];
-    SG_LANES_FN(lanes)(h, &lx, &ly);
-    for (int j = 0; j < 2; j++) {
-        dx[j] = (float)(xs[j] - t->minx) + lx;
-        dy[j] = (float)(ys[j] - t->miny) + ly;
-    }
-    for (int j = 0; j < 2; j++) {
-        const VF z = t->z + t->z_dx * dx[j] + t->z_dy * dy[j];
-        const VF zc = VMIN(one, VMAX(zero, z)); /* sg_tri_depth */
-        memcpy(b[j].z + h, &zc, sizeof zc);
-        w[j] = 1.0f / (t->q + t->q_dx * dx[j] + t->q_dy * dy[j]);
-    }
-    for (int k = 0; k < s->varying_count; k++) {
-        const float *a = k < SG_TRI_ATTRS ? &t->a[k] : &ext->a[k - SG_TRI_ATTRS];
-        const float *ax = k < SG_TRI_ATTRS ? &t->a_dx[k] : &ext->a_dx[k - SG_TRI_ATTRS];
-        const float *ay = k < SG_TRI_ATTRS ? &t->a_dy[k] : &ext->a_dy[k - SG_TRI_ATTRS];
-        const VF va = zero + *a;
-        if (s->flat >> k & 1) {
-            for (int j = 0; j < 2; j++) memcpy(b[j].varying[k] + h, &va, sizeof va);
-            continue;
-        }
-        const VF vx = zero + *ax, vy = zero + *ay;
-        for (int j = 0; j < 2; j++) {
-            const VF v = (va + vx * dx[j] + vy * dy[j]) * w[j];
-            memcpy(b[j].varying[k] + h, &v, sizeof v);
-        }
-    }
+SG_LANES_FN(interp)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int h, VI sel,
+                    const bool all, sgFragmentBatch *b) {
+    SG_LANES_FN(interp_n)(c, t, 1, &x0, &y0, h, sel, all, b);
 }
 
 /* The batch's fixed fields from t, its mask and tile. */
@@ -254,7 +227,9 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, co
     sgFragmentBatch b[2];
     const int xs[2] = {x0, x1}, ys[2] = {y0, y1};
     for (int j = 0; j < 2; j++) SG_LANES_FN(batch)(c, t, xs[j], ys[j], 0xffffu, &b[j]);
-    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) SG_LANES_FN(interp2)(c, t, xs, ys, h, b);
+    const VI none = {0};
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
+        SG_LANES_FN(interp_n)(c, t, 2, xs, ys, h, none, true, b);
     for (int j = 0; j < 2; j++) SG_LANES_FN(prepare)(s, &b[j]);
     s->fragment(&b[0], s->uniforms);
     s->fragment(&b[1], s->uniforms);
