@@ -87,6 +87,68 @@ SG_LANES_FN(interp)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int 
     SG_LANES_FN(interp_n)(c, t, 1, &x0, &y0, h, sel, all, b);
 }
 
+/* A float of each lane's triangle, plus 0 as interp spreads it (so -0 becomes 0): ts[0]'s, then
+ * for each j from 1 ts[j]'s in the lanes of sel[j]; the float at byte `at` of what ps[j] points
+ * to. The bits are picked, and 0 added once. */
+SG_LANES_ATTR static inline __attribute__((always_inline)) VF
+SG_LANES_FN(pick)(const void *const *ps, const VI *sel, int n, size_t at) {
+    const VI none = {0};
+    int32_t f;
+    memcpy(&f, (const char *)ps[0] + at, sizeof f);
+    VI v = none + f;
+    for (int j = 1; j < n; j++) {
+        memcpy(&f, (const char *)ps[j] + at, sizeof f);
+        v = (sel[j] & f) | (~sel[j] & v);
+    }
+    return (VF){0} + (VF)v;
+}
+
+/* The n triangles ts[j] that share the tile at (x0, y0) interpolated at its lanes h .. h +
+ * SG_LANES_W - 1 into b: each lane takes its own triangle's plane coefficients (those of the last
+ * j whose sel[j] holds it, else ts[0]'s), then one interpolation does interp's operations on
+ * them, so each lane has the bits interp gives it. */
+SG_LANES_ATTR static inline __attribute__((always_inline)) void
+SG_LANES_FN(interp_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const VI *sel, int n,
+                           int x0, int y0, int h, sgFragmentBatch *b) {
+    const sg_shader_state *s = &c->shader;
+    const void *const *tp = (const void *const *)ts;
+    const void *ep[SG_TILE_PIXELS];
+    if (s->varying_count > SG_TRI_ATTRS)
+        for (int j = 0; j < n; j++) ep[j] = sg_shade_ext(c, ts[j]);
+    const VF zero = {0}, one = zero + 1.0f;
+    VI mx = (VI){0} + ts[0]->minx, my = (VI){0} + ts[0]->miny;
+    for (int j = 1; j < n; j++) {
+        mx = (sel[j] & ts[j]->minx) | (~sel[j] & mx);
+        my = (sel[j] & ts[j]->miny) | (~sel[j] & my);
+    }
+    VF lx, ly;
+    SG_LANES_FN(lanes)(h, &lx, &ly);
+    const VF dx = __builtin_convertvector(x0 - mx, VF) + lx;
+    const VF dy = __builtin_convertvector(y0 - my, VF) + ly;
+#define PICK(field) SG_LANES_FN(pick)(tp, sel, n, offsetof(sg_tri, field))
+    const VF z = PICK(z) + PICK(z_dx) * dx + PICK(z_dy) * dy;
+    const VF zc = VMIN(one, VMAX(zero, z)); /* sg_tri_depth */
+    memcpy(b->z + h, &zc, sizeof zc);
+    const VF w = 1.0f / (PICK(q) + PICK(q_dx) * dx + PICK(q_dy) * dy);
+    for (int k = 0; k < s->varying_count; k++) {
+        const bool own = k < SG_TRI_ATTRS;
+        const void *const *p = own ? tp : ep;
+        const int e = own ? k : k - SG_TRI_ATTRS;
+        const size_t a = own ? offsetof(sg_tri, a) : offsetof(sg_tri_ext, a);
+        const size_t ax = own ? offsetof(sg_tri, a_dx) : offsetof(sg_tri_ext, a_dx);
+        const size_t ay = own ? offsetof(sg_tri, a_dy) : offsetof(sg_tri_ext, a_dy);
+        const size_t f = (size_t)e * sizeof(float);
+        const VF va = SG_LANES_FN(pick)(p, sel, n, a + f);
+        VF v = va;
+        if (!(s->flat >> k & 1))
+            v = (va + SG_LANES_FN(pick)(p, sel, n, ax + f) * dx +
+                 SG_LANES_FN(pick)(p, sel, n, ay + f) * dy) *
+                w;
+        memcpy(b->varying[k] + h, &v, sizeof v);
+    }
+#undef PICK
+}
+
 /* The batch's fixed fields from t, its mask and tile. */
 SG_LANES_ATTR static inline void SG_LANES_FN(batch)(const sg_shade_ctx *c, const sg_tri *t, int x0,
                                                     int y0, uint32_t mask, sgFragmentBatch *b) {
@@ -257,12 +319,17 @@ SG_LANES_FN(shade_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const 
     SG_LANES_FN(batch)(c, ts[0], x0, y0, mask, &b);
     const VI none = {0};
     for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
-        SG_LANES_FN(interp)(c, ts[0], x0, y0, h, none, true, &b);
-        VI bit;
+        VI bit, sel[SG_TILE_PIXELS];
         memcpy(&bit, sg_tile_lane_bit + h, sizeof bit);
-        for (int j = 1; j < n; j++)
-            if (masks[j] >> h & ((1u << SG_LANES_W) - 1u))
-                SG_LANES_FN(interp)(c, ts[j], x0, y0, h, (bit & (int32_t)masks[j]) != 0, false, &b);
+        /* Two triangles of few varyings: the second interpolation costs less than the picks. */
+        if (n == 1 || (n == 2 && c->shader.varying_count <= 4)) {
+            SG_LANES_FN(interp)(c, ts[0], x0, y0, h, none, true, &b);
+            if (n == 2 && masks[1] >> h & ((1u << SG_LANES_W) - 1u))
+                SG_LANES_FN(interp)(c, ts[1], x0, y0, h, (bit & (int32_t)masks[1]) != 0, false, &b);
+            continue;
+        }
+        for (int j = 1; j < n; j++) sel[j] = (bit & (int32_t)masks[j]) != 0;
+        SG_LANES_FN(interp_shared)(c, ts, sel, n, x0, y0, h, &b);
     }
     if (z) memcpy(z, b.z, sizeof b.z);
     return SG_LANES_FN(run)(c, &b, mask, px, direct);
