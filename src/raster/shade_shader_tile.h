@@ -87,11 +87,12 @@ SG_LANES_FN(interp)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int 
     SG_LANES_FN(interp_n)(c, t, 1, &x0, &y0, h, sel, all, b);
 }
 
-/* A float of each lane's triangle, plus 0 as interp spreads it (so -0 becomes 0): ts[0]'s, then
- * for each j from 1 ts[j]'s in the lanes of sel[j]; the float at byte `at` of what ps[j] points
- * to. The bits are picked, and 0 added once. */
+/* A float of each lane's triangle: ts[0]'s, then for each j from 1 ts[j]'s in the lanes of
+ * sel[j]; the float at byte `at` of what ps[j] points to. The bits are picked; with plus0, 0 is
+ * then added, as interp_n spreads a varying's coefficients (-0 becomes 0; its depth and 1 / w
+ * planes it takes as they are). */
 SG_LANES_ATTR static inline __attribute__((always_inline)) VF
-SG_LANES_FN(pick)(const void *const *ps, const VI *sel, int n, size_t at) {
+SG_LANES_FN(pick)(const void *const *ps, const VI *sel, int n, size_t at, const bool plus0) {
     const VI none = {0};
     int32_t f;
     memcpy(&f, (const char *)ps[0] + at, sizeof f);
@@ -100,7 +101,7 @@ SG_LANES_FN(pick)(const void *const *ps, const VI *sel, int n, size_t at) {
         memcpy(&f, (const char *)ps[j] + at, sizeof f);
         v = (sel[j] & f) | (~sel[j] & v);
     }
-    return (VF){0} + (VF)v;
+    return plus0 ? (VF){0} + (VF)v : (VF)v;
 }
 
 /* The n triangles ts[j] that share the tile at (x0, y0) interpolated at its lanes h .. h +
@@ -125,7 +126,7 @@ SG_LANES_FN(interp_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const
     SG_LANES_FN(lanes)(h, &lx, &ly);
     const VF dx = __builtin_convertvector(x0 - mx, VF) + lx;
     const VF dy = __builtin_convertvector(y0 - my, VF) + ly;
-#define PICK(field) SG_LANES_FN(pick)(tp, sel, n, offsetof(sg_tri, field))
+#define PICK(field) SG_LANES_FN(pick)(tp, sel, n, offsetof(sg_tri, field), false)
     const VF z = PICK(z) + PICK(z_dx) * dx + PICK(z_dy) * dy;
     const VF zc = VMIN(one, VMAX(zero, z)); /* sg_tri_depth */
     memcpy(b->z + h, &zc, sizeof zc);
@@ -138,11 +139,11 @@ SG_LANES_FN(interp_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const
         const size_t ax = own ? offsetof(sg_tri, a_dx) : offsetof(sg_tri_ext, a_dx);
         const size_t ay = own ? offsetof(sg_tri, a_dy) : offsetof(sg_tri_ext, a_dy);
         const size_t f = (size_t)e * sizeof(float);
-        const VF va = SG_LANES_FN(pick)(p, sel, n, a + f);
+        const VF va = SG_LANES_FN(pick)(p, sel, n, a + f, true);
         VF v = va;
         if (!(s->flat >> k & 1))
-            v = (va + SG_LANES_FN(pick)(p, sel, n, ax + f) * dx +
-                 SG_LANES_FN(pick)(p, sel, n, ay + f) * dy) *
+            v = (va + SG_LANES_FN(pick)(p, sel, n, ax + f, true) * dx +
+                 SG_LANES_FN(pick)(p, sel, n, ay + f, true) * dy) *
                 w;
         memcpy(b->varying[k] + h, &v, sizeof v);
     }
