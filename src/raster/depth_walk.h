@@ -64,8 +64,10 @@ static inline sg_vis_fns sg_vis_pick(const sg_raster_fn one[3][2],
  * over a triangle whose edges hold every pixel some sample is inside of (each edge moved by the
  * largest of the samples' offsets); per tile, each sample's coverage is then its own edges' test
  * (with AVX-512 and AVX2 a 32-bit compare per crossing edge against offsets prepared once a
- * triangle, elsewhere crossed_mask, the walk's own) and the tile body runs per sample with it. A
- * line's samples are all the line: its mask is theirs. */
+ * triangle, elsewhere crossed_mask, the walk's own) and the tile body runs per sample with it.
+ * With AVX-512 a triangle within a bin's tiles (most) skips that preparation: the walk's own
+ * edge values of each tile are compared with each sample's distance from the union
+ * (sg_vis_samples_small). A line's samples are all the line: its mask is theirs. */
 typedef struct sg_vis_samples {
     const sg_tri *st; /* the triangle as each sample sees it */
     sg_vis_ctx *vis;  /* each sample's plane */
@@ -82,6 +84,11 @@ typedef struct sg_vis_samples {
     __m256i offs[SG_VIS_SAMPLES][3][2];
 #endif
     int64_t lo[3], hi[3];
+#endif
+#if defined(__AVX512F__)
+    /* Per sample and edge, the union's edge value less the sample's (0 or more), where it fits
+     * in int32 (sg_vis_samples_small). */
+    int32_t d[SG_VIS_SAMPLES][3];
 #endif
 } sg_vis_samples;
 
@@ -143,12 +150,17 @@ SG_WALK_INLINE void sg_vis_samples_masks(const sg_vis_samples *s, const sg_tri *
     }
 }
 
-/* The sample walk's preparation for triangle st (not a line); `all` receives the union's edges. */
-SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, sg_tri *all) {
-    sg_walk_prepare(&st[0], &s->w);
+/* The union of triangle st's samples (not a line): `all`, st[0] until then, receives each edge's
+ * largest value. */
+SG_WALK_INLINE void sg_vis_samples_union(const sg_tri *st, sg_tri *all) {
     for (int k = 1; k < SG_VIS_SAMPLES; k++)
         for (int e = 0; e < 3; e++)
             if (st[k].edge[e] > all->edge[e]) all->edge[e] = st[k].edge[e];
+}
+
+/* The sample walk's preparation for triangle st (not a line). */
+SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st) {
+    sg_walk_prepare(&st[0], &s->w);
 #if defined(__AVX512F__) || defined(__AVX2__)
     s->narrow = s->w.narrow;
     for (int e = 0; e < 3; e++) {
@@ -176,6 +188,55 @@ SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, 
 #endif
 }
 
+#if defined(__AVX512F__)
+/* Each sample's covered pixels of a tile where the union's edge values are v (m: the union's
+ * mask): sample k's values are the union's less d[k][e], so a compare with d[k][e] tests them
+ * without a sum, and the union's are formed once for the four samples. */
+SG_WALK_INLINE void sg_vis_samples_masks16(const sg_vis_samples *s, const __m512i v[3], uint32_t m,
+                                           uint32_t mk[SG_VIS_SAMPLES]) {
+    for (int k = 0; k < SG_VIS_SAMPLES; k++) {
+        __mmask16 in = (__mmask16)m;
+        for (int e = 0; e < 3; e++)
+            in = _mm512_mask_cmpge_epi32_mask(in, v[e], _mm512_set1_epi32(s->d[k][e]));
+        mk[k] = in;
+    }
+}
+
+/* The sample walk of a triangle (not a line) whose tiles in [rx0, rx1) x [ry0, ry1) fit
+ * small_triangle16's square, the union all walked there with tile function fe, which takes the
+ * union's edge values: no walk preparation, and no edge sums per sample and tile. False: not
+ * taken (then as other triangles). The tiles and their masks are those of the walk of all. */
+SG_WALK_INLINE bool sg_vis_samples_small(sg_vis_samples *s, const sg_tri *all, int rx0, int ry0,
+                                         int rx1, int ry1, sg_tile_edges_fn fe) {
+    int tx0, ty0, tx1, ty1;
+    if (!sg_walk_tile_range(all, rx0, ry0, rx1, ry1, &tx0, &ty0, &tx1, &ty1)) return true;
+    if (tx1 - tx0 >= SG_SMALL_TILES || ty1 - ty0 >= SG_SMALL_TILES) return false;
+    for (int k = 0; k < SG_VIS_SAMPLES; k++)
+        for (int e = 0; e < 3; e++) {
+            const int64_t d = all->edge[e] - s->st[k].edge[e];
+            if (d > INT32_MAX) return false;
+            s->d[k][e] = (int32_t)d;
+        }
+    return small_triangle16(all, tx0, ty0, tx1, ty1, NULL, fe, s, false);
+}
+
+/* name_edges(): the tile function of name's small triangles (sg_vis_samples_small). */
+#define SG_VIS_SAMPLES_EDGES_FN(name, body4, zm, zw)                                               \
+    SG_WALK_INLINE void name##_edges(const void *c, const sg_tri *t, int x0, int y0, uint32_t m,   \
+                                     const __m512i v[3]) {                                         \
+        const sg_vis_samples *s = c;                                                               \
+        uint32_t mk[SG_VIS_SAMPLES];                                                               \
+        sg_vis_samples_touch(s->vis, x0, y0);                                                      \
+        sg_vis_samples_masks16(s, v, m, mk);                                                       \
+        body4(s, t, x0, y0, mk, zm, zw);                                                           \
+    }
+#define SG_VIS_SAMPLES_SMALL(name, s, all, x0, y0, x1, y1)                                         \
+    sg_vis_samples_small(s, all, x0, y0, x1, y1, name##_edges)
+#else
+#define SG_VIS_SAMPLES_EDGES_FN(name, body4, zm, zw)
+#define SG_VIS_SAMPLES_SMALL(name, s, all, x0, y0, x1, y1) false
+#endif
+
 /* name(): the sample walk with tile body body4(s, t, x0, y0, mk, zmode, zwrite), which takes each
  * sample's covered pixels mk[k] of the tile at once (a line's samples: all the line's pixels). */
 #define SG_VIS_SAMPLES_FN_WITH(name, body4, zm, zw)                                                \
@@ -189,12 +250,17 @@ SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st, 
             sg_vis_samples_masks(s, t, x0, y0, m, mk);                                             \
         body4(s, t, x0, y0, mk, zm, zw);                                                           \
     }                                                                                              \
+    SG_VIS_SAMPLES_EDGES_FN(name, body4, zm, zw)                                                   \
     static void name(const sg_tri *st, int x0, int y0, int x1, int y1, sg_vis_ctx *vis) {          \
         sg_vis_samples s;                                                                          \
         s.st = st;                                                                                 \
         s.vis = vis;                                                                               \
         sg_tri all = st[0];                                                                        \
-        if (!all.line) sg_vis_samples_prepare(&s, st, &all);                                       \
+        if (!all.line) {                                                                           \
+            sg_vis_samples_union(st, &all);                                                        \
+            if (SG_VIS_SAMPLES_SMALL(name, &s, &all, x0, y0, x1, y1)) return;                      \
+            sg_vis_samples_prepare(&s, st);                                                        \
+        }                                                                                          \
         sg_rast_walk(&all, x0, y0, x1, y1, name##_tile, &s);                                       \
     }
 

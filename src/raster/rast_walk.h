@@ -262,19 +262,19 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
 }
 
 #if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
-/* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512 and AVX2; most of a mesh's):
- * the pixels of those tiles are tested at once in 32-bit edge values, four pixels a vector (a
- * tile with AVX-512, half a tile with AVX2), when every edge's values over the square fit in int32
- * (they are linear, so the square's corners bound them). False: not taken. With `empty` (a
- * constant), fn takes tiles with an empty mask too (with AVX-512 and AVX2): a triangle of a
- * tile or two across then has its row's tiles visited without the row's tile test, and no tile
- * waits on a branch on its mask, which a dense mesh's small triangles set in no pattern a
- * predictor follows. */
-SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
-                                   sg_tile_fn fn, const void *ctx, const bool empty) {
+#if defined(__AVX512F__)
+/* A tile function that also takes the tile's edge values, per edge a lane a pixel (the true
+ * values, which fit in int32 there). */
+typedef void (*sg_tile_edges_fn)(const void *ctx, const sg_tri *tri, int x0, int y0, uint32_t mask,
+                                 const __m512i v[3]);
+
+/* small_triangle with AVX-512: each tile visited goes to fe with its edge values when fe is not
+ * NULL (a constant), else to fn. */
+SG_WALK_INLINE bool small_triangle16(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
+                                     sg_tile_fn fn, sg_tile_edges_fn fe, const void *ctx,
+                                     const bool empty) {
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
     int64_t hi[3], lo[3];
-#if defined(__AVX512F__)
     /* A tile a vector: its first pixel's value plus i dx + j dy. A row of up to 16 tiles is first
      * tested a tile a lane, each tile by its largest value (the corner of corners()): only the
      * tiles that may hold covered pixels are then tested pixel by pixel, and visited. */
@@ -312,17 +312,21 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         while (cand) {
             int k = __builtin_ctz(cand);
             cand &= cand - 1;
+            __m512i v[3];
             __mmask16 in = 0xffff;
-            for (int e = 0; e < 3; e++)
-                in = _mm512_mask_cmpge_epi32_mask(
-                    in,
-                    _mm512_add_epi32(first[e],
-                                     _mm512_set1_epi32((int32_t)((uint32_t)k * across[e]))),
-                    zero);
+            for (int e = 0; e < 3; e++) {
+                v[e] = _mm512_add_epi32(first[e],
+                                        _mm512_set1_epi32((int32_t)((uint32_t)k * across[e])));
+                in = _mm512_mask_cmpge_epi32_mask(in, v[e], zero);
+            }
             int tx_px = (tx0 + k) << SG_TILE_SHIFT;
             uint32_t mask = in;
             if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
-            if (empty || mask) fn(ctx, t, tx_px, ty_px, mask);
+            if (!empty && !mask) continue;
+            if (fe)
+                fe(ctx, t, tx_px, ty_px, mask, v);
+            else
+                fn(ctx, t, tx_px, ty_px, mask);
         }
         for (int e = 0; e < 3; e++) {
             first[e] = _mm512_add_epi32(first[e], down[e]);
@@ -330,7 +334,25 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         }
     }
     return true;
-#elif defined(__AVX2__)
+}
+#endif
+
+/* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512 and AVX2; most of a mesh's):
+ * the pixels of those tiles are tested at once in 32-bit edge values, four pixels a vector (a
+ * tile with AVX-512, half a tile with AVX2), when every edge's values over the square fit in int32
+ * (they are linear, so the square's corners bound them). False: not taken. With `empty` (a
+ * constant), fn takes tiles with an empty mask too (with AVX-512 and AVX2): a triangle of a
+ * tile or two across then has its row's tiles visited without the row's tile test, and no tile
+ * waits on a branch on its mask, which a dense mesh's small triangles set in no pattern a
+ * predictor follows. */
+SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
+                                   sg_tile_fn fn, const void *ctx, const bool empty) {
+#if defined(__AVX512F__)
+    return small_triangle16(t, tx0, ty0, tx1, ty1, fn, NULL, ctx, empty);
+#else
+    int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
+    int64_t hi[3], lo[3];
+#if defined(__AVX2__)
     /* As with AVX-512, with half a tile a vector and a row of up to 16 tiles in two vectors of
      * eight lanes, a tile a lane. */
     corners(t, SG_SMALL_TILES * SG_TILE - 1, hi, lo);
@@ -461,6 +483,7 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         }
     }
     return true;
+#endif
 #endif
 }
 #endif
@@ -619,15 +642,22 @@ SG_WALK_INLINE void sg_walk_prepare(const sg_tri *t, walk *w) {
 #endif
 }
 
+/* The tiles tx0..tx1, ty0..ty1 of t's bounds within [rx0, rx1) x [ry0, ry1); false: none. */
+SG_WALK_INLINE bool sg_walk_tile_range(const sg_tri *t, int rx0, int ry0, int rx1, int ry1,
+                                       int *tx0, int *ty0, int *tx1, int *ty1) {
+    *tx0 = (t->minx > rx0 ? t->minx : rx0) >> SG_TILE_SHIFT;
+    *ty0 = (t->miny > ry0 ? t->miny : ry0) >> SG_TILE_SHIFT;
+    *tx1 = (t->maxx < rx1 - 1 ? t->maxx : rx1 - 1) >> SG_TILE_SHIFT;
+    *ty1 = (t->maxy < ry1 - 1 ? t->maxy : ry1 - 1) >> SG_TILE_SHIFT;
+    return *tx0 <= *tx1 && *ty0 <= *ty1;
+}
+
 /* sg_rast_walk, with `empty` (a constant) as small_triangle takes it: fn may be called for a tile
  * of a small triangle with an empty mask. */
 SG_WALK_INLINE void sg_rast_walk_any(const sg_tri *t, int rx0, int ry0, int rx1, int ry1,
                                      sg_tile_fn fn, const void *ctx, const bool empty) {
-    int tx0 = (t->minx > rx0 ? t->minx : rx0) >> SG_TILE_SHIFT;
-    int ty0 = (t->miny > ry0 ? t->miny : ry0) >> SG_TILE_SHIFT;
-    int tx1 = (t->maxx < rx1 - 1 ? t->maxx : rx1 - 1) >> SG_TILE_SHIFT;
-    int ty1 = (t->maxy < ry1 - 1 ? t->maxy : ry1 - 1) >> SG_TILE_SHIFT;
-    if (tx0 > tx1 || ty0 > ty1) return;
+    int tx0, ty0, tx1, ty1;
+    if (!sg_walk_tile_range(t, rx0, ry0, rx1, ry1, &tx0, &ty0, &tx1, &ty1)) return;
 #if defined(__AVX512F__) || defined(__AVX2__)
     if (tx1 - tx0 < SG_SMALL_TILES && ty1 - ty0 < SG_SMALL_TILES &&
         small_triangle(t, tx0, ty0, tx1, ty1, fn, ctx, empty))
