@@ -65,8 +65,8 @@ static inline sg_vis_fns sg_vis_pick(const sg_raster_fn one[3][2],
  * largest of the samples' offsets); per tile, each sample's coverage is then its own edges' test
  * (with AVX-512 and AVX2 a 32-bit compare per crossing edge against offsets prepared once a
  * triangle, elsewhere crossed_mask, the walk's own) and the tile body runs per sample with it.
- * With AVX-512 a triangle within a bin's tiles (most) skips that preparation: the walk's own
- * edge values of each tile are compared with each sample's distance from the union
+ * With AVX-512 and AVX2 a triangle within a bin's tiles (most) skips that preparation: the walk's
+ * own edge values of each tile are compared with each sample's distance from the union
  * (sg_vis_samples_small). A line's samples are all the line: its mask is theirs. */
 typedef struct sg_vis_samples {
     const sg_tri *st; /* the triangle as each sample sees it */
@@ -84,8 +84,6 @@ typedef struct sg_vis_samples {
     __m256i offs[SG_VIS_SAMPLES][3][2];
 #endif
     int64_t lo[3], hi[3];
-#endif
-#if defined(__AVX512F__)
     /* Per sample and edge, the union's edge value less the sample's (0 or more), where it fits
      * in int32 (sg_vis_samples_small). */
     int32_t d[SG_VIS_SAMPLES][3];
@@ -188,22 +186,35 @@ SG_WALK_INLINE void sg_vis_samples_prepare(sg_vis_samples *s, const sg_tri *st) 
 #endif
 }
 
-#if defined(__AVX512F__)
-/* Each sample's covered pixels of a tile where the union's edge values are v (m: the union's
+#if defined(__AVX512F__) || defined(__AVX2__)
+/* Each sample's covered pixels of a tile where the union's edge values are w (m: the union's
  * mask): sample k's values are the union's less d[k][e], so a compare with d[k][e] tests them
  * without a sum, and the union's are formed once for the four samples. */
-SG_WALK_INLINE void sg_vis_samples_masks16(const sg_vis_samples *s, const __m512i v[3], uint32_t m,
-                                           uint32_t mk[SG_VIS_SAMPLES]) {
+SG_WALK_INLINE void sg_vis_samples_masks_of(const sg_vis_samples *s, const sg_walk_edges *w,
+                                            uint32_t m, uint32_t mk[SG_VIS_SAMPLES]) {
     for (int k = 0; k < SG_VIS_SAMPLES; k++) {
+#if defined(__AVX512F__)
         __mmask16 in = (__mmask16)m;
         for (int e = 0; e < 3; e++)
-            in = _mm512_mask_cmpge_epi32_mask(in, v[e], _mm512_set1_epi32(s->d[k][e]));
+            in = _mm512_mask_cmpge_epi32_mask(in, w->v[e], _mm512_set1_epi32(s->d[k][e]));
         mk[k] = in;
+#else
+        /* v >= d as v > d - 1 (d >= 0: no wrap), all ones where true */
+        uint32_t in = 0;
+        for (int h = 0; h < 2; h++) {
+            __m256i all = _mm256_set1_epi32(-1);
+            for (int e = 0; e < 3; e++)
+                all = _mm256_and_si256(
+                    all, _mm256_cmpgt_epi32(w->v[e][h], _mm256_set1_epi32(s->d[k][e] - 1)));
+            in |= (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(all)) << (8 * h);
+        }
+        mk[k] = m & in;
+#endif
     }
 }
 
 /* The sample walk of a triangle (not a line) whose tiles in [rx0, rx1) x [ry0, ry1) fit
- * small_triangle16's square, the union all walked there with tile function fe, which takes the
+ * small_triangle_vec's square, the union all walked there with tile function fe, which takes the
  * union's edge values: no walk preparation, and no edge sums per sample and tile. False: not
  * taken (then as other triangles). The tiles and their masks are those of the walk of all. */
 SG_WALK_INLINE bool sg_vis_samples_small(sg_vis_samples *s, const sg_tri *all, int rx0, int ry0,
@@ -217,17 +228,17 @@ SG_WALK_INLINE bool sg_vis_samples_small(sg_vis_samples *s, const sg_tri *all, i
             if (d > INT32_MAX) return false;
             s->d[k][e] = (int32_t)d;
         }
-    return small_triangle16(all, tx0, ty0, tx1, ty1, NULL, fe, s, false);
+    return small_triangle_vec(all, tx0, ty0, tx1, ty1, NULL, fe, s, false);
 }
 
 /* name_edges(): the tile function of name's small triangles (sg_vis_samples_small). */
 #define SG_VIS_SAMPLES_EDGES_FN(name, body4, zm, zw)                                               \
     SG_WALK_INLINE void name##_edges(const void *c, const sg_tri *t, int x0, int y0, uint32_t m,   \
-                                     const __m512i v[3]) {                                         \
+                                     const sg_walk_edges *w) {                                     \
         const sg_vis_samples *s = c;                                                               \
         uint32_t mk[SG_VIS_SAMPLES];                                                               \
         sg_vis_samples_touch(s->vis, x0, y0);                                                      \
-        sg_vis_samples_masks16(s, v, m, mk);                                                       \
+        sg_vis_samples_masks_of(s, w, m, mk);                                                      \
         body4(s, t, x0, y0, mk, zm, zw);                                                           \
     }
 #define SG_VIS_SAMPLES_SMALL(name, s, all, x0, y0, x1, y1)                                         \

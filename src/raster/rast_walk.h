@@ -262,17 +262,28 @@ SG_WALK_INLINE void walk_tiles(const walk *w, int tx0, int ty0, int tx1, int ty1
 }
 
 #if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
+#if defined(__AVX512F__) || defined(__AVX2__)
+/* A tile's edge values, the true ones (which fit in int32 there), a lane a pixel: with AVX-512 a
+ * vector an edge, with AVX2 two (rows 0-1, rows 2-3). */
+typedef struct sg_walk_edges {
 #if defined(__AVX512F__)
-/* A tile function that also takes the tile's edge values, per edge a lane a pixel (the true
- * values, which fit in int32 there). */
-typedef void (*sg_tile_edges_fn)(const void *ctx, const sg_tri *tri, int x0, int y0, uint32_t mask,
-                                 const __m512i v[3]);
+    __m512i v[3];
+#else
+    __m256i v[3][2];
+#endif
+} sg_walk_edges;
 
+/* A tile function that also takes the tile's edge values. */
+typedef void (*sg_tile_edges_fn)(const void *ctx, const sg_tri *tri, int x0, int y0, uint32_t mask,
+                                 const sg_walk_edges *v);
+#endif
+
+#if defined(__AVX512F__)
 /* small_triangle with AVX-512: each tile visited goes to fe with its edge values when fe is not
  * NULL (a constant), else to fn. */
-SG_WALK_INLINE bool small_triangle16(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
-                                     sg_tile_fn fn, sg_tile_edges_fn fe, const void *ctx,
-                                     const bool empty) {
+SG_WALK_INLINE bool small_triangle_vec(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
+                                       sg_tile_fn fn, sg_tile_edges_fn fe, const void *ctx,
+                                       const bool empty) {
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
     int64_t hi[3], lo[3];
     /* A tile a vector: its first pixel's value plus i dx + j dy. A row of up to 16 tiles is first
@@ -312,19 +323,19 @@ SG_WALK_INLINE bool small_triangle16(const sg_tri *t, int tx0, int ty0, int tx1,
         while (cand) {
             int k = __builtin_ctz(cand);
             cand &= cand - 1;
-            __m512i v[3];
+            sg_walk_edges v;
             __mmask16 in = 0xffff;
             for (int e = 0; e < 3; e++) {
-                v[e] = _mm512_add_epi32(first[e],
-                                        _mm512_set1_epi32((int32_t)((uint32_t)k * across[e])));
-                in = _mm512_mask_cmpge_epi32_mask(in, v[e], zero);
+                v.v[e] = _mm512_add_epi32(first[e],
+                                          _mm512_set1_epi32((int32_t)((uint32_t)k * across[e])));
+                in = _mm512_mask_cmpge_epi32_mask(in, v.v[e], zero);
             }
             int tx_px = (tx0 + k) << SG_TILE_SHIFT;
             uint32_t mask = in;
             if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
             if (!empty && !mask) continue;
             if (fe)
-                fe(ctx, t, tx_px, ty_px, mask, v);
+                fe(ctx, t, tx_px, ty_px, mask, &v);
             else
                 fn(ctx, t, tx_px, ty_px, mask);
         }
@@ -335,24 +346,13 @@ SG_WALK_INLINE bool small_triangle16(const sg_tri *t, int tx0, int ty0, int tx1,
     }
     return true;
 }
-#endif
-
-/* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512 and AVX2; most of a mesh's):
- * the pixels of those tiles are tested at once in 32-bit edge values, four pixels a vector (a
- * tile with AVX-512, half a tile with AVX2), when every edge's values over the square fit in int32
- * (they are linear, so the square's corners bound them). False: not taken. With `empty` (a
- * constant), fn takes tiles with an empty mask too (with AVX-512 and AVX2): a triangle of a
- * tile or two across then has its row's tiles visited without the row's tile test, and no tile
- * waits on a branch on its mask, which a dense mesh's small triangles set in no pattern a
- * predictor follows. */
-SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
-                                   sg_tile_fn fn, const void *ctx, const bool empty) {
-#if defined(__AVX512F__)
-    return small_triangle16(t, tx0, ty0, tx1, ty1, fn, NULL, ctx, empty);
-#else
+#elif defined(__AVX2__)
+/* small_triangle with AVX2, fe as with AVX-512. */
+SG_WALK_INLINE bool small_triangle_vec(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
+                                       sg_tile_fn fn, sg_tile_edges_fn fe, const void *ctx,
+                                       const bool empty) {
     int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
     int64_t hi[3], lo[3];
-#if defined(__AVX2__)
     /* As with AVX-512, with half a tile a vector and a row of up to 16 tiles in two vectors of
      * eight lanes, a tile a lane. */
     corners(t, SG_SMALL_TILES * SG_TILE - 1, hi, lo);
@@ -393,7 +393,8 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         while (cand) {
             int k = __builtin_ctz(cand);
             cand &= cand - 1;
-            __m256i v[3][2];
+            sg_walk_edges w;
+            __m256i(*v)[2] = w.v;
             for (int e = 0; e < 3; e++) {
                 __m256i step = _mm256_set1_epi32((int32_t)((uint32_t)k * across[e]));
                 v[e][0] = _mm256_add_epi32(first[e][0], step);
@@ -402,7 +403,11 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
             uint32_t mask = sg_walk_in8(v[0][0], v[1][0], v[2][0], v[0][1], v[1][1], v[2][1]);
             int tx_px = (tx0 + k) << SG_TILE_SHIFT;
             if (t->rect_cut) mask &= bounds_mask(t, tx_px, ty_px);
-            if (empty || mask) fn(ctx, t, tx_px, ty_px, mask);
+            if (!empty && !mask) continue;
+            if (fe)
+                fe(ctx, t, tx_px, ty_px, mask, &w);
+            else
+                fn(ctx, t, tx_px, ty_px, mask);
         }
         for (int e = 0; e < 3; e++) {
             first[e][0] = _mm256_add_epi32(first[e][0], down[e]);
@@ -412,7 +417,25 @@ SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, i
         }
     }
     return true;
-#elif defined(__SSE2__)
+}
+#endif
+
+/* Triangles within 2 x 2 tiles (SG_SMALL_TILES a side with AVX-512 and AVX2; most of a mesh's):
+ * the pixels of those tiles are tested at once in 32-bit edge values, four pixels a vector (a
+ * tile with AVX-512, half a tile with AVX2), when every edge's values over the square fit in int32
+ * (they are linear, so the square's corners bound them). False: not taken. With `empty` (a
+ * constant), fn takes tiles with an empty mask too (with AVX-512 and AVX2): a triangle of a
+ * tile or two across then has its row's tiles visited without the row's tile test, and no tile
+ * waits on a branch on its mask, which a dense mesh's small triangles set in no pattern a
+ * predictor follows. */
+SG_WALK_INLINE bool small_triangle(const sg_tri *t, int tx0, int ty0, int tx1, int ty1,
+                                   sg_tile_fn fn, const void *ctx, const bool empty) {
+#if defined(__AVX512F__) || defined(__AVX2__)
+    return small_triangle_vec(t, tx0, ty0, tx1, ty1, fn, NULL, ctx, empty);
+#else
+    int x0 = tx0 << SG_TILE_SHIFT, y0 = ty0 << SG_TILE_SHIFT;
+    int64_t hi[3], lo[3];
+#if defined(__SSE2__)
     (void)empty; /* here fn is called for tiles with a covered pixel only */
     corners(t, 2 * SG_TILE - 1, hi, lo);
     __m128i v[3], step[3], four[3];
