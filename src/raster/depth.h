@@ -244,23 +244,33 @@ static inline int sg_bin_tile_offset(int x, int y) {
     return ((y >> 2) * 16 + (x >> 2)) * 16;
 }
 
+/* The fresh bits (sg_vis_ctx.fresh) of the tile at offset `base`, cleared: whether its ids are
+ * taken as 0 and its planes 1-3 of depth as plane 0's, which the caller then makes true. */
+static inline void sg_vis_samples_take(const sg_vis_ctx *vis, int base, bool *ids, bool *depth) {
+    *ids = *depth = false;
+    uint64_t *fresh = vis[0].fresh;
+    if (!fresh) return;
+    uint64_t *iw = fresh + (base >> 10), *dw = iw + SG_REACHED_WORDS; /* tile base >> 4 */
+    const uint64_t bit = (uint64_t)1 << (base >> 4 & 63);
+    if (!((*iw | *dw) & bit)) return; /* the common case: touched before */
+    *ids = *iw & bit;
+    *depth = *dw & bit;
+    *iw &= ~bit;
+    *dw &= ~bit;
+}
+
 /* The tile at (x0, y0) made ready for a walk (sg_vis_ctx.fresh): its ids 0 and every sample's
  * depth plane 0's, where they are only taken so. */
 static inline void sg_vis_samples_touch(sg_vis_ctx *vis, int x0, int y0) {
-    uint64_t *fresh = vis[0].fresh;
-    if (!fresh) return;
-    const int base = sg_bin_tile_offset(x0 - vis[0].bx0, y0 - vis[0].by0), tile = base >> 4;
-    uint64_t *ids = fresh + (tile >> 6), *depth = ids + SG_REACHED_WORDS;
-    const uint64_t bit = (uint64_t)1 << (tile & 63);
-    if (!((*ids | *depth) & bit)) return;
-    if (*ids & bit)
+    const int base = sg_bin_tile_offset(x0 - vis[0].bx0, y0 - vis[0].by0);
+    bool ids, depth;
+    sg_vis_samples_take(vis, base, &ids, &depth);
+    if (ids)
         for (int k = 0; k < SG_VIS_SAMPLES; k++)
             memset(vis[k].ids + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));
-    if (*depth & bit && vis[0].depth)
+    if (depth && vis[0].depth)
         for (int k = 1; k < SG_VIS_SAMPLES; k++)
             memcpy(vis[k].depth + base, vis[0].depth + base, SG_TILE_PIXELS * sizeof(float));
-    *ids &= ~bit;
-    *depth &= ~bit;
 }
 
 #endif

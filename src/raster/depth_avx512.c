@@ -3,6 +3,9 @@
  * is the compare and store mask. */
 #include "raster/depth.h"
 
+/* The sample walks' bodies (vis4_with) ready a fresh tile themselves. */
+#define SG_VIS_BODY_TOUCHES 1
+
 #include "raster/depth_simd.h"
 #include "raster/depth_walk.h"
 
@@ -37,13 +40,23 @@ SG_VIS_SET_OF(SG_WALK_FN_EMPTY, vis_avx512, vis_avx512)
  * in their edges and z (sg_msaa_sample_tri), so the pixels' offsets and the depth slopes' products
  * with them are computed once, and each sample's z is its own z plus those products, added in
  * vis_avx512's order: the same bits. With `rec` the passing pixels are recorded (sg_vis_record)
- * instead of written as ids. */
+ * instead of written as ids.
+ * A fresh tile (sg_vis_samples_touch) is readied by the stores themselves where they write every
+ * plane (ids written, depth written): each sample's ids are stored whole, 0 where no sample
+ * passes, and planes 1-3 of depth whole, plane 0's value where none passes, against which they
+ * were tested; the bytes the touch then the masked stores would leave, without the touch's own
+ * clearing and copying, which a tile's first triangle (a large one's most tiles) would redo. */
 static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples *s, int x0, int y0,
                                                             const uint32_t *mk, const int zmode,
                                                             const int zwrite, const int rec) {
     const sg_tri *st = s->st;
     const sg_vis_ctx *v0 = &s->vis[0];
     const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
+    bool fresh_ids = false, fresh_depth = false;
+    if (rec || !zwrite)
+        sg_vis_samples_touch(s->vis, x0, y0);
+    else
+        sg_vis_samples_take(s->vis, base, &fresh_ids, &fresh_depth);
     __m512 dzx = _mm512_setzero_ps(), dzy = _mm512_setzero_ps();
     if (zmode != Z_NONE || zwrite) {
         __m512 dx, dy;
@@ -54,6 +67,8 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
     const __m512i id = _mm512_set1_epi32((int)v0->id);
     sg_vis_record *r = v0->record;
     uint32_t any = 0;
+    /* Plane 0's depth before sample 0's writes: the others' where fresh. */
+    const __m512 plane0 = fresh_depth ? _mm512_loadu_ps(v0->depth + base) : _mm512_setzero_ps();
     /* No branch on a sample's mask: an edge tile's samples are covered or not in no pattern a
      * predictor follows, and an empty one writes and marks nothing. */
     for (int k = 0; k < SG_VIS_SAMPLES; k++) {
@@ -61,16 +76,23 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
         __mmask16 pass = (__mmask16)mk[k];
         if (zmode != Z_NONE || zwrite) {
             float *dp = v->depth + base;
+            const bool from0 = k > 0 && fresh_depth; /* this plane is taken as plane 0's */
+            const __m512 old = from0 ? plane0 : _mm512_loadu_ps(dp);
             __m512 z = _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(st[k].z), dzx), dzy);
             z = _mm512_min_ps(_mm512_set1_ps(1.0f), _mm512_max_ps(_mm512_setzero_ps(), z));
             if (zmode != Z_NONE)
-                pass = sg_compare16(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, pass, z,
-                                    _mm512_loadu_ps(dp));
-            if (zwrite) _mm512_mask_storeu_ps(dp, pass, z);
+                pass = sg_compare16(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, pass, z, old);
+            if (from0)
+                _mm512_storeu_ps(dp, _mm512_mask_mov_ps(old, pass, z));
+            else if (zwrite)
+                _mm512_mask_storeu_ps(dp, pass, z);
         }
         if (rec) {
             r->mask[r->n][k] = pass;
             any |= pass;
+        } else if (fresh_ids) {
+            _mm512_storeu_si512(sg_vis_tile_ids_of(v, base, mk[k]),
+                                _mm512_maskz_mov_epi32(pass, id));
         } else {
             _mm512_mask_storeu_epi32(sg_vis_tile_ids_of(v, base, mk[k]), pass, id);
         }

@@ -45,6 +45,10 @@ static inline sg_vis_fns sg_vis_pick(const sg_raster_fn one[3][2],
         sg_rast_walk_any(t, x0, y0, x1, y1, name##_tile, c, empty);                                \
     }
 
+#ifndef SG_VIS_BODY_TOUCHES
+#define SG_VIS_BODY_TOUCHES 0
+#endif
+
 /* The six visibility functions of a tile body, prefix_none_0 ... prefix_any_1, and their
  * [zmode][depth write] table. */
 #define SG_VIS_SET(prefix, body) SG_VIS_SET_OF(SG_WALK_FN, prefix, body)
@@ -237,7 +241,7 @@ SG_WALK_INLINE bool sg_vis_samples_small(sg_vis_samples *s, const sg_tri *all, i
                                      const sg_walk_edges *w) {                                     \
         const sg_vis_samples *s = c;                                                               \
         uint32_t mk[SG_VIS_SAMPLES];                                                               \
-        sg_vis_samples_touch(s->vis, x0, y0);                                                      \
+        if (!SG_VIS_BODY_TOUCHES) sg_vis_samples_touch(s->vis, x0, y0);                            \
         sg_vis_samples_masks_of(s, w, m, mk);                                                      \
         body4(s, t, x0, y0, mk, zm, zw);                                                           \
     }
@@ -249,12 +253,14 @@ SG_WALK_INLINE bool sg_vis_samples_small(sg_vis_samples *s, const sg_tri *all, i
 #endif
 
 /* name(): the sample walk with tile body body4(s, t, x0, y0, mk, zmode, zwrite), which takes each
- * sample's covered pixels mk[k] of the tile at once (a line's samples: all the line's pixels). */
+ * sample's covered pixels mk[k] of the tile at once (a line's samples: all the line's pixels).
+ * The tile is touched first (sg_vis_samples_touch), unless SG_VIS_BODY_TOUCHES is 1 where the
+ * walk is defined: then the body makes it ready itself. */
 #define SG_VIS_SAMPLES_FN_WITH(name, body4, zm, zw)                                                \
     SG_WALK_INLINE void name##_tile(const void *c, const sg_tri *t, int x0, int y0, uint32_t m) {  \
         const sg_vis_samples *s = c;                                                               \
         uint32_t mk[SG_VIS_SAMPLES];                                                               \
-        sg_vis_samples_touch(s->vis, x0, y0);                                                      \
+        if (!SG_VIS_BODY_TOUCHES) sg_vis_samples_touch(s->vis, x0, y0);                            \
         if (t->line)                                                                               \
             for (int k = 0; k < SG_VIS_SAMPLES; k++) mk[k] = m;                                    \
         else                                                                                       \
