@@ -65,8 +65,9 @@ static void fb_ops_match_portable(void **state) {
     }
 }
 
-/* The multisampled bins' masked tile copy and four-plane average (sg_fb_ops): every set gives the
- * portable bytes, and the portable average is each channel's (a + b + c + d + 2) / 4. */
+/* The multisampled bins' masked tile copy and blend, into one plane and into four, and four-plane
+ * average (sg_fb_ops): every set gives the portable bytes, and the portable average is each
+ * channel's (a + b + c + d + 2) / 4. */
 static void fb_sample_ops_match_portable(void **state) {
     (void)state;
     enum { N = 256 };
@@ -121,6 +122,16 @@ static void fb_sample_ops_match_portable(void **state) {
                     if (samples >> (16 * k + i) & 1) want[k][16 + i] = planes[3][i];
             }
             sets[s]->put_samples(planes_got, 16, planes[3], samples);
+            assert_memory_equal(got, want, sizeof got);
+            /* blend_samples: sg_blend_rgba8 of src over each plane's pixels of its bits. */
+            for (int k = 0; k < 4; k++) {
+                memcpy(got[k], planes[k], sizeof got[k]);
+                memcpy(want[k], planes[k], sizeof want[k]);
+                for (int i = 0; i < 16; i++)
+                    if (samples >> (16 * k + i) & 1)
+                        want[k][16 + i] = sg_blend_rgba8(planes[3][i], planes[k][16 + i]);
+            }
+            sets[s]->blend_samples(planes_got, 16, planes[3], samples);
             assert_memory_equal(got, want, sizeof got);
         }
         /* blend_masked: sg_blend_rgba8 of the selected pixels, the others kept. */

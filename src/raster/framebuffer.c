@@ -142,12 +142,15 @@ uint64_t sg_fb_alike_tiles(const uint32_t *const planes[4], uint64_t tiles) {
 
 void sg_fb_put_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
                        uint64_t samples) {
-    for (int k = 0; k < 4; k++) {
-        const uint32_t m = (uint32_t)(samples >> (16 * k)) & 0xffffu;
-        if (m) sg_fb_put_masked(planes[k] + base, src, m);
-    }
+    sg_fb_each_plane(sg_fb_put_masked, planes, base, src, samples);
 }
 
-const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
-                                      sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
-                                      sg_fb_split_ids,  sg_fb_alike_tiles,  sg_fb_put_samples};
+void sg_fb_blend_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                         uint64_t samples) {
+    sg_fb_each_plane(sg_fb_blend_masked, planes, base, src, samples);
+}
+
+const sg_fb_ops sg_fb_ops_portable = {sg_fb_fill_color,   sg_fb_fill_depth,   sg_fb_depth_range,
+                                      sg_fb_put_masked,   sg_fb_blend_masked, sg_fb_average4_planes,
+                                      sg_fb_split_ids,    sg_fb_alike_tiles,  sg_fb_put_samples,
+                                      sg_fb_blend_samples};

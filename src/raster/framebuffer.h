@@ -82,7 +82,22 @@ typedef struct sg_fb_ops {
      * of samples (one load of src for the four). */
     void (*put_samples)(uint32_t *const planes[4], size_t base, const uint32_t *src,
                         uint64_t samples);
+    /* blend_masked the same way: src's fragments over each plane's pixels of its mask (the
+     * source's terms of the blend formed once for the four). */
+    void (*blend_samples)(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                          uint64_t samples);
 } sg_fb_ops;
+
+/* fn (a put_masked or blend_masked) into each plane k's tile at `base` with bits 16 k .. 16 k + 15
+ * of samples, where any. */
+static inline void sg_fb_each_plane(void (*fn)(uint32_t *, const uint32_t *, uint32_t),
+                                    uint32_t *const planes[4], size_t base, const uint32_t *src,
+                                    uint64_t samples) {
+    for (int k = 0; k < 4; k++) {
+        const uint32_t m = (uint32_t)(samples >> (16 * k)) & 0xffffu;
+        if (m) fn(planes[k] + base, src, m);
+    }
+}
 
 /** The average of four packed RGBA8 values, each channel rounded to nearest (halves up). */
 static inline uint32_t sg_fb_average4(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
@@ -147,8 +162,8 @@ sg_fb_alike_tiles_with(const uint32_t *const planes[4], uint64_t tiles,
     return out;
 }
 
-/** The portable put_masked (sg_fb_put_lanes), blend_masked, average4, split_ids, alike_tiles and
- *  put_samples of sg_fb_ops. */
+/** The portable put_masked (sg_fb_put_lanes), blend_masked, average4, split_ids, alike_tiles,
+ *  put_samples and blend_samples of sg_fb_ops. */
 void sg_fb_put_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_blend_masked(uint32_t *dst, const uint32_t *src, uint32_t mask);
 void sg_fb_average4_planes(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const uint32_t *p3,
@@ -157,6 +172,8 @@ int sg_fb_split_ids(const uint32_t *const planes[4], uint32_t *ids, uint64_t *sa
 uint64_t sg_fb_alike_tiles(const uint32_t *const planes[4], uint64_t tiles);
 void sg_fb_put_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
                        uint64_t samples);
+void sg_fb_blend_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                         uint64_t samples);
 
 /* The body of every set's sg_fb_depth_range: floats in [+0, +inf] order as their bit patterns
  * do, and an integer min and max vectorise on every set; a negative value or -0 (below 0 as

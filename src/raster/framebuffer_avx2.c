@@ -104,7 +104,8 @@ static void put_samples(uint32_t *const planes[4], size_t base, const uint32_t *
 #define SG_FB_TABLE        sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
 #else
-const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
-                                  sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
-                                  sg_fb_split_ids,  sg_fb_alike_tiles,  sg_fb_put_samples};
+const sg_fb_ops sg_fb_ops_avx2 = {sg_fb_fill_color,   sg_fb_fill_depth,   sg_fb_depth_range,
+                                  sg_fb_put_masked,   sg_fb_blend_masked, sg_fb_average4_planes,
+                                  sg_fb_split_ids,    sg_fb_alike_tiles,  sg_fb_put_samples,
+                                  sg_fb_blend_samples};
 #endif

@@ -57,11 +57,41 @@ static void put_samples(uint32_t *const planes[4], size_t base, const uint32_t *
         _mm512_mask_store_epi32(planes[k] + base, (__mmask16)(samples >> (16 * k)), v);
 }
 
+/* x y / 255 as sg_mul_unorm8 rounds it, in 16-bit lanes (x, y <= 255: no lane overflows). */
+static inline __m512i mul8(__m512i x, __m512i y) {
+    const __m512i t = _mm512_mullo_epi16(x, y);
+    return _mm512_srli_epi16(
+        _mm512_add_epi16(_mm512_add_epi16(t, _mm512_srli_epi16(t, 8)), _mm512_set1_epi16(128)), 8);
+}
+
+/* sg_blend16_rgba8's operations, the source's products with its alpha formed once for the four
+ * planes: the same 16-bit halves, so the same bits. */
+static void blend_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                          uint64_t samples) {
+    const __m512i m8 = _mm512_set1_epi32(0x00ff00ff);
+    const __m512i s = _mm512_load_si512(src), lo = _mm512_srli_epi32(s, 24);
+    const __m512i a = _mm512_or_si512(lo, _mm512_slli_epi32(lo, 16));
+    const __m512i ia = _mm512_sub_epi16(_mm512_set1_epi16(255), a);
+    const __m512i sr = mul8(_mm512_and_si512(s, m8), a);
+    const __m512i sg = mul8(_mm512_and_si512(_mm512_srli_epi32(s, 8), m8), a);
+    for (int k = 0; k < 4; k++) { /* an empty mask stores nothing */
+        uint32_t *dst = planes[k] + base;
+        const __m512i d = _mm512_load_si512(dst);
+        const __m512i r = _mm512_add_epi16(sr, mul8(_mm512_and_si512(d, m8), ia));
+        const __m512i g =
+            _mm512_add_epi16(sg, mul8(_mm512_and_si512(_mm512_srli_epi32(d, 8), m8), ia));
+        _mm512_mask_store_epi32(dst, (__mmask16)(samples >> (16 * k)),
+                                _mm512_or_si512(r, _mm512_slli_epi32(g, 8)));
+    }
+}
+#define SG_FB_BLEND_SAMPLES 1
+
 #define SG_FB_VECTOR_BYTES 64
 #define SG_FB_TABLE        sg_fb_ops_avx512
 #include "raster/framebuffer_table.h"
 #else
-const sg_fb_ops sg_fb_ops_avx512 = {sg_fb_fill_color, sg_fb_fill_depth,   sg_fb_depth_range,
-                                    sg_fb_put_masked, sg_fb_blend_masked, sg_fb_average4_planes,
-                                    sg_fb_split_ids,  sg_fb_alike_tiles,  sg_fb_put_samples};
+const sg_fb_ops sg_fb_ops_avx512 = {sg_fb_fill_color,   sg_fb_fill_depth,   sg_fb_depth_range,
+                                    sg_fb_put_masked,   sg_fb_blend_masked, sg_fb_average4_planes,
+                                    sg_fb_split_ids,    sg_fb_alike_tiles,  sg_fb_put_samples,
+                                    sg_fb_blend_samples};
 #endif

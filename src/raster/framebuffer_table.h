@@ -1,8 +1,9 @@
 /* framebuffer_table.h - the part of an instruction set's sg_fb_ops that only adapts its
  * fill_color or compiles the portable code for the set: the depth fill and range, then the table
  * itself. Included once, at the end of framebuffer_<set>.c, after that file defines fill_color,
- * put_masked, blend_masked, split_ids, alike_tiles and put_samples, and sets SG_FB_VECTOR_BYTES to
- * its vectors' width and SG_FB_TABLE to the table's name. */
+ * put_masked, blend_masked, split_ids, alike_tiles and put_samples (and blend_samples, with
+ * SG_FB_BLEND_SAMPLES defined), and sets SG_FB_VECTOR_BYTES to its vectors' width and SG_FB_TABLE
+ * to the table's name. */
 #include <string.h>
 
 static void fill_depth(float *dst, size_t n, float value) {
@@ -35,5 +36,13 @@ static void average4(uint32_t *p0, const uint32_t *p1, const uint32_t *p2, const
     }
 }
 
-const sg_fb_ops SG_FB_TABLE = {fill_color, fill_depth, depth_range, put_masked, blend_masked,
-                               average4,   split_ids,  alike_tiles, put_samples};
+#ifndef SG_FB_BLEND_SAMPLES
+/* blend_masked into each plane (a set without its own blend_samples). */
+static void blend_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                          uint64_t samples) {
+    sg_fb_each_plane(blend_masked, planes, base, src, samples);
+}
+#endif
+
+const sg_fb_ops SG_FB_TABLE = {fill_color, fill_depth, depth_range, put_masked,  blend_masked,
+                               average4,   split_ids,  alike_tiles, put_samples, blend_samples};

@@ -174,17 +174,22 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
         /* Every sample of a one-colour tile's pixels written alike: it stays one colour. */
         bool alike = b->one_color[word] >> (tile & 63) & 1;
         for (int k = 0; k < NS; k++) alike &= samples[r][k] == u;
-        const int planes = alike ? 1 : NS;
-        if (!alike) expand(b, word, tile & 63, base);
-        for (int k = 0; k < planes; k++) {
-            const uint32_t mk = samples[r][k] & keep;
-            uint32_t *dst = b->color[k] + base;
-            if (!mk) continue;
+        if (alike) {
+            if (!(u & keep)) continue;
             if (d->blend)
-                p->fb->blend_masked(dst, src, mk);
+                p->fb->blend_masked(b->color[0] + base, src, u & keep);
             else
-                p->fb->put_masked(dst, src, mk);
+                p->fb->put_masked(b->color[0] + base, src, u & keep);
+            continue;
         }
+        expand(b, word, tile & 63, base);
+        uint64_t mk = 0; /* each sample's passing pixels that keep a fragment */
+        for (int k = 0; k < NS; k++) mk |= (uint64_t)(samples[r][k] & keep) << (16 * k);
+        uint32_t *const planes[NS] = {b->color[0], b->color[1], b->color[2], b->color[3]};
+        if (d->blend)
+            p->fb->blend_samples(planes, (size_t)base, src, mk);
+        else
+            p->fb->put_samples(planes, (size_t)base, src, mk);
     }
 }
 
