@@ -32,6 +32,11 @@ for v in $values; do
     for f in "$src"/scenes/hard/*.json; do
         "$render" "$f" -o "$work/$v/hard" "$option" "$v" >/dev/null
     done
+    # Shaders (discards, depth written where a fragment stays) and blends at 4 samples too: the
+    # multisampled bins' in-place paths.
+    for name in shaders transparency; do
+        "$render" "$src/scenes/$name.json" -o "$work/$v/${name}_4" "$option" "$v" --samples 4 >/dev/null
+    done
 done
 status=0
 for v in $values; do

@@ -244,9 +244,11 @@ static inline int sg_bin_tile_offset(int x, int y) {
     return ((y >> 2) * 16 + (x >> 2)) * 16;
 }
 
-/* The fresh bits (sg_vis_ctx.fresh) of the tile at offset `base`, cleared: whether its ids are
- * taken as 0 and its planes 1-3 of depth as plane 0's, which the caller then makes true. */
-static inline void sg_vis_samples_take(const sg_vis_ctx *vis, int base, bool *ids, bool *depth) {
+/* The fresh bits (sg_vis_ctx.fresh) of the tile at offset `base`: whether its ids are taken as 0
+ * (*ids) and its planes 1-3 of depth as plane 0's (*depth). With take_ids, take_depth (constants)
+ * those bits are cleared: the caller then makes them true. */
+static inline void sg_vis_samples_fresh(const sg_vis_ctx *vis, int base, const bool take_ids,
+                                        const bool take_depth, bool *ids, bool *depth) {
     *ids = *depth = false;
     uint64_t *fresh = vis[0].fresh;
     if (!fresh) return;
@@ -255,8 +257,8 @@ static inline void sg_vis_samples_take(const sg_vis_ctx *vis, int base, bool *id
     if (!((*iw | *dw) & bit)) return; /* the common case: touched before */
     *ids = *iw & bit;
     *depth = *dw & bit;
-    *iw &= ~bit;
-    *dw &= ~bit;
+    if (take_ids) *iw &= ~bit;
+    if (take_depth) *dw &= ~bit;
 }
 
 /* The tile at (x0, y0) made ready for a walk (sg_vis_ctx.fresh): its ids 0 and every sample's
@@ -264,7 +266,7 @@ static inline void sg_vis_samples_take(const sg_vis_ctx *vis, int base, bool *id
 static inline void sg_vis_samples_touch(sg_vis_ctx *vis, int x0, int y0) {
     const int base = sg_bin_tile_offset(x0 - vis[0].bx0, y0 - vis[0].by0);
     bool ids, depth;
-    sg_vis_samples_take(vis, base, &ids, &depth);
+    sg_vis_samples_fresh(vis, base, true, true, &ids, &depth);
     if (ids)
         for (int k = 0; k < SG_VIS_SAMPLES; k++)
             memset(vis[k].ids + base, 0, SG_TILE_PIXELS * sizeof(uint32_t));

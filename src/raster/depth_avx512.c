@@ -45,7 +45,10 @@ SG_VIS_SET_OF(SG_WALK_FN_EMPTY, vis_avx512, vis_avx512)
  * plane (ids written, depth written): each sample's ids are stored whole, 0 where no sample
  * passes, and planes 1-3 of depth whole, plane 0's value where none passes, against which they
  * were tested; the bytes the touch then the masked stores would leave, without the touch's own
- * clearing and copying, which a tile's first triangle (a large one's most tiles) would redo. */
+ * clearing and copying, which a tile's first triangle (a large one's most tiles) would redo. The
+ * recording walk writes no ids, so it leaves their bit; it tests planes 1-3 of a fresh tile
+ * against plane 0 and, without depth writes, leaves that bit too (a shader's in-place depth
+ * writes touch the tile first). */
 static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples *s, int x0, int y0,
                                                             const uint32_t *mk, const int zmode,
                                                             const int zwrite, const int rec) {
@@ -53,10 +56,12 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
     const sg_vis_ctx *v0 = &s->vis[0];
     const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
     bool fresh_ids = false, fresh_depth = false;
-    if (rec || !zwrite)
-        sg_vis_samples_touch(s->vis, x0, y0);
+    if (rec)
+        sg_vis_samples_fresh(s->vis, base, false, zwrite, &fresh_ids, &fresh_depth);
+    else if (zwrite)
+        sg_vis_samples_fresh(s->vis, base, true, true, &fresh_ids, &fresh_depth);
     else
-        sg_vis_samples_take(s->vis, base, &fresh_ids, &fresh_depth);
+        sg_vis_samples_touch(s->vis, x0, y0);
     __m512 dzx = _mm512_setzero_ps(), dzy = _mm512_setzero_ps();
     if (zmode != Z_NONE || zwrite) {
         __m512 dx, dy;
@@ -82,7 +87,7 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
             z = _mm512_min_ps(_mm512_set1_ps(1.0f), _mm512_max_ps(_mm512_setzero_ps(), z));
             if (zmode != Z_NONE)
                 pass = sg_compare16(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, pass, z, old);
-            if (from0)
+            if (from0 && zwrite)
                 _mm512_storeu_ps(dp, _mm512_mask_mov_ps(old, pass, z));
             else if (zwrite)
                 _mm512_mask_storeu_ps(dp, pass, z);

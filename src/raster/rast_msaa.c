@@ -162,7 +162,9 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
             keep = sg_shader_fragments(&d->ctx, t, px, py, u, own);
         else if (!packed)
             d->shade_fn(&d->ctx, t, px, py, u, own);
-        if (shader && d->writes_depth && b->vis[0].depth)
+        if (shader && d->writes_depth && b->vis[0].depth) {
+            /* planes 1-3 may still be taken as plane 0's (the recording walk leaves them so) */
+            sg_vis_samples_touch(b->vis, px, py);
             for (int k = 0; k < NS; k++) {
                 const float ox = (float)(px - st[k].minx), oy = (float)(py - st[k].miny);
                 for (uint32_t left = samples[r][k] & keep; left; left &= left - 1) {
@@ -171,6 +173,7 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
                         sg_tri_depth(&st[k], ox + (float)(bit & 3), oy + (float)(bit >> 2));
                 }
             }
+        }
         /* Every sample of a one-colour tile's pixels written alike: it stays one colour. */
         bool alike = b->one_color[word] >> (tile & 63) & 1;
         for (int k = 0; k < NS; k++) alike &= samples[r][k] == u;
