@@ -62,8 +62,9 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
         sg_vis_samples_fresh(s->vis, base, true, true, &fresh_ids, &fresh_depth);
     else
         sg_vis_samples_touch(s->vis, x0, y0);
+    const bool depth = zmode != Z_NONE || zwrite; /* the depth target is read or written */
     __m512 dzx = _mm512_setzero_ps(), dzy = _mm512_setzero_ps();
-    if (zmode != Z_NONE || zwrite) {
+    if (depth) {
         __m512 dx, dy;
         sg_tile_dxdy16(&st[0], x0, y0, &dx, &dy);
         dzx = _mm512_mul_ps(_mm512_set1_ps(st[0].z_dx), dx);
@@ -72,14 +73,16 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
     const __m512i id = _mm512_set1_epi32((int)v0->id);
     sg_vis_record *r = v0->record;
     uint32_t any = 0;
-    /* Plane 0's depth before sample 0's writes: the others' where fresh. */
-    const __m512 plane0 = fresh_depth ? _mm512_loadu_ps(v0->depth + base) : _mm512_setzero_ps();
+    /* Plane 0's depth before sample 0's writes: the others' where fresh (only where the target is
+     * used: a pass without one has the bit set as well). */
+    const __m512 plane0 =
+        depth && fresh_depth ? _mm512_loadu_ps(v0->depth + base) : _mm512_setzero_ps();
     /* No branch on a sample's mask: an edge tile's samples are covered or not in no pattern a
      * predictor follows, and an empty one writes and marks nothing. */
     for (int k = 0; k < SG_VIS_SAMPLES; k++) {
         const sg_vis_ctx *v = &s->vis[k];
         __mmask16 pass = (__mmask16)mk[k];
-        if (zmode != Z_NONE || zwrite) {
+        if (depth) {
             float *dp = v->depth + base;
             const bool from0 = k > 0 && fresh_depth; /* this plane is taken as plane 0's */
             const __m512 old = from0 ? plane0 : _mm512_loadu_ps(dp);
