@@ -47,7 +47,8 @@ typedef struct msaa_bin {
      * a walk's touch (sg_vis_ctx.fresh). */
     uint64_t fresh[2 * SG_REACHED_WORDS];
     sg_vis_ctx vis[NS];
-    int x0, y0; /* the bin's top-left pixel */
+    uint32_t *planes[NS]; /* color[0] ... color[3] */
+    int x0, y0;           /* the bin's top-left pixel */
 } msaa_bin;
 
 /* The tiles of word `word` (sg_reached_word) that some sample's walk reached. */
@@ -89,7 +90,7 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
     sg_shade_bin_tiles(p, b->ids[0], uniform, b->x0, b->y0, b->color[0]);
     /* A mixed tile's triangles whose draw packs runs are shaded as runs, triangle by triangle. */
     sg_run_set run_buf, *runs = sg_runs_start(p, &run_buf);
-    uint32_t *const planes[NS] = {b->color[0], b->color[1], b->color[2], b->color[3]};
+    uint32_t *const *const planes = b->planes;
     const sg_run_target to = {b->shaded, planes, b->x0, b->y0};
     for (int word = 0; word < SG_REACHED_WORDS; word++) {
         const uint64_t uniform_word = sg_reached_word(uniform, word);
@@ -134,27 +135,21 @@ static void shade_ids(const sg_bin_pass *p, msaa_bin *b) {
 
 /* in_place's shading of the n tiles of runs (their pixels with a passing sample) and samples
  * (each sample's passing pixels) and its writes. A fixed draw with a runs function shades its
- * partly covered tiles' pixels at once, packed (b->shaded), else each tile is shaded on its own. */
+ * tiles' pixels at once (b->shaded), else each tile is shaded on its own. */
 static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
                            const sg_draw_state *d, const sg_run *runs,
                            const uint16_t (*samples)[NS], int n) {
     const bool shader = d->ctx.shader.fragment != NULL;
-    /* Partly covered tiles packed, whole ones each on its own (its shading is made for them). */
+    /* Every tile at once: whole tiles as they are, partly covered ones packed. */
     const bool packs = !shader && d->runs_fn;
-    if (packs) {
-        sg_run part[BIN_TILES * BIN_TILES];
-        int parts = 0;
-        for (int r = 0; r < n; r++)
-            if (runs[r].mask != 0xffffu) part[parts++] = runs[r];
-        if (parts) d->runs_fn(&d->ctx, t, b->x0, b->y0, part, parts, b->shaded);
-    }
+    if (packs && n) d->runs_fn(&d->ctx, t, b->x0, b->y0, runs, n, b->shaded);
     for (int r = 0; r < n; r++) {
         const int tile = runs[r].tile, word = tile >> 6;
         const int px = b->x0 + ((tile % BIN_TILES) << SG_TILE_SHIFT);
         const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
         const int base = tile * SG_TILE_PIXELS;
         const uint32_t u = runs[r].mask;
-        const bool packed = packs && u != 0xffffu;
+        const bool packed = packs;
         _Alignas(64) uint32_t own[SG_TILE_PIXELS];
         const uint32_t *src = packed ? b->shaded + base : own;
         uint32_t keep = u;
@@ -188,11 +183,10 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
         expand(b, word, tile & 63, base);
         uint64_t mk = 0; /* each sample's passing pixels that keep a fragment */
         for (int k = 0; k < NS; k++) mk |= (uint64_t)(samples[r][k] & keep) << (16 * k);
-        uint32_t *const planes[NS] = {b->color[0], b->color[1], b->color[2], b->color[3]};
         if (d->blend)
-            p->fb->blend_samples(planes, (size_t)base, src, mk);
+            p->fb->blend_samples(b->planes, (size_t)base, src, mk);
         else
-            p->fb->put_samples(planes, (size_t)base, src, mk);
+            p->fb->put_samples(b->planes, (size_t)base, src, mk);
     }
 }
 
@@ -425,5 +419,6 @@ void sg_rast_bin_msaa(const sg_bin_pass *p, int index) {
     msaa_bin b;
     b.x0 = v.x0;
     b.y0 = v.y0;
+    for (int k = 0; k < NS; k++) b.planes[k] = b.color[k];
     if (!render(p, &v, &b, index, false)) render(p, &v, &b, index, true);
 }

@@ -200,7 +200,8 @@ sg_shade2_fn sg_shade2_avx2(int index) {
 }
 
 /* Runs of a triangle (sg_shade_runs_fn): the pixels of each pair of rows packed eight to a vector
- * (sg_queue8), two full vectors shaded side by side, each lane stored at its own offset. A
+ * (sg_queue8), two full vectors shaded side by side, each lane stored at its own offset; a whole
+ * tile's two pairs of rows side by side, stored as they are. A
  * mipmapped triangle's sets must hold whole 2 x 2 quads instead: a pair of rows whose two quads
  * both hold a covered pixel is a set as it is, lone quads are paired (sg_pair_quad8), and only the
  * covered lanes are stored. */
@@ -216,6 +217,18 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     for (int i = 0; i < n; i++) {
         const int tile = runs[i].tile;
         const int x0 = bx0 + (tile % ROW) * SG_TILE, y0 = by0 + (tile / ROW) * SG_TILE;
+        if (runs[i].mask == 0xffffu) { /* a whole tile: its two pairs of rows, stored as they are */
+            __m256 wdx[2], wdy[2];
+            sg_rows_dxdy8(t, x0, y0, 0, &wdx[0], &wdy[0]);
+            sg_rows_dxdy8(t, x0, y0, 1, &wdx[1], &wdy[1]);
+            const unsigned all[2] = {255u, 255u};
+            __m256i v[2];
+            shade8_sets(c, t, NULL, ext, 2, wdx, wdy, mip ? all : NULL, v, textured, bilinear,
+                        repeat, flat, sec);
+            _mm256_storeu_si256((__m256i *)(void *)(color + tile * SG_TILE_PIXELS), v[0]);
+            _mm256_storeu_si256((__m256i *)(void *)(color + tile * SG_TILE_PIXELS + 8), v[1]);
+            continue;
+        }
         for (int h = 0; h < 2; h++) {
             const unsigned bits = (runs[i].mask >> (8 * h)) & 255u;
             if (!bits) continue;

@@ -97,17 +97,37 @@ INLINE void shade_quad_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri
 }
 
 /* Runs of a triangle (sg_shade_runs_fn): their pixels packed sixteen to a vector (sg_queue16),
- * two full vectors shaded side by side, and each lane's colour stored at its own offset. */
+ * two full vectors shaded side by side, and each lane's colour stored at its own offset; whole
+ * tiles two at a time, stored as they are. */
 INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext *ext, int bx0,
                        int by0, const sg_run *runs, int n, uint32_t *color, const int textured,
                        const int bilinear, const int repeat, const int flat, const int sec) {
     sg_queue16 q = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_si512(), 0};
     sg_queue16 full[2];
     int nfull = 0;
+    __m512 whole_dx, whole_dy; /* a whole tile waiting for another */
+    int whole = -1;
     for (int i = 0; i < n; i++) {
         const int tile = runs[i].tile;
         __m512 dx, dy;
         sg_tile_dxdy16(t, bx0 + (tile % ROW) * SG_TILE, by0 + (tile / ROW) * SG_TILE, &dx, &dy);
+        if (runs[i].mask == 0xffffu) { /* whole tiles two at a time, stored as they are */
+            if (whole < 0) {
+                whole = tile;
+                whole_dx = dx;
+                whole_dy = dy;
+                continue;
+            }
+            const __m512 wdx[2] = {whole_dx, dx}, wdy[2] = {whole_dy, dy};
+            const uint32_t all[2] = {0xffffu, 0xffffu};
+            __m512i v[2];
+            shade16_tiles(c, t, NULL, ext, 2, wdx, wdy, all, v, textured, bilinear, repeat, flat,
+                          sec);
+            _mm512_storeu_si512(color + whole * SG_TILE_PIXELS, v[0]);
+            _mm512_storeu_si512(color + tile * SG_TILE_PIXELS, v[1]);
+            whole = -1;
+            continue;
+        }
         if (!sg_enqueue16(&q, dx, dy, tile * SG_TILE_PIXELS, runs[i].mask, &full[nfull]) ||
             ++nfull < 2)
             continue;
@@ -118,6 +138,11 @@ INLINE void shade_runs(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
         _mm512_i32scatter_epi32(color, full[0].off, v[0], 4);
         _mm512_i32scatter_epi32(color, full[1].off, v[1], 4);
         nfull = 0;
+    }
+    if (whole >= 0) {
+        __m512i v = sg_shade16_at(c, t, ext, whole_dx, whole_dy, 0xffffu, textured, bilinear,
+                                  repeat, flat, sec);
+        _mm512_storeu_si512(color + whole * SG_TILE_PIXELS, v);
     }
     if (nfull) {
         __m512i v = sg_shade16_at(c, t, ext, full[0].dx, full[0].dy, 0xffffu, textured, bilinear,
