@@ -149,13 +149,12 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
         const int py = b->y0 + ((tile / BIN_TILES) << SG_TILE_SHIFT);
         const int base = tile * SG_TILE_PIXELS;
         const uint32_t u = runs[r].mask;
-        const bool packed = packs;
         _Alignas(64) uint32_t own[SG_TILE_PIXELS];
-        const uint32_t *src = packed ? b->shaded + base : own;
+        const uint32_t *src = packs ? b->shaded + base : own;
         uint32_t keep = u;
         if (shader)
             keep = sg_shader_fragments(&d->ctx, t, px, py, u, own);
-        else if (!packed)
+        else if (!packs)
             d->shade_fn(&d->ctx, t, px, py, u, own);
         if (shader && d->writes_depth && b->vis[0].depth) {
             /* planes 1-3 may still be taken as plane 0's (the recording walk leaves them so) */
