@@ -3,6 +3,9 @@
  * clamp as the scalar and SSE2 ones. */
 #include "raster/depth.h"
 
+/* The sample walks' bodies (vis4_with) ready a fresh tile themselves. */
+#define SG_VIS_BODY_TOUCHES 1
+
 #include "raster/depth_simd.h"
 #include "raster/depth_walk.h"
 
@@ -56,16 +59,29 @@ SG_VIS_SET_OF(SG_WALK_FN_EMPTY, vis_avx2, vis_avx2)
  * the samples' triangles differ only in their edges and z, so the products of the depth slopes
  * with the pixels' offsets are computed once, and each sample's z is its own z plus them, added
  * in sg_zrows8's order: the same bits as vis_avx2. With `rec` the passing pixels are recorded
- * (sg_vis_record) instead of written as ids. */
+ * (sg_vis_record) instead of written as ids. A fresh tile is readied by the stores themselves,
+ * as depth_avx512.c's are: every plane's ids stored whole (0 where no sample passes) and planes
+ * 1-3 of depth tested against plane 0 and stored whole; then no sample is skipped, even one that
+ * covers nothing, since its stores make its planes. */
 static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples *s, int x0, int y0,
                                                             const uint32_t *mk, const int zmode,
                                                             const int zwrite, const int rec) {
     const sg_tri *st = s->st;
     const sg_vis_ctx *v0 = &s->vis[0];
     const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
+    bool fresh_ids = false, fresh_depth = false;
+    if (rec)
+        sg_vis_samples_fresh(s->vis, base, false, zwrite, &fresh_ids, &fresh_depth);
+    else if (zwrite)
+        sg_vis_samples_fresh(s->vis, base, true, true, &fresh_ids, &fresh_depth);
+    else
+        sg_vis_samples_touch(s->vis, x0, y0);
     const bool depth = zmode != Z_NONE || zwrite;
+    /* every plane must be stored: its ids, or its depth, are taken as plane 0's until then */
+    const bool every = (!rec && fresh_ids) || (zwrite && fresh_depth);
     /* The products of sg_zrows8_at and sg_zrows8_half, without the sample's z. */
     __m256 zdx = _mm256_setzero_ps(), zdy[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()};
+    __m256 plane0[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()}; /* before sample 0's writes */
     if (depth) {
         const __m256 dx =
             _mm256_add_ps(_mm256_set1_ps((float)(x0 - st[0].minx)),
@@ -76,24 +92,40 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
             const float r0 = (float)(2 * h), r1 = (float)(2 * h + 1); /* the two rows, exact */
             const __m256 dy = _mm256_add_ps(oy, _mm256_setr_ps(r0, r0, r0, r0, r1, r1, r1, r1));
             zdy[h] = _mm256_mul_ps(_mm256_set1_ps(st[0].z_dy), dy);
+            if (fresh_depth) plane0[h] = _mm256_load_ps(v0->depth + base + 8 * h);
         }
     }
+    const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    const __m256i id = _mm256_set1_epi32((int)v0->id);
     sg_vis_record *r = v0->record;
     uint32_t any = 0;
     for (int k = 0; k < SG_VIS_SAMPLES; k++) {
         uint32_t pass = 0;
-        if (mk[k]) {
+        if (mk[k] || every) {
             const sg_vis_ctx *v = &s->vis[k];
-            uint32_t *ids = rec ? NULL : sg_vis_tile_ids(v, base);
+            uint32_t *ids = rec ? NULL : sg_vis_tile_ids_of(v, base, mk[k]);
+            const bool from0 = k > 0 && fresh_depth; /* this plane is taken as plane 0's */
             const __m256 zx = _mm256_add_ps(_mm256_set1_ps(st[k].z), zdx);
             for (int h = 0; h < 2; h++) {
-                const __m256 z = _mm256_add_ps(zx, zdy[h]);
-                pass |=
-                    vis_half_avx2(
-                        v, ids, depth ? v->depth + base : NULL, h, (mk[k] >> (8 * h)) & 255u,
-                        _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z)),
-                        zmode, zwrite)
-                    << (8 * h);
+                const unsigned bits = (mk[k] >> (8 * h)) & 255u;
+                __m256 ok = _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                    _mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes));
+                if (depth) {
+                    float *dp = v->depth + base + 8 * h;
+                    __m256 z = _mm256_add_ps(zx, zdy[h]);
+                    z = _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z));
+                    const __m256 d = from0 ? plane0[h] : _mm256_load_ps(dp);
+                    if (zmode != Z_NONE)
+                        ok = _mm256_and_ps(
+                            ok, sg_compare8(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, z, d));
+                    if (zwrite) _mm256_store_ps(dp, _mm256_blendv_ps(d, z, ok));
+                }
+                if (ids) {
+                    __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
+                    const __m256i was = fresh_ids ? _mm256_setzero_si256() : _mm256_load_si256(ip);
+                    _mm256_store_si256(ip, _mm256_blendv_epi8(was, id, _mm256_castps_si256(ok)));
+                }
+                pass |= (uint32_t)_mm256_movemask_ps(ok) << (8 * h);
             }
         }
         if (rec) {
