@@ -275,4 +275,20 @@ static inline void sg_vis_samples_touch(sg_vis_ctx *vis, int x0, int y0) {
             memcpy(vis[k].depth + base, vis[0].depth + base, SG_TILE_PIXELS * sizeof(float));
 }
 
+/* The fresh bits (sg_vis_samples_fresh) that a four-sample body which readies fresh tiles itself
+ * (SG_VIS_BODY_TOUCHES) takes over for the tile at base, (x0, y0): a recording walk, which writes
+ * no ids, the depth bit where it writes depth; a walk that writes ids and depth, both bits; any
+ * other walk touches the tile instead, and takes none. */
+static inline void sg_vis_samples_take(sg_vis_ctx *vis, int x0, int y0, int base, const int zwrite,
+                                       const int rec, bool *ids, bool *depth) {
+    if (rec) {
+        sg_vis_samples_fresh(vis, base, false, zwrite, ids, depth);
+    } else if (zwrite) {
+        sg_vis_samples_fresh(vis, base, true, true, ids, depth);
+    } else {
+        *ids = *depth = false;
+        sg_vis_samples_touch(vis, x0, y0);
+    }
+}
+
 #endif

@@ -55,13 +55,8 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
     const sg_tri *st = s->st;
     const sg_vis_ctx *v0 = &s->vis[0];
     const int base = sg_bin_tile_offset(x0 - v0->bx0, y0 - v0->by0);
-    bool fresh_ids = false, fresh_depth = false;
-    if (rec)
-        sg_vis_samples_fresh(s->vis, base, false, zwrite, &fresh_ids, &fresh_depth);
-    else if (zwrite)
-        sg_vis_samples_fresh(s->vis, base, true, true, &fresh_ids, &fresh_depth);
-    else
-        sg_vis_samples_touch(s->vis, x0, y0);
+    bool fresh_ids, fresh_depth;
+    sg_vis_samples_take(s->vis, x0, y0, base, zwrite, rec, &fresh_ids, &fresh_depth);
     const bool depth = zmode != Z_NONE || zwrite; /* the depth target is read or written */
     __m512 dzx = _mm512_setzero_ps(), dzy = _mm512_setzero_ps();
     if (depth) {
