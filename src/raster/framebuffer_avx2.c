@@ -100,6 +100,37 @@ static void put_samples(uint32_t *const planes[4], size_t base, const uint32_t *
     }
 }
 
+/* blend_masked's operations, the source's products with its alpha formed once for the four
+ * planes (as framebuffer_avx512.c's): the same 16-bit halves, so the same bits. A plane without a
+ * sample of the tile is skipped. */
+static void blend_samples(uint32_t *const planes[4], size_t base, const uint32_t *src,
+                          uint64_t samples) {
+    const __m256i m8 = _mm256_set1_epi32(0x00ff00ff);
+    __m256i sr[2], sg[2], ia[2];
+    for (int h = 0; h < 2; h++) {
+        const __m256i s = _mm256_load_si256((const __m256i *)(const void *)(src + 8 * h));
+        const __m256i lo = _mm256_srli_epi32(s, 24);
+        const __m256i a = _mm256_or_si256(lo, _mm256_slli_epi32(lo, 16));
+        ia[h] = _mm256_sub_epi16(_mm256_set1_epi16(255), a);
+        sr[h] = mul8(_mm256_and_si256(s, m8), a);
+        sg[h] = mul8(_mm256_and_si256(_mm256_srli_epi32(s, 8), m8), a);
+    }
+    for (int k = 0; k < 4; k++) {
+        const uint32_t m = (uint32_t)(samples >> (16 * k)) & 0xffffu;
+        if (!m) continue;
+        for (int h = 0; h < 2; h++) {
+            __m256i *dp = (__m256i *)(void *)(planes[k] + base + 8 * h);
+            const __m256i d = _mm256_load_si256(dp);
+            const __m256i r = _mm256_add_epi16(sr[h], mul8(_mm256_and_si256(d, m8), ia[h]));
+            const __m256i g =
+                _mm256_add_epi16(sg[h], mul8(_mm256_and_si256(_mm256_srli_epi32(d, 8), m8), ia[h]));
+            _mm256_maskstore_epi32((int *)(void *)dp, lanes_of((m >> (8 * h)) & 255u),
+                                   _mm256_or_si256(r, _mm256_slli_epi32(g, 8)));
+        }
+    }
+}
+#define SG_FB_BLEND_SAMPLES 1
+
 #define SG_FB_VECTOR_BYTES 32
 #define SG_FB_TABLE        sg_fb_ops_avx2
 #include "raster/framebuffer_table.h"
