@@ -11,6 +11,8 @@
  *   test, blended by every instruction set this CPU runs: the scalar reference's bytes.
  * - The constant draw colour multiplies the vertex colour; alpha from the vertex colour and from
  *   the texel.
+ * - With 4 samples, a blend in front of the bin's depth at every pixel centre but not at every
+ *   sample: every instruction set this CPU runs gives the scalar reference's bytes.
  * - The back-to-front order against a plain stable sort of the same keys, ties, NaN keys and
  *   quads included.
  */
@@ -421,6 +423,83 @@ static void blended_variants_identical(void **state) {
     free(got);
 }
 
+/* ---- a blend in front of the bin's depth at its pixel centres, not at all its samples ---- */
+
+enum { PS = 64 }; /* one bin */
+
+/* An opaque quad at window depth 0.5 over the whole image, then a blended triangle over it (a
+ * depth test, no depth write) whose depth grows by 0.01 a pixel to the right, 0.498 at the last
+ * column's centres: every pixel centre passes, but sample 1 of the last column, 0.375 pixel to
+ * the right of its centre, lies at 0.50175, behind the quad. 4 samples. */
+static void render_near_miss(sgSimd simd, uint8_t *out) {
+    sgDevice *dev;
+    assert_int_equal(sgCreateDevice(&(sgDeviceDesc){.thread_count = 1, .simd = simd}, &dev), SG_OK);
+    sgImage2D color = test_image(dev, PS, PS, SG_FORMAT_RGBA8_UNORM);
+    sgImage2D depth = test_image(dev, PS, PS, SG_FORMAT_D32_FLOAT);
+    /* window depth 0.498 + 0.01 (x - 63.5) at window x; x = 32 (ndc + 1), depth = (z + 1) / 2 */
+    float pos[7 * 4], col[7 * 4];
+    const float ndc[7][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}, {3, -1}, {-1, 3}};
+    for (int v = 0; v < 7; v++) {
+        const float win = 0.498f + 0.01f * (32.0f * (ndc[v][0] + 1.0f) - 63.5f);
+        pos[4 * v] = ndc[v][0];
+        pos[4 * v + 1] = ndc[v][1];
+        pos[4 * v + 2] = v < 4 ? 0.0f : 2.0f * win - 1.0f;
+        pos[4 * v + 3] = 1.0f;
+        const float rgba[2][4] = {{0.9f, 0.1f, 0.1f, 1.0f}, {0.1f, 0.2f, 0.9f, 0.5f}};
+        memcpy(col + 4 * v, rgba[v < 4 ? 0 : 1], sizeof rgba[0]);
+    }
+    const uint32_t quad[6] = {0, 1, 2, 0, 2, 3}, tri[3] = {4, 5, 6};
+    sgGeom g[2];
+    for (int k = 0; k < 2; k++)
+        assert_int_equal(sgCreateGeom(dev,
+                                      &(sgGeomDesc){.vertex_count = 7,
+                                                    .positions = pos,
+                                                    .colors = col,
+                                                    .index_count = k ? 3 : 6,
+                                                    .indices = k ? tri : quad},
+                                      &g[k]),
+                         SG_OK);
+    sgPipelineStateObject opaque =
+        test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
+    sgPipelineStateObject blend = test_pso(
+        dev, (sgPipelineDesc){.blend = SG_BLEND_ALPHA, .depth = {.compare = SG_COMPARE_LESS}});
+    sgDrawParams params = {0};
+    memcpy(params.world_view, IDENTITY, sizeof IDENTITY);
+    memcpy(params.proj, IDENTITY, sizeof IDENTITY);
+    sgPassDesc pass = {.color = color, .depth = depth, .clear_depth = 1.0f, .samples = 4};
+    assert_int_equal(sgBeginRenderPass(dev, &pass), SG_OK);
+    assert_int_equal(sgDraw(dev, opaque, g[0], &params), SG_OK);
+    assert_int_equal(sgDraw(dev, blend, g[1], &params), SG_OK);
+    assert_int_equal(sgEndRenderPass(dev, &pass), SG_OK);
+    assert_int_equal(sgReadImage2D(dev, color, out, 0), SG_OK);
+    sgDestroyDevice(dev);
+}
+
+/* A blend whose depth passes at every pixel centre of a bin may still fail at a sample: the sets
+ * whose 4-sample walk leaves out a test that every sample passes (rast_msaa.c, passes_bin) keep
+ * it here, and give the scalar reference's bytes. */
+static void blend_passes_centres_not_samples(void **state) {
+    (void)state;
+    uint8_t *want = malloc(PS * PS * 4), *got = malloc(PS * PS * 4);
+    render_near_miss(SG_SIMD_SCALAR, want);
+    /* the last column keeps a sample of the quad, so it resolves unlike the one before it */
+    for (int y = 0; y < PS; y++) {
+        const uint8_t *row = want + (size_t)y * PS * 4;
+        assert_memory_not_equal(row + 4 * (PS - 1), row + 4 * (PS - 3), 4);
+        assert_memory_equal(row + 4 * (PS - 3), row + 4 * (PS - 2), 4);
+    }
+    for (int simd = SG_SIMD_SCALAR + 1; simd <= SG_SIMD_NEON; simd++) {
+        if (!test_simd_runs((sgSimd)simd)) continue;
+        render_near_miss((sgSimd)simd, got);
+        for (int i = 0; i < PS * PS * 4; i++)
+            if (want[i] != got[i])
+                fail_msg("simd %d: byte %d (pixel %d, %d) is %d, the reference's %d", simd, i,
+                         i / 4 % PS, i / 4 / PS, got[i], want[i]);
+    }
+    free(want);
+    free(got);
+}
+
 /* ---- back-to-front order ---- */
 
 typedef struct keyed {
@@ -566,6 +645,7 @@ int main(void) {
         cmocka_unit_test(blending_follows_submission_order),
         cmocka_unit_test(alpha_sources),
         cmocka_unit_test(blended_variants_identical),
+        cmocka_unit_test(blend_passes_centres_not_samples),
         cmocka_unit_test(sort_is_stable_back_to_front),
         cmocka_unit_test(sorted_draw_blends_far_first),
     };

@@ -681,6 +681,8 @@ static void sample_fns(const sgDevice *dev, const sg_pso *pso, sg_draw_state *ds
     ds->vis_record_fn =
         sg_depth_record_select(pso->desc.depth.compare, pso->desc.depth.write, dev->isa);
     ds->test_record_fn = sg_depth_record_select(pso->desc.depth.compare, false, dev->isa);
+    ds->record_pass_fn =
+        pso->raster_pass ? sg_depth_record_select(SG_COMPARE_ALWAYS, false, dev->isa) : NULL;
 }
 
 static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject pso_h, sg_geom *geom,

@@ -44,6 +44,9 @@ typedef struct sg_draw_state {
     /* The same recording (sg_vis_record; NULL where the set has none), for triangles shaded in
      * place. */
     sg_raster_samples_fn vis_record_fn, test_record_fn;
+    /* vis_record_fn without the depth test, for a triangle that passes it everywhere in the bin
+     * (as raster_pass_fn: blends that test depth and do not write it; else NULL). */
+    sg_raster_samples_fn record_pass_fn;
     bool blend;
 } sg_draw_state;
 

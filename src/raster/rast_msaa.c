@@ -1,6 +1,7 @@
 /* rast_msaa.c - one screen bin of a multisampled render pass (see rast_msaa.h). */
 #include "raster/rast_msaa.h"
 
+#include <math.h>
 #include <string.h>
 
 #include "raster/framebuffer.h"
@@ -189,6 +190,55 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
     }
 }
 
+/* The range of every sample's depth in the bin, worked out when a blend first asks for it after a
+ * depth write (passes_bin), as a one-sample bin's (rast_bin.c); valid: known and given. */
+typedef struct depth_range {
+    bool known, valid;
+    float lo, hi;
+} depth_range;
+
+/* sg_fb_ops.depth_range of the bin's samples: plane 0's whole, and planes 1-3's over the tiles
+ * that keep their own (fresh: they are plane 0's), a run of such tiles a call. */
+static bool samples_depth_range(const sg_bin_pass *p, const msaa_bin *b, float *lo, float *hi) {
+    if (!p->fb->depth_range(b->depth[0], BIN_PIXELS, lo, hi)) return false;
+    const uint64_t *fresh = b->fresh + SG_REACHED_WORDS;
+    enum { TILES = BIN_TILES * BIN_TILES };
+    for (int tile = 0; tile < TILES;) {
+        if (fresh[tile >> 6] >> (tile & 63) & 1) {
+            tile++;
+            continue;
+        }
+        int end = tile + 1;
+        while (end < TILES && !(fresh[end >> 6] >> (end & 63) & 1)) end++;
+        for (int k = 1; k < NS; k++) {
+            float l, h;
+            if (!p->fb->depth_range(b->depth[k] + tile * SG_TILE_PIXELS,
+                                    (size_t)(end - tile) * SG_TILE_PIXELS, &l, &h))
+                return false;
+            *lo = l < *lo ? l : *lo;
+            *hi = h > *hi ? h : *hi;
+        }
+        tile = end;
+    }
+    return true;
+}
+
+/* Whether every sample of triangle t passes its depth compare at each of its pixels in the bin,
+ * so that its walk without the test records the same: sg_depth_passes_all of the pixel centres'
+ * plane against a range widened by how far a sample's depth may lie from its centre's (samples
+ * are at most half a pixel away in x and in y), with a little more for that sum's rounding. */
+static bool passes_bin(const sg_bin_pass *p, const msaa_bin *b, depth_range *r, const sg_tri *t,
+                       sgCompare op) {
+    if (!r->known) {
+        r->valid = samples_depth_range(p, b, &r->lo, &r->hi);
+        r->known = true;
+    }
+    if (!r->valid) return false;
+    const float off = 0.5f * (fabsf(t->z_dx) + fabsf(t->z_dy)) * (1.0f + 0x1p-16f);
+    return sg_depth_passes_all(t, op, b->x0, b->y0, b->x0 + SG_BIN_SIZE - 1,
+                               b->y0 + SG_BIN_SIZE - 1, r->lo - off, r->hi + off);
+}
+
 /* A triangle shaded in place (a blend, or a shader draw whose fragments may discard): each
  * sample's depth test, then the pixels with a passing sample shaded once, then each passing
  * sample's depth (when the draw writes it: by the test itself for a fixed draw) and colour,
@@ -197,7 +247,7 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
  * the ids planes hold nothing else here (shade_ids ran before) and are taken as empty after it
  * (fresh). */
 static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
-                     const sg_draw_state *d, uint32_t id) {
+                     const sg_draw_state *d, uint32_t id, depth_range *range) {
     for (int k = 0; k < NS; k++) {
         b->vis[k].id = id;
         b->vis[k].compare = d->compare;
@@ -207,7 +257,9 @@ static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const s
     sg_run runs[BIN_TILES * BIN_TILES];
     uint16_t samples[BIN_TILES * BIN_TILES][NS];
     int n = 0;
-    const sg_raster_samples_fn record = shader ? d->test_record_fn : d->vis_record_fn;
+    sg_raster_samples_fn record = shader ? d->test_record_fn : d->vis_record_fn;
+    if (record && d->record_pass_fn && passes_bin(p, b, range, t, d->compare))
+        record = d->record_pass_fn;
     if (record) { /* the walk lists them */
         sg_vis_record rec;
         rec.n = 0;
@@ -369,6 +421,10 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
     start_bin(p, v, b, index);
     const bool depth_only = v->color == NULL;
     bool pending = false; /* the ids hold triangles not shaded yet */
+    /* Every value of the planes is taken: a loaded bin's pixels outside the target were never
+     * written, so such bins have none (as in rast_bin.c). */
+    depth_range range = {.known = !v->depth || ((p->load_depth || p->msaa_load) &&
+                                                (v->w < SG_BIN_SIZE || v->h < SG_BIN_SIZE))};
     sg_tri st[NS];
     for (uint32_t i = 0; i < bin->count; i++) {
         const uint32_t ti = bin->tris[i];
@@ -381,13 +437,15 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
             if (pending) shade_ids(p, b);
             pending = false;
             put_line(b, t, d, ti + 1);
+            if (d->writes_depth) range.known = false;
             continue;
         }
         for (int k = 0; k < NS; k++) sg_msaa_sample_tri(t, k, &st[k]);
         if (!depth_only && (d->blend || (shader && (d->in_place || shaders_in_place)))) {
             if (pending) shade_ids(p, b);
             pending = false;
-            in_place(p, b, t, st, d, ti + 1);
+            in_place(p, b, t, st, d, ti + 1, &range);
+            if (d->writes_depth) range.known = false;
             continue;
         }
         for (int k = 0; k < NS; k++) {
@@ -396,6 +454,7 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
         }
         d->vis_fn(st, b->x0, b->y0, b->x0 + SG_BIN_SIZE, b->y0 + SG_BIN_SIZE, b->vis);
         pending = !depth_only;
+        if (d->writes_depth) range.known = false;
     }
     if (pending) shade_ids(p, b);
     if (!shaders_in_place && p->any_shader &&
