@@ -217,15 +217,9 @@ static void write_bin(const sg_bin_pass *p, const bin_view *v, const uint32_t *c
         sg_tile_to_linear_f32(v->depth, v->pitch, depth, v->w, v->h, BIN_TILES);
 }
 
-/* A bin's depth range (sg_fb_depth_range), known or not yet; valid: known and given. */
-typedef struct depth_range {
-    bool known, valid;
-    float lo, hi;
-} depth_range;
-
 /* Whether triangle t passes its depth compare at each of its pixels in the bin at (x0, y0), so
  * that its raster function without the test draws the same (depth_range.c). */
-static bool passes_bin(const sg_bin_pass *p, depth_range *r, const float *depth, const sg_tri *t,
+static bool passes_bin(const sg_bin_pass *p, sg_depth_range *r, const float *depth, const sg_tri *t,
                        sgCompare op, int x0, int y0) {
     if (!r->known) {
         r->valid = p->fb->depth_range(depth, BIN_PIXELS, &r->lo, &r->hi);
@@ -276,8 +270,8 @@ static __attribute__((noinline)) void ordered_bin(const sg_bin_pass *p, const sg
     /* The bin's depth range, worked out when a blend first asks for it after a depth write
      * (passes_bin). It takes every value of the buffer: a loaded bin's pixels outside the target
      * were never written, so such bins have none. */
-    depth_range range = {.known = !v->depth ||
-                                  (p->load_depth && (v->w < SG_BIN_SIZE || v->h < SG_BIN_SIZE))};
+    sg_depth_range range = {.known = !v->depth ||
+                                     (p->load_depth && (v->w < SG_BIN_SIZE || v->h < SG_BIN_SIZE))};
     for (uint32_t i = 0; i < bin->count; i++) {
         uint32_t ti = bin->tris[i];
         const sg_tri *t = &b->tris[ti];

@@ -110,6 +110,13 @@ typedef struct sg_bin_pass {
 /** Renders bin `index` of the pass into its target images. */
 void sg_rast_bin(const sg_bin_pass *pass, int index);
 
+/* A bin's depth range (sg_fb_ops.depth_range), known or not yet, for the blends that pass their
+ * depth test everywhere in it (raster_pass_fn, record_pass_fn); valid: known and given. */
+typedef struct sg_depth_range {
+    bool known, valid;
+    float lo, hi;
+} sg_depth_range;
+
 /* Where bin `index` lies in the pass's targets. */
 typedef struct sg_bin_view {
     int x0, y0, w, h; /* its top-left pixel and size, cut at the targets' edges */

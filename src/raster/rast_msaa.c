@@ -190,13 +190,6 @@ static void shade_in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, c
     }
 }
 
-/* The range of every sample's depth in the bin, worked out when a blend first asks for it after a
- * depth write (passes_bin), as a one-sample bin's (rast_bin.c); valid: known and given. */
-typedef struct depth_range {
-    bool known, valid;
-    float lo, hi;
-} depth_range;
-
 /* sg_fb_ops.depth_range of the bin's samples: plane 0's whole, and planes 1-3's over the tiles
  * that keep their own (fresh: they are plane 0's), a run of such tiles a call. */
 static bool samples_depth_range(const sg_bin_pass *p, const msaa_bin *b, float *lo, float *hi) {
@@ -227,7 +220,7 @@ static bool samples_depth_range(const sg_bin_pass *p, const msaa_bin *b, float *
  * so that its walk without the test records the same: sg_depth_passes_all of the pixel centres'
  * plane against a range widened by how far a sample's depth may lie from its centre's (samples
  * are at most half a pixel away in x and in y), with a little more for that sum's rounding. */
-static bool passes_bin(const sg_bin_pass *p, const msaa_bin *b, depth_range *r, const sg_tri *t,
+static bool passes_bin(const sg_bin_pass *p, const msaa_bin *b, sg_depth_range *r, const sg_tri *t,
                        sgCompare op) {
     if (!r->known) {
         r->valid = samples_depth_range(p, b, &r->lo, &r->hi);
@@ -247,7 +240,7 @@ static bool passes_bin(const sg_bin_pass *p, const msaa_bin *b, depth_range *r, 
  * the ids planes hold nothing else here (shade_ids ran before) and are taken as empty after it
  * (fresh). */
 static void in_place(const sg_bin_pass *p, msaa_bin *b, const sg_tri *t, const sg_tri st[NS],
-                     const sg_draw_state *d, uint32_t id, depth_range *range) {
+                     const sg_draw_state *d, uint32_t id, sg_depth_range *range) {
     for (int k = 0; k < NS; k++) {
         b->vis[k].id = id;
         b->vis[k].compare = d->compare;
@@ -423,8 +416,8 @@ static bool render(const sg_bin_pass *p, const bin_view *v, msaa_bin *b, int ind
     bool pending = false; /* the ids hold triangles not shaded yet */
     /* Every value of the planes is taken: a loaded bin's pixels outside the target were never
      * written, so such bins have none (as in rast_bin.c). */
-    depth_range range = {.known = !v->depth || ((p->load_depth || p->msaa_load) &&
-                                                (v->w < SG_BIN_SIZE || v->h < SG_BIN_SIZE))};
+    sg_depth_range range = {.known = !v->depth || ((p->load_depth || p->msaa_load) &&
+                                                   (v->w < SG_BIN_SIZE || v->h < SG_BIN_SIZE))};
     sg_tri st[NS];
     for (uint32_t i = 0; i < bin->count; i++) {
         const uint32_t ti = bin->tris[i];
