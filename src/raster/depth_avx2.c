@@ -90,7 +90,9 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
             if (fresh_depth) plane0[h] = _mm256_load_ps(v0->depth + base + 8 * h);
         }
     }
-    const __m256i lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    const __m256i lanes[2] = {
+        _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128),
+        _mm256_setr_epi32(1 << 8, 1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 13, 1 << 14, 1 << 15)};
     const __m256i id = _mm256_set1_epi32((int)v0->id);
     sg_vis_record *r = v0->record;
     uint32_t any = 0;
@@ -101,19 +103,30 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
             uint32_t *ids = rec ? NULL : sg_vis_tile_ids_of(v, base, mk[k]);
             const bool from0 = k > 0 && fresh_depth; /* this plane is taken as plane 0's */
             const __m256 zx = _mm256_add_ps(_mm256_set1_ps(st[k].z), zdx);
+            const __m256i bits = _mm256_set1_epi32((int)mk[k]); /* both halves' from one */
             for (int h = 0; h < 2; h++) {
-                const unsigned bits = (mk[k] >> (8 * h)) & 255u;
-                __m256 ok = _mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                    _mm256_and_si256(_mm256_set1_epi32((int)bits), lanes), lanes));
+                const __m256i cover = _mm256_and_si256(bits, lanes[h]);
+                __m256 ok = _mm256_castsi256_ps(_mm256_cmpeq_epi32(cover, lanes[h]));
                 if (depth) {
                     float *dp = v->depth + base + 8 * h;
                     __m256 z = _mm256_add_ps(zx, zdy[h]);
                     z = _mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(_mm256_setzero_ps(), z));
                     const __m256 d = from0 ? plane0[h] : _mm256_load_ps(dp);
-                    if (zmode != Z_NONE)
-                        ok = _mm256_and_ps(
-                            ok, sg_compare8(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, z, d));
-                    if (zwrite) _mm256_store_ps(dp, _mm256_blendv_ps(d, z, ok));
+                    if (zmode == Z_LESS && zwrite) {
+                        /* The lanes not covered made NaN: z < d is then the passing lanes, and
+                         * min(z, d) is z where it passes and d elsewhere (min gives its second
+                         * operand for a NaN and for two zeros): the depth to store, no blend. */
+                        z = _mm256_or_ps(z, _mm256_castsi256_ps(
+                                                _mm256_cmpeq_epi32(cover, _mm256_setzero_si256())));
+                        ok = _mm256_cmp_ps(z, d, _CMP_LT_OQ);
+                        _mm256_store_ps(dp, _mm256_min_ps(z, d));
+                    } else {
+                        if (zmode != Z_NONE)
+                            ok = _mm256_and_ps(
+                                ok,
+                                sg_compare8(zmode == Z_LESS ? SG_COMPARE_LESS : v->compare, z, d));
+                        if (zwrite) _mm256_store_ps(dp, _mm256_blendv_ps(d, z, ok));
+                    }
                 }
                 if (ids) {
                     __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
