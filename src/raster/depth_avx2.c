@@ -130,8 +130,13 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
                 }
                 if (ids) {
                     __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
-                    const __m256i was = fresh_ids ? _mm256_setzero_si256() : _mm256_load_si256(ip);
-                    _mm256_store_si256(ip, _mm256_blendv_epi8(was, id, _mm256_castps_si256(ok)));
+                    const __m256i pass8 = _mm256_castps_si256(ok);
+                    if (fresh_ids) {
+                        _mm256_store_si256(ip, _mm256_and_si256(pass8, id));
+                    } else {
+                        _mm256_store_si256(ip,
+                                           _mm256_blendv_epi8(_mm256_load_si256(ip), id, pass8));
+                    }
                 }
                 pass |= (uint32_t)_mm256_movemask_ps(ok) << (8 * h);
             }
