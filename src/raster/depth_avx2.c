@@ -131,7 +131,7 @@ static inline __attribute__((always_inline)) void vis4_with(const sg_vis_samples
                 if (ids) {
                     __m256i *ip = (__m256i *)(void *)(ids + 8 * h);
                     const __m256i pass8 = _mm256_castps_si256(ok);
-                    if (fresh_ids) {
+                    if (fresh_ids) { /* whole, 0 where no sample passes */
                         _mm256_store_si256(ip, _mm256_and_si256(pass8, id));
                     } else {
                         _mm256_store_si256(ip,
