@@ -1557,6 +1557,76 @@ static void load_ops(void **state) {
     assert_image_depth(f, depth, 0.5f);
 }
 
+/* A bin nothing is drawn in is not cleared again where an earlier pass's clear is still in the
+ * target: every way the target can change since (a draw there, an upload, another clear colour,
+ * a loading pass, either sample count) must make the next clear write it again. 200 x 150 is
+ * 4 x 3 bins, the last column and row cut. */
+static void repeated_clears_stay_right(void **state) {
+    fixture *f = *state;
+    enum { CW = 200, CH = 150, CN = CW * CH };
+    static uint8_t px[CN * 4], pattern[CN * 4];
+    for (int i = 0; i < CN * 4; i++) pattern[i] = (uint8_t)(i * 7 + 1);
+    sgImage2D color = make_image(f, CW, CH, SG_FORMAT_RGBA8_UNORM, NULL);
+    /* A white triangle in the top-left bin only (pixels 0..49 of x and 0..37 of y). */
+    const float pos[] = {-1, 1, 0, 1, -0.5f, 1, 0, 1, -1, 0.5f, 0, 1};
+    const float col[] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+    const uint32_t idx[] = {0, 1, 2};
+    sgGeomDesc gd = {
+        .vertex_count = 3, .positions = pos, .colors = col, .index_count = 3, .indices = idx};
+    sgGeom tri = {0};
+    assert_ok(f, sgCreateGeom(f->dev, &gd, &tri));
+    sgPipelineStateObject pso = make_pso(f, &(sgPipelineDesc){0});
+    sgDrawParams dp = params_with(NO_IMAGE);
+    for (int samples = 1; samples <= 4; samples += 3) {
+        sgPassDesc pass = pass_of(color, NO_IMAGE);
+        pass.samples = samples;
+        memcpy(pass.clear_color, RED, sizeof pass.clear_color);
+        /* drawn: the triangle's corner pixel white, the last bin red */
+        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
+        assert_ok(f, sgDraw(f->dev, pso, tri, &dp));
+        assert_ok(f, sgEndRenderPass(f->dev, &pass));
+        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        assert_all_rgba(px, 1, 255, 255, 255, 255);
+        assert_all_rgba(px + (CN - 1) * 4, 1, 255, 0, 0, 255);
+        /* nothing drawn: the bin the triangle was in is cleared again, the others stay */
+        for (int k = 0; k < 2; k++) {
+            assert_ok(f, sgBeginRenderPass(f->dev, &pass));
+            assert_ok(f, sgEndRenderPass(f->dev, &pass));
+            assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+            assert_all_rgba(px, CN, 255, 0, 0, 255);
+        }
+        /* an upload, then the same clear */
+        assert_ok(f, sgUploadImage2D(f->dev, color, pattern, 0));
+        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
+        assert_ok(f, sgEndRenderPass(f->dev, &pass));
+        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        assert_all_rgba(px, CN, 255, 0, 0, 255);
+        /* another clear colour, then this one again */
+        memcpy(pass.clear_color, BLUE, sizeof pass.clear_color);
+        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
+        assert_ok(f, sgEndRenderPass(f->dev, &pass));
+        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        assert_all_rgba(px, CN, 0, 0, 255, 255);
+        memcpy(pass.clear_color, RED, sizeof pass.clear_color);
+        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
+        assert_ok(f, sgEndRenderPass(f->dev, &pass));
+        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        assert_all_rgba(px, CN, 255, 0, 0, 255);
+        /* a loading pass draws over the cleared bin, then the clear again */
+        sgPassDesc load = pass;
+        load.color_load = SG_LOAD_LOAD;
+        assert_ok(f, sgBeginRenderPass(f->dev, &load));
+        assert_ok(f, sgDraw(f->dev, pso, tri, &dp));
+        assert_ok(f, sgEndRenderPass(f->dev, &load));
+        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        assert_all_rgba(px, 1, 255, 255, 255, 255);
+        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
+        assert_ok(f, sgEndRenderPass(f->dev, &pass));
+        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        assert_all_rgba(px, CN, 255, 0, 0, 255);
+    }
+}
+
 static void depth_test_and_write(void **state) {
     fixture *f = *state;
     sgImage2D color = make_image(f, W, W, SG_FORMAT_RGBA8_UNORM, NULL);
@@ -1989,6 +2059,7 @@ int main(void) {
         FIXTURE_TEST(draw_out_of_memory),
         FIXTURE_TEST(zero_pipeline_is_vertex_colour_without_depth),
         FIXTURE_TEST(load_ops),
+        FIXTURE_TEST(repeated_clears_stay_right),
         FIXTURE_TEST(depth_test_and_write),
         FIXTURE_TEST(storage_copy_and_reference),
         FIXTURE_TEST(quads_match_triangles),

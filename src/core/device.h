@@ -26,7 +26,18 @@ typedef struct sg_image {
     void *block;       /* the allocation holding data */
     uint32_t pass_use; /* serial of the last pass a draw sampled it in */
     sg_mip_chain mips; /* its levels, level 0 at data (sgImage2DDesc.mip_levels) */
+    /* RGBA8 images (NULL for D32): a byte a 64 x 64 bin of a render pass that targets it, 1
+     * where every pixel there is cleared_value, a pass's clear that nothing has written over
+     * since (sg_bin_pass.cleared); in the same block as the pixels. */
+    uint8_t *cleared;
+    uint32_t cleared_value;
 } sg_image;
+
+/* The bytes of sg_image.cleared of a width x height image: one a bin. */
+static inline size_t sg_image_bins(int width, int height) {
+    return (size_t)((width + SG_BIN_SIZE - 1) >> SG_BIN_SHIFT) *
+           (size_t)((height + SG_BIN_SIZE - 1) >> SG_BIN_SHIFT);
+}
 
 typedef struct sg_geom {
     int vertex_count, index_count;

@@ -19,6 +19,7 @@ void sg_image_release(sgDevice *dev, sg_image *img) {
     sg_free(dev, img->block);
     img->block = NULL;
     img->data = NULL;
+    img->cleared = NULL;
 }
 
 /* Pixels start on a cache line (malloc's large blocks start 16 bytes into a page): a bin's rows
@@ -99,7 +100,9 @@ sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *ou
     size_t ps = format_size(desc->format);
     size_t bytes = (size_t)desc->width * (size_t)desc->height * ps;
     const size_t all = levels > 1 ? level_offset(desc->width, desc->height, levels) : bytes;
-    uint8_t *block = sg_alloc(dev, all + DATA_ALIGN - 1);
+    const size_t bins =
+        desc->format == SG_FORMAT_RGBA8_UNORM ? sg_image_bins(desc->width, desc->height) : 0;
+    uint8_t *block = sg_alloc(dev, all + bins + DATA_ALIGN - 1);
     if (!block)
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgCreateImage2D: out of memory (%zu bytes)",
                         all);
@@ -121,6 +124,9 @@ sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *ou
     img->block = block;
     img->data = data;
     img->pass_use = 0;
+    img->cleared = bins ? data + all : NULL;
+    if (bins) memset(img->cleared, 0, bins);
+    img->cleared_value = 0;
     set_chain(img, levels);
     if (desc->data)
         generate_levels(img);
@@ -180,7 +186,10 @@ static sgResult transfer(sgDevice *dev, const char *fn, sgImage2D h, const void 
         else
             memcpy((uint8_t *)dst + (size_t)y * pitch, pixels, row);
     }
-    if (src) generate_levels(img);
+    if (src) {
+        generate_levels(img);
+        if (img->cleared) memset(img->cleared, 0, sg_image_bins(img->width, img->height));
+    }
     return SG_OK;
 }
 

@@ -147,6 +147,13 @@ sgResult sgBeginRenderPass(sgDevice *dev, const sgPassDesc *pass) {
     p->clear_depth = pass->depth_load == SG_LOAD_CLEAR ? pass->clear_depth : 1.0f;
     p->store_depth = pass->depth_store != SG_STORE_DONT_CARE;
     p->samples = pass->samples == 4 ? 4 : 1;
+    if (color && color->cleared) { /* the bins known to hold this pass's clear already */
+        if (!p->load_color && color->cleared_value != p->clear_color) {
+            memset(color->cleared, 0, sg_image_bins(color->width, color->height));
+            color->cleared_value = p->clear_color;
+        }
+        p->cleared = color->cleared;
+    }
     p->fb = dev->isa == SG_ISA_AVX512 ? &sg_fb_ops_avx512
             : dev->isa == SG_ISA_AVX2 ? &sg_fb_ops_avx2
                                       : &sg_fb_ops_portable;

@@ -353,6 +353,7 @@ static __attribute__((noinline)) void depth_only_bin(const sg_bin_pass *p, const
 sg_bin_view sg_bin_view_of(const sg_bin_pass *p, int index) {
     const sg_binner *b = p->binner;
     sg_bin_view v;
+    v.index = index;
     v.x0 = (index % b->bins_x) << SG_BIN_SHIFT;
     v.y0 = (index / b->bins_x) << SG_BIN_SHIFT;
     v.w = p->width - v.x0 < SG_BIN_SIZE ? p->width - v.x0 : SG_BIN_SIZE;
@@ -365,8 +366,13 @@ sg_bin_view sg_bin_view_of(const sg_bin_pass *p, int index) {
 }
 
 void sg_bin_fill_empty(const sg_bin_pass *p, const sg_bin_view *v) {
-    if (v->color && !p->load_color)
-        sg_fill_linear_u32(v->color, v->pitch, v->w, v->h, p->clear_color);
+    if (v->color && !p->load_color) {
+        /* Not again where an earlier pass's clear is still there (the same bytes): a render loop
+         * into one target rewrites only the bins something is drawn in. */
+        uint8_t *known = p->cleared ? p->cleared + v->index : NULL;
+        if (!known || !*known) sg_fill_linear_u32(v->color, v->pitch, v->w, v->h, p->clear_color);
+        if (known) *known = 1;
+    }
     if (v->depth && p->store_depth && !p->load_depth) {
         uint32_t bits;
         memcpy(&bits, &p->clear_depth, 4);
@@ -375,6 +381,11 @@ void sg_bin_fill_empty(const sg_bin_pass *p, const sg_bin_view *v) {
 }
 
 void sg_rast_bin(const sg_bin_pass *p, int index) {
+    /* Only an empty bin's clear (sg_bin_fill_empty) keeps the target's cleared pixels known:
+     * whatever else this call does may write them. */
+    if (p->cleared &&
+        (p->binner->bins[index].count || (p->samples > 1 && (p->msaa_load || p->msaa_store))))
+        p->cleared[index] = 0;
     if (p->samples > 1) { /* its own path: this one stays as it is */
         sg_rast_bin_msaa(p, index);
         return;

@@ -89,6 +89,10 @@ typedef struct sg_bin_pass {
     uint32_t clear_color;
     float clear_depth;
     bool store_depth;
+    /* A byte a bin of the colour target (sg_image.cleared), or NULL: 1 where the target's pixels
+     * there are all clear_color already, so that a bin nothing is drawn in leaves them as they
+     * are; sg_rast_bin sets a bin's byte to 0 before anything else writes its pixels. */
+    uint8_t *cleared;
     bool any_in_place;    /* some draw is shaded in place: bins take the ordered path */
     bool any_pair;        /* some draw shades two whole tiles at once (shade2_fn) */
     bool any_runs;        /* some draw packs partly covered tiles (runs_fn) */
@@ -119,6 +123,7 @@ typedef struct sg_depth_range {
 
 /* Where bin `index` lies in the pass's targets. */
 typedef struct sg_bin_view {
+    int index;        /* the bin's */
     int x0, y0, w, h; /* its top-left pixel and size, cut at the targets' edges */
     size_t pitch;     /* of both targets: width * 4 bytes */
     uint8_t *color;   /* its first pixel in each target, NULL without that target */
