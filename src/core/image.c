@@ -105,7 +105,7 @@ sgResult sgCreateImage2D(sgDevice *dev, const sgImage2DDesc *desc, sgImage2D *ou
     uint8_t *block = sg_alloc(dev, all + bins + DATA_ALIGN - 1);
     if (!block)
         return sg_error(dev, SG_ERROR_OUT_OF_MEMORY, "sgCreateImage2D: out of memory (%zu bytes)",
-                        all);
+                        all + bins);
     uint8_t *data = block + (-(uintptr_t)block & (DATA_ALIGN - 1));
     uint32_t id = sg_acquire(dev, &dev->image_pool, "sgCreateImage2D", "image_pool_size");
     if (!id) {
