@@ -1561,6 +1561,17 @@ static void load_ops(void **state) {
  * target: every way the target can change since (a draw there, an upload, another clear colour,
  * a loading pass, either sample count) must make the next clear write it again. 200 x 150 is
  * 4 x 3 bins, the last column and row cut. */
+/* One pass of `pass` (with draw g of pso when g.id is not 0), then the whole image read
+ * back into px (room for all of it). */
+static void pass_and_read(fixture *f, const sgPassDesc *pass, sgPipelineStateObject pso, sgGeom g,
+                          sgImage2D color, uint8_t *px) {
+    sgDrawParams dp = params_with(NO_IMAGE);
+    assert_ok(f, sgBeginRenderPass(f->dev, pass));
+    if (g.id) assert_ok(f, sgDraw(f->dev, pso, g, &dp));
+    assert_ok(f, sgEndRenderPass(f->dev, pass));
+    assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+}
+
 static void repeated_clears_stay_right(void **state) {
     fixture *f = *state;
     enum { CW = 200, CH = 150, CN = CW * CH };
@@ -1576,53 +1587,37 @@ static void repeated_clears_stay_right(void **state) {
     sgGeom tri = {0};
     assert_ok(f, sgCreateGeom(f->dev, &gd, &tri));
     sgPipelineStateObject pso = make_pso(f, &(sgPipelineDesc){0});
-    sgDrawParams dp = params_with(NO_IMAGE);
+    const sgGeom none = {0};
     for (int samples = 1; samples <= 4; samples += 3) {
         sgPassDesc pass = pass_of(color, NO_IMAGE);
         pass.samples = samples;
         memcpy(pass.clear_color, RED, sizeof pass.clear_color);
         /* drawn: the triangle's corner pixel white, the last bin red */
-        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
-        assert_ok(f, sgDraw(f->dev, pso, tri, &dp));
-        assert_ok(f, sgEndRenderPass(f->dev, &pass));
-        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        pass_and_read(f, &pass, pso, tri, color, px);
         assert_all_rgba(px, 1, 255, 255, 255, 255);
         assert_all_rgba(px + (CN - 1) * 4, 1, 255, 0, 0, 255);
         /* nothing drawn: the bin the triangle was in is cleared again, the others stay */
         for (int k = 0; k < 2; k++) {
-            assert_ok(f, sgBeginRenderPass(f->dev, &pass));
-            assert_ok(f, sgEndRenderPass(f->dev, &pass));
-            assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+            pass_and_read(f, &pass, pso, none, color, px);
             assert_all_rgba(px, CN, 255, 0, 0, 255);
         }
         /* an upload, then the same clear */
         assert_ok(f, sgUploadImage2D(f->dev, color, pattern, 0));
-        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
-        assert_ok(f, sgEndRenderPass(f->dev, &pass));
-        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        pass_and_read(f, &pass, pso, none, color, px);
         assert_all_rgba(px, CN, 255, 0, 0, 255);
         /* another clear colour, then this one again */
         memcpy(pass.clear_color, BLUE, sizeof pass.clear_color);
-        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
-        assert_ok(f, sgEndRenderPass(f->dev, &pass));
-        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        pass_and_read(f, &pass, pso, none, color, px);
         assert_all_rgba(px, CN, 0, 0, 255, 255);
         memcpy(pass.clear_color, RED, sizeof pass.clear_color);
-        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
-        assert_ok(f, sgEndRenderPass(f->dev, &pass));
-        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        pass_and_read(f, &pass, pso, none, color, px);
         assert_all_rgba(px, CN, 255, 0, 0, 255);
         /* a loading pass draws over the cleared bin, then the clear again */
         sgPassDesc load = pass;
         load.color_load = SG_LOAD_LOAD;
-        assert_ok(f, sgBeginRenderPass(f->dev, &load));
-        assert_ok(f, sgDraw(f->dev, pso, tri, &dp));
-        assert_ok(f, sgEndRenderPass(f->dev, &load));
-        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        pass_and_read(f, &load, pso, tri, color, px);
         assert_all_rgba(px, 1, 255, 255, 255, 255);
-        assert_ok(f, sgBeginRenderPass(f->dev, &pass));
-        assert_ok(f, sgEndRenderPass(f->dev, &pass));
-        assert_ok(f, sgReadImage2D(f->dev, color, px, 0));
+        pass_and_read(f, &pass, pso, none, color, px);
         assert_all_rgba(px, CN, 255, 0, 0, 255);
     }
 }
