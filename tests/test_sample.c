@@ -159,35 +159,38 @@ static int copies_run(int simd[3]) {
 }
 
 /* sg_sample16 and sg_sample16_mip (the copy simd names) at (s, t) give each lane exactly what
- * sg_sample and sg_sample_mip give, the quads' levels random. */
+ * sg_sample and sg_sample_mip give, with the texel window tried or not, the quads' levels
+ * random. */
 static void check_lanes(const sg_mip_chain *m, int simd, bool bilinear, bool repeat,
                         const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES]) {
-    int32_t got[4][SG_SHADER_LANES];
-    sg_sample16(simd, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear, repeat,
-                s, t, got);
-    for (int i = 0; i < SG_SHADER_LANES; i++) {
-        const sg_texel want = sg_sample(&m->level[0], s[i], t[i], bilinear, repeat);
-        for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
-    }
-    float unit[4][SG_SHADER_LANES];
-    sg_sample16_unit(simd, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear,
-                     repeat, s, t, unit);
-    for (int i = 0; i < SG_SHADER_LANES; i++)
-        for (int k = 0; k < 4; k++) {
-            const float want = (float)got[k][i] / 255.0f;
-            assert_memory_equal(&unit[k][i], &want, sizeof want);
+    for (int window = 0; window < 2; window++) {
+        int32_t got[4][SG_SHADER_LANES];
+        sg_sample16(simd, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear,
+                    repeat, window, s, t, got);
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            const sg_texel want = sg_sample(&m->level[0], s[i], t[i], bilinear, repeat);
+            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
         }
-    sg_mip_pick pick[4];
-    for (int q = 0; q < 4; q++) {
-        const int l0 = rand() % m->levels;
-        const bool two = l0 + 1 < m->levels && rand() % 3;
-        pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
-    }
-    sg_sample16_mip(simd, m, pick, bilinear, repeat, s, t, got);
-    for (int i = 0; i < SG_SHADER_LANES; i++) {
-        const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
-        const sg_texel want = sg_sample_mip(m, p, s[i], t[i], bilinear, repeat);
-        for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
+        float unit[4][SG_SHADER_LANES];
+        sg_sample16_unit(simd, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear,
+                         repeat, window, s, t, unit);
+        for (int i = 0; i < SG_SHADER_LANES; i++)
+            for (int k = 0; k < 4; k++) {
+                const float want = (float)got[k][i] / 255.0f;
+                assert_memory_equal(&unit[k][i], &want, sizeof want);
+            }
+        sg_mip_pick pick[4];
+        for (int q = 0; q < 4; q++) {
+            const int l0 = rand() % m->levels;
+            const bool two = l0 + 1 < m->levels && rand() % 3;
+            pick[q] = (sg_mip_pick){l0, two ? l0 + 1 : l0, two ? rand() % 256 : 0};
+        }
+        sg_sample16_mip(simd, m, pick, bilinear, repeat, window, s, t, got);
+        for (int i = 0; i < SG_SHADER_LANES; i++) {
+            const sg_mip_pick p = pick[(i >> 1 & 1) | (i >> 3) << 1];
+            const sg_texel want = sg_sample_mip(m, p, s[i], t[i], bilinear, repeat);
+            for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
+        }
     }
 }
 

@@ -499,6 +499,7 @@ static void compare_variant(int variant, int kind) {
             const texture *tx = &tex[n % NSIZES];
             sg_shade_ctx ctx;
             memset(&ctx, 0, sizeof ctx);
+            ctx.texel_window = n & 1; /* the window tried or not: the same texels */
             ctx.tex = (sg_texview){texture_pick(tx, &g), tx->w, tx->h};
             if (!textured) ctx.tex.texels = NULL; /* a vertex-colour pipeline binds none */
             sg_tri t;
@@ -668,6 +669,7 @@ static void compare_mip(int linear) {
                     const sg_mip_chain *m = &chains[n % NSIZES];
                     sg_shade_ctx ctx;
                     memset(&ctx, 0, sizeof ctx);
+                    ctx.texel_window = n & 1;
                     ctx.tex = m->level[0];
                     ctx.mips = m;
                     sg_tri t;

@@ -203,6 +203,7 @@ sgResult sgCreateDevice(const sgDeviceDesc *desc, sgDevice **out_device) {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     dev->thread_count = d.thread_count ? d.thread_count : (cores > 0 ? (int)cores : 1);
     dev->isa = isa;
+    dev->texel_window = sg_texel_window_detect();
     dev->vertex_gouraud = vertex_gouraud_select(isa);
     dev->images = pool_create(dev, &dev->image_pool, ip, 1, sizeof(sg_image));
     dev->geoms = pool_create(dev, &dev->geom_pool, gp, 2, sizeof(sg_geom));

@@ -81,6 +81,7 @@ struct sgDevice {
     void *log_user_data;
     int thread_count;
     sg_isa isa;                      /* instruction set of the raster */
+    bool texel_window;               /* sg_shade_ctx.texel_window of its draws */
     sg_vertex_lit_fn vertex_gouraud; /* Gouraud lighting of vertices in that set; NULL: scalar */
     /* The last failed call's message (sgGetLastError): NULL (none yet), error_short, or
      * error_long. A message that fits error_short takes no allocation, so a failed call leaves the

@@ -708,7 +708,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
         return sg_error(dev, SG_ERROR_NULL_POINTER,
                         "sgDraw: params->uniforms is NULL but uniform_size = %zu",
                         params->uniform_size);
-    sg_shade_ctx ctx = {0};
+    sg_shade_ctx ctx = {.texel_window = dev->texel_window};
     sg_shader_state *st = &ctx.shader;
     for (int k = 0; k < SG_MAX_DRAW_TEXTURES; k++) {
         const sgImage2D h = params->textures[k];
@@ -899,7 +899,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         }
     }
     bool tinted = tint[0] != 1.0f || tint[1] != 1.0f || tint[2] != 1.0f || tint[3] != 1.0f;
-    sg_shade_ctx ctx = {0};
+    sg_shade_ctx ctx = {.texel_window = dev->texel_window};
     const sgLightingMode lighting = pso->desc.lighting;
     if (lighting != SG_LIGHTING_NONE) {
         light_refusal refusal = {dev, SG_OK};

@@ -2,6 +2,9 @@
  * byte for byte (see shade.h), and the choice of variant. */
 #include "raster/shade.h"
 
+#include <stdio.h>
+#include <string.h>
+
 #include "raster/framebuffer.h"
 
 /* The one body every variant is made from; the constant arguments fold away per variant, and
@@ -100,6 +103,31 @@ sg_isa sg_isa_detect(void) {
     return SG_ISA_NEON; /* Advanced SIMD is part of every AArch64 CPU */
 #endif
     return SG_ISA_SCALAR;
+}
+
+bool sg_texel_window_detect(void) {
+#if defined(__x86_64__) || defined(__i386__)
+    /* The window replaces gathers by row loads, permutes and a test, which fails on about half
+     * the mipmapped lookups and is then mispredicted. Where gathers are slow (AMD's Zen 4) it
+     * pays; on an Intel Xeon of 2023 gathers alone are quicker (docs/performance.md, "Texel
+     * windows"), unless the microcode's mitigation of gather data sampling, which the Linux
+     * kernel reports here, slows every gather. */
+    __builtin_cpu_init();
+    if (!__builtin_cpu_is("intel")) return true;
+#if defined(__linux__)
+    FILE *f = fopen("/sys/devices/system/cpu/vulnerabilities/gather_data_sampling", "r");
+    if (!f) return true; /* not known: gathers may be slowed */
+    char line[64] = "";
+    const bool read = fgets(line, sizeof line, f) != NULL;
+    fclose(f);
+    return !read ||
+           !(strncmp(line, "Not affected", 12) == 0 || strncmp(line, "Vulnerable", 10) == 0);
+#else
+    return true;
+#endif
+#else
+    return true;        /* no window in the other sets' lookups */
+#endif
 }
 
 bool sg_isa_runs(sg_isa isa) {

@@ -59,6 +59,10 @@ typedef struct sg_shade_ctx {
     const sg_tri *tris;
     const sg_tri_ext *ext;
     sg_shader_state shader; /* shader pipelines (sgShaderDesc) */
+    /* The AVX-512 lookups of mipmapped textures and of sgSample try the 8 x 8 texel window (row
+     * loads and permutes) before gathering: the device's choice, sg_texel_window_detect. The
+     * fixed shading without mipmaps and the AVX2 lookups always try theirs. Same texels. */
+    bool texel_window;
 } sg_shade_ctx;
 
 /** The extension of triangle t (NULL when the pass has none). */
@@ -200,6 +204,9 @@ sg_isa sg_isa_detect(void);
 /** Whether this CPU (and build) runs `isa`: the scalar code everywhere, the x86 sets up to the
  *  best detected, NEON on AArch64 only. */
 bool sg_isa_runs(sg_isa isa);
+/** Whether the AVX-512 lookups should try the texel window before gathering on this CPU
+ *  (sg_shade_ctx.texel_window): no where gathers are quick, yes elsewhere. */
+bool sg_texel_window_detect(void);
 
 /** Float colour channel to unorm8, round to nearest, clamped to [0, 1] (NaN gives 0). */
 static inline uint32_t sg_to_unorm8(float v) {

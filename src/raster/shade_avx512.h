@@ -32,6 +32,7 @@ _Static_assert(SG_MAX_IMAGE_SIZE < 32768, "texture sides must fit signed 16 bits
 typedef struct tex16 {
     const int *texels;
     int width, height;
+    bool window; /* window_fetch tried before the gathers (sg_shade_ctx.texel_window) */
     __m512 scale_x, scale_y, hi_x, hi_y;
     __m512i n_x, n_y, last_x, last_y;
 } tex16;
@@ -123,7 +124,7 @@ INLINE void pair_fetch(const tex16 *tx, __m512i idx, __mmask16 m, __m512i *first
 INLINE bool window_fetch(const tex16 *tx, __m512i a, __m512i b, __mmask16 m, const int least,
                          __m512i *t00, __m512i *t10, __m512i *t01, __m512i *t11) {
     const int tw = tx->width, th = tx->height;
-    if (tw < 8 || th < 8) return false;
+    if (!tx->window || tw < 8 || th < 8) return false;
     int wx, wy;
     if (least) {
         wx = _mm512_mask_reduce_min_epi32(m, a);
@@ -162,14 +163,16 @@ INLINE bool window_fetch(const tex16 *tx, __m512i a, __m512i b, __mmask16 m, con
     return true;
 }
 
-/* The bound texture for the filter (bilinear: coordinates in 1/256 texel). */
-INLINE tex16 tex16_of(const sg_texview *tv, const int bilinear) {
+/* The bound texture for the filter (bilinear: coordinates in 1/256 texel); window: whether its
+ * lookups try the texel window. */
+INLINE tex16 tex16_of(const sg_texview *tv, const int bilinear, const bool window) {
     const int tw = tv->width, th = tv->height;
     const float sc = bilinear ? 256.0f : 1.0f;
     tex16 tx;
     tx.texels = (const int *)(const void *)tv->texels;
     tx.width = tw;
     tx.height = th;
+    tx.window = window;
     tx.scale_x = _mm512_set1_ps(sc * (float)tw);
     tx.scale_y = _mm512_set1_ps(sc * (float)th);
     tx.hi_x = _mm512_set1_ps(bilinear ? 256.0f * (float)(tw + 1) : (float)(tw - 1));
@@ -250,8 +253,8 @@ INLINE void unpack_texels(__m512i t, __m512i c[4]) {
 
 /* Channel k (0 .. 255) of each lane of m in c[k] (others may be 0): nearest or bilinear. */
 INLINE void lookup16(const sg_texview *tv, __m512 s, __m512 u, __mmask16 m, const int bilinear,
-                     const int repeat, const int least, __m512i c[4]) {
-    const tex16 tx = tex16_of(tv, bilinear);
+                     const int repeat, const int least, const bool window, __m512i c[4]) {
+    const tex16 tx = tex16_of(tv, bilinear, window);
     if (bilinear) { /* repeat as a constant in each call, where a caller's is not */
         __m512i x[4];
         if (repeat)
@@ -322,7 +325,8 @@ INLINE void mip16_pick(const sg_mip_chain *m, __m512 s, __m512 u, const int line
  * level the lanes read is looked up once, for the lanes that take it (a lane whose second level
  * weighs 0 does not read that level: its blend gives the first level's texel). Channels in c[k]. */
 INLINE void mip16_lookup(const sg_mip_chain *m, __m512i l0, __m512i l1, __m512i f, __m512 s,
-                         __m512 u, const int bilinear, const int repeat, __m512i c[4]) {
+                         __m512 u, const int bilinear, const int repeat, const bool window,
+                         __m512i c[4]) {
     const __mmask16 weighed = _mm512_test_epi32_mask(f, f);
     const __m512i one = _mm512_set1_epi32(1);
     const __m512i bits =
@@ -332,7 +336,7 @@ INLINE void mip16_lookup(const sg_mip_chain *m, __m512i l0, __m512i l1, __m512i 
     /* Every weight 0 (nearest mipmaps, magnified tiles): each lane's first level's texel, which
      * the blend below would give; and with one level for all, that level's lookup as it is. */
     if (!weighed && !(want & (want - 1))) {
-        lookup16(&m->level[__builtin_ctz(want)], s, u, 0xffff, bilinear, repeat, 0, c);
+        lookup16(&m->level[__builtin_ctz(want)], s, u, 0xffff, bilinear, repeat, 0, window, c);
         return;
     }
     __m512i a[4], b[4];
@@ -343,7 +347,7 @@ INLINE void mip16_lookup(const sg_mip_chain *m, __m512i l0, __m512i l1, __m512i 
         const __mmask16 in0 = _mm512_cmpeq_epi32_mask(l0, lv),
                         in1 = _mm512_cmpeq_epi32_mask(l1, lv);
         __m512i t[4];
-        lookup16(&m->level[level], s, u, in0 | (in1 & weighed), bilinear, repeat, 0, t);
+        lookup16(&m->level[level], s, u, in0 | (in1 & weighed), bilinear, repeat, 0, window, t);
         for (int k = 0; k < 4; k++) {
             a[k] = _mm512_mask_blend_epi32(in0, a[k], t[k]);
             b[k] = _mm512_mask_blend_epi32(in1, b[k], t[k]);
@@ -412,7 +416,7 @@ INLINE bool texture16_tiles(const sg_shade_ctx *c, const int n, const __m512 s[]
                             const uint32_t mask[], __m512 col[][4], __m512i out[],
                             const int textured, const int bilinear, const int repeat,
                             const int flat, const int sec) {
-    const tex16 tx = tex16_of(&c->tex, bilinear);
+    const tex16 tx = tex16_of(&c->tex, bilinear, true); /* see sg_shade_ctx.texel_window */
     __m512i tc[4][4];
     if (textured >= SG_TEX_MIP) {
         /* every tile's levels first: their chains of dependent steps side by side */
@@ -421,7 +425,8 @@ INLINE bool texture16_tiles(const sg_shade_ctx *c, const int n, const __m512 s[]
             mip16_levels(c->mips, s[i], u[i], mask[i], textured == SG_TEX_MIP_LINEAR, &l0[i],
                          &l1[i], &f[i]);
         for (int i = 0; i < n; i++)
-            mip16_lookup(c->mips, l0[i], l1[i], f[i], s[i], u[i], bilinear, repeat, tc[i]);
+            mip16_lookup(c->mips, l0[i], l1[i], f[i], s[i], u[i], bilinear, repeat, c->texel_window,
+                         tc[i]);
         if (flat == SG_FLAT_WHITE && !sec) { /* the texel, as in shade_mip.c */
             for (int i = 0; i < n; i++)
                 out[i] = _mm512_or_si512(_mm512_or_si512(tc[i][0], _mm512_slli_epi32(tc[i][1], 8)),

@@ -46,7 +46,7 @@ shade_mip(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, uint32_t mask,
     for (int q = 0; q < 4; q++)
         if (!(mask & (0x33u << ((q & 1) * 2 + (q >> 1) * 8)))) pick[q] = pick[covered];
     int32_t tx[4][SG_SHADER_LANES];
-    sg_sample16_mip_portable(m, pick, bilinear, repeat, s, u, tx);
+    sg_sample16_mip_portable(m, pick, bilinear, repeat, false, s, u, tx);
     /* The colours of all 16 lanes on vectors, each step as shade.c takes it, then the covered
      * pixels written. */
     typedef uint32_t sg_vu __attribute__((vector_size(4 * SG_SHADER_LANES)));

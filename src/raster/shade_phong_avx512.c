@@ -46,7 +46,7 @@ INLINE void phong_tile(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
         for (int k = 0; k < 4; k++) prim[k] = base[k];
     }
     if (textured) {
-        const tex16 tx = tex16_of(&c->tex, bilinear);
+        const tex16 tx = tex16_of(&c->tex, bilinear, true);
         __m512 s = _mm512_mul_ps(SG_PLANE(t->a[4], t->a_dx[4], t->a_dy[4]), w);
         __m512 u = _mm512_mul_ps(SG_PLANE(t->a[5], t->a_dx[5], t->a_dy[5]), w);
         __m512i tc[4];

@@ -191,7 +191,7 @@ static float sample_depth(const sg_shader_tex *tx, float s, float t, bool biline
 /* sgSample of a mipmapped pipeline on an RGBA8 texture: each 2 x 2 quad of lanes (a tile's lanes
  * are its pixels, row by row) takes its levels from its own differences of u and v, as the fixed
  * shading does (shade_mip.c). */
-static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s,
+static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s, bool window,
                        const float u[SG_SHADER_LANES], const float v[SG_SHADER_LANES],
                        float rgba[4][SG_SHADER_LANES]) {
     const int linear = s->mipmap == SG_MIPMAP_LINEAR;
@@ -202,7 +202,7 @@ static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s,
                                 v[l0 + 4] - v[l0], linear);
     }
     int32_t texel[4][SG_SHADER_LANES];
-    sg_sample16_mip(s->sample16, tx->mips, pick, s->bilinear, s->repeat, u, v, texel);
+    sg_sample16_mip(s->sample16, tx->mips, pick, s->bilinear, s->repeat, window, u, v, texel);
     sg_texels_to_unit(s->sample16, texel, rgba);
 }
 
@@ -214,12 +214,12 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
             ? &c->shader.textures[slot]
             : NULL;
     if (tx && !tx->depth && c->shader.mipmap > SG_MIPMAP_NONE && tx->mips) {
-        sample_mip(tx, &c->shader, u, v, rgba);
+        sample_mip(tx, &c->shader, c->texel_window, u, v, rgba);
         return;
     }
     if (tx && !tx->depth) {
         sg_sample16_unit(c->shader.sample16, tx->data, tx->width, tx->height, c->shader.bilinear,
-                         c->shader.repeat, u, v, rgba);
+                         c->shader.repeat, c->texel_window, u, v, rgba);
         return;
     }
     for (int i = 0; i < SG_SHADER_LANES; i++) {

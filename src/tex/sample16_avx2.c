@@ -21,9 +21,10 @@ INLINE void lookup_all(const uint8_t *texels, int w, int h, bool bilinear, bool 
                 c[half]);
 }
 
-void sg_sample16_avx2(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
+void sg_sample16_avx2(const uint8_t *texels, int w, int h, bool bilinear, bool repeat, bool window,
                       const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
                       int32_t texel[4][SG_SHADER_LANES]) {
+    (void)window; /* the AVX2 lookups always try their window (sg_shade_ctx.texel_window) */
     __m256i c[2][4];
     lookup_all(texels, w, h, bilinear, repeat, s, t, c);
     for (int half = 0; half < 2; half++)
@@ -33,8 +34,9 @@ void sg_sample16_avx2(const uint8_t *texels, int w, int h, bool bilinear, bool r
 
 /* Each half's two quads' levels and weight spread to their lanes, then mip8_lookup. */
 void sg_sample16_mip_avx2(const sg_mip_chain *m, const sg_mip_pick pick[4], bool bilinear,
-                          bool repeat, const float s[SG_SHADER_LANES],
+                          bool repeat, bool window, const float s[SG_SHADER_LANES],
                           const float t[SG_SHADER_LANES], int32_t texel[4][SG_SHADER_LANES]) {
+    (void)window;
     for (int half = 0; half < 2; half++) {
         const sg_mip_pick *a = &pick[2 * half], *b = &pick[2 * half + 1];
 #define SG_SPREAD(field)                                                                           \
@@ -66,8 +68,9 @@ void sg_texels_to_unit_avx2(const int32_t texel[4][SG_SHADER_LANES],
 
 /* The lookups and the conversion in one call, the channels kept in registers between them. */
 void sg_sample16_unit_avx2(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
-                           const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
-                           float out[4][SG_SHADER_LANES]) {
+                           bool window, const float s[SG_SHADER_LANES],
+                           const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {
+    (void)window;
     __m256i c[2][4];
     lookup_all(texels, w, h, bilinear, repeat, s, t, c);
     for (int half = 0; half < 2; half++)

@@ -12,23 +12,23 @@
 #endif
 
 /* Every lane of a w x h texture at (s[i], t[i]). */
-INLINE void lookup_all(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
+INLINE void lookup_all(const uint8_t *texels, int w, int h, bool bilinear, bool repeat, bool window,
                        const float *s, const float *t, __m512i c[4]) {
     const sg_texview tv = {texels, w, h};
-    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, 1, c);
+    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, 1, window, c);
 }
 
 void sg_sample16_avx512(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
-                        const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
+                        bool window, const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
                         int32_t texel[4][SG_SHADER_LANES]) {
     __m512i c[4];
-    lookup_all(texels, w, h, bilinear, repeat, s, t, c);
+    lookup_all(texels, w, h, bilinear, repeat, window, s, t, c);
     for (int k = 0; k < 4; k++) _mm512_storeu_si512(texel[k], c[k]);
 }
 
 /* Each quad's levels and weight spread to its lanes, then mip16_lookup. */
 void sg_sample16_mip_avx512(const sg_mip_chain *m, const sg_mip_pick pick[4], bool bilinear,
-                            bool repeat, const float s[SG_SHADER_LANES],
+                            bool repeat, bool window, const float s[SG_SHADER_LANES],
                             const float t[SG_SHADER_LANES], int32_t texel[4][SG_SHADER_LANES]) {
     /* Lane i belongs to quad (i >> 1 & 1) | (i >> 3) << 1. */
     const __m512i quad = _mm512_setr_epi32(0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3);
@@ -38,7 +38,7 @@ void sg_sample16_mip_avx512(const sg_mip_chain *m, const sg_mip_pick pick[4], bo
                                                pick[3].field, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0))
     __m512i c[4];
     mip16_lookup(m, SG_SPREAD(level0), SG_SPREAD(level1), SG_SPREAD(f), _mm512_loadu_ps(s),
-                 _mm512_loadu_ps(t), bilinear, repeat, c);
+                 _mm512_loadu_ps(t), bilinear, repeat, window, c);
 #undef SG_SPREAD
     for (int k = 0; k < 4; k++) _mm512_storeu_si512(texel[k], c[k]);
 }
@@ -60,10 +60,10 @@ void sg_texels_to_unit_avx512(const int32_t texel[4][SG_SHADER_LANES],
 
 /* The lookups and the conversion in one call, the channels kept in registers between them. */
 void sg_sample16_unit_avx512(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
-                             const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
-                             float out[4][SG_SHADER_LANES]) {
+                             bool window, const float s[SG_SHADER_LANES],
+                             const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {
     __m512i c[4];
-    lookup_all(texels, w, h, bilinear, repeat, s, t, c);
+    lookup_all(texels, w, h, bilinear, repeat, window, s, t, c);
     for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16(c[k]));
 }
 

@@ -84,9 +84,11 @@ SG_LANES_FN(texels16)(const uint8_t *texels, int w, int h, bool bilinear, bool r
 }
 
 SG_LANES_ATTR void SG_LANES_FN(sg_sample16)(const uint8_t *texels, int w, int h, bool bilinear,
-                                            bool repeat, const float s[SG_SHADER_LANES],
+                                            bool repeat, bool window,
+                                            const float s[SG_SHADER_LANES],
                                             const float t[SG_SHADER_LANES],
                                             int32_t texel[4][SG_SHADER_LANES]) {
+    (void)window; /* no window here: the lanes read texels one by one */
     sg_vi c[4];
     SG_LANES_FN(texels16)(texels, w, h, bilinear, repeat, s, t, c);
     for (int k = 0; k < 4; k++) memcpy(texel[k], &c[k], sizeof c[k]);
@@ -95,10 +97,11 @@ SG_LANES_ATTR void SG_LANES_FN(sg_sample16)(const uint8_t *texels, int w, int h,
 /* Each level the quads read is looked up once for all 16 lanes, and each lane keeps its own
  * quad's: a tile's quads mostly share one or two levels. */
 SG_LANES_ATTR void SG_LANES_FN(sg_sample16_mip)(const sg_mip_chain *m, const sg_mip_pick pick[4],
-                                                bool bilinear, bool repeat,
+                                                bool bilinear, bool repeat, bool window,
                                                 const float s[SG_SHADER_LANES],
                                                 const float t[SG_SHADER_LANES],
                                                 int32_t texel[4][SG_SHADER_LANES]) {
+    (void)window;
     _Alignas(64) int32_t l0[SG_SHADER_LANES], l1[SG_SHADER_LANES], f[SG_SHADER_LANES];
     uint32_t want0 = 0, want1 = 0; /* the levels read, as bits */
     for (int i = 0; i < SG_SHADER_LANES; i++) {
@@ -143,10 +146,11 @@ SG_LANES_ATTR void SG_LANES_FN(sg_texels_to_unit)(const int32_t texel[4][SG_SHAD
 
 /* sg_sample16, then sg_texels_to_unit. */
 SG_LANES_ATTR void SG_LANES_FN(sg_sample16_unit)(const uint8_t *texels, int w, int h, bool bilinear,
-                                                 bool repeat, const float s[SG_SHADER_LANES],
+                                                 bool repeat, bool window,
+                                                 const float s[SG_SHADER_LANES],
                                                  const float t[SG_SHADER_LANES],
                                                  float out[4][SG_SHADER_LANES]) {
     int32_t texel[4][SG_SHADER_LANES];
-    SG_LANES_FN(sg_sample16)(texels, w, h, bilinear, repeat, s, t, texel);
+    SG_LANES_FN(sg_sample16)(texels, w, h, bilinear, repeat, window, s, t, texel);
     SG_LANES_FN(sg_texels_to_unit)(texel, out);
 }
