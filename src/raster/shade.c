@@ -109,7 +109,7 @@ bool sg_texel_window_detect(void) {
 #if defined(__x86_64__) || defined(__i386__)
     /* The window replaces gathers by row loads, permutes and a test, which fails on about half
      * the mipmapped lookups and is then mispredicted. Where gathers are slow (AMD's Zen 4) it
-     * pays; on an Intel Xeon of 2023 gathers alone are quicker (docs/performance.md, "Texel
+     * pays; on an Intel Xeon with AMX gathers alone are quicker (docs/performance.md, "Texel
      * windows"), unless the microcode's mitigation of gather data sampling, which the Linux
      * kernel reports here, slows every gather. */
     __builtin_cpu_init();
@@ -126,7 +126,8 @@ bool sg_texel_window_detect(void) {
     return true;
 #endif
 #else
-    return true;        /* no window in the other sets' lookups */
+    /* no window in the other sets' lookups */
+    return true;
 #endif
 }
 

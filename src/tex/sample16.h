@@ -51,8 +51,9 @@ SG_SAMPLE16_DECLARE(avx512)
 
 /** RGBA8 texels (top row first, width w, height h) at the 16 coordinates (s[i], t[i]): each
  *  lane's channels 0 .. 255 in texel[channel][lane], as sg_sample gives them; simd: the copy,
- *  SG_SAMPLE16_* (the same bits in each); window: whether the vector copies try the texel window
- *  before gathering (sg_shade_ctx.texel_window; the same bits either way). */
+ *  SG_SAMPLE16_* (the same bits in each); window: whether the AVX-512 copy tries the texel window
+ *  before gathering (sg_shade_ctx.texel_window; the same bits either way; the other copies take
+ *  no choice). */
 static inline void sg_sample16(int simd, const uint8_t *texels, int w, int h, bool bilinear,
                                bool repeat, bool window, const float s[SG_SHADER_LANES],
                                const float t[SG_SHADER_LANES], int32_t texel[4][SG_SHADER_LANES]) {
