@@ -13,7 +13,7 @@
 
 /* 2x2 texture, uploaded top row first: top row (10, 20), bottom row (30, 40) in red. */
 static const uint8_t texels[16] = {10, 0, 0, 255, 20, 0, 0, 255, 30, 0, 0, 255, 40, 0, 0, 255};
-static const sg_texview tv = {texels, 2, 2};
+static const sg_texview tv = {.texels = texels, .width = 2, .height = 2}; /* scalar sampling only */
 
 static void t_zero_is_the_bottom_row(void **state) {
     (void)state;
@@ -105,7 +105,7 @@ static void mip_generator_matches_the_formula(void **state) {
 static void mip_level_of_detail(void **state) {
     (void)state;
     sg_mip_chain m = {.levels = 5};
-    m.level[0] = (sg_texview){texels, 16, 16};
+    m.level[0] = sg_texview_of(texels, 16, 16);
     /* rho = 4 texels a pixel: level 2 exactly; trilinear level 2 with weight 0. */
     sg_mip_pick p = sg_mip_select(&m, 4.0f / 16, 0, 0, 4.0f / 16, 0);
     assert_int_equal(p.level0, 2);
@@ -143,7 +143,7 @@ static sg_mip_chain random_chain(uint8_t *storage, int w0, int h0, int levels) {
     const uint8_t *at = storage;
     for (int l = 0; l < levels; l++) {
         const int w = w0 >> l > 1 ? w0 >> l : 1, h = h0 >> l > 1 ? h0 >> l : 1;
-        m.level[l] = (sg_texview){at, w, h};
+        m.level[l] = sg_texview_of(at, w, h);
         at += (size_t)w * (size_t)h * 4;
     }
     return m;
@@ -165,15 +165,13 @@ static void check_lanes(const sg_mip_chain *m, int simd, bool bilinear, bool rep
                         const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES]) {
     for (int window = 0; window < 2; window++) {
         int32_t got[4][SG_SHADER_LANES];
-        sg_sample16(simd, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear,
-                    repeat, window, s, t, got);
+        sg_sample16(simd, &m->level[0], bilinear, repeat, window, s, t, got);
         for (int i = 0; i < SG_SHADER_LANES; i++) {
             const sg_texel want = sg_sample(&m->level[0], s[i], t[i], bilinear, repeat);
             for (int k = 0; k < 4; k++) assert_int_equal(got[k][i], want.c[k]);
         }
         float unit[4][SG_SHADER_LANES];
-        sg_sample16_unit(simd, m->level[0].texels, m->level[0].width, m->level[0].height, bilinear,
-                         repeat, window, s, t, unit);
+        sg_sample16_unit(simd, &m->level[0], bilinear, repeat, window, s, t, unit);
         for (int i = 0; i < SG_SHADER_LANES; i++)
             for (int k = 0; k < 4; k++) {
                 const float want = (float)got[k][i] / 255.0f;

@@ -500,7 +500,7 @@ static void compare_variant(int variant, int kind) {
             sg_shade_ctx ctx;
             memset(&ctx, 0, sizeof ctx);
             ctx.texel_window = n & 1; /* the window tried or not: the same texels */
-            ctx.tex = (sg_texview){texture_pick(tx, &g), tx->w, tx->h};
+            ctx.tex = sg_texview_of(texture_pick(tx, &g), tx->w, tx->h);
             if (!textured) ctx.tex.texels = NULL; /* a vertex-colour pipeline binds none */
             sg_tri t;
             sg_tri_ext ext, *e = kind == UNLIT ? NULL : &ext;
@@ -640,7 +640,7 @@ static void compare_mip(int linear) {
             uint8_t *texels = malloc((size_t)w * (size_t)h * 4);
             assert_non_null(texels);
             for (size_t b = 0; b < (size_t)w * (size_t)h * 4; b++) texels[b] = (uint8_t)next(&g);
-            chains[i].level[l] = (sg_texview){texels, w, h};
+            chains[i].level[l] = sg_texview_of(texels, w, h);
             w = sg_mip_next_side(w);
             h = sg_mip_next_side(h);
         }

@@ -935,9 +935,7 @@ sgResult sgDraw(sgDevice *dev, sgPipelineStateObject pso_h, sgGeom geom_h,
         if (!geom->texcoords)
             return sg_error(dev, SG_ERROR_MISSING_ATTRIBUTE,
                             "sgDraw: the pipeline samples a texture but the geom has no texcoords");
-        ctx.tex.texels = tex->data;
-        ctx.tex.width = tex->width;
-        ctx.tex.height = tex->height;
+        ctx.tex = tex->mips.level[0];
         ctx.mips = &tex->mips;
     }
     sg_image *smap = NULL;

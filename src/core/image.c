@@ -44,7 +44,7 @@ static void set_chain(sg_image *img, int levels) {
     img->mips.levels = levels;
     for (int k = 0; k < levels; k++) {
         img->mips.level[k] =
-            (sg_texview){img->data + level_offset(img->width, img->height, k), w, h};
+            sg_texview_of(img->data + level_offset(img->width, img->height, k), w, h);
         w = sg_mip_next_side(w);
         h = sg_mip_next_side(h);
     }

@@ -303,20 +303,19 @@ INLINE __m256i pack_unorm8(const __m256 col[4]) {
 
 /* The bound texture for the filter (bilinear: coordinates in 1/256 texel). */
 INLINE tex8 tex8_of(const sg_texview *tv, const int bilinear) {
-    const int w = tv->width, h = tv->height;
-    const float sc = bilinear ? 256.0f : 1.0f;
+    const sg_texsizes *z = &tv->size;
     tex8 tx;
     tx.texels = (const int *)(const void *)tv->texels;
-    tx.width = w;
-    tx.height = h;
-    tx.scale_x = _mm256_set1_ps(sc * (float)w);
-    tx.scale_y = _mm256_set1_ps(sc * (float)h);
-    tx.hi_x = _mm256_set1_ps(bilinear ? 256.0f * (float)(w + 1) : (float)(w - 1));
-    tx.hi_y = _mm256_set1_ps(bilinear ? 256.0f * (float)(h + 1) : (float)(h - 1));
-    tx.n_x = _mm256_set1_epi32(w);
-    tx.n_y = _mm256_set1_epi32(h);
-    tx.last_x = _mm256_set1_epi32(w - 1);
-    tx.last_y = _mm256_set1_epi32(h - 1);
+    tx.width = tv->width;
+    tx.height = tv->height;
+    tx.scale_x = _mm256_set1_ps(z->scale[bilinear][0]);
+    tx.scale_y = _mm256_set1_ps(z->scale[bilinear][1]);
+    tx.hi_x = _mm256_set1_ps(z->hi[bilinear][0]);
+    tx.hi_y = _mm256_set1_ps(z->hi[bilinear][1]);
+    tx.n_x = _mm256_set1_epi32(z->n[0]);
+    tx.n_y = _mm256_set1_epi32(z->n[1]);
+    tx.last_x = _mm256_set1_epi32(z->last[0]);
+    tx.last_y = _mm256_set1_epi32(z->last[1]);
     return tx;
 }
 
@@ -344,8 +343,8 @@ INLINE void mip8_pick(const sg_mip_chain *m, __m256 s, __m256 u, const int linea
     const __m256i right = _mm256_add_epi32(base, one),
                   down = _mm256_add_epi32(base, _mm256_set1_epi32(4));
     const __m256 s0 = _mm256_permutevar8x32_ps(s, base), u0 = _mm256_permutevar8x32_ps(u, base);
-    const __m256 w = _mm256_set1_ps((float)m->level[0].width);
-    const __m256 h = _mm256_set1_ps((float)m->level[0].height);
+    const __m256 w = _mm256_set1_ps(m->level[0].size.scale[0][0]); /* (float) width */
+    const __m256 h = _mm256_set1_ps(m->level[0].size.scale[0][1]);
     const __m256 ax = _mm256_mul_ps(_mm256_sub_ps(_mm256_permutevar8x32_ps(s, right), s0), w);
     const __m256 bx = _mm256_mul_ps(_mm256_sub_ps(_mm256_permutevar8x32_ps(u, right), u0), h);
     const __m256 ay = _mm256_mul_ps(_mm256_sub_ps(_mm256_permutevar8x32_ps(s, down), s0), w);

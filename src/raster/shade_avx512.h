@@ -166,21 +166,20 @@ INLINE bool window_fetch(const tex16 *tx, __m512i a, __m512i b, __mmask16 m, con
 /* The bound texture for the filter (bilinear: coordinates in 1/256 texel); window: whether its
  * lookups try the texel window. */
 INLINE tex16 tex16_of(const sg_texview *tv, const int bilinear, const bool window) {
-    const int tw = tv->width, th = tv->height;
-    const float sc = bilinear ? 256.0f : 1.0f;
+    const sg_texsizes *z = &tv->size;
     tex16 tx;
     tx.texels = (const int *)(const void *)tv->texels;
-    tx.width = tw;
-    tx.height = th;
+    tx.width = tv->width;
+    tx.height = tv->height;
     tx.window = window;
-    tx.scale_x = _mm512_set1_ps(sc * (float)tw);
-    tx.scale_y = _mm512_set1_ps(sc * (float)th);
-    tx.hi_x = _mm512_set1_ps(bilinear ? 256.0f * (float)(tw + 1) : (float)(tw - 1));
-    tx.hi_y = _mm512_set1_ps(bilinear ? 256.0f * (float)(th + 1) : (float)(th - 1));
-    tx.n_x = _mm512_set1_epi32(tw);
-    tx.n_y = _mm512_set1_epi32(th);
-    tx.last_x = _mm512_set1_epi32(tw - 1);
-    tx.last_y = _mm512_set1_epi32(th - 1);
+    tx.scale_x = _mm512_set1_ps(z->scale[bilinear][0]);
+    tx.scale_y = _mm512_set1_ps(z->scale[bilinear][1]);
+    tx.hi_x = _mm512_set1_ps(z->hi[bilinear][0]);
+    tx.hi_y = _mm512_set1_ps(z->hi[bilinear][1]);
+    tx.n_x = _mm512_set1_epi32(z->n[0]);
+    tx.n_y = _mm512_set1_epi32(z->n[1]);
+    tx.last_x = _mm512_set1_epi32(z->last[0]);
+    tx.last_y = _mm512_set1_epi32(z->last[1]);
     return tx;
 }
 
@@ -282,8 +281,8 @@ INLINE void mip16_pick(const sg_mip_chain *m, __m512 s, __m512 u, const int line
     const __m512i right = _mm512_add_epi32(base, one),
                   down = _mm512_add_epi32(base, _mm512_set1_epi32(4));
     const __m512 s0 = _mm512_permutexvar_ps(base, s), u0 = _mm512_permutexvar_ps(base, u);
-    const __m512 w = _mm512_set1_ps((float)m->level[0].width);
-    const __m512 h = _mm512_set1_ps((float)m->level[0].height);
+    const __m512 w = _mm512_set1_ps(m->level[0].size.scale[0][0]); /* (float) width */
+    const __m512 h = _mm512_set1_ps(m->level[0].size.scale[0][1]);
     const __m512 ax = _mm512_mul_ps(_mm512_sub_ps(_mm512_permutexvar_ps(right, s), s0), w);
     const __m512 bx = _mm512_mul_ps(_mm512_sub_ps(_mm512_permutexvar_ps(right, u), u0), h);
     const __m512 ay = _mm512_mul_ps(_mm512_sub_ps(_mm512_permutexvar_ps(down, s), s0), w);

@@ -218,7 +218,7 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
         return;
     }
     if (tx && !tx->depth) {
-        sg_sample16_unit(c->shader.sample16, tx->data, tx->width, tx->height, c->shader.bilinear,
+        sg_sample16_unit(c->shader.sample16, &tx->mips->level[0], c->shader.bilinear,
                          c->shader.repeat, c->texel_window, u, v, rgba);
         return;
     }

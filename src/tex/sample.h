@@ -15,10 +15,35 @@
 
 #include "sgapi/sgapi.h"
 
+/* A texture's sizes in the forms the vector lookups take them ([0] x, [1] y), made once with the
+ * view: read from memory, each is one broadcast load, where forming them from the width and height
+ * took conversions and register broadcasts on every tile, for each level a trilinear tile reads. */
+typedef struct sg_texsizes {
+    float scale[2][2]; /* [bilinear][axis]: the side, times 256 when bilinear */
+    float hi[2][2];    /* [bilinear][axis]: side - 1, or 256 (side + 1) when bilinear */
+    int32_t n[2], last[2];
+} sg_texsizes;
+
 typedef struct sg_texview {
     const uint8_t *texels; /* RGBA8, top row first */
     int width, height;
+    sg_texsizes size; /* of width and height (sg_texview_of) */
 } sg_texview;
+
+/* A view of w x h texels, its sizes made. */
+static inline sg_texview sg_texview_of(const uint8_t *texels, int w, int h) {
+    sg_texview v = {.texels = texels, .width = w, .height = h};
+    const int side[2] = {w, h};
+    for (int a = 0; a < 2; a++) {
+        v.size.scale[0][a] = (float)side[a];
+        v.size.scale[1][a] = 256.0f * (float)side[a];
+        v.size.hi[0][a] = (float)(side[a] - 1);
+        v.size.hi[1][a] = 256.0f * (float)(side[a] + 1);
+        v.size.n[a] = side[a];
+        v.size.last[a] = side[a] - 1;
+    }
+    return v;
+}
 
 /* An image's mipmap levels (level 0 included): each RGBA8, top row first, 64-byte aligned, in one
  * block, level k max(1, width >> k) x max(1, height >> k). Held by the image; draws point at it,

@@ -20,18 +20,18 @@ enum { SG_SAMPLE16_PORTABLE, SG_SAMPLE16_AVX2, SG_SAMPLE16_AVX512 };
 #endif
 
 #define SG_SAMPLE16_DECLARE(suffix)                                                                \
-    void sg_sample16_##suffix(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,     \
-                              bool window, const float s[SG_SHADER_LANES],                         \
-                              const float t[SG_SHADER_LANES], int32_t texel[4][SG_SHADER_LANES]);  \
+    void sg_sample16_##suffix(const sg_texview *tv, bool bilinear, bool repeat, bool window,       \
+                              const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],      \
+                              int32_t texel[4][SG_SHADER_LANES]);                                  \
     void sg_sample16_mip_##suffix(const sg_mip_chain *m, const sg_mip_pick pick[4], bool bilinear, \
                                   bool repeat, bool window, const float s[SG_SHADER_LANES],        \
                                   const float t[SG_SHADER_LANES],                                  \
                                   int32_t texel[4][SG_SHADER_LANES]);                              \
     void sg_texels_to_unit_##suffix(const int32_t texel[4][SG_SHADER_LANES],                       \
                                     float out[4][SG_SHADER_LANES]);                                \
-    void sg_sample16_unit_##suffix(const uint8_t *texels, int w, int h, bool bilinear,             \
-                                   bool repeat, bool window, const float s[SG_SHADER_LANES],       \
-                                   const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]);
+    void sg_sample16_unit_##suffix(const sg_texview *tv, bool bilinear, bool repeat, bool window,  \
+                                   const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES], \
+                                   float out[4][SG_SHADER_LANES]);
 SG_SAMPLE16_DECLARE(portable)
 #if SG_SAMPLE16_X86
 SG_SAMPLE16_DECLARE(avx2)
@@ -49,15 +49,15 @@ SG_SAMPLE16_DECLARE(avx512)
 #define SG_SAMPLE16_CALL(simd, name, ...) ((void)(simd), name##_portable(__VA_ARGS__))
 #endif
 
-/** RGBA8 texels (top row first, width w, height h) at the 16 coordinates (s[i], t[i]): each
- *  lane's channels 0 .. 255 in texel[channel][lane], as sg_sample gives them; simd: the copy,
- *  SG_SAMPLE16_* (the same bits in each); window: whether the AVX-512 copy tries the texel window
- *  before gathering (sg_shade_ctx.texel_window; the same bits either way; the other copies take
- *  no choice). */
-static inline void sg_sample16(int simd, const uint8_t *texels, int w, int h, bool bilinear,
-                               bool repeat, bool window, const float s[SG_SHADER_LANES],
+/** The RGBA8 texels of view tv (top row first; its sizes made, sg_texview_of) at the 16 coordinates
+ * (s[i], t[i]): each lane's channels 0 .. 255 in texel[channel][lane], as sg_sample gives them;
+ * simd: the copy, SG_SAMPLE16_* (the same bits in each); window: whether the AVX-512 copy tries the
+ * texel window before gathering (sg_shade_ctx.texel_window; the same bits either way; the other
+ * copies take no choice). */
+static inline void sg_sample16(int simd, const sg_texview *tv, bool bilinear, bool repeat,
+                               bool window, const float s[SG_SHADER_LANES],
                                const float t[SG_SHADER_LANES], int32_t texel[4][SG_SHADER_LANES]) {
-    SG_SAMPLE16_CALL(simd, sg_sample16, texels, w, h, bilinear, repeat, window, s, t, texel);
+    SG_SAMPLE16_CALL(simd, sg_sample16, tv, bilinear, repeat, window, s, t, texel);
 }
 
 /** The same from a mipmap chain, each quad q (lanes of its 2 x 2 block) with its levels pick[q],
@@ -76,10 +76,10 @@ static inline void sg_texels_to_unit(int simd, const int32_t texel[4][SG_SHADER_
 }
 
 /** sg_sample16's channels as sg_texels_to_unit gives them, in one call. */
-static inline void sg_sample16_unit(int simd, const uint8_t *texels, int w, int h, bool bilinear,
-                                    bool repeat, bool window, const float s[SG_SHADER_LANES],
+static inline void sg_sample16_unit(int simd, const sg_texview *tv, bool bilinear, bool repeat,
+                                    bool window, const float s[SG_SHADER_LANES],
                                     const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {
-    SG_SAMPLE16_CALL(simd, sg_sample16_unit, texels, w, h, bilinear, repeat, window, s, t, out);
+    SG_SAMPLE16_CALL(simd, sg_sample16_unit, tv, bilinear, repeat, window, s, t, out);
 }
 
 #endif

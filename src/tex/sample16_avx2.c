@@ -12,21 +12,20 @@
 #error "compile this file with the AVX2 flags CMakeLists.txt gives it"
 #endif
 
-/* Both halves of a w x h texture at (s[i], t[i]): lanes 8 h to 8 h + 7 in c[h]. */
-INLINE void lookup_all(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
-                       const float *s, const float *t, __m256i c[2][4]) {
-    const sg_texview tv = {texels, w, h};
+/* Both halves of texture tv at (s[i], t[i]): lanes 8 h to 8 h + 7 in c[h]. */
+INLINE void lookup_all(const sg_texview *tv, bool bilinear, bool repeat, const float *s,
+                       const float *t, __m256i c[2][4]) {
     for (int half = 0; half < 2; half++)
-        lookup8(&tv, _mm256_loadu_ps(s + 8 * half), _mm256_loadu_ps(t + 8 * half), bilinear, repeat,
+        lookup8(tv, _mm256_loadu_ps(s + 8 * half), _mm256_loadu_ps(t + 8 * half), bilinear, repeat,
                 c[half]);
 }
 
-void sg_sample16_avx2(const uint8_t *texels, int w, int h, bool bilinear, bool repeat, bool window,
+void sg_sample16_avx2(const sg_texview *tv, bool bilinear, bool repeat, bool window,
                       const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
                       int32_t texel[4][SG_SHADER_LANES]) {
     (void)window; /* the AVX2 lookups always try their window (sg_shade_ctx.texel_window) */
     __m256i c[2][4];
-    lookup_all(texels, w, h, bilinear, repeat, s, t, c);
+    lookup_all(tv, bilinear, repeat, s, t, c);
     for (int half = 0; half < 2; half++)
         for (int k = 0; k < 4; k++)
             _mm256_storeu_si256((__m256i *)(void *)(texel[k] + 8 * half), c[half][k]);
@@ -67,12 +66,12 @@ void sg_texels_to_unit_avx2(const int32_t texel[4][SG_SHADER_LANES],
 }
 
 /* The lookups and the conversion in one call, the channels kept in registers between them. */
-void sg_sample16_unit_avx2(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
-                           bool window, const float s[SG_SHADER_LANES],
-                           const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {
+void sg_sample16_unit_avx2(const sg_texview *tv, bool bilinear, bool repeat, bool window,
+                           const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
+                           float out[4][SG_SHADER_LANES]) {
     (void)window;
     __m256i c[2][4];
-    lookup_all(texels, w, h, bilinear, repeat, s, t, c);
+    lookup_all(tv, bilinear, repeat, s, t, c);
     for (int half = 0; half < 2; half++)
         for (int k = 0; k < 4; k++) _mm256_storeu_ps(out[k] + 8 * half, unit8(c[half][k]));
 }

@@ -11,18 +11,17 @@
 #error "compile this file with the AVX-512 flags CMakeLists.txt gives it"
 #endif
 
-/* Every lane of a w x h texture at (s[i], t[i]). */
-INLINE void lookup_all(const uint8_t *texels, int w, int h, bool bilinear, bool repeat, bool window,
+/* Every lane of texture tv at (s[i], t[i]). */
+INLINE void lookup_all(const sg_texview *tv, bool bilinear, bool repeat, bool window,
                        const float *s, const float *t, __m512i c[4]) {
-    const sg_texview tv = {texels, w, h};
-    lookup16(&tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, 1, window, c);
+    lookup16(tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, bilinear, repeat, 1, window, c);
 }
 
-void sg_sample16_avx512(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
-                        bool window, const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
+void sg_sample16_avx512(const sg_texview *tv, bool bilinear, bool repeat, bool window,
+                        const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
                         int32_t texel[4][SG_SHADER_LANES]) {
     __m512i c[4];
-    lookup_all(texels, w, h, bilinear, repeat, window, s, t, c);
+    lookup_all(tv, bilinear, repeat, window, s, t, c);
     for (int k = 0; k < 4; k++) _mm512_storeu_si512(texel[k], c[k]);
 }
 
@@ -59,11 +58,11 @@ void sg_texels_to_unit_avx512(const int32_t texel[4][SG_SHADER_LANES],
 }
 
 /* The lookups and the conversion in one call, the channels kept in registers between them. */
-void sg_sample16_unit_avx512(const uint8_t *texels, int w, int h, bool bilinear, bool repeat,
-                             bool window, const float s[SG_SHADER_LANES],
-                             const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {
+void sg_sample16_unit_avx512(const sg_texview *tv, bool bilinear, bool repeat, bool window,
+                             const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
+                             float out[4][SG_SHADER_LANES]) {
     __m512i c[4];
-    lookup_all(texels, w, h, bilinear, repeat, window, s, t, c);
+    lookup_all(tv, bilinear, repeat, window, s, t, c);
     for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16(c[k]));
 }
 

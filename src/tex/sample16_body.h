@@ -83,14 +83,13 @@ SG_LANES_FN(texels16)(const uint8_t *texels, int w, int h, bool bilinear, bool r
     }
 }
 
-SG_LANES_ATTR void SG_LANES_FN(sg_sample16)(const uint8_t *texels, int w, int h, bool bilinear,
-                                            bool repeat, bool window,
-                                            const float s[SG_SHADER_LANES],
+SG_LANES_ATTR void SG_LANES_FN(sg_sample16)(const sg_texview *tv, bool bilinear, bool repeat,
+                                            bool window, const float s[SG_SHADER_LANES],
                                             const float t[SG_SHADER_LANES],
                                             int32_t texel[4][SG_SHADER_LANES]) {
     (void)window; /* no window here: the lanes read texels one by one */
     sg_vi c[4];
-    SG_LANES_FN(texels16)(texels, w, h, bilinear, repeat, s, t, c);
+    SG_LANES_FN(texels16)(tv->texels, tv->width, tv->height, bilinear, repeat, s, t, c);
     for (int k = 0; k < 4; k++) memcpy(texel[k], &c[k], sizeof c[k]);
 }
 
@@ -145,12 +144,11 @@ SG_LANES_ATTR void SG_LANES_FN(sg_texels_to_unit)(const int32_t texel[4][SG_SHAD
 }
 
 /* sg_sample16, then sg_texels_to_unit. */
-SG_LANES_ATTR void SG_LANES_FN(sg_sample16_unit)(const uint8_t *texels, int w, int h, bool bilinear,
-                                                 bool repeat, bool window,
-                                                 const float s[SG_SHADER_LANES],
+SG_LANES_ATTR void SG_LANES_FN(sg_sample16_unit)(const sg_texview *tv, bool bilinear, bool repeat,
+                                                 bool window, const float s[SG_SHADER_LANES],
                                                  const float t[SG_SHADER_LANES],
                                                  float out[4][SG_SHADER_LANES]) {
     int32_t texel[4][SG_SHADER_LANES];
-    SG_LANES_FN(sg_sample16)(texels, w, h, bilinear, repeat, window, s, t, texel);
+    SG_LANES_FN(sg_sample16)(tv, bilinear, repeat, window, s, t, texel);
     SG_LANES_FN(sg_texels_to_unit)(texel, out);
 }
