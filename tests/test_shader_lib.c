@@ -36,7 +36,7 @@ static void builtin_library(void **state) {
     (void)state;
     int n = 0, again = 0;
     const sgShaderInfo *const *list = sg_builtin_shaders(&n);
-    assert_int_equal(n, 8);
+    assert_int_equal(n, 9);
     assert_string_equal(list[0]->name, "unlit");
     assert_ptr_equal(sg_builtin_shaders(&again), list); /* the same every call */
     assert_int_equal(again, n);
@@ -210,7 +210,7 @@ static void check_scene_shaders(void **state) {
         {"\"depth_write\": true", NULL},
         {"\"shader\": \"tnit\"",
          "draw.json: scenes[0] ('s'), draws[0]: unknown shader 'tnit' (known: unlit, phong, toon, "
-         "normal_map, marble, waves, dissolve, instanced, tint; "},
+         "normal_map, marble, waves, dissolve, instanced, phong_lights, tint; "},
         {"\"shader\": \"tint\", \"uniforms\": [1, 0.5]",
          "draw.json: scenes[0] ('s'), draws[0]: shader 'tint' takes 3 uniforms, and 'uniforms' "
          "has 2"},

@@ -20,7 +20,7 @@
 
 static const sgShaderInfo *const SHADERS[] = {
     &sg_shader_phong, &sg_shader_toon,     &sg_shader_normal_map, &sg_shader_marble,
-    &sg_shader_waves, &sg_shader_dissolve, &sg_shader_instanced,
+    &sg_shader_waves, &sg_shader_dissolve, &sg_shader_instanced,  &sg_shader_phong_lights,
 };
 #define SHADER_COUNT ((int)(sizeof SHADERS / sizeof SHADERS[0]))
 
@@ -257,6 +257,89 @@ static void test_phong(void **state) {
     }
     assert_true(lit > 0 && lit < SG_SHADER_LANES); /* the batch has both sides of the light */
     assert_true(f.discard == 0);
+}
+
+/* The equation of phong_lights.c in double, from its statement: lights of 10 floats each. */
+static void lights_d(const float P[3], const float n[3], const float base[4], const float *u,
+                     const float texel[4], double out[4]) {
+    double nl = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+    double pl = sqrt((double)P[0] * P[0] + (double)P[1] * P[1] + (double)P[2] * P[2]);
+    double N[3], V[3], diff[3] = {0, 0, 0}, spec[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++) N[k] = n[k] / nl, V[k] = -P[k] / pl;
+    for (int j = 0; j < (int)u[12]; j++) {
+        const float *s = u + 13 + 10 * j;
+        double L[3], att = 1.0;
+        if (s[0] == 0.0f) {
+            double len = sqrt((double)s[1] * s[1] + (double)s[2] * s[2] + (double)s[3] * s[3]);
+            for (int k = 0; k < 3; k++) L[k] = -s[1 + k] / len;
+        } else {
+            double v[3] = {s[1] - P[0], s[2] - P[1], s[3] - P[2]};
+            double d = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            for (int k = 0; k < 3; k++) L[k] = v[k] / d;
+            att = 1.0 / (s[7] + s[8] * d + s[9] * d * d);
+        }
+        double ndotl = N[0] * L[0] + N[1] * L[1] + N[2] * L[2];
+        if (!(ndotl > 0.0)) continue;
+        double H[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+        double hl = sqrt(H[0] * H[0] + H[1] * H[1] + H[2] * H[2]);
+        double ndoth = (N[0] * H[0] + N[1] * H[1] + N[2] * H[2]) / hl;
+        for (int k = 0; k < 3; k++) {
+            diff[k] += att * ndotl * s[4 + k];
+            spec[k] += att * pow(fmax(ndoth, 0.0), u[11]) * s[4 + k];
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        double prim = fmin(fmax(base[k] * u[5 + k] + base[k] * diff[k], 0.0), 1.0) * texel[k];
+        out[k] = fmin(fmax(prim + spec[k] * u[8 + k], 0.0), 1.0);
+    }
+    out[3] = (double)base[3] * texel[3];
+}
+
+static void test_phong_lights(void **state) {
+    (void)state;
+    /* One directional light and no texture: phong's uniforms in phong_lights' places give
+     * phong's colours, bit for bit (its output clamped, as the pipeline clamps it). */
+    const float p[17] = {0.9f,  0.8f, 0.7f,  0.5f, 0.2f, 0.25f, 0.3f, -0.4f, -0.6f,
+                         -1.0f, 0.9f, 0.85f, 0.8f, 0.5f, 0.4f,  0.3f, 24.0f};
+    float u[53] = {p[0], p[1], p[2], p[3], 0,    p[4],  p[5],  p[6],  p[13], p[14], p[15], p[16],
+                   1,    0,    p[7], p[8], p[9], p[10], p[11], p[12], 1,     0,     0};
+    sgVertexBatch v, w;
+    vertex_batch(&v, 42, WV, PROJ);
+    vertex_batch(&w, 42, WV, PROJ);
+    sg_shader_phong.desc.vertex(&v, p);
+    sg_shader_phong_lights.desc.vertex(&w, u);
+    sgFragmentBatch f, g;
+    fragment_from(&f, &v, NULL);
+    fragment_from(&g, &w, NULL);
+    sg_shader_phong.desc.fragment(&f, p);
+    sg_shader_phong_lights.desc.fragment(&g, u);
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        for (int k = 0; k < 3; k++) assert_true(g.color[k][i] == sgs_clamp01(f.color[k][i]));
+        assert_true(g.color[3][i] == f.color[3][i]);
+    }
+    /* A directional light, a point light with attenuation, a texture: the double equation. */
+    const float more[20] = {0, 0.3f, -0.5f, -0.8f, 0.5f, 0.45f, 0.4f, 1, 0,    0,
+                            1, 1.5f, 0.7f,  -2.5f, 0.8f, 0.6f,  0.4f, 1, 0.1f, 0.05f};
+    memcpy(u + 13, more, sizeof more);
+    u[12] = 2, u[4] = 1;
+    const fake_textures t = {{{0.6f, 0.9f, 0.3f, 0.75f}}};
+    vertex_batch(&w, 7, WV, PROJ);
+    sg_shader_phong_lights.desc.vertex(&w, u);
+    fragment_from(&g, &w, &t);
+    sg_shader_phong_lights.desc.fragment(&g, u);
+    int spots = 0;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        for (int k = 0; k < 2; k++) assert_true(g.varying[10 + k][i] == w.texcoord[k][i]);
+        const float P[3] = {g.varying[0][i], g.varying[1][i], g.varying[2][i]};
+        const float n[3] = {g.varying[3][i], g.varying[4][i], g.varying[5][i]};
+        const float base[4] = {g.varying[6][i], g.varying[7][i], g.varying[8][i], g.varying[9][i]};
+        double want[4];
+        lights_d(P, n, base, u, t.rgba[0], want);
+        for (int k = 0; k < 4; k++) assert_true(fabs(g.color[k][i] - want[k]) < 2e-5);
+        spots += want[0] > 0.05;
+    }
+    assert_true(spots > 0);
+    assert_true(g.discard == 0);
 }
 
 static void test_toon_bands(void **state) {
@@ -528,13 +611,13 @@ static void test_twins_compile(void **state) {
 int main(int argc, char **argv) {
     if (argc == 3) validator = argv[1], scratch = argv[2];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_floor),          cmocka_unit_test(test_sin),
-        cmocka_unit_test(test_pow_unit),       cmocka_unit_test(test_light_without_specular),
-        cmocka_unit_test(test_noise),          cmocka_unit_test(test_phong),
-        cmocka_unit_test(test_toon_bands),     cmocka_unit_test(test_normal_map_flat),
-        cmocka_unit_test(test_waves),          cmocka_unit_test(test_dissolve),
-        cmocka_unit_test(test_instanced_grid), cmocka_unit_test(test_all_finite),
-        cmocka_unit_test(test_twins_compile),
+        cmocka_unit_test(test_floor),           cmocka_unit_test(test_sin),
+        cmocka_unit_test(test_pow_unit),        cmocka_unit_test(test_light_without_specular),
+        cmocka_unit_test(test_noise),           cmocka_unit_test(test_phong),
+        cmocka_unit_test(test_phong_lights),    cmocka_unit_test(test_toon_bands),
+        cmocka_unit_test(test_normal_map_flat), cmocka_unit_test(test_waves),
+        cmocka_unit_test(test_dissolve),        cmocka_unit_test(test_instanced_grid),
+        cmocka_unit_test(test_all_finite),      cmocka_unit_test(test_twins_compile),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -9,13 +9,14 @@
 const sgShaderInfo *const *sg_builtin_shaders(int *count);
 
 /* The shaders, one file each (uniform layouts in each file's first comment). */
-extern const sgShaderInfo sg_shader_unlit;      /* the fixed vertex-colour equation */
-extern const sgShaderInfo sg_shader_phong;      /* the fixed per-pixel lighting */
-extern const sgShaderInfo sg_shader_toon;       /* banded diffuse and a rim */
-extern const sgShaderInfo sg_shader_normal_map; /* a tangent-space normal map */
-extern const sgShaderInfo sg_shader_marble;     /* 3D noise in object space */
-extern const sgShaderInfo sg_shader_waves;      /* a displaced grid, analytic normals */
-extern const sgShaderInfo sg_shader_dissolve;   /* discard by noise, a glowing edge */
-extern const sgShaderInfo sg_shader_instanced;  /* a grid of cubes in one draw */
+extern const sgShaderInfo sg_shader_unlit;        /* the fixed vertex-colour equation */
+extern const sgShaderInfo sg_shader_phong;        /* the fixed per-pixel lighting */
+extern const sgShaderInfo sg_shader_toon;         /* banded diffuse and a rim */
+extern const sgShaderInfo sg_shader_normal_map;   /* a tangent-space normal map */
+extern const sgShaderInfo sg_shader_marble;       /* 3D noise in object space */
+extern const sgShaderInfo sg_shader_waves;        /* a displaced grid, analytic normals */
+extern const sgShaderInfo sg_shader_dissolve;     /* discard by noise, a glowing edge */
+extern const sgShaderInfo sg_shader_instanced;    /* a grid of cubes in one draw */
+extern const sgShaderInfo sg_shader_phong_lights; /* the fixed Phong lighting, whole */
 
 #endif

@@ -3,19 +3,20 @@
 
 /* The shaders, in the order programs list them. */
 static const sgShaderInfo *const list[] = {
-    &sg_shader_unlit,  &sg_shader_phong, &sg_shader_toon,     &sg_shader_normal_map,
-    &sg_shader_marble, &sg_shader_waves, &sg_shader_dissolve, &sg_shader_instanced,
+    &sg_shader_unlit,      &sg_shader_phong,     &sg_shader_toon,
+    &sg_shader_normal_map, &sg_shader_marble,    &sg_shader_waves,
+    &sg_shader_dissolve,   &sg_shader_instanced, &sg_shader_phong_lights,
 };
 
 #if SGS_HAVE_AVX512
 /* The same shaders compiled for AVX-512 (shader_math.h says why), same bits. */
 extern const sgShaderInfo sg_shader_unlit_avx512, sg_shader_phong_avx512, sg_shader_toon_avx512,
     sg_shader_normal_map_avx512, sg_shader_marble_avx512, sg_shader_waves_avx512,
-    sg_shader_dissolve_avx512, sg_shader_instanced_avx512;
+    sg_shader_dissolve_avx512, sg_shader_instanced_avx512, sg_shader_phong_lights_avx512;
 static const sgShaderInfo *const list_avx512[] = {
     &sg_shader_unlit_avx512,      &sg_shader_phong_avx512,     &sg_shader_toon_avx512,
     &sg_shader_normal_map_avx512, &sg_shader_marble_avx512,    &sg_shader_waves_avx512,
-    &sg_shader_dissolve_avx512,   &sg_shader_instanced_avx512,
+    &sg_shader_dissolve_avx512,   &sg_shader_instanced_avx512, &sg_shader_phong_lights_avx512,
 };
 _Static_assert(sizeof list == sizeof list_avx512, "one AVX-512 copy of each shader");
 #endif
