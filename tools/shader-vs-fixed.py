@@ -3,15 +3,17 @@
 
 Rewrites every draw of a scene file that a built-in shader expresses exactly into that shader's
 draw: unlit vertex-coloured and textured draws into "unlit", Phong-lit untextured ones under a
-single directional light into "phong" (the fixed equations as shaders, apps/shaders/unlit.c and
-phong.c), and times each scene, fixed and rewritten, with sgapi-render in turns. Scenes with a
-draw no shader expresses (flat or Gouraud lighting, Phong with a texture, a point light or several
-lights, an unlit draw colour, a shadow) are listed as skipped.
+single directional light into "phong", other Phong-lit ones (up to four lights, directional or
+point, a texture) into "phong_lights" (the fixed equations as shaders, apps/shaders/unlit.c,
+phong.c and phong_lights.c), and times each scene, fixed and rewritten, with sgapi-render in
+turns. A draw no shader expresses (flat or Gouraud lighting, an unlit draw colour, more than four
+lights, a shadow) stays fixed in the rewritten scene, and the table says how many of a scene's
+draws are shaders; a scene with none is listed as skipped.
 
   tools/shader-vs-fixed.py [--build DIR] [--frames N] [--rounds R] [--threads T] SCENES.json...
 
-Prints a markdown table (fixed ms, shader ms, ratio) per scene and the geometric mean of the
-ratios; the figures are medians of R rounds of N frames each.
+Prints a markdown table (shader draws, fixed ms, shader ms, ratio) per scene and the geometric
+mean of the ratios; the figures are medians of R rounds of N frames each.
 """
 import argparse
 import json
@@ -43,6 +45,27 @@ def phong_uniforms(draw, scene, top):
     return u
 
 
+def phong_lights_uniforms(draw, scene, top):
+    """phong_lights' 53 uniforms (apps/shaders/phong_lights.c) for a Phong-lit draw, or None where
+    it cannot express it: more than four lights."""
+    lights = scene.get("lights", top.get("lights", []))
+    if len(lights) > 4:
+        return None
+    textured = draw.get("mode") == "texture" and draw.get("texture")
+    u = list(draw.get("color", [1, 1, 1, 1])) + [1 if textured else 0]
+    u += list(scene.get("ambient", top.get("ambient", [0, 0, 0])))
+    u += list(draw.get("specular", [0, 0, 0])) + [draw.get("shininess", 0), len(lights)]
+    for light in lights:
+        if light.get("type") == "point":
+            att = list(light.get("attenuation", [1, 0, 0]))
+            if att == [0, 0, 0]:  # read as [1, 0, 0], as sgapi does
+                att = [1, 0, 0]
+            u += [1] + list(light["position"]) + list(light.get("color", [1, 1, 1])) + att
+        else:
+            u += [0] + list(light["direction"]) + list(light.get("color", [1, 1, 1])) + [1, 0, 0]
+    return u + [0] * (53 - len(u))
+
+
 def rewrite(draw, scene, top):
     """The shader draw that draws `draw` as the fixed path does, or None."""
     if "shader" in draw:  # a shader draw already: nothing fixed to compare with
@@ -65,9 +88,14 @@ def rewrite(draw, scene, top):
         return out
     if lighting == "phong":
         u = phong_uniforms(draw, scene, top)
+        if u is not None:
+            out["shader"] = "phong"
+            out["uniforms"] = u
+            return out
+        u = phong_lights_uniforms(draw, scene, top)
         if u is None:
             return None
-        out["shader"] = "phong"
+        out["shader"] = "phong_lights"
         out["uniforms"] = u
         return out
     return None
@@ -78,7 +106,7 @@ def convert(path, workdir):
     with open(path) as f:
         top = json.load(f)
     base = os.path.dirname(os.path.abspath(path))
-    fixed, shader, skipped = [], [], []
+    fixed, shader, skipped, shares = [], [], [], {}
     for scene in top["scenes"]:
         for d in scene["draws"]:
             for key in ("mesh", "texture"):
@@ -92,11 +120,13 @@ def convert(path, workdir):
                     if isinstance(v, str) and os.path.exists(os.path.join(base, v)):
                         d["mesh"][k] = absolute(base, v)
         drawn = [rewrite(d, scene, top) for d in scene["draws"]]
-        if any(d is None for d in drawn):
+        rewritten = sum(d is not None for d in drawn)
+        if not rewritten:
             skipped.append(scene["name"])
             continue
         fixed.append(scene)
-        shader.append(dict(scene, draws=drawn))
+        shader.append(dict(scene, draws=[r or d for r, d in zip(drawn, scene["draws"])]))
+        shares[scene["name"]] = "%d of %d" % (rewritten, len(drawn))
     stem = os.path.splitext(os.path.basename(path))[0]
     out = []
     for kind, scenes in (("fixed", fixed), ("shader", shader)):
@@ -104,7 +134,7 @@ def convert(path, workdir):
         with open(name, "w") as f:
             json.dump(dict(top, scenes=scenes), f)
         out.append(name)
-    return out[0], out[1], [s["name"] for s in fixed], skipped
+    return out[0], out[1], shares, skipped
 
 
 def times(render, file, frames, threads, outdir):
@@ -136,11 +166,12 @@ def main():
     a = ap.parse_args()
     render = os.path.join(a.build, "apps", "sgapi-render")
     with tempfile.TemporaryDirectory() as work:
-        print("| scene | fixed ms | shader ms | shader / fixed |")
-        print("| --- | ---: | ---: | ---: |")
+        print("| scene | shader draws | fixed ms | shader ms | shader / fixed |")
+        print("| --- | ---: | ---: | ---: | ---: |")
         ratios, skipped_all = [], []
         for path in a.files:
-            fixed, shader, names, skipped = convert(path, work)
+            fixed, shader, shares, skipped = convert(path, work)
+            names = list(shares)
             skipped_all += skipped
             if not names:
                 continue
@@ -153,13 +184,13 @@ def main():
             for n in names:
                 f, s = median(got["fixed"][n]), median(got["shader"][n])
                 ratios.append(s / f)
-                print("| %s | %.3f | %.3f | %.2f |" % (n, f, s, s / f))
+                print("| %s | %s | %.3f | %.3f | %.2f |" % (n, shares[n], f, s, s / f))
         if ratios:
             gm = math.exp(sum(math.log(r) for r in ratios) / len(ratios))
             print("\ngeometric mean of shader / fixed over %d scenes: %.2f (worst %.2f), %d "
                   "threads" % (len(ratios), gm, max(ratios), a.threads))
         if skipped_all:
-            print("skipped (a draw no built-in shader expresses): " + ", ".join(skipped_all))
+            print("skipped (no draw a built-in shader expresses): " + ", ".join(skipped_all))
 
 
 if __name__ == "__main__":
