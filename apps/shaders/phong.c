@@ -28,17 +28,9 @@ SGS_STAGE static void phong_fragment(sgFragmentBatch *b, const void *uniforms) {
     memcpy(b->color[3], b->varying[9], sizeof b->color[3]);
 }
 
-static const char phong_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS
-    "layout(location = 0) out vec3 v_pos;\n"
-    "layout(location = 1) out vec3 v_normal;\n"
-    "layout(location = 2) out vec4 v_base;\n"
-    "void main() {\n"
-    "    vec4 p = world_view * sg_position;\n"
-    "    gl_Position = proj * p;\n"
-    "    v_pos = p.xyz;\n"
-    "    v_normal = transpose(inverse(mat3(world_view))) * sg_normal;\n"
-    "    v_base = sg_color * vec4(u[0], u[1], u[2], u[3]);\n"
-    "}\n";
+static const char phong_glsl_vertex[] =
+    SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS SGS_GLSL_LIT_VERTEX_OUT
+    "void main() {\n" SGS_GLSL_LIT_VERTEX "}\n";
 
 static const char phong_glsl_fragment[] = SGS_GLSL_HEADER SGS_GLSL_LIGHT SGS_GLSL_OUTPUT
     "layout(location = 0) in vec3 v_pos;\n"

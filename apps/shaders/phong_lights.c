@@ -135,30 +135,18 @@ SGS_STAGE static void phong_lights_fragment(sgFragmentBatch *b, const void *unif
     sgs_vstore(b->color[3], prim[3]);
 }
 
-static const char phong_lights_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS
-    "layout(location = 0) out vec3 v_pos;\n"
-    "layout(location = 1) out vec3 v_normal;\n"
-    "layout(location = 2) out vec4 v_base;\n"
+static const char phong_lights_glsl_vertex[] =
+    SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS SGS_GLSL_LIT_VERTEX_OUT
     "layout(location = 3) out vec2 v_st;\n"
-    "void main() {\n"
-    "    vec4 p = world_view * sg_position;\n"
-    "    gl_Position = proj * p;\n"
-    "    v_pos = p.xyz;\n"
-    "    v_normal = transpose(inverse(mat3(world_view))) * sg_normal;\n"
-    "    v_base = sg_color * vec4(u[0], u[1], u[2], u[3]);\n"
-    "    v_st = sg_texcoord;\n"
+    "void main() {\n" SGS_GLSL_LIT_VERTEX "    v_st = sg_texcoord;\n"
     "}\n";
 
-static const char phong_lights_glsl_fragment[] =
-    SGS_GLSL_HEADER SGS_GLSL_TEXTURES SGS_GLSL_U3 SGS_GLSL_POW_UNIT SGS_GLSL_OUTPUT
+static const char phong_lights_glsl_fragment[] = SGS_GLSL_HEADER SGS_GLSL_TEXTURES SGS_GLSL_U3
+    SGS_GLSL_POW_UNIT SGS_GLSL_SAFE_NORMALIZE SGS_GLSL_OUTPUT
     "layout(location = 0) in vec3 v_pos;\n"
     "layout(location = 1) in vec3 v_normal;\n"
     "layout(location = 2) in vec4 v_base;\n"
     "layout(location = 3) in vec2 v_st;\n"
-    "vec3 safe_normalize(vec3 v) {\n"
-    "    precise float len2 = (v.x * v.x + v.y * v.y) + v.z * v.z;\n"
-    "    return len2 > 0.0 ? v / sqrt(len2) : vec3(0.0);\n"
-    "}\n"
     "void main() {\n"
     "    vec3 N = safe_normalize(v_normal), V = safe_normalize(-v_pos);\n"
     "    float s = clamp(u[11], 0.0, 128.0);\n"

@@ -370,14 +370,31 @@ static inline void sgs_vlight_varyings(const sgs_light *l, sgFragmentBatch *b, i
     for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
 }
 
+/* normalize, 0 for a zero length (sgs_vinv_len's). */
+#define SGS_GLSL_SAFE_NORMALIZE                                                                    \
+    "vec3 safe_normalize(vec3 v) {\n"                                                              \
+    "    precise float len2 = (v.x * v.x + v.y * v.y) + v.z * v.z;\n"                              \
+    "    return len2 > 0.0 ? v / sqrt(len2) : vec3(0.0);\n"                                        \
+    "}\n"
+
+/* A lit twin's vertex stage: the view-space position, the normal (normal matrix x n) and the base
+ * colour (the vertex colour x u[0..3]) at locations 0, 1 and 2, as sgs_transform and the C stages
+ * write them. SGS_GLSL_LIT_VERTEX_OUT before main, SGS_GLSL_LIT_VERTEX in it. */
+#define SGS_GLSL_LIT_VERTEX_OUT                                                                    \
+    "layout(location = 0) out vec3 v_pos;\n"                                                       \
+    "layout(location = 1) out vec3 v_normal;\n"                                                    \
+    "layout(location = 2) out vec4 v_base;\n"
+#define SGS_GLSL_LIT_VERTEX                                                                        \
+    "    vec4 p = world_view * sg_position;\n"                                                     \
+    "    gl_Position = proj * p;\n"                                                                \
+    "    v_pos = p.xyz;\n"                                                                         \
+    "    v_normal = transpose(inverse(mat3(world_view))) * sg_normal;\n"                           \
+    "    v_base = sg_color * vec4(u[0], u[1], u[2], u[3]);\n"
+
 /* The same in GLSL: light(P, n, base, ambient, direction, colour, specular, shininess) with the
  * uniform offsets; spec < 0: none. */
 #define SGS_GLSL_LIGHT                                                                             \
-    SGS_GLSL_U3 SGS_GLSL_POW_UNIT                                                                  \
-        "vec3 safe_normalize(vec3 v) {\n"                                                          \
-        "    precise float len2 = (v.x * v.x + v.y * v.y) + v.z * v.z;\n"                          \
-        "    return len2 > 0.0 ? v / sqrt(len2) : vec3(0.0);\n"                                    \
-        "}\n"                                                                                      \
+    SGS_GLSL_U3 SGS_GLSL_POW_UNIT SGS_GLSL_SAFE_NORMALIZE                                          \
         "vec3 light(vec3 P, vec3 n, vec3 base, int amb, int dir, int col, int spec, int shin) {\n" \
         "    vec3 N = safe_normalize(n), V = safe_normalize(-P);\n"                                \
         "    vec3 L = -safe_normalize(u3(dir));\n"                                                 \
