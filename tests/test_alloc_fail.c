@@ -463,7 +463,7 @@ static void run(script *s) {
     pd = (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS_EQUAL}};
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->line));
     pd = depth_on;
-    pd.shader = (sgShaderDesc){shader_vs, shader_fs, 8, 0, 1, false};
+    pd.shader = (sgShaderDesc){shader_vs, shader_fs, 8, 0, 1, false, false};
     DO(sgCreatePipelineStateObject(s->dev, &pd, &s->shader));
 
     /* Three frames (the third with 4 samples a pixel): the second draws into the arrays the first

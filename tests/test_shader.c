@@ -134,7 +134,7 @@ static void test_matches_fixed(void **state) {
     assert_int_equal(sgDraw(dev, test_pso(dev, (sgPipelineDesc){0}), g, &p), SG_OK);
     end(dev, &t, a);
     t = begin(dev);
-    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0, false}};
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_color, 6, 0, 0, false, false}};
     assert_int_equal(sgDraw(dev, test_pso(dev, sd), g, &p), SG_OK);
     end(dev, &t, b);
     int worst = 0, covered = 0;
@@ -159,7 +159,7 @@ static void test_ids(void **state) {
     p.uniforms = &u;
     p.uniform_size = sizeof u;
     p.instance_count = 2; /* the second on top of the first: it wins where LESS_EQUAL passes */
-    sgPipelineDesc sd = {.shader = {vs_basic, fs_ids, 6, 1u << 4, 0, false},
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_ids, 6, 1u << 4, 0, false, false},
                          .depth = {.compare = SG_COMPARE_LESS_EQUAL, .write = true}};
     static uint8_t img[W * H * 4];
     target t = begin(dev);
@@ -242,7 +242,7 @@ static void render_instances(int threads, size_t budget, sgPolygonMode mode, boo
     p.uniform_size = sizeof u;
     p.instance_count = instances;
     /* Blended, half opaque: every fragment of every triangle shows, in order. */
-    sgPipelineDesc sd = {.shader = {vs_spread, fs_spread, 7, 1u << 4 | 1u << 6, 0, false},
+    sgPipelineDesc sd = {.shader = {vs_spread, fs_spread, 7, 1u << 4 | 1u << 6, 0, false, false},
                          .polygon_mode = mode,
                          .blend = SG_BLEND_ALPHA};
     target t = begin(dev);
@@ -296,7 +296,7 @@ static void discard_psos(sgDevice *dev, sgPipelineStateObject *fixed,
                          sgPipelineStateObject *checker) {
     *fixed = test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
     *checker =
-        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false},
+        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false, false},
                                        .depth = {.compare = SG_COMPARE_LESS, .write = true}});
 }
 
@@ -415,9 +415,9 @@ static void test_in_place_compare(void **state) {
         sgPipelineStateObject fixed =
             test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
         for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-            sgPipelineStateObject checker =
-                test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false},
-                                               .depth = {.compare = cases[c].op, .write = true}});
+            sgPipelineStateObject checker = test_pso(
+                dev, (sgPipelineDesc){.shader = {vs_basic, fs_checker, 6, 0, 0, false, false},
+                                      .depth = {.compare = cases[c].op, .write = true}});
             for (int k = 0; k < 3; k++) {
                 sgGeom g = quad(dev, depths[k]);
                 target t = begin(dev);
@@ -574,6 +574,161 @@ static void test_independent_lanes(void **state) {
         }
 }
 
+/* clip = position; varyings: the colour alone. */
+static void vs_color(sgVertexBatch *b, const void *uniforms) {
+    (void)uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++)
+        for (int k = 0; k < 4; k++) {
+            b->clip[k][i] = b->position[k][i];
+            b->varying[k][i] = b->color[k][i];
+        }
+}
+
+/* A stage of its varyings alone (sgShaderDesc.varyings_only): the colour varyings, discarding
+ * where red is below u[0]; counts its calls in *u[1]'s int. */
+static void fs_pure(sgFragmentBatch *b, const void *uniforms) {
+    const lanes_uniforms *u = uniforms;
+    __atomic_fetch_add(u->calls, 1, __ATOMIC_RELAXED);
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        for (int k = 0; k < 4; k++) b->color[k][i] = b->varying[k][i];
+        if (b->varying[0][i] < u->discard_below) b->discard |= 1u << i;
+    }
+}
+
+/* A 13 x 11 grid of quads of four vertices each over the target, every other quad of one colour
+ * (k / 255 in each channel, so that a pixel's colour is exact either way), the others of a colour
+ * a vertex, at depths that cross, drawn with fs_pure (varyings_only as given) between two
+ * fixed-function quads, two frames, into out; returns fs_pure's calls. */
+static int render_pure(int threads, sgSimd simd, bool varyings_only, float discard_below,
+                       depth_state ds, uint8_t *out) {
+    sgDevice *dev;
+    sgResult r = sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .simd = simd}, &dev);
+    if (r == SG_ERROR_UNSUPPORTED) return -1;
+    assert_int_equal(r, SG_OK);
+    enum { GX = 13, GY = 11, NV = GX * GY * 4 };
+    static float pos[NV * 4], col[NV * 4];
+    static uint32_t idx[GX * GY * 6];
+    int n = 0, v = 0;
+    for (int j = 0; j < GY; j++)
+        for (int i = 0; i < GX; i++) {
+            const uint32_t q = (uint32_t)(j * GX + i) * 2654435761u;
+            const float x0 = -0.97f + 1.94f * (float)i / GX, y0 = -0.95f + 1.9f * (float)j / GY;
+            const float x1 = x0 + 1.94f / GX * 1.1f, y1 = y0 + 1.9f / GY * 1.1f; /* overlapping */
+            const float corner[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+            for (int c = 0; c < 4; c++, v++) {
+                const uint32_t h = (i + j) % 2 ? (uint32_t)v * 2246822519u : q;
+                pos[v * 4] = corner[c][0];
+                pos[v * 4 + 1] = corner[c][1];
+                pos[v * 4 + 2] = 0.3f + 0.02f * (float)((q >> 20 & 15) + (uint32_t)c);
+                pos[v * 4 + 3] = 1.0f;
+                for (int k = 0; k < 3; k++) col[v * 4 + k] = (float)(h >> (8 * k) & 255) / 255.0f;
+                col[v * 4 + 3] = 1.0f;
+            }
+            const uint32_t a = (uint32_t)v - 4;
+            const uint32_t t[6] = {a, a + 1, a + 2, a, a + 2, a + 3};
+            memcpy(idx + n, t, sizeof t);
+            n += 6;
+        }
+    sgGeom g;
+    sgGeomDesc gd = {
+        .vertex_count = NV, .positions = pos, .colors = col, .index_count = n, .indices = idx};
+    assert_int_equal(sgCreateGeom(dev, &gd, &g), SG_OK);
+    int calls = 0;
+    const lanes_uniforms u = {discard_below, &calls};
+    sgDrawParams p = params();
+    p.uniforms = &u;
+    p.uniform_size = sizeof u;
+    sgPipelineStateObject pure =
+        test_pso(dev, (sgPipelineDesc){.shader = {.vertex = vs_color,
+                                                  .fragment = fs_pure,
+                                                  .varying_count = 4,
+                                                  .independent_lanes = true,
+                                                  .varyings_only = varyings_only},
+                                       .depth = {.compare = ds.compare, .write = ds.write}});
+    sgPipelineStateObject fixed =
+        test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
+    sgGeom back = quad(dev, 0.9f), middle = quad(dev, 0.45f);
+    sgDrawParams bp = params();
+    for (int frame = 0; frame < 2; frame++) {
+        target t = begin(dev);
+        assert_int_equal(sgDraw(dev, fixed, back, &bp), SG_OK);
+        assert_int_equal(sgDraw(dev, pure, g, &p), SG_OK);
+        assert_int_equal(sgDraw(dev, fixed, middle, &bp), SG_OK);
+        end(dev, &t, out + (size_t)frame * W * H * 4);
+    }
+    sgDestroyDevice(dev);
+    return calls;
+}
+
+/* A stage of its varyings alone runs once for a triangle whose varyings agree, at assembly: a
+ * quad of one colour is two calls, whatever it covers; with other triangles, fewer calls, the
+ * same image as pixel by pixel (its colours exact either way), a triangle it discards dropped
+ * whole (depth too), and the same bytes at every thread count and instruction set. */
+static void test_varyings_only(void **state) {
+    (void)state;
+    {
+        sgDevice *dev;
+        assert_int_equal(sgCreateDevice(NULL, &dev), SG_OK);
+        const float c[4] = {0.2f, 0.6f, 1.0f, 1.0f},
+                    col[16] = {c[0], c[1], c[2], c[3], c[0], c[1], c[2], c[3],
+                               c[0], c[1], c[2], c[3], c[0], c[1], c[2], c[3]};
+        sgGeom g;
+        sgGeomDesc gd = {.vertex_count = 4,
+                         .positions = QUAD_POS,
+                         .colors = col,
+                         .index_count = 6,
+                         .indices = QUAD_IDX};
+        assert_int_equal(sgCreateGeom(dev, &gd, &g), SG_OK);
+        int calls = 0;
+        const lanes_uniforms u = {0.0f, &calls};
+        sgDrawParams p = params();
+        p.uniforms = &u;
+        p.uniform_size = sizeof u;
+        const sgPipelineStateObject pso =
+            test_pso(dev, (sgPipelineDesc){.shader = {.vertex = vs_color,
+                                                      .fragment = fs_pure,
+                                                      .varying_count = 4,
+                                                      .independent_lanes = true,
+                                                      .varyings_only = true}});
+        static uint8_t img[W * H * 4];
+        target t = begin(dev);
+        assert_int_equal(sgDraw(dev, pso, g, &p), SG_OK);
+        end(dev, &t, img);
+        assert_int_equal(calls, 2);
+        const uint8_t want[4] = {51, 153, 255, 255};
+        assert_memory_equal(img + ((H / 2) * W + W / 2) * 4, want, 4);
+        int covered = 0;
+        for (int i = 0; i < W * H; i++) covered += memcmp(img + i * 4, want, 4) == 0;
+        assert_true(covered > W * H / 2);
+        sgDestroyDevice(dev);
+    }
+    static uint8_t want[2 * W * H * 4], got[2 * W * H * 4];
+    static const sgSimd sets[] = {SG_SIMD_SCALAR, SG_SIMD_SSE2, SG_SIMD_AVX2, SG_SIMD_AVX512,
+                                  SG_SIMD_NEON};
+    static const depth_state depths[] = {{SG_COMPARE_LESS, true}, {SG_COMPARE_ALWAYS, true}};
+    for (size_t z = 0; z < sizeof depths / sizeof depths[0]; z++)
+        for (int d = 0; d < 2; d++) {
+            /* halfway between two units: no colour is near the threshold */
+            const float below = d ? 0.3f + 0.5f / 255.0f : 0.0f;
+            const int per_pixel = render_pure(1, SG_SIMD_SCALAR, false, below, depths[z], want);
+            /* the discarding frames show something else where some quads were */
+            static uint8_t kept[2 * W * H * 4];
+            if (!d) memcpy(kept, want, sizeof kept);
+            assert_true(d ? memcmp(kept, want, sizeof kept) != 0 : true);
+            const int once = render_pure(1, SG_SIMD_SCALAR, true, below, depths[z], got);
+            if (memcmp(want, got, sizeof want) != 0)
+                fail_msg("depth state %zu, discard below %g: differs", z, (double)below);
+            assert_true(once < per_pixel); /* tiles its two kinds of quad share still call it */
+            for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++)
+                for (int threads = 1; threads <= 3; threads += 2) {
+                    if (render_pure(threads, sets[k], true, below, depths[z], got) < 0) continue;
+                    if (memcmp(want, got, sizeof want) != 0)
+                        fail_msg("depth state %zu, discard below %g, set %d, %d threads: differs",
+                                 z, (double)below, (int)sets[k], threads);
+                }
+        }
+}
+
 /* sgSample reads the bound texture with the pipeline's filter; an empty slot gives (0, 0, 0, 1). */
 static void test_sample(void **state) {
     (void)state;
@@ -592,7 +747,7 @@ static void test_sample(void **state) {
     sgGeom g = quad(dev, 0.5f);
     sgDrawParams p = params();
     p.textures[0] = tex;
-    sgPipelineDesc sd = {.shader = {vs_basic, fs_sample, 6, 0, 1, false},
+    sgPipelineDesc sd = {.shader = {vs_basic, fs_sample, 6, 0, 1, false, false},
                          .wrap = SG_WRAP_CLAMP_TO_EDGE};
     static uint8_t img[W * H * 4];
     target t = begin(dev);
@@ -642,7 +797,7 @@ static void test_blend(void **state) {
             fixed.depth.compare = depths[z].compare;
             fixed.depth.write = depths[z].write;
             sgPipelineDesc shader = fixed;
-            shader.shader = (sgShaderDesc){vs_basic, fs_color, 6, 0, 0, false};
+            shader.shader = (sgShaderDesc){vs_basic, fs_color, 6, 0, 0, false, false};
             const sgPipelineStateObject psos[2] = {test_pso(dev, fixed), test_pso(dev, shader)};
             for (int k = 0; k < 2; k++) {
                 target t = begin(dev);
@@ -669,24 +824,24 @@ static void test_refusals(void **state) {
     assert_non_null(strstr(sgGetLastError(dev), "shader.fragment"));
     assert_int_equal(sgCreatePipelineStateObject(
                          dev,
-                         &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0, false},
+                         &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0, false, false},
                                            .lighting = SG_LIGHTING_PHONG},
                          &pso),
                      SG_ERROR_INVALID_VALUE);
     assert_int_equal(
         sgCreatePipelineStateObject(
-            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 17, 0, 0, false}}, &pso),
+            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 17, 0, 0, false, false}}, &pso),
         SG_ERROR_INVALID_COUNT);
     assert_int_equal(
         sgCreatePipelineStateObject(
-            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 2, 4u, 0, false}}, &pso),
+            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 2, 4u, 0, false, false}}, &pso),
         SG_ERROR_INVALID_VALUE);
     assert_int_equal(
         sgCreatePipelineStateObject(
-            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 9, false}}, &pso),
+            dev, &(sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 9, false, false}}, &pso),
         SG_ERROR_INVALID_COUNT);
     sgPipelineStateObject sh =
-        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0, false}});
+        test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_color, 6, 0, 0, false, false}});
     sgPipelineStateObject fixed = test_pso(dev, (sgPipelineDesc){0});
     sgGeom g = quad(dev, 0.5f);
     target t = begin(dev);
@@ -729,7 +884,8 @@ static void test_nan(void **state) {
     static uint8_t img[W * H * 4];
     target t = begin(dev);
     assert_int_equal(
-        sgDraw(dev, test_pso(dev, (sgPipelineDesc){.shader = {vs_nan, fs_color, 6, 0, 0, false}}),
+        sgDraw(dev,
+               test_pso(dev, (sgPipelineDesc){.shader = {vs_nan, fs_color, 6, 0, 0, false, false}}),
                g, &p),
         SG_OK);
     end(dev, &t, img);
@@ -779,8 +935,8 @@ static void test_color_conversion(void **state) {
             sgDrawParams p = params();
             p.uniforms = &discard_origin;
             p.uniform_size = sizeof discard_origin;
-            sgPipelineStateObject pso =
-                test_pso(dev, (sgPipelineDesc){.shader = {vs_basic, fs_values, 6, 0, 0, false}});
+            sgPipelineStateObject pso = test_pso(
+                dev, (sgPipelineDesc){.shader = {vs_basic, fs_values, 6, 0, 0, false, false}});
             for (int frame = 0; frame < 2; frame++) { /* after a discard, the second in place */
                 target t = begin(dev);
                 assert_int_equal(sgDraw(dev, pso, g, &p), SG_OK);
@@ -813,6 +969,7 @@ int main(void) {
         cmocka_unit_test(test_discard_whole_tiles),
         cmocka_unit_test(test_in_place_compare),
         cmocka_unit_test(test_independent_lanes),
+        cmocka_unit_test(test_varyings_only),
         cmocka_unit_test(test_sample),
         cmocka_unit_test(test_blend),
         cmocka_unit_test(test_refusals),

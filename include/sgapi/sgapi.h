@@ -297,6 +297,12 @@ typedef struct sgShaderDesc {
      * each lane interpolated from its own triangle (not with mipmaps, whose levels come from
      * 2 x 2 differences). false (default): a batch is one triangle's. */
     bool independent_lanes;
+    /* true: the fragment stage computes a lane's colour and discard from that lane's varyings,
+     * the uniforms and the textures alone: not from x, y, z, front_facing, primitive or instance,
+     * nor from other lanes. sgapi may then run it once for a triangle whose varyings are the same
+     * at its three vertices (a flat-coloured face, an instance's flat colour) and give each of its
+     * pixels that result. false (default): the stage runs for every pixel. */
+    bool varyings_only;
 } sgShaderDesc;
 
 /* ---- pipeline state ----------------------------------------------------------------------------

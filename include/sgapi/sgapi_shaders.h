@@ -19,7 +19,7 @@ extern "C" {
 #endif
 
 /* Changes whenever sgVertexBatch, sgFragmentBatch, sgShaderDesc or the structs below change. */
-#define SGAPI_SHADER_ABI_VERSION 3
+#define SGAPI_SHADER_ABI_VERSION 4
 
 typedef struct sgShaderInfo {
     const char *name; /* what a scene file's "shader" key names: [A-Za-z0-9_]+ */

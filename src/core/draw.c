@@ -13,6 +13,7 @@
 #include "pipeline/vertex.h"
 #include "pipeline/vertex_shader.h"
 #include "raster/shade.h"
+#include "raster/shade_shader.h"
 #include "tex/sample16.h"
 
 /* Above this, the pass's triangles are not copied to grow their storage: what is binned is
@@ -835,6 +836,12 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     dev->pass.any_mixed |= ds->mixed_fn != NULL;
     dev->pass.any_pair |= ds->shade2_fn != NULL;
     dev->pass.any_shader = true;
+    /* The stage reads its varyings alone: a triangle whose varyings agree is shaded once. */
+    const sg_shader_konst konst = {&ds->ctx, vs.run.uniforms};
+    if (sh->varyings_only && !depth_only) {
+        a.konst = sg_shader_constant;
+        a.konst_user = &konst;
+    }
     sgResult r = run_front_end(dev, &a, &vs, instances, slots);
     if (r != SG_OK) return r;
     for (int k = 0; k < SG_MAX_DRAW_TEXTURES; k++)

@@ -119,6 +119,20 @@ static inline void stamp(const sg_assembly *a, sg_tri *t, int prim, int64_t area
     t->sh.front_facing = area == 0 || (area < 0) != (a->setup.front_face == SG_FRONT_FACE_CW);
 }
 
+/* A shader triangle whose varyings are the same, bit for bit, at its three vertices (flat ones
+ * are the first vertex's at all three already), of a stage that reads its varyings alone: shaded
+ * once (sg_assembly.konst), its colour kept in the triangle. False: the stage discards it
+ * everywhere, so it writes nothing, depth included, and is dropped. */
+static inline bool shade_constant(const sg_assembly *a, sg_tri *t, const float *const attr[3]) {
+    if (!a->konst) return true;
+    const size_t n = (size_t)a->setup.nattr * sizeof(float);
+    if (memcmp(attr[0], attr[1], n) != 0 || memcmp(attr[0], attr[2], n) != 0) return true;
+    int discarded = 0;
+    t->sh.color = a->konst(a->konst_user, attr[0], &discarded);
+    t->shader_const = SG_CONST_COLOR;
+    return !discarded;
+}
+
 /* A triangle that crosses a clip plane: clipped to a convex polygon, set up as a fan. Rare, and
  * kept out of line so that it does not weigh on the common path. */
 static void __attribute__((noinline))
@@ -156,7 +170,10 @@ clipped_triangle(const sg_assembly *a, const uint32_t idx[3], uint32_t planes, i
         if (!sg_setup_coverage(&a->setup, t, attr, tri)) continue;
         sg_setup_planes(&a->setup, t, attr, tri);
         if (ext) sg_setup_planes_ext(&a->setup, t, attr, tri, ext);
-        if (a->setup.shader) stamp(a, tri, prim, area);
+        if (a->setup.shader) {
+            stamp(a, tri, prim, area);
+            if (!shade_constant(a, tri, attr)) continue;
+        }
         a->emit(a->user);
     }
 }
@@ -198,7 +215,10 @@ SG_ASM_INLINE void triangle(const sg_assembly *a, uint32_t i0, uint32_t i1, uint
     if (lit == 2) copy_flat(a, (float *const[3]){attr[0], attr[1], attr[2]}, 3);
     sg_setup_planes(&a->setup, s, order, tri);
     if (lit && ext) sg_setup_planes_ext(&a->setup, s, order, tri, ext);
-    if (lit == 2) stamp(a, tri, prim, area);
+    if (lit == 2) {
+        stamp(a, tri, prim, area);
+        if (!shade_constant(a, tri, order)) return;
+    }
     a->emit(a->user);
 }
 

@@ -40,6 +40,11 @@ typedef struct sg_assembly {
      * primitive (prim_base + its index in `indices`, a quad's two triangles 2 q and 2 q + 1) and
      * the instance. */
     int prim_base, instance;
+    /* Shader draws whose stage reads its varyings alone (sgShaderDesc.varyings_only; NULL:
+     * others): a triangle whose varyings are the same at its three vertices is shaded once, here,
+     * konst(konst_user, its varyings, &discarded) giving its colour (sg_tri.shader_const). */
+    uint32_t (*konst)(const void *user, const float *varyings, int *discarded);
+    const void *konst_user;
     sg_guard guard;
     sg_setup_params setup;
     /* Where the next triangle (and its extension, when setup.nattr > SG_TRI_ATTRS) is set up

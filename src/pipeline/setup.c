@@ -163,6 +163,7 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
                      sg_tri *out) {
     out->nattr = p->nattr;
     out->flat = SG_FLAT_NONE;
+    out->shader_const = SG_CONST_NONE;
     /* A secondary colour (and the split colours of a shadow receiver) must be constant too for
      * the triangle to be flat. */
     const int sec = p->sec;

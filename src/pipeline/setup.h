@@ -70,13 +70,19 @@ typedef struct sg_tri {
         float color[4]; /* the flat colour (flat) */
         /* A shader draw's: what its fragment stage is told (sgFragmentBatch). */
         struct {
-            int32_t primitive, instance, front_facing, unused;
+            int32_t primitive, instance, front_facing;
+            uint32_t color; /* shader_const: the stage's colour everywhere, RGBA8 */
         } sh;
     };
     uint32_t draw; /* which draw of the pass it belongs to (set by the binner) */
+    /* SG_CONST_COLOR: a shader triangle whose varyings are the same at its three vertices, of a
+     * stage that reads its varyings alone (sgShaderDesc.varyings_only), shaded once in assembly:
+     * its pixels all take sh.color. SG_CONST_NONE: shaded pixel by pixel. */
+    int shader_const;
 } sg_tri;
 
 enum { SG_FLAT_NONE, SG_FLAT_COLOR, SG_FLAT_WHITE };
+enum { SG_CONST_NONE, SG_CONST_COLOR };
 
 /* Attributes SG_TRI_ATTRS.. of a triangle, as sg_tri's (attribute / w, at the origin, steps). A
  * flat triangle with a secondary colour keeps that colour (attributes sec .. sec_end - 1) as it is

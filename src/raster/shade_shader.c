@@ -61,6 +61,12 @@ void sg_shade_shader2(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, in
         note_discard(c);
 }
 
+uint32_t sg_shader_constant(const void *user, const float *varyings, int *discarded) {
+    const sg_shader_konst *k = user;
+    return SG_SAMPLE16_CALL(k->ctx->shader.sample16, shade_constant, k->ctx, k->uniforms, varyings,
+                            discarded);
+}
+
 /* Triangles whose fragments may share a batch: the batch tells one facing (a stage with
  * independent lanes reads neither primitive nor instance). */
 static bool same_batch(const sg_tri *a, const sg_tri *b) {

@@ -41,6 +41,16 @@ enum { SG_SHADER_PUT, SG_SHADER_BLEND, SG_SHADER_DEFER };
  *  draw's compare is not ALWAYS. */
 sg_raster_fn sg_shader_in_place_avx512(int kind, bool depth_test, bool depth_write);
 sg_raster_fn sg_shader_in_place_avx2(int kind, bool depth_test, bool depth_write);
+/** What sg_shader_constant shades with: the draw's shading state and its uniforms (the draw's
+ *  copy, while sgDraw runs). */
+typedef struct sg_shader_konst {
+    const sg_shade_ctx *ctx;
+    const void *uniforms;
+} sg_shader_konst;
+/** The sg_assembly.konst of a draw whose stage reads its varyings alone: the stage run once with
+ *  every lane holding `varyings` (x, y, z, primitive and instance 0), lane 0's colour as RGBA8,
+ *  converted as a tile's; *discarded: the stage discarded it. */
+uint32_t sg_shader_constant(const void *user, const float *varyings, int *discarded);
 /** The put-off fragments of tile `tile` of the bin v shaded, their depth and colour written. */
 void sg_shader_flush_tile(const sg_vis_ctx *v, int tile);
 /** Every tile's (the bin's sg_blend_pending.flush). */

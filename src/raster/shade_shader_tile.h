@@ -256,6 +256,37 @@ SG_LANES_FN(run)(const sg_shade_ctx *c, sgFragmentBatch *b, uint32_t mask,
     return b->discard;
 }
 
+/* The colour of a triangle shaded once (sg_tri.shader_const) in every lane of out. */
+SG_LANES_ATTR static inline void SG_LANES_FN(fill)(uint32_t color, uint32_t *out) {
+    const VI v = (VI){0} + (int32_t)color;
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) memcpy(out + h, &v, sizeof v);
+}
+
+/* sg_shader_constant in this copy: a batch whose lanes all hold the varyings, through the stage,
+ * lane 0 converted. */
+SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_constant)(const sg_shade_ctx *c,
+                                                          const void *uniforms,
+                                                          const float *varyings, int *discarded) {
+    const sg_shader_state *s = &c->shader;
+    sgFragmentBatch b;
+    b.mask = 0xffffu;
+    b.x = b.y = 0;
+    b.front_facing = true;
+    b.primitive = b.instance = 0;
+    b.discard = 0;
+    b.internal = c;
+    const VF zero = {0};
+    for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) memcpy(b.z + h, &zero, sizeof zero);
+    for (int k = 0; k < s->varying_count; k++) /* the bits as they are (-0 stays -0) */
+        for (int i = 0; i < SG_SHADER_LANES; i++) b.varying[k][i] = varyings[k];
+    SG_LANES_FN(prepare)(s, &b);
+    s->fragment(&b, uniforms);
+    uint32_t px[SG_SHADER_LANES];
+    SG_LANES_FN(convert)(&b, px);
+    *discarded = b.discard & 1u;
+    return px[0];
+}
+
 /* Batch b of the tile at (x0, y0) of one triangle: its fixed fields and every lane
  * interpolated. */
 SG_LANES_ATTR static inline __attribute__((always_inline)) void
@@ -273,6 +304,10 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, con
                                                       int x0, int y0, uint32_t mask,
                                                       uint32_t px[SG_SHADER_LANES],
                                                       uint32_t *direct) {
+    if (t->shader_const) {
+        SG_LANES_FN(fill)(t->sh.color, sg_shade_direct(direct, mask, 0) ? direct : px);
+        return 0;
+    }
     sgFragmentBatch b;
     SG_LANES_FN(one_triangle)(c, t, x0, y0, mask, &b);
     return SG_LANES_FN(run)(c, &b, mask, px, direct);
@@ -286,6 +321,10 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, con
 SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, const sg_tri *t,
                                                        int x0, int y0, int x1, int y1,
                                                        uint32_t *const dst[2]) {
+    if (t->shader_const) { /* whole tiles: their pixels */
+        for (int j = 0; j < 2; j++) SG_LANES_FN(fill)(t->sh.color, dst[j]);
+        return 0;
+    }
     const sg_shader_state *s = &c->shader;
     sgFragmentBatch b[2];
     const int xs[2] = {x0, x1}, ys[2] = {y0, y1};
@@ -308,6 +347,23 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, co
     return b[0].discard | b[1].discard << 16;
 }
 
+/* The colours of the triangles ts[j] shaded once into their lanes masks[j] of out. */
+SG_LANES_ATTR static inline void
+SG_LANES_FN(put_const)(const sg_tri *const *ts, const uint32_t *masks, int n, uint32_t *out) {
+    for (int j = 0; j < n; j++) {
+        if (!ts[j]->shader_const) continue;
+        const VI color = (VI){0} + (int32_t)ts[j]->sh.color;
+        for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W) {
+            VI bit, o;
+            memcpy(&bit, sg_tile_lane_bit + h, sizeof bit);
+            memcpy(&o, out + h, sizeof o);
+            const VI m = (bit & (int32_t)masks[j]) != 0;
+            o = SELI(m, color, o);
+            memcpy(out + h, &o, sizeof o);
+        }
+    }
+}
+
 /* The same for a tile that n triangles of a draw with independent lanes share, in one batch:
  * ts[j] covers the lanes of masks[j] and each lane takes its own triangle's values (the lanes
  * of none take ts[0]'s); facing, primitive and instance are ts[0]'s (the facing is
@@ -316,6 +372,17 @@ SG_LANES_ATTR static uint32_t
 SG_LANES_FN(shade_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const uint32_t *masks,
                           int n, int x0, int y0, uint32_t mask, uint32_t px[SG_SHADER_LANES],
                           float *z, uint32_t *direct) {
+    /* The lanes of triangles shaded once take their colours; with every lane so, and no depth
+     * wanted, there is nothing to interpolate or call. */
+    uint32_t konst = 0;
+    for (int j = 0; j < n; j++)
+        if (ts[j]->shader_const) konst |= masks[j];
+    konst &= mask;
+    if (konst && konst == mask && !z) {
+        uint32_t *out = sg_shade_direct(direct, mask, 0) ? direct : px;
+        SG_LANES_FN(put_const)(ts, masks, n, out);
+        return 0;
+    }
     sgFragmentBatch b;
     SG_LANES_FN(batch)(c, ts[0], x0, y0, mask, &b);
     const VI none = {0};
@@ -333,7 +400,12 @@ SG_LANES_FN(shade_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const 
         SG_LANES_FN(interp_shared)(c, ts, sel, n, x0, y0, h, &b);
     }
     if (z) memcpy(z, b.z, sizeof b.z);
-    return SG_LANES_FN(run)(c, &b, mask, px, direct);
+    if (!konst) return SG_LANES_FN(run)(c, &b, mask, px, direct);
+    const uint32_t discard = SG_LANES_FN(run)(c, &b, mask, px, NULL) & ~konst;
+    SG_LANES_FN(put_const)(ts, masks, n, px);
+    if (sg_shade_direct(direct, mask, discard))
+        memcpy(direct, px, sizeof(uint32_t) * SG_SHADER_LANES);
+    return discard;
 }
 
 /* The portable walks' (shade_shader_walk.h); blend_avx2.c and blend_avx512.c have their own. */

@@ -438,7 +438,8 @@ static void one_run(run *R, const uint8_t *data, size_t size) {
                                            (int)(u8(r) % 19) - 1,
                                            u8(r) & 0x3fu,
                                            (int)((x >> 2) % 4) - ((x & 0x20) ? 2 : 0),
-                                           (x & 0x10) != 0};
+                                           (x & 0x10) != 0,
+                                           (x & 0x40) != 0};
                 if ((x & 3) == 3) pd.shader.varying_count = 0;
             }
             sgPipelineStateObject h = {0x1234u};
