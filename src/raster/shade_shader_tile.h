@@ -304,7 +304,7 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, con
                                                       int x0, int y0, uint32_t mask,
                                                       uint32_t px[SG_SHADER_LANES],
                                                       uint32_t *direct) {
-    if (t->shader_const) {
+    if (c->shader.konst && t->shader_const) {
         SG_LANES_FN(fill)(t->sh.color, sg_shade_direct(direct, mask, 0) ? direct : px);
         return 0;
     }
@@ -321,7 +321,7 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile)(const sg_shade_ctx *c, con
 SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, const sg_tri *t,
                                                        int x0, int y0, int x1, int y1,
                                                        uint32_t *const dst[2]) {
-    if (t->shader_const) { /* whole tiles: their pixels */
+    if (c->shader.konst && t->shader_const) { /* whole tiles: their pixels */
         for (int j = 0; j < 2; j++) SG_LANES_FN(fill)(t->sh.color, dst[j]);
         return 0;
     }
@@ -375,7 +375,7 @@ SG_LANES_FN(shade_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const 
     /* The lanes of triangles shaded once take their colours; with every lane so, and no depth
      * wanted, there is nothing to interpolate or call. */
     uint32_t konst = 0;
-    for (int j = 0; j < n; j++)
+    for (int j = 0; j < n && c->shader.konst; j++)
         if (ts[j]->shader_const) konst |= masks[j];
     konst &= mask;
     if (konst && konst == mask && !z) {
