@@ -48,8 +48,8 @@ typedef struct sg_shader_konst {
     const void *uniforms;
 } sg_shader_konst;
 /** The sg_assembly.konst of a draw whose stage reads its varyings alone: the stage run once with
- *  every lane holding `varyings` (x, y, z, primitive and instance 0), lane 0's colour as RGBA8,
- *  converted as a tile's; *discarded: the stage discarded it. */
+ *  every lane holding `varyings` (x, y, z, primitive and instance 0, front_facing true), lane 0's
+ * colour as RGBA8, converted as a tile's; *discarded: the stage discarded it. */
 uint32_t sg_shader_constant(const void *user, const float *varyings, int *discarded);
 /** The put-off fragments of tile `tile` of the bin v shaded, their depth and colour written. */
 void sg_shader_flush_tile(const sg_vis_ctx *v, int tile);
