@@ -465,6 +465,36 @@ typedef struct depth_state {
     bool write;
 } depth_state;
 
+/* The geom gd drawn with stage sh (uniforms: a lanes_uniforms of discard_below, counting the
+ * fragment stage's calls) and depth state ds in front of a fixed-function quad (what discarded
+ * pixels show) and before another that cuts through them, two frames (after a discard the second
+ * starts in place) into out; destroys dev; returns the calls. */
+static int frames_between(sgDevice *dev, const sgGeomDesc *gd, sgShaderDesc sh, depth_state ds,
+                          float discard_below, uint8_t *out) {
+    sgGeom g;
+    assert_int_equal(sgCreateGeom(dev, gd, &g), SG_OK);
+    int calls = 0;
+    const lanes_uniforms u = {discard_below, &calls};
+    sgDrawParams p = params();
+    p.uniforms = &u;
+    p.uniform_size = sizeof u;
+    sgPipelineStateObject shaded = test_pso(
+        dev, (sgPipelineDesc){.shader = sh, .depth = {.compare = ds.compare, .write = ds.write}});
+    sgPipelineStateObject fixed =
+        test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
+    sgGeom back = quad(dev, 0.9f), middle = quad(dev, 0.45f);
+    sgDrawParams bp = params();
+    for (int frame = 0; frame < 2; frame++) {
+        target t = begin(dev);
+        assert_int_equal(sgDraw(dev, fixed, back, &bp), SG_OK);
+        assert_int_equal(sgDraw(dev, shaded, g, &p), SG_OK);
+        assert_int_equal(sgDraw(dev, fixed, middle, &bp), SG_OK); /* after the waiting ones */
+        end(dev, &t, out + (size_t)frame * W * H * 4);
+    }
+    sgDestroyDevice(dev);
+    return calls;
+}
+
 /* Two 13 x 11 grids of quads over the target, two triangles each (every other quad wound the
  * other way: both facings in a tile), the second shifted by part of a quad and at depths that
  * cross the first's (a draw's own triangles overlap, in both orders), vertex colours from a hash,
@@ -507,34 +537,14 @@ static int render_lanes(int threads, sgSimd simd, bool independent, float discar
                 n += 6;
             }
     }
-    sgGeom g;
-    sgGeomDesc gd = {
+    const sgGeomDesc gd = {
         .vertex_count = 2 * NV, .positions = pos, .colors = col, .index_count = n, .indices = idx};
-    assert_int_equal(sgCreateGeom(dev, &gd, &g), SG_OK);
-    int calls = 0;
-    const lanes_uniforms u = {discard_below, &calls};
-    sgDrawParams p = params();
-    p.uniforms = &u;
-    p.uniform_size = sizeof u;
-    sgPipelineStateObject lanes =
-        test_pso(dev, (sgPipelineDesc){.shader = {.vertex = vs_basic,
-                                                  .fragment = fs_lanes,
-                                                  .varying_count = 6,
-                                                  .independent_lanes = independent},
-                                       .depth = {.compare = ds.compare, .write = ds.write}});
-    sgPipelineStateObject fixed =
-        test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
-    sgGeom back = quad(dev, 0.9f), middle = quad(dev, 0.45f);
-    sgDrawParams bp = params();
-    for (int frame = 0; frame < 2; frame++) {
-        target t = begin(dev);
-        assert_int_equal(sgDraw(dev, fixed, back, &bp), SG_OK);
-        assert_int_equal(sgDraw(dev, lanes, g, &p), SG_OK);
-        assert_int_equal(sgDraw(dev, fixed, middle, &bp), SG_OK); /* after the waiting ones */
-        end(dev, &t, out + (size_t)frame * W * H * 4);
-    }
-    sgDestroyDevice(dev);
-    return calls;
+    return frames_between(dev, &gd,
+                          (sgShaderDesc){.vertex = vs_basic,
+                                         .fragment = fs_lanes,
+                                         .varying_count = 6,
+                                         .independent_lanes = independent},
+                          ds, discard_below, out);
 }
 
 /* Independent lanes: the tiles that several triangles share are one batch a facing, fewer calls
@@ -629,35 +639,15 @@ static int render_pure(int threads, sgSimd simd, bool varyings_only, float disca
             memcpy(idx + n, t, sizeof t);
             n += 6;
         }
-    sgGeom g;
-    sgGeomDesc gd = {
+    const sgGeomDesc gd = {
         .vertex_count = NV, .positions = pos, .colors = col, .index_count = n, .indices = idx};
-    assert_int_equal(sgCreateGeom(dev, &gd, &g), SG_OK);
-    int calls = 0;
-    const lanes_uniforms u = {discard_below, &calls};
-    sgDrawParams p = params();
-    p.uniforms = &u;
-    p.uniform_size = sizeof u;
-    sgPipelineStateObject pure =
-        test_pso(dev, (sgPipelineDesc){.shader = {.vertex = vs_color,
-                                                  .fragment = fs_pure,
-                                                  .varying_count = 4,
-                                                  .independent_lanes = true,
-                                                  .varyings_only = varyings_only},
-                                       .depth = {.compare = ds.compare, .write = ds.write}});
-    sgPipelineStateObject fixed =
-        test_pso(dev, (sgPipelineDesc){.depth = {.compare = SG_COMPARE_LESS, .write = true}});
-    sgGeom back = quad(dev, 0.9f), middle = quad(dev, 0.45f);
-    sgDrawParams bp = params();
-    for (int frame = 0; frame < 2; frame++) {
-        target t = begin(dev);
-        assert_int_equal(sgDraw(dev, fixed, back, &bp), SG_OK);
-        assert_int_equal(sgDraw(dev, pure, g, &p), SG_OK);
-        assert_int_equal(sgDraw(dev, fixed, middle, &bp), SG_OK);
-        end(dev, &t, out + (size_t)frame * W * H * 4);
-    }
-    sgDestroyDevice(dev);
-    return calls;
+    return frames_between(dev, &gd,
+                          (sgShaderDesc){.vertex = vs_color,
+                                         .fragment = fs_pure,
+                                         .varying_count = 4,
+                                         .independent_lanes = true,
+                                         .varyings_only = varyings_only},
+                          ds, discard_below, out);
 }
 
 /* A stage of its varyings alone runs once for a triangle whose varyings agree, at assembly: a
