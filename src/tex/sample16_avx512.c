@@ -42,28 +42,45 @@ void sg_sample16_mip_avx512(const sg_mip_chain *m, const sg_mip_pick pick[4], bo
     for (int k = 0; k < 4; k++) _mm512_storeu_si512(texel[k], c[k]);
 }
 
-/* c / 255.0f without a division: q = c (1 / 255) in float is within an ulp of the quotient, and
- * one correction step, q + (c - 255 q) (1 / 255), with the remainder c - 255 q exact in a fused
- * multiply-add, gives the correctly rounded quotient for every c in 0 .. 255 (test_sample checks
- * all 256). The fused operations are written out; the library is compiled without contraction. */
-INLINE __m512 unit16(__m512i texel) {
-    const __m512 r = _mm512_set1_ps(1.0f / 255.0f), d = _mm512_set1_ps(255.0f);
-    const __m512 c = _mm512_cvtepi32_ps(texel), q = _mm512_mul_ps(c, r);
-    return _mm512_fmadd_ps(_mm512_fnmadd_ps(q, d, c), r, q);
+/* c / 255.0f without a division, for a channel c held at bit `at` (0, 8 or 16) of each lane:
+ * c / 255 = N / (2^24 - 1) with N = 65793 c < 2^24, so q = N 2^-24 (the product of c 2^at and
+ * 0x1.0101p-8 2^-at, exact in float) is c / 255 less a tail of q (2^-24 + 2^-48 + ...), and
+ * q + q 2^-24, rounded once in a fused multiply-add, rounds as c / 255 does: the tail beyond it
+ * could only matter at a halfway point, which q + q 2^-24 is only when N is a power of two
+ * (c = 0). So a channel needs no shift down, and the quotient one product and one fused
+ * operation (test_sample checks all 256 values). The library is compiled without contraction. */
+INLINE __m512 unit16_at(__m512i texel, const int at) {
+    const __m512 q =
+        _mm512_mul_ps(_mm512_cvtepi32_ps(texel), _mm512_set1_ps(0x1.0101p-8f / (float)(1 << at)));
+    return _mm512_fmadd_ps(q, _mm512_set1_ps(0x1p-24f), q);
 }
 
 void sg_texels_to_unit_avx512(const int32_t texel[4][SG_SHADER_LANES],
                               float out[4][SG_SHADER_LANES]) {
-    for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16(_mm512_loadu_si512(texel[k])));
+    for (int k = 0; k < 4; k++)
+        _mm512_storeu_ps(out[k], unit16_at(_mm512_loadu_si512(texel[k]), 0));
 }
 
 /* The lookups and the conversion in one call, the channels kept in registers between them. */
 void sg_sample16_unit_avx512(const sg_texview *tv, bool bilinear, bool repeat, bool window,
                              const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
                              float out[4][SG_SHADER_LANES]) {
+    if (!bilinear && !window) {
+        /* The usual nearest gather on its own, its texels' channels converted where they lie
+         * (merged with the other lookups, they went through the stack). */
+        const tex16 tx = tex16_of(tv, 0, false);
+        const __m512 ps = _mm512_loadu_ps(s), pt = _mm512_loadu_ps(t);
+        const __m512i x =
+            repeat ? nearest16(&tx, ps, pt, 0xffff, 1) : nearest16(&tx, ps, pt, 0xffff, 0);
+        for (int k = 0; k < 3; k++)
+            _mm512_storeu_ps(
+                out[k], unit16_at(_mm512_and_si512(x, _mm512_set1_epi32(255 << 8 * k)), 8 * k));
+        _mm512_storeu_ps(out[3], unit16_at(_mm512_srli_epi32(x, 24), 0));
+        return;
+    }
     __m512i c[4];
     lookup_all(tv, bilinear, repeat, window, s, t, c);
-    for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16(c[k]));
+    for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16_at(c[k], 0));
 }
 
 #endif
