@@ -729,8 +729,9 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
             return sg_error(dev, SG_ERROR_IN_USE,
                             "sgDraw: params->textures[%d] 0x%08x is a target of the open pass", k,
                             h.id);
-        st->textures[k] = (sg_shader_tex){img->data, img->width, img->height,
-                                          img->format == SG_FORMAT_D32_FLOAT, &img->mips};
+        st->textures[k] =
+            (sg_shader_tex){img->data,  img->width, img->height, img->format == SG_FORMAT_D32_FLOAT,
+                            &img->mips, NULL};
     }
     const int instances = params->instance_count ? params->instance_count : 1;
     const int slots = instance_slots(dev, geom, instances);
@@ -764,6 +765,12 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     st->repeat = pso->desc.wrap == SG_WRAP_REPEAT;
     st->mipmap = pso->desc.mipmap;
     st->pso = pso_h.id;
+    for (int k = 0; k < SG_MAX_DRAW_TEXTURES; k++) {
+        sg_shader_tex *tx = &st->textures[k];
+        if (tx->data && !tx->depth && st->mipmap == SG_MIPMAP_NONE)
+            tx->unit =
+                sg_sample16_unit_fn_of(st->sample16, st->bilinear, st->repeat, ctx.texel_window);
+    }
 
     const int width = dev->pass.width, height = dev->pass.height;
     const bool depth_only = dev->pass.color == NULL;

@@ -22,6 +22,7 @@
 #include "raster/shadow.h"
 #include "sgapi/sgapi.h"
 #include "tex/sample.h"
+#include "tex/sample16.h"
 
 /* A texture a shader draw binds (sgSample): RGBA8 texels, or a depth image's floats. */
 typedef struct sg_shader_tex {
@@ -29,6 +30,9 @@ typedef struct sg_shader_tex {
     int width, height;
     bool depth;
     const sg_mip_chain *mips; /* its levels (RGBA8) */
+    /* sgSample's lookup of level 0 made for the draw's filter and wrap, when there is one
+     * (sg_sample16_unit_fn_of), else NULL. */
+    sg_sample16_unit_fn unit;
 } sg_shader_tex;
 
 /* What a shader draw's fragment stage needs (shade_shader.c). */

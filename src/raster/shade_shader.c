@@ -212,8 +212,11 @@ static void sample_mip(const sg_shader_tex *tx, const sg_shader_state *s, bool w
     sg_texels_to_unit(s->sample16, texel, rgba);
 }
 
-void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
-              const float v[SG_SHADER_LANES], float rgba[4][SG_SHADER_LANES]) {
+/* sgSample past its usual case. */
+static __attribute__((noinline)) void sample_any(const sgFragmentBatch *b, int slot,
+                                                 const float u[SG_SHADER_LANES],
+                                                 const float v[SG_SHADER_LANES],
+                                                 float rgba[4][SG_SHADER_LANES]) {
     const sg_shade_ctx *c = b && b->internal ? b->internal : NULL;
     const sg_shader_tex *tx =
         c && slot >= 0 && slot < SG_MAX_DRAW_TEXTURES && c->shader.textures[slot].data
@@ -238,4 +241,16 @@ void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES]
             rgba[3][i] = 1.0f;
         }
     }
+}
+
+void sgSample(const sgFragmentBatch *b, int slot, const float u[SG_SHADER_LANES],
+              const float v[SG_SHADER_LANES], float rgba[4][SG_SHADER_LANES]) {
+    /* The usual case in a few instructions: a bound colour texture whose lookup the draw made. */
+    const sg_shade_ctx *c = b ? b->internal : NULL;
+    if (c && slot >= 0 && slot < SG_MAX_DRAW_TEXTURES && c->shader.textures[slot].unit) {
+        const sg_shader_tex *tx = &c->shader.textures[slot];
+        tx->unit(&tx->mips->level[0], u, v, rgba);
+        return;
+    }
+    sample_any(b, slot, u, v, rgba);
 }

@@ -75,6 +75,15 @@ static inline void sg_texels_to_unit(int simd, const int32_t texel[4][SG_SHADER_
     SG_SAMPLE16_CALL(simd, sg_texels_to_unit, texel, out);
 }
 
+/** A copy of sg_sample16_unit made for one filter, wrap and window, whose call takes only the view,
+ *  the coordinates and the output. */
+typedef void (*sg_sample16_unit_fn)(const sg_texview *tv, const float s[SG_SHADER_LANES],
+                                    const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]);
+
+/** That copy for (simd, bilinear, repeat, window), where one is made (the AVX-512 nearest lookups
+ *  that gather), else NULL. */
+sg_sample16_unit_fn sg_sample16_unit_fn_of(int simd, bool bilinear, bool repeat, bool window);
+
 /** sg_sample16's channels as sg_texels_to_unit gives them, in one call. */
 static inline void sg_sample16_unit(int simd, const sg_texview *tv, bool bilinear, bool repeat,
                                     bool window, const float s[SG_SHADER_LANES],

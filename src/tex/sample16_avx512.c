@@ -61,21 +61,39 @@ void sg_texels_to_unit_avx512(const int32_t texel[4][SG_SHADER_LANES],
         _mm512_storeu_ps(out[k], unit16_at(_mm512_loadu_si512(texel[k]), 0));
 }
 
+/* The nearest gather and the conversion, its texels' channels converted where they lie. */
+INLINE void nearest_unit(const sg_texview *tv, const int repeat, const float *s, const float *t,
+                         float out[4][SG_SHADER_LANES]) {
+    const tex16 tx = tex16_of(tv, 0, false);
+    const __m512i x = nearest16(&tx, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, repeat);
+    for (int k = 0; k < 3; k++)
+        _mm512_storeu_ps(out[k],
+                         unit16_at(_mm512_and_si512(x, _mm512_set1_epi32(255 << 8 * k)), 8 * k));
+    _mm512_storeu_ps(out[3], unit16_at(_mm512_srli_epi32(x, 24), 0));
+}
+
+/* sg_sample16_unit_fn_of's copies (sample16.c). */
+void sg_sample16_nearest_clamp_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
+                                      const float t[SG_SHADER_LANES],
+                                      float out[4][SG_SHADER_LANES]) {
+    nearest_unit(tv, 0, s, t, out);
+}
+
+void sg_sample16_nearest_repeat_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
+                                       const float t[SG_SHADER_LANES],
+                                       float out[4][SG_SHADER_LANES]) {
+    nearest_unit(tv, 1, s, t, out);
+}
+
 /* The lookups and the conversion in one call, the channels kept in registers between them. */
 void sg_sample16_unit_avx512(const sg_texview *tv, bool bilinear, bool repeat, bool window,
                              const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
                              float out[4][SG_SHADER_LANES]) {
-    if (!bilinear && !window) {
-        /* The usual nearest gather on its own, its texels' channels converted where they lie
-         * (merged with the other lookups, they went through the stack). */
-        const tex16 tx = tex16_of(tv, 0, false);
-        const __m512 ps = _mm512_loadu_ps(s), pt = _mm512_loadu_ps(t);
-        const __m512i x =
-            repeat ? nearest16(&tx, ps, pt, 0xffff, 1) : nearest16(&tx, ps, pt, 0xffff, 0);
-        for (int k = 0; k < 3; k++)
-            _mm512_storeu_ps(
-                out[k], unit16_at(_mm512_and_si512(x, _mm512_set1_epi32(255 << 8 * k)), 8 * k));
-        _mm512_storeu_ps(out[3], unit16_at(_mm512_srli_epi32(x, 24), 0));
+    if (!bilinear && !window) { /* on its own: merged with the others, the channels were spilled */
+        if (repeat)
+            nearest_unit(tv, 1, s, t, out);
+        else
+            nearest_unit(tv, 0, s, t, out);
         return;
     }
     __m512i c[4];
