@@ -8,6 +8,9 @@
 #if defined(__SSE__)
 #include <xmmintrin.h>
 #endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "pipeline/assemble.h"
 
@@ -147,6 +150,28 @@ static bool same3(const float *a, const float *b) {
     return memcmp(a, b, 3 * sizeof(float)) == 0;
 }
 
+/* Bit k: attribute k (of n) is the same, bit for bit, at the three vertices. A shader's flat
+ * varyings are (the first vertex's at all three). */
+static uint16_t same_varyings(const float *const attr[3], int n) {
+    uint32_t same = 0;
+    int k = 0;
+#if defined(__SSE2__) /* four at a time: every shader triangle pays this */
+    for (; k + 4 <= n; k += 4) {
+        __m128i v[3];
+        for (int i = 0; i < 3; i++)
+            v[i] = _mm_loadu_si128((const __m128i *)(const void *)(attr[i] + k));
+        const __m128i eq = _mm_and_si128(_mm_cmpeq_epi32(v[0], v[1]), _mm_cmpeq_epi32(v[0], v[2]));
+        same |= (uint32_t)_mm_movemask_ps(_mm_castsi128_ps(eq)) << k;
+    }
+#endif
+    for (; k < n; k++) {
+        uint32_t v[3];
+        for (int i = 0; i < 3; i++) memcpy(&v[i], attr[i] + k, sizeof v[i]);
+        same |= (uint32_t)(v[0] == v[1] && v[0] == v[2]) << k;
+    }
+    return (uint16_t)same;
+}
+
 /* What every plane of a triangle shares, from its snapped vertices and pixel bounds. */
 static plane_basis basis_of(const sg_svert s[3], const sg_tri *t) {
     const int64_t one = SG_SUBPIXEL_ONE;
@@ -164,6 +189,7 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     out->nattr = p->nattr;
     out->flat = SG_FLAT_NONE;
     out->shader_const = SG_CONST_NONE;
+    out->same = p->shader ? same_varyings(attr, p->nattr) : 0;
     /* A secondary colour (and the split colours of a shadow receiver) must be constant too for
      * the triangle to be flat. */
     const int sec = p->sec;
@@ -197,13 +223,13 @@ void sg_setup_planes(const sg_setup_params *p, const sg_svert s[3], const float 
     memset(out->a_dx, 0, sizeof out->a_dx);
     memset(out->a_dy, 0, sizeof out->a_dy);
     int n = p->nattr < SG_TRI_ATTRS ? p->nattr : SG_TRI_ATTRS;
-    for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < n; k++)
+    for (int k = out->flat != SG_FLAT_NONE ? 4 : 0; k < n; k++) {
+        if (out->same >> k & 1) { /* a shader's varying the same at every vertex, as it is */
+            out->a[k] = attr[0][k];
+            continue;
+        }
         plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
               (double)attr[2][k] * s[2].q, &out->a[k], &out->a_dx[k], &out->a_dy[k]);
-    for (uint32_t m = p->flat_mask & ((1u << SG_TRI_ATTRS) - 1); m; m &= m - 1) {
-        const int k = __builtin_ctz(m); /* a shader's flat varying, as it is */
-        out->a[k] = attr[0][k];
-        out->a_dx[k] = out->a_dy[k] = 0.0f;
     }
 }
 
@@ -214,8 +240,8 @@ void sg_setup_planes_ext(const sg_setup_params *p, const sg_svert s[3], const fl
     const int sec = p->sec, sec_end = p->sec_end ? p->sec_end : sec + 3;
     for (int k = SG_TRI_ATTRS; k < p->nattr; k++) {
         int e = k - SG_TRI_ATTRS;
-        if ((t->flat != SG_FLAT_NONE && sec && k >= sec && k < sec_end) || (p->flat_mask >> k & 1))
-            ext->a[e] = attr[0][k]; /* the flat secondary colour or varying, as it is */
+        if ((t->flat != SG_FLAT_NONE && sec && k >= sec && k < sec_end) || (t->same >> k & 1))
+            ext->a[e] = attr[0][k]; /* the flat secondary colour or same varying, as it is */
         else
             plane(&b, (double)attr[0][k] * s[0].q, (double)attr[1][k] * s[1].q,
                   (double)attr[2][k] * s[2].q, &ext->a[e], &ext->a_dx[e], &ext->a_dy[e]);

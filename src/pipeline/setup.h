@@ -9,6 +9,7 @@
 #define SG_SETUP_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "pipeline/clip.h"
@@ -78,8 +79,16 @@ typedef struct sg_tri {
     /* SG_CONST_COLOR: a shader triangle whose varyings are the same at its three vertices, of a
      * stage that reads its varyings alone (sgShaderDesc.varyings_only), shaded once in assembly:
      * its pixels all take sh.color. SG_CONST_NONE: shaded pixel by pixel. */
-    int shader_const;
+    uint16_t shader_const;
+    /* A shader triangle's varyings that are the same, bit for bit, at its three vertices (flat
+     * ones among them): bit k set, varying k is that value everywhere, kept as it is in a[k] (or
+     * the extension's) with zero steps, as a flat varying is (interpolating it would only add
+     * rounding). The high half of the 32 bits from shader_const on, as the shared tiles read it
+     * (raster/shade_shader_tile.h). */
+    uint16_t same;
 } sg_tri;
+_Static_assert(offsetof(sg_tri, same) == offsetof(sg_tri, shader_const) + 2,
+               "sg_tri.same: the high half of the word at shader_const");
 
 enum { SG_FLAT_NONE, SG_FLAT_COLOR, SG_FLAT_WHITE };
 enum { SG_CONST_NONE, SG_CONST_COLOR };

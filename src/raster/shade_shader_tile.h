@@ -69,7 +69,7 @@ SG_LANES_FN(interp_n)(const sg_shade_ctx *c, const sg_tri *t, const int n, const
     for (int k = 0; k < s->varying_count; k++) {
         const bool own = k < SG_TRI_ATTRS;
         const VF va = zero + (own ? t->a[k] : ext->a[k - SG_TRI_ATTRS]);
-        if (s->flat >> k & 1) {
+        if (t->same >> k & 1) { /* flat, or the same at every vertex: as it is */
             for (int j = 0; j < n; j++) PUT(b[j].varying[k] + h, va);
             continue;
         }
@@ -131,6 +131,19 @@ SG_LANES_FN(interp_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const
     const VF zc = VMIN(one, VMAX(zero, z)); /* sg_tri_depth */
     memcpy(b->z + h, &zc, sizeof zc);
     const VF w = 1.0f / (PICK(q) + PICK(q_dx) * dx + PICK(q_dy) * dy);
+    /* The varyings every lane's triangle takes as they are (sg_tri.same), and those some do:
+     * for those, each lane's own bits (the high half of the word at shader_const). */
+    uint32_t all = 0xffffu, any = 0;
+    for (int j = 0; j < n; j++) {
+        all &= ts[j]->same;
+        any |= ts[j]->same;
+    }
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#error "sg_tri.same is read as the high half of a little-endian word"
+#endif
+    const VI same =
+        any & ~all ? (VI)SG_LANES_FN(pick)(tp, sel, n, offsetof(sg_tri, shader_const), false) >> 16
+                   : (VI){0};
     for (int k = 0; k < s->varying_count; k++) {
         const bool own = k < SG_TRI_ATTRS;
         const void *const *p = own ? tp : ep;
@@ -141,10 +154,12 @@ SG_LANES_FN(interp_shared)(const sg_shade_ctx *c, const sg_tri *const *ts, const
         const size_t f = (size_t)e * sizeof(float);
         const VF va = SG_LANES_FN(pick)(p, sel, n, a + f, true);
         VF v = va;
-        if (!(s->flat >> k & 1))
+        if (!(all >> k & 1)) {
             v = (va + SG_LANES_FN(pick)(p, sel, n, ax + f, true) * dx +
                  SG_LANES_FN(pick)(p, sel, n, ay + f, true) * dy) *
                 w;
+            if (any >> k & 1) v = TSEL(((same >> k) & 1) != 0, va, v);
+        }
         memcpy(b->varying[k] + h, &v, sizeof v);
     }
 #undef PICK
