@@ -524,6 +524,8 @@ static int render_lanes(int threads, sgSimd simd, bool independent, float discar
                 pos[v * 4 + 2] = 0.3f - 0.05f * (float)layer + 0.02f * (float)(h >> 20 & 15);
                 pos[v * 4 + 3] = 1.0f;
                 for (int k = 0; k < 3; k++) col[v * 4 + k] = (float)(h >> (8 * k) & 255) / 255.0f;
+                /* Green the same at the vertices of some triangles of a tile, not of others. */
+                if (i % 3) col[v * 4 + 1] = 0.5f;
                 col[v * 4 + 3] = 1.0f;
             }
         for (int j = 0; j < GY; j++)
@@ -594,6 +596,81 @@ static void vs_color(sgVertexBatch *b, const void *uniforms) {
         }
 }
 
+/* Red where varying 0 is exactly 0.3f, green where varying 1 is exactly 0.7f. */
+static void fs_exact(sgFragmentBatch *b, const void *uniforms) {
+    (void)uniforms;
+    for (int i = 0; i < SG_SHADER_LANES; i++) {
+        b->color[0][i] = b->varying[0][i] == 0.3f ? 1.0f : 0.0f;
+        b->color[1][i] = b->varying[1][i] == 0.7f ? 1.0f : 0.0f;
+        b->color[2][i] = 0.0f;
+        b->color[3][i] = 1.0f;
+    }
+}
+
+/* A varying the same at a triangle's three vertices is that value at every pixel, exactly, under
+ * a perspective (w from 1 to 2.5 across the mesh) that an interpolation of value / w would round;
+ * in batches of one triangle and of several, at every thread count and instruction set. */
+static void test_same_varyings(void **state) {
+    (void)state;
+    enum { GX = 9, GY = 7, NV = (GX + 1) * (GY + 1) };
+    static float pos[NV * 4], col[NV * 4];
+    static uint32_t idx[GX * GY * 6];
+    for (int j = 0; j <= GY; j++)
+        for (int i = 0; i <= GX; i++) {
+            const int v = j * (GX + 1) + i;
+            const float w = 1.0f + 0.5f * (float)((uint32_t)v * 2654435761u >> 30);
+            const float p[4] = {-0.9f + 1.8f * (float)i / GX, -0.9f + 1.8f * (float)j / GY, 0.5f,
+                                1.0f};
+            for (int k = 0; k < 4; k++) pos[v * 4 + k] = p[k] * w;
+            const float c[4] = {0.3f, 0.7f, (float)v / NV, 1.0f};
+            memcpy(col + v * 4, c, sizeof c);
+        }
+    int n = 0;
+    for (int j = 0; j < GY; j++)
+        for (int i = 0; i < GX; i++) {
+            const uint32_t a = (uint32_t)(j * (GX + 1) + i), b = a + 1, c = a + GX + 1, d = c + 1;
+            const uint32_t q[6] = {a, b, c, b, d, c};
+            memcpy(idx + n, q, sizeof q);
+            n += 6;
+        }
+    const sgGeomDesc gd = {
+        .vertex_count = NV, .positions = pos, .colors = col, .index_count = n, .indices = idx};
+    static const sgSimd sets[] = {SG_SIMD_SCALAR, SG_SIMD_AVX2, SG_SIMD_AVX512, SG_SIMD_NEON};
+    static uint8_t out[W * H * 4];
+    for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++)
+        for (int threads = 1; threads <= 3; threads += 2)
+            for (int independent = 0; independent < 2; independent++) {
+                sgDevice *dev;
+                const sgResult r =
+                    sgCreateDevice(&(sgDeviceDesc){.thread_count = threads, .simd = sets[k]}, &dev);
+                if (r == SG_ERROR_UNSUPPORTED) continue;
+                assert_int_equal(r, SG_OK);
+                sgGeom g;
+                assert_int_equal(sgCreateGeom(dev, &gd, &g), SG_OK);
+                sgPipelineStateObject pso =
+                    test_pso(dev, (sgPipelineDesc){.shader = {.vertex = vs_color,
+                                                              .fragment = fs_exact,
+                                                              .varying_count = 4,
+                                                              .independent_lanes = independent}});
+                target t = begin(dev);
+                sgDrawParams p = params();
+                assert_int_equal(sgDraw(dev, pso, g, &p), SG_OK);
+                end(dev, &t, out);
+                sgDestroyDevice(dev);
+                int covered = 0;
+                for (int i = 0; i < W * H; i++) {
+                    if (out[i * 4 + 3] == 255 && out[i * 4] == 0 && out[i * 4 + 1] == 0 &&
+                        out[i * 4 + 2] == 0)
+                        continue; /* the clear colour */
+                    covered++;
+                    if (out[i * 4] != 255 || out[i * 4 + 1] != 255)
+                        fail_msg("set %d, %d threads, independent %d: pixel %d is %d %d",
+                                 (int)sets[k], threads, independent, i, out[i * 4], out[i * 4 + 1]);
+                }
+                assert_true(covered > W * H / 2);
+            }
+}
+
 /* A stage of its varyings alone (sgShaderDesc.varyings_only): the colour varyings, discarding
  * where red is below u[0]; counts its calls in *u[1]'s int. */
 static void fs_pure(sgFragmentBatch *b, const void *uniforms) {
@@ -632,6 +709,8 @@ static int render_pure(int threads, sgSimd simd, bool varyings_only, float disca
                 pos[v * 4 + 2] = 0.3f + 0.02f * (float)((q >> 20 & 15) + (uint32_t)c);
                 pos[v * 4 + 3] = 1.0f;
                 for (int k = 0; k < 3; k++) col[v * 4 + k] = (float)(h >> (8 * k) & 255) / 255.0f;
+                /* Green the same at the vertices of some triangles of a tile, not of others. */
+                if (i % 3) col[v * 4 + 1] = 0.5f;
                 col[v * 4 + 3] = 1.0f;
             }
             const uint32_t a = (uint32_t)v - 4;
@@ -960,6 +1039,7 @@ int main(void) {
         cmocka_unit_test(test_in_place_compare),
         cmocka_unit_test(test_independent_lanes),
         cmocka_unit_test(test_varyings_only),
+        cmocka_unit_test(test_same_varyings),
         cmocka_unit_test(test_sample),
         cmocka_unit_test(test_blend),
         cmocka_unit_test(test_refusals),
