@@ -844,6 +844,7 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     dev->pass.any_mixed |= ds->mixed_fn != NULL;
     dev->pass.any_pair |= ds->shade2_fn != NULL;
     dev->pass.any_shader = true;
+    dev->pass.any_konst |= sh->varyings_only && !depth_only;
     /* The stage reads its varyings alone: a triangle whose varyings agree is shaded once. */
     const sg_shader_konst konst = {&ds->ctx, vs.run.uniforms};
     if (sh->varyings_only && !depth_only) {

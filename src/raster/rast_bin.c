@@ -85,6 +85,23 @@ static inline bool shade_mixed(const sg_bin_pass *p, mixed_set *m, const uint32_
     return true;
 }
 
+/* A tile whose covered pixels `left` all see triangles shaded once (sg_tri.shader_const): their
+ * colours put in dst straight from the triangles, no batch set up; false (nothing done) when one
+ * of them is shaded pixel by pixel. */
+static inline bool put_const_tile(const sg_bin_pass *p, const uint32_t *ids, uint32_t left,
+                                  uint32_t *dst) {
+    const sg_tri *tris = p->binner->tris;
+    uint32_t px[SG_TILE_PIXELS];
+    for (uint32_t m = left; m; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        const sg_tri *t = &tris[ids[i] - 1];
+        if (!t->shader_const) return false;
+        px[i] = t->sh.color;
+    }
+    sg_fb_put_lanes(dst, px, left);
+    return true;
+}
+
 /* Shades the visible pixels of one tile: in one pass when several triangles share it and
  * shade_mixed takes it, else each run of pixels that see the same triangle is one call of that
  * triangle's shading function (or collected in s, see shade_run). */
@@ -101,6 +118,7 @@ static inline __attribute__((always_inline)) void shade_tile(const sg_bin_pass *
         }
     }
     uint32_t left = ~sg_tile_same_id(ids, 0) & 0xffffu;
+    if (p->any_konst && left && put_const_tile(p, ids, left, color + tile * SG_TILE_PIXELS)) return;
     if (p->any_mixed && left) {
         if (!first) { /* then the first covered pixel's */
             first = ids[__builtin_ctz(left)];

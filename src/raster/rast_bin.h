@@ -98,6 +98,7 @@ typedef struct sg_bin_pass {
     bool any_runs;        /* some draw packs partly covered tiles (runs_fn) */
     bool any_mixed;       /* some draw shades shared tiles in one pass (mixed_fn) */
     bool any_shader;      /* some draw has a fragment stage (sgShaderDesc) */
+    bool any_konst;       /* some draw's triangles may be shaded once (sg_tri.shader_const) */
     int *shader_discards; /* tiles whose fragment stage discarded (shade_shader.h), all bins */
     const sg_fb_ops *fb;  /* the bin's fills, for the device's instruction set */
     /* Multisampled passes (samples 4, rast_msaa.h): the samples of every bin between flushes,
