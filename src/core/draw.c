@@ -756,7 +756,6 @@ static sgResult draw_shader(sgDevice *dev, sg_pso *pso, sgPipelineStateObject ps
     st->fragment = sh->fragment;
     st->uniform_offset = params->uniform_size ? uoff : SIZE_MAX;
     st->varying_count = nv;
-    st->flat = sh->flat_varyings;
     st->konst = sh->varyings_only;
     st->bilinear = pso->desc.filter == SG_FILTER_BILINEAR;
     st->sample16 = dev->isa == SG_ISA_AVX512 ? SG_SAMPLE16_AVX512

@@ -41,7 +41,6 @@ typedef struct sg_shader_state {
     const void *uniforms;  /* the draw's copy, set when the pass renders its bins (pass.c) */
     size_t uniform_offset; /* where that copy is in the device's uniform arena (SIZE_MAX: none) */
     int varying_count;
-    uint32_t flat; /* flat varyings: taken as they are, not divided by 1/w */
     bool konst;    /* the stage reads its varyings alone: triangles may be shaded once (sg_tri) */
     bool bilinear, repeat;
     int sample16;    /* the copy of the 16-lane lookups sgSample takes (SG_SAMPLE16_*) */
