@@ -19,12 +19,29 @@ void sg_sample16_nearest_clamp_avx512(const sg_texview *tv, const float s[SG_SHA
 void sg_sample16_nearest_repeat_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
                                        const float t[SG_SHADER_LANES],
                                        float out[4][SG_SHADER_LANES]);
+void sg_sample16_bilinear_clamp_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
+                                       const float t[SG_SHADER_LANES],
+                                       float out[4][SG_SHADER_LANES]);
+void sg_sample16_bilinear_repeat_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
+                                        const float t[SG_SHADER_LANES],
+                                        float out[4][SG_SHADER_LANES]);
+void sg_sample16_bilinear_clamp_window_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
+                                              const float t[SG_SHADER_LANES],
+                                              float out[4][SG_SHADER_LANES]);
+void sg_sample16_bilinear_repeat_window_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
+                                               const float t[SG_SHADER_LANES],
+                                               float out[4][SG_SHADER_LANES]);
 #endif
 
 sg_sample16_unit_fn sg_sample16_unit_fn_of(int simd, bool bilinear, bool repeat, bool window) {
 #if SG_SAMPLE16_X86
-    if (simd == SG_SAMPLE16_AVX512 && !bilinear && !window)
+    if (simd == SG_SAMPLE16_AVX512 && !bilinear)
         return repeat ? sg_sample16_nearest_repeat_avx512 : sg_sample16_nearest_clamp_avx512;
+    if (simd == SG_SAMPLE16_AVX512 && window)
+        return repeat ? sg_sample16_bilinear_repeat_window_avx512
+                      : sg_sample16_bilinear_clamp_window_avx512;
+    if (simd == SG_SAMPLE16_AVX512)
+        return repeat ? sg_sample16_bilinear_repeat_avx512 : sg_sample16_bilinear_clamp_avx512;
 #endif
     (void)simd, (void)bilinear, (void)repeat, (void)window;
     return NULL;

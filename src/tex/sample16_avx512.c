@@ -85,6 +85,25 @@ void sg_sample16_nearest_repeat_avx512(const sg_texview *tv, const float s[SG_SH
     nearest_unit(tv, 1, s, t, out);
 }
 
+/* The bilinear lookup and the conversion, filter, wrap and window constants of each copy. */
+INLINE void bilinear_unit(const sg_texview *tv, const int repeat, const int window, const float *s,
+                          const float *t, float out[4][SG_SHADER_LANES]) {
+    __m512i c[4];
+    lookup16(tv, _mm512_loadu_ps(s), _mm512_loadu_ps(t), 0xffff, 1, repeat, 1, window, c);
+    for (int k = 0; k < 4; k++) _mm512_storeu_ps(out[k], unit16_at(c[k], 0));
+}
+
+#define SG_BILINEAR_UNIT(name, repeat, window)                                                     \
+    void name(const sg_texview *tv, const float s[SG_SHADER_LANES],                                \
+              const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {                     \
+        bilinear_unit(tv, repeat, window, s, t, out);                                              \
+    }
+SG_BILINEAR_UNIT(sg_sample16_bilinear_clamp_avx512, 0, 0)
+SG_BILINEAR_UNIT(sg_sample16_bilinear_repeat_avx512, 1, 0)
+SG_BILINEAR_UNIT(sg_sample16_bilinear_clamp_window_avx512, 0, 1)
+SG_BILINEAR_UNIT(sg_sample16_bilinear_repeat_window_avx512, 1, 1)
+#undef SG_BILINEAR_UNIT
+
 /* The lookups and the conversion in one call, the channels kept in registers between them. */
 void sg_sample16_unit_avx512(const sg_texview *tv, bool bilinear, bool repeat, bool window,
                              const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
