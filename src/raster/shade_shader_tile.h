@@ -38,10 +38,13 @@ SG_LANES_ATTR static inline void SG_LANES_FN(lanes)(int h, VF *x, VF *y) {
  * as the fixed shading does (attribute / w and 1 / w planes, then one division). Each plane's
  * coefficients are read and spread once for the n tiles, whose chains (the division, then the
  * varyings) run side by side; every lane does the same operations whatever n, so the same bits.
- * `all`: every lane written, else those of `sel` only (a lane's value is the same either way). */
+ * `all`: every lane written, else those of `sel` only (a lane's value is the same either way).
+ * depth false: b[j]'s depth is 0, for a stage that does not read it (sgShaderDesc.varyings_only)
+ * of a tile whose depth is settled already. */
 SG_LANES_ATTR static inline __attribute__((always_inline)) void
 SG_LANES_FN(interp_n)(const sg_shade_ctx *c, const sg_tri *t, const int n, const int *xs,
-                      const int *ys, int h, VI sel, const bool all, sgFragmentBatch *b) {
+                      const int *ys, int h, VI sel, const bool all, const bool depth,
+                      sgFragmentBatch *b) {
     const sg_shader_state *s = &c->shader;
     const sg_tri_ext *ext = s->varying_count > SG_TRI_ATTRS ? sg_shade_ext(c, t) : NULL;
     const VF zero = {0}, one = zero + 1.0f;
@@ -62,8 +65,11 @@ SG_LANES_FN(interp_n)(const sg_shade_ctx *c, const sg_tri *t, const int n, const
         dy[j] = (float)(ys[j] - t->miny) + ly;
     }
     for (int j = 0; j < n; j++) {
-        const VF z = t->z + t->z_dx * dx[j] + t->z_dy * dy[j];
-        PUT(b[j].z + h, VMIN(one, VMAX(zero, z))); /* sg_tri_depth */
+        if (depth) {
+            const VF z = t->z + t->z_dx * dx[j] + t->z_dy * dy[j];
+            PUT(b[j].z + h, VMIN(one, VMAX(zero, z))); /* sg_tri_depth */
+        } else
+            PUT(b[j].z + h, zero);
         w[j] = 1.0f / (t->q + t->q_dx * dx[j] + t->q_dy * dy[j]);
     }
     for (int k = 0; k < s->varying_count; k++) {
@@ -84,7 +90,7 @@ SG_LANES_FN(interp_n)(const sg_shade_ctx *c, const sg_tri *t, const int n, const
 SG_LANES_ATTR static inline __attribute__((always_inline)) void
 SG_LANES_FN(interp)(const sg_shade_ctx *c, const sg_tri *t, int x0, int y0, int h, VI sel,
                     const bool all, sgFragmentBatch *b) {
-    SG_LANES_FN(interp_n)(c, t, 1, &x0, &y0, h, sel, all, b);
+    SG_LANES_FN(interp_n)(c, t, 1, &x0, &y0, h, sel, all, true, b);
 }
 
 /* A float of each lane's triangle: ts[0]'s, then for each j from 1 ts[j]'s in the lanes of
@@ -346,7 +352,7 @@ SG_LANES_ATTR static uint32_t SG_LANES_FN(shade_tile2)(const sg_shade_ctx *c, co
     for (int j = 0; j < 2; j++) SG_LANES_FN(batch)(c, t, xs[j], ys[j], 0xffffu, &b[j]);
     const VI none = {0};
     for (int h = 0; h < SG_SHADER_LANES; h += SG_LANES_W)
-        SG_LANES_FN(interp_n)(c, t, 2, xs, ys, h, none, true, b);
+        SG_LANES_FN(interp_n)(c, t, 2, xs, ys, h, none, true, !c->shader.konst, b);
     for (int j = 0; j < 2; j++) SG_LANES_FN(prepare)(s, &b[j]);
     s->fragment(&b[0], s->uniforms);
     s->fragment(&b[1], s->uniforms);
