@@ -66,10 +66,10 @@ submit() { # DIR [sbatch options of the array...]
 }
 
 # ---- the turntable of two scenes: 4 tasks on Slurm against the same 4 shards run locally ----
-# SLURM_TEST_FRAMES: frames of the turn (48; docs/scale-out.md times 240).
+# SLURM_TEST_FRAMES: frames of the turn (24; docs/scale-out.md times 48 and 240).
 # The scene file goes to the scripts as an argument: the checkout's path may hold spaces.
 scene="$src/scenes/shadows.json"
-export SGAPI_RENDER="$render" TURNTABLE=${SLURM_TEST_FRAMES:-48} \
+export SGAPI_RENDER="$render" TURNTABLE=${SLURM_TEST_FRAMES:-24} \
     OPTIONS="--up 0 --scene shadow_teapots --scene shadow_point --png-level 1 --video-width 256"
 # shellcheck disable=SC2086
 local_run() { # OUT: the docs' loop without a scheduler, one thread a shard
