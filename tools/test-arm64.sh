@@ -51,8 +51,13 @@ render_all() { # OUT_DIR COMMAND...: renders every scene file with the command
     if [ -f "$gapi" ]; then "$@" "$gapi" -o "$out/gapi-task" >/dev/null; fi
 }
 render_all "$work/x86" "$x86/apps/sgapi-render"
-render_all "$work/scalar" "$qemu" "$arm/apps/sgapi-render" --simd scalar --threads 1
-render_all "$work/neon" "$qemu" "$arm/apps/sgapi-render" --simd neon --threads 3
+# The scalar run takes one core: the NEON run beside it takes the other.
+render_all "$work/scalar" "$qemu" "$arm/apps/sgapi-render" --simd scalar --threads 1 &
+scalar_pid=$!
+render_all "$work/neon" "$qemu" "$arm/apps/sgapi-render" --simd neon --threads 3 &
+neon_pid=$!
+wait $scalar_pid || { echo "test-arm64: the scalar run failed" >&2; exit 1; }
+wait $neon_pid || { echo "test-arm64: the NEON run failed" >&2; exit 1; }
 status=0
 count=0
 for png in "$work/x86"/*/*.png; do
