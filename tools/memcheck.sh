@@ -17,23 +17,20 @@ memcheck() {
 }
 # Every scene file but scale.json (millions of triangles a scene: for sgapi-bench).
 # Every scene file in two runs side by side: memcheck runs a program's threads on one core.
-set --
-half=0
-for f in "$src"/scenes/*.json; do
-    [ "${f##*/}" = scale.json ] && continue
-    half=$((1 - half))
-    [ $half -eq 1 ] && set -- "$@" "$f"
-done
-memcheck "$build/apps/sgapi-render" "$@" -o "$out/a" &
+half() { # K: every other scene file from the K-th (0 or 1), scale.json left out
+    k=$1
+    set --
+    i=0
+    for f in "$src"/scenes/*.json; do
+        [ "${f##*/}" = scale.json ] && continue
+        [ $((i % 2)) -eq "$k" ] && set -- "$@" "$f"
+        i=$((i + 1))
+    done
+    memcheck "$build/apps/sgapi-render" "$@" -o "$out/$k"
+}
+half 0 &
 first=$!
-set --
-half=0
-for f in "$src"/scenes/*.json; do
-    [ "${f##*/}" = scale.json ] && continue
-    half=$((1 - half))
-    [ $half -eq 0 ] && set -- "$@" "$f"
-done
-memcheck "$build/apps/sgapi-render" "$@" -o "$out/b"
+half 1
 wait $first
 memcheck "$build/apps/sgapi-render" "$src/scenes/default.json" --scene 03_pyramid_and_cube \
     -o "$out/turntable" --turntable 3

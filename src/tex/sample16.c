@@ -13,24 +13,12 @@
 #include "tex/sample16_body.h"
 
 #if SG_SAMPLE16_X86
-void sg_sample16_nearest_clamp_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
-                                      const float t[SG_SHADER_LANES],
-                                      float out[4][SG_SHADER_LANES]);
-void sg_sample16_nearest_repeat_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
-                                       const float t[SG_SHADER_LANES],
-                                       float out[4][SG_SHADER_LANES]);
-void sg_sample16_bilinear_clamp_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
-                                       const float t[SG_SHADER_LANES],
-                                       float out[4][SG_SHADER_LANES]);
-void sg_sample16_bilinear_repeat_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
-                                        const float t[SG_SHADER_LANES],
-                                        float out[4][SG_SHADER_LANES]);
-void sg_sample16_bilinear_clamp_window_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
-                                              const float t[SG_SHADER_LANES],
-                                              float out[4][SG_SHADER_LANES]);
-void sg_sample16_bilinear_repeat_window_avx512(const sg_texview *tv, const float s[SG_SHADER_LANES],
-                                               const float t[SG_SHADER_LANES],
-                                               float out[4][SG_SHADER_LANES]);
+/* sample16_avx512.c's copies, each an sg_sample16_unit_fn. */
+typedef void unit_copy(const sg_texview *tv, const float *s, const float *t,
+                       float (*out)[SG_SHADER_LANES]);
+unit_copy sg_sample16_nearest_clamp_avx512, sg_sample16_nearest_repeat_avx512,
+    sg_sample16_bilinear_clamp_avx512, sg_sample16_bilinear_repeat_avx512,
+    sg_sample16_bilinear_clamp_window_avx512, sg_sample16_bilinear_repeat_window_avx512;
 #endif
 
 sg_sample16_unit_fn sg_sample16_unit_fn_of(int simd, bool bilinear, bool repeat, bool window) {
