@@ -41,7 +41,7 @@ typedef struct sg_shader_state {
     const void *uniforms;  /* the draw's copy, set when the pass renders its bins (pass.c) */
     size_t uniform_offset; /* where that copy is in the device's uniform arena (SIZE_MAX: none) */
     int varying_count;
-    bool konst;    /* the stage reads its varyings alone: triangles may be shaded once (sg_tri) */
+    bool konst; /* the stage reads its varyings alone: triangles may be shaded once (sg_tri) */
     bool bilinear, repeat;
     int sample16;    /* the copy of the 16-lane lookups sgSample takes (SG_SAMPLE16_*) */
     sgMipmap mipmap; /* the pipeline's, resolved (NONE, NEAREST or LINEAR) */
