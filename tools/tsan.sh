@@ -13,7 +13,10 @@ jobs=${2:-2}
 src=$(cd "$(dirname "$0")/.." && pwd)
 
 san="-fsanitize=thread"
+# Line tables, not full debug information: a report names file and line all the same, and the
+# SIMD variants' large inlined functions compile in two thirds of the time.
 CC=clang cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
     -DCMAKE_C_FLAGS="$san -fno-omit-frame-pointer" \
     -DCMAKE_EXE_LINKER_FLAGS="$san" -DCMAKE_SHARED_LINKER_FLAGS="$san" \
     -DSGAPI_BUILD_REFERENCE=OFF >/dev/null
