@@ -411,7 +411,8 @@ static int shadow_kind(const sg_shade_ctx *c, const sg_tri *t, const sg_tri_ext 
     return vis == 0.0f ? 0 : vis == 1.0f ? 2 : 1;
 }
 
-static void compare_variant(int variant, int kind) {
+/* cases_per_flat: CASES_PER_FLAT, or main's argument (fewer under emulation). */
+static void compare_variant(long cases_per_flat, int variant, int kind) {
     static const int sizes[][2] = {{1, 1},
                                    {1, 7},
                                    {3, 5},
@@ -487,7 +488,7 @@ static void compare_variant(int variant, int kind) {
         if (has_avx512 && kind == UNLIT) assert_non_null(mixed[1]);
 #endif
     }
-    const long cases = kind >= PHONG ? CASES_PER_FLAT / 7 : CASES_PER_FLAT;
+    const long cases = kind >= PHONG ? cases_per_flat / 7 : cases_per_flat;
     long seen[3] = {0, 0, 0}; /* shadow kinds: pixel 0 hidden, partly seen, seen */
     long failures = 0;
     uint32_t *bin_ref = malloc(BIN_PIXELS * sizeof *bin_ref);
@@ -727,187 +728,164 @@ static void mip_linear(void **state) {
 }
 
 static void vertex_colour(void **state) {
-    (void)state;
-    compare_variant(0, UNLIT);
+    compare_variant(*(const long *)*state, 0, UNLIT);
 }
 
 static void vertex_colour_secondary(void **state) {
-    (void)state;
-    compare_variant(0, SECONDARY);
+    compare_variant(*(const long *)*state, 0, SECONDARY);
 }
 
 static void vertex_colour_phong(void **state) {
-    (void)state;
-    compare_variant(0, PHONG);
+    compare_variant(*(const long *)*state, 0, PHONG);
 }
 
 static void nearest_repeat(void **state) {
-    (void)state;
-    compare_variant(1, UNLIT);
+    compare_variant(*(const long *)*state, 1, UNLIT);
 }
 
 static void nearest_repeat_secondary(void **state) {
-    (void)state;
-    compare_variant(1, SECONDARY);
+    compare_variant(*(const long *)*state, 1, SECONDARY);
 }
 
 static void nearest_repeat_phong(void **state) {
-    (void)state;
-    compare_variant(1, PHONG);
+    compare_variant(*(const long *)*state, 1, PHONG);
 }
 
 static void nearest_clamp(void **state) {
-    (void)state;
-    compare_variant(2, UNLIT);
+    compare_variant(*(const long *)*state, 2, UNLIT);
 }
 
 static void nearest_clamp_secondary(void **state) {
-    (void)state;
-    compare_variant(2, SECONDARY);
+    compare_variant(*(const long *)*state, 2, SECONDARY);
 }
 
 static void nearest_clamp_phong(void **state) {
-    (void)state;
-    compare_variant(2, PHONG);
+    compare_variant(*(const long *)*state, 2, PHONG);
 }
 
 static void bilinear_repeat(void **state) {
-    (void)state;
-    compare_variant(3, UNLIT);
+    compare_variant(*(const long *)*state, 3, UNLIT);
 }
 
 static void bilinear_repeat_secondary(void **state) {
-    (void)state;
-    compare_variant(3, SECONDARY);
+    compare_variant(*(const long *)*state, 3, SECONDARY);
 }
 
 static void bilinear_repeat_phong(void **state) {
-    (void)state;
-    compare_variant(3, PHONG);
+    compare_variant(*(const long *)*state, 3, PHONG);
 }
 
 static void bilinear_clamp(void **state) {
-    (void)state;
-    compare_variant(4, UNLIT);
+    compare_variant(*(const long *)*state, 4, UNLIT);
 }
 
 static void bilinear_clamp_secondary(void **state) {
-    (void)state;
-    compare_variant(4, SECONDARY);
+    compare_variant(*(const long *)*state, 4, SECONDARY);
 }
 
 static void bilinear_clamp_phong(void **state) {
-    (void)state;
-    compare_variant(4, PHONG);
+    compare_variant(*(const long *)*state, 4, PHONG);
 }
 
 static void vertex_colour_phong_shadow(void **state) {
-    (void)state;
-    compare_variant(0, PHONG_SHADOW);
+    compare_variant(*(const long *)*state, 0, PHONG_SHADOW);
 }
 
 static void vertex_colour_unlit_shadow(void **state) {
-    (void)state;
-    compare_variant(0, UNLIT_SHADOW);
+    compare_variant(*(const long *)*state, 0, UNLIT_SHADOW);
 }
 
 static void nearest_repeat_phong_shadow(void **state) {
-    (void)state;
-    compare_variant(1, PHONG_SHADOW);
+    compare_variant(*(const long *)*state, 1, PHONG_SHADOW);
 }
 
 static void nearest_repeat_unlit_shadow(void **state) {
-    (void)state;
-    compare_variant(1, UNLIT_SHADOW);
+    compare_variant(*(const long *)*state, 1, UNLIT_SHADOW);
 }
 
 static void nearest_clamp_phong_shadow(void **state) {
-    (void)state;
-    compare_variant(2, PHONG_SHADOW);
+    compare_variant(*(const long *)*state, 2, PHONG_SHADOW);
 }
 
 static void nearest_clamp_unlit_shadow(void **state) {
-    (void)state;
-    compare_variant(2, UNLIT_SHADOW);
+    compare_variant(*(const long *)*state, 2, UNLIT_SHADOW);
 }
 
 static void bilinear_repeat_phong_shadow(void **state) {
-    (void)state;
-    compare_variant(3, PHONG_SHADOW);
+    compare_variant(*(const long *)*state, 3, PHONG_SHADOW);
 }
 
 static void bilinear_repeat_unlit_shadow(void **state) {
-    (void)state;
-    compare_variant(3, UNLIT_SHADOW);
+    compare_variant(*(const long *)*state, 3, UNLIT_SHADOW);
 }
 
 static void bilinear_clamp_phong_shadow(void **state) {
-    (void)state;
-    compare_variant(4, PHONG_SHADOW);
+    compare_variant(*(const long *)*state, 4, PHONG_SHADOW);
 }
 
 static void bilinear_clamp_unlit_shadow(void **state) {
-    (void)state;
-    compare_variant(4, UNLIT_SHADOW);
+    compare_variant(*(const long *)*state, 4, UNLIT_SHADOW);
 }
 
 static void vertex_colour_split_shadow(void **state) {
-    (void)state;
-    compare_variant(0, SPLIT_SHADOW);
+    compare_variant(*(const long *)*state, 0, SPLIT_SHADOW);
 }
 
 static void nearest_repeat_split_shadow(void **state) {
-    (void)state;
-    compare_variant(1, SPLIT_SHADOW);
+    compare_variant(*(const long *)*state, 1, SPLIT_SHADOW);
 }
 
 static void nearest_clamp_split_shadow(void **state) {
-    (void)state;
-    compare_variant(2, SPLIT_SHADOW);
+    compare_variant(*(const long *)*state, 2, SPLIT_SHADOW);
 }
 
 static void bilinear_repeat_split_shadow(void **state) {
-    (void)state;
-    compare_variant(3, SPLIT_SHADOW);
+    compare_variant(*(const long *)*state, 3, SPLIT_SHADOW);
 }
 
 static void bilinear_clamp_split_shadow(void **state) {
-    (void)state;
-    compare_variant(4, SPLIT_SHADOW);
+    compare_variant(*(const long *)*state, 4, SPLIT_SHADOW);
 }
 
-int main(void) {
+/* test_shade_simd [CASES]: CASES random cases per variant and flat mode (a seventh of them for
+ * per-pixel lighting), CASES_PER_FLAT by default; the emulated AArch64 run asks for fewer. */
+int main(int argc, char **argv) {
+    long cases = argc > 1 ? strtol(argv[1], NULL, 10) : CASES_PER_FLAT;
+    if (cases < 700) {
+        fprintf(stderr, "test_shade_simd: CASES must be 700 or more\n");
+        return 2;
+    }
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(vertex_colour),
-        cmocka_unit_test(nearest_repeat),
-        cmocka_unit_test(nearest_clamp),
-        cmocka_unit_test(bilinear_repeat),
-        cmocka_unit_test(bilinear_clamp),
-        cmocka_unit_test(vertex_colour_secondary),
-        cmocka_unit_test(nearest_repeat_secondary),
-        cmocka_unit_test(nearest_clamp_secondary),
-        cmocka_unit_test(bilinear_repeat_secondary),
-        cmocka_unit_test(bilinear_clamp_secondary),
-        cmocka_unit_test(vertex_colour_phong),
-        cmocka_unit_test(nearest_repeat_phong),
-        cmocka_unit_test(nearest_clamp_phong),
-        cmocka_unit_test(bilinear_repeat_phong),
-        cmocka_unit_test(bilinear_clamp_phong),
-        cmocka_unit_test(vertex_colour_phong_shadow),
-        cmocka_unit_test(vertex_colour_unlit_shadow),
-        cmocka_unit_test(nearest_repeat_phong_shadow),
-        cmocka_unit_test(nearest_repeat_unlit_shadow),
-        cmocka_unit_test(nearest_clamp_phong_shadow),
-        cmocka_unit_test(nearest_clamp_unlit_shadow),
-        cmocka_unit_test(bilinear_repeat_phong_shadow),
-        cmocka_unit_test(bilinear_repeat_unlit_shadow),
-        cmocka_unit_test(bilinear_clamp_phong_shadow),
-        cmocka_unit_test(bilinear_clamp_unlit_shadow),
-        cmocka_unit_test(vertex_colour_split_shadow),
-        cmocka_unit_test(nearest_repeat_split_shadow),
-        cmocka_unit_test(nearest_clamp_split_shadow),
-        cmocka_unit_test(bilinear_repeat_split_shadow),
-        cmocka_unit_test(bilinear_clamp_split_shadow),
+        cmocka_unit_test_prestate(vertex_colour, &cases),
+        cmocka_unit_test_prestate(nearest_repeat, &cases),
+        cmocka_unit_test_prestate(nearest_clamp, &cases),
+        cmocka_unit_test_prestate(bilinear_repeat, &cases),
+        cmocka_unit_test_prestate(bilinear_clamp, &cases),
+        cmocka_unit_test_prestate(vertex_colour_secondary, &cases),
+        cmocka_unit_test_prestate(nearest_repeat_secondary, &cases),
+        cmocka_unit_test_prestate(nearest_clamp_secondary, &cases),
+        cmocka_unit_test_prestate(bilinear_repeat_secondary, &cases),
+        cmocka_unit_test_prestate(bilinear_clamp_secondary, &cases),
+        cmocka_unit_test_prestate(vertex_colour_phong, &cases),
+        cmocka_unit_test_prestate(nearest_repeat_phong, &cases),
+        cmocka_unit_test_prestate(nearest_clamp_phong, &cases),
+        cmocka_unit_test_prestate(bilinear_repeat_phong, &cases),
+        cmocka_unit_test_prestate(bilinear_clamp_phong, &cases),
+        cmocka_unit_test_prestate(vertex_colour_phong_shadow, &cases),
+        cmocka_unit_test_prestate(vertex_colour_unlit_shadow, &cases),
+        cmocka_unit_test_prestate(nearest_repeat_phong_shadow, &cases),
+        cmocka_unit_test_prestate(nearest_repeat_unlit_shadow, &cases),
+        cmocka_unit_test_prestate(nearest_clamp_phong_shadow, &cases),
+        cmocka_unit_test_prestate(nearest_clamp_unlit_shadow, &cases),
+        cmocka_unit_test_prestate(bilinear_repeat_phong_shadow, &cases),
+        cmocka_unit_test_prestate(bilinear_repeat_unlit_shadow, &cases),
+        cmocka_unit_test_prestate(bilinear_clamp_phong_shadow, &cases),
+        cmocka_unit_test_prestate(bilinear_clamp_unlit_shadow, &cases),
+        cmocka_unit_test_prestate(vertex_colour_split_shadow, &cases),
+        cmocka_unit_test_prestate(nearest_repeat_split_shadow, &cases),
+        cmocka_unit_test_prestate(nearest_clamp_split_shadow, &cases),
+        cmocka_unit_test_prestate(bilinear_repeat_split_shadow, &cases),
+        cmocka_unit_test_prestate(bilinear_clamp_split_shadow, &cases),
         cmocka_unit_test(mip_nearest_level),
         cmocka_unit_test(mip_linear),
     };
