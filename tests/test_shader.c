@@ -7,6 +7,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "raster/bin.h"
+
 enum { W = 96, H = 80 };
 
 typedef struct shade_uniforms {
@@ -286,6 +288,43 @@ static void test_instance_rounds(void **state) {
                          budgets[k]);
         }
     }
+}
+
+/* The C library's allocator with resize, counting the resizes (user: a long). */
+static void *plain_alloc(size_t size, void *user) {
+    (void)user;
+    return malloc(size);
+}
+
+static void plain_free(void *ptr, void *user) {
+    (void)user;
+    free(ptr);
+}
+
+static void *counted_resize(void *ptr, size_t size, void *user) {
+    ++*(long *)user;
+    return realloc(ptr, size);
+}
+
+/* The rounds' rest is stored past a small budget a triangle at a time (sg_binner_reserve past
+ * memory_limit): the array grows an eighth at a time there, not by one triangle, which resized
+ * (copied, under a sanitizer's allocator or a user's) the whole array once a triangle. */
+static void test_rest_growth(void **state) {
+    (void)state;
+    long resizes = 0;
+    sg_binner b = {.alloc = plain_alloc,
+                   .free = plain_free,
+                   .resize = counted_resize,
+                   .user = &resizes,
+                   .memory_limit = 1u << 20};
+    const size_t n = 4 * (b.memory_limit / sg_binner_tri_bytes(&b));
+    for (size_t i = 0; i < n; i++) {
+        assert_non_null(sg_binner_reserve(&b, 1));
+        b.tri_count++; /* stored; the rest is listed afterwards */
+    }
+    assert_true(b.tri_capacity >= n);
+    assert_in_range(resizes, 1, 40);
+    b.free(b.tris, b.user);
 }
 
 /* A discarding draw over a background: the background shows through the discarded pixels, and
@@ -1031,19 +1070,13 @@ static void test_color_conversion(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_matches_fixed),
-        cmocka_unit_test(test_ids),
-        cmocka_unit_test(test_instance_rounds),
-        cmocka_unit_test(test_discard),
-        cmocka_unit_test(test_discard_whole_tiles),
-        cmocka_unit_test(test_in_place_compare),
-        cmocka_unit_test(test_independent_lanes),
-        cmocka_unit_test(test_varyings_only),
-        cmocka_unit_test(test_same_varyings),
-        cmocka_unit_test(test_sample),
-        cmocka_unit_test(test_blend),
-        cmocka_unit_test(test_refusals),
-        cmocka_unit_test(test_nan),
+        cmocka_unit_test(test_matches_fixed),    cmocka_unit_test(test_ids),
+        cmocka_unit_test(test_instance_rounds),  cmocka_unit_test(test_rest_growth),
+        cmocka_unit_test(test_discard),          cmocka_unit_test(test_discard_whole_tiles),
+        cmocka_unit_test(test_in_place_compare), cmocka_unit_test(test_independent_lanes),
+        cmocka_unit_test(test_varyings_only),    cmocka_unit_test(test_same_varyings),
+        cmocka_unit_test(test_sample),           cmocka_unit_test(test_blend),
+        cmocka_unit_test(test_refusals),         cmocka_unit_test(test_nan),
         cmocka_unit_test(test_color_conversion),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

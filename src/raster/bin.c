@@ -23,9 +23,11 @@ static bool grow(sg_binner *b, void **ptr, size_t *capacity, size_t need, size_t
          * triangles are stored, so a big pass neither copies nor touches its storage twice. */
         if (b->resize && cap * size > LAZY_BYTES) cap = most;
         /* Never below need: triangles a round's run could not hold are appended past the
-         * budget's size (the front end's rest), and must have room. */
+         * budget's size (the front end's rest), and must have room. Past the budget it grows
+         * an eighth beyond need, not to need alone: that rest, set up a triangle at a time,
+         * would resize (copy) the whole array once a triangle. */
         if (cap > most) cap = most;
-        if (cap < need) cap = need;
+        if (cap < need) cap = need + need / 8;
     }
     if (b->resize && *ptr) {
         void *p = b->resize(*ptr, cap * size, b->user);
