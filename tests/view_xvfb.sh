@@ -40,7 +40,7 @@ trap 'kill $pid 2>/dev/null || true' EXIT
 
 wid=$(timeout 30 xdotool search --sync --name '^sgapi-view' | head -n 1)
 [ -n "$wid" ] || fail "no sgapi-view window"
-xdotool windowfocus --sync "$wid"
+xdotool windowfocus --sync "$wid" || fail "could not focus the sgapi-view window"
 
 # Presses F12 and waits for frame N (written whole: the writer renames a finished file).
 shot() {

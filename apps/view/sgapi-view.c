@@ -759,6 +759,13 @@ int main(int argc, char **argv) {
         fprintf(stderr, PROG ": SDL_Init: %s\n", SDL_GetError());
         goto done;
     }
+    /* On X11 a frame goes to the window through the X server's shared memory, not through the
+     * OpenGL texture SDL would otherwise make the window's surface of: the frame is made on the
+     * CPU, and without a GPU that OpenGL is Mesa's software one, two more copies (and a crash in
+     * its GLX during the first present, seen once under Xvfb). Other video drivers keep SDL's
+     * choice: Wayland's surfaces exist only as textures. */
+    const char *video = SDL_GetCurrentVideoDriver();
+    if (video && strcmp(video, "x11") == 0) SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
     win = SDL_CreateWindow("sgapi-view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, o.width,
                            o.height, SDL_WINDOW_RESIZABLE);
     if (!win) {
