@@ -5,8 +5,20 @@
 
 #include "sgapi/sgapi_shaders.h"
 
-/** The built-in shaders: *count pointers, the same every call. */
+/** The built-in shaders: *count pointers, the same every call (the copy of the best instruction
+ *  set this CPU runs). */
 const sgShaderInfo *const *sg_builtin_shaders(int *count);
+
+/** The compilations of the built-in shaders (shader_math.h), the same bits each. */
+typedef enum sgs_copy {
+    SGS_COPY_BASELINE,
+    SGS_COPY_AVX2,
+    SGS_COPY_AVX512,
+    SGS_COPY_COUNT
+} sgs_copy;
+/** One compilation's list, in sg_builtin_shaders' order, or NULL where it is not built or this
+ *  CPU cannot run it. */
+const sgShaderInfo *const *sg_builtin_shaders_copy(sgs_copy copy, int *count);
 
 /* The shaders, one file each (uniform layouts in each file's first comment). */
 extern const sgShaderInfo sg_shader_unlit;        /* the fixed vertex-colour equation */

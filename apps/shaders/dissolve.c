@@ -37,7 +37,7 @@ SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms
     const float glow[3] = {u[3], u[4], u[5]};
     sgs_vf n =
         sgs_vfbm(sgs_vload(b->varying[0]), sgs_vload(b->varying[1]), sgs_vload(b->varying[2]));
-    const sgs_vi gone = n < threshold;
+    const sgs_vi gone = sgs_vlt(n, sgs_vsplat(threshold));
     uint32_t discard = 0;
     for (int i = 0; i < SGS_LANES; i++) discard |= ((uint32_t)gone[i] & 1u) << i;
     b->discard = discard;

@@ -13,6 +13,12 @@
 
 #include "sgapi/sgapi_shaders.h"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#elif defined(__aarch64__)
+#include <arm_neon.h>
+#endif
+
 #define SGS_LANES SG_SHADER_LANES
 
 /* Before a loop over the lanes: vectorise it whatever the compiler's cost model says of its
@@ -32,17 +38,21 @@
 #endif
 #endif
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__) &&                  \
-    !defined(__SANITIZE_THREAD__) && !defined(SG_UNDER_SANITIZER) && !defined(SGS_AVX512)
+    !defined(__SANITIZE_THREAD__) && !defined(SG_UNDER_SANITIZER) && !defined(SGS_AVX512) &&       \
+    !defined(SGS_AVX2)
 #define SGS_STAGE __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 #else
 #define SGS_STAGE
 #endif
-/* GCC lowers the vector code below lane by lane before it makes the copies above, wherever the
- * function's own target lacks 64-byte vectors: so on a CPU with AVX-512 the built-in shaders run
- * from a second compilation of their files for AVX-512 (SGS_AVX512, its shaders named
- * <name>_avx512, library.c chooses), where 16 lanes are one register throughout. */
+/* GCC lowers the vector code below for the file's own target before it makes the copies above,
+ * so their AVX2 and AVX-512 copies keep the baseline's narrow pieces and spill them lane by lane:
+ * on a CPU with AVX-512 or AVX2 the built-in shaders run from a compilation of their files for
+ * that set (SGS_AVX512, SGS_AVX2, its shaders named <name>_avx512 or <name>_avx2, library.c
+ * chooses), where 16 lanes are one register or two throughout. */
 #ifdef SGS_AVX512
 #define SGS_NAME(name) name##_avx512
+#elif defined(SGS_AVX2)
+#define SGS_NAME(name) name##_avx2
 #else
 #define SGS_NAME(name) name
 #endif
@@ -76,6 +86,40 @@ static inline void sgs_vstore(float *p, sgs_vf v) {
 static inline sgs_vf sgs_vsplat(float s) {
     return (sgs_vf){s, s, s, s, s, s, s, s, s, s, s, s, s, s, s, s};
 }
+/* The comparisons, lane by lane: all bits set where a op b holds, none elsewhere. GCC 12 compiles
+ * a comparison operator on a vector wider than the target's registers one lane at a time, with a
+ * branch each; these compare registers' widths of lanes at a time (the pieces below), so a shader
+ * compares with them, never with the operators. */
+#if defined(__AVX512F__)
+#define SGS_PIECE 16
+#elif defined(__AVX__)
+#define SGS_PIECE 8
+#else
+#define SGS_PIECE 4
+#endif
+typedef float sgs_pf __attribute__((vector_size(4 * SGS_PIECE)));
+typedef int32_t sgs_pi __attribute__((vector_size(4 * SGS_PIECE)));
+typedef union sgs_uf {
+    sgs_vf v;
+    sgs_pf p[SGS_LANES / SGS_PIECE];
+} sgs_uf;
+typedef union sgs_ui {
+    sgs_vi v;
+    sgs_pi p[SGS_LANES / SGS_PIECE];
+} sgs_ui;
+#define SGS_VCOMPARE(name, op)                                                                     \
+    static inline sgs_vi name(sgs_vf a, sgs_vf b) {                                                \
+        const sgs_uf x = {a}, y = {b};                                                             \
+        sgs_ui r;                                                                                  \
+        for (int k = 0; k < SGS_LANES / SGS_PIECE; k++) r.p[k] = x.p[k] op y.p[k];                 \
+        return r.v;                                                                                \
+    }
+SGS_VCOMPARE(sgs_vgt, >)
+SGS_VCOMPARE(sgs_vge, >=)
+SGS_VCOMPARE(sgs_vlt, <)
+SGS_VCOMPARE(sgs_vle, <=)
+#undef SGS_VCOMPARE
+
 /* m ? a : b lane by lane, m from a comparison (all bits set or none). */
 static inline sgs_vf sgs_vsel(sgs_vi m, sgs_vf a, sgs_vf b) {
     return (sgs_vf)((m & (sgs_vi)a) | (~m & (sgs_vi)b));
@@ -83,11 +127,25 @@ static inline sgs_vf sgs_vsel(sgs_vi m, sgs_vf a, sgs_vf b) {
 static inline sgs_vi sgs_vseli(sgs_vi m, sgs_vi a, sgs_vi b) {
     return (m & a) | (~m & b);
 }
-/* Square root lane by lane: a loop the compiler turns into one instruction per register. */
+/* Square root lane by lane: a correctly rounded square root per register of lanes (the lanes of a
+ * loop over the whole vector stay scalar, with a library call for errno, where the registers are
+ * narrower than the vector). */
 static inline sgs_vf sgs_vsqrt(sgs_vf v) {
-    sgs_vf r;
-    for (int i = 0; i < SGS_LANES; i++) r[i] = __builtin_sqrtf(v[i]);
-    return r;
+    sgs_uf x = {v};
+    for (int k = 0; k < SGS_LANES / SGS_PIECE; k++) {
+#if defined(__AVX512F__)
+        x.p[k] = (sgs_pf)_mm512_sqrt_ps((__m512)x.p[k]);
+#elif defined(__AVX__)
+        x.p[k] = (sgs_pf)_mm256_sqrt_ps((__m256)x.p[k]);
+#elif defined(__SSE2__)
+        x.p[k] = (sgs_pf)_mm_sqrt_ps((__m128)x.p[k]);
+#elif defined(__aarch64__)
+        x.p[k] = (sgs_pf)vsqrtq_f32((float32x4_t)x.p[k]);
+#else
+        for (int i = 0; i < SGS_PIECE; i++) x.p[k][i] = __builtin_sqrtf(x.p[k][i]);
+#endif
+    }
+    return x.v;
 }
 
 /* ---- the twins' declarations ------------------------------------------------------------------
@@ -153,16 +211,16 @@ static inline float sgs_inv_len(float x, float y, float z) {
 static inline sgs_vf sgs_vfloor(sgs_vf x) {
     sgs_vf t = __builtin_convertvector(__builtin_convertvector(x, sgs_vi), sgs_vf),
            below = t - 1.0f;
-    return sgs_vsel(t > x, below, t);
+    return sgs_vsel(sgs_vgt(t, x), below, t);
 }
 static inline sgs_vf sgs_vclamp01(sgs_vf v) {
-    sgs_vf c = sgs_vsel(v > 0.0f, v, sgs_vsplat(0.0f));
-    return sgs_vsel(c < 1.0f, c, sgs_vsplat(1.0f));
+    sgs_vf c = sgs_vsel(sgs_vgt(v, sgs_vsplat(0.0f)), v, sgs_vsplat(0.0f));
+    return sgs_vsel(sgs_vlt(c, sgs_vsplat(1.0f)), c, sgs_vsplat(1.0f));
 }
 static inline sgs_vf sgs_vinv_len(sgs_vf x, sgs_vf y, sgs_vf z) {
     sgs_vf len2 = (x * x + y * y) + z * z;
     sgs_vf inv = 1.0f / sgs_vsqrt(len2);
-    return sgs_vsel(len2 > 0.0f, inv, sgs_vsplat(0.0f));
+    return sgs_vsel(sgs_vgt(len2, sgs_vsplat(0.0f)), inv, sgs_vsplat(0.0f));
 }
 
 /* sin(x) for |x| < 2^20: x less the nearest multiple of 2 pi (in two parts, so the reduction is
@@ -171,8 +229,8 @@ static inline sgs_vf sgs_vsin(sgs_vf x) {
     sgs_vf k = sgs_vfloor(x * 0.159154943f + 0.5f);
     sgs_vf r = (x - k * 6.28318548f) - k * -1.74845553e-7f;
     sgs_vf above = 3.14159265f - r, below = -3.14159265f - r;
-    r = sgs_vsel(r > 1.57079633f, above, r);
-    r = sgs_vsel(r < -1.57079633f, below, r);
+    r = sgs_vsel(sgs_vgt(r, sgs_vsplat(1.57079633f)), above, r);
+    r = sgs_vsel(sgs_vlt(r, sgs_vsplat(-1.57079633f)), below, r);
     sgs_vf r2 = r * r;
     sgs_vf p = sgs_vsplat(-2.50521084e-8f);
     p = p * r2 + 2.75573192e-6f;
@@ -197,12 +255,12 @@ static inline float sgs_cos(float x) {
  * (2^(0 log2 x)); the caller raises x to FLT_MIN for s = 0 (sgs_light.min_x), so that 0^0 = 1
  * too without a test of s per lane. */
 static inline sgs_vf sgs_vpow_unit(sgs_vf x, float s) {
-    const sgs_vi normal = x >= FLT_MIN;
+    const sgs_vi normal = sgs_vge(x, sgs_vsplat(FLT_MIN));
     sgs_vu bits = (sgs_vu)sgs_vsel(normal, x, sgs_vsplat(1.0f));
     sgs_vi e = (sgs_vi)((bits >> 23) & 255u) - 127;
     bits = (bits & 0x007fffffu) | 0x3f800000u;
     sgs_vf m = (sgs_vf)bits;
-    const sgs_vi big = m > 1.41421356f;
+    const sgs_vi big = sgs_vgt(m, sgs_vsplat(1.41421356f));
     sgs_vf half = m * 0.5f;
     m = sgs_vsel(big, half, m);
     e = sgs_vseli(big, e + 1, e);
@@ -214,7 +272,7 @@ static inline sgs_vf sgs_vpow_unit(sgs_vf x, float s) {
     p = p * t2 + 1.0f / 3.0f;
     p = p * t2 + 1.0f;
     sgs_vf z = s * (__builtin_convertvector(e, sgs_vf) + (p * t) * 2.88539008f);
-    const sgs_vi above = z >= -126.0f;
+    const sgs_vi above = sgs_vge(z, sgs_vsplat(-126.0f));
     sgs_vf zc = sgs_vsel(above, z, sgs_vsplat(-126.0f));
     sgs_vf n = sgs_vfloor(zc + 0.5f);
     sgs_vf y = (zc - n) * 0.693147181f;
@@ -339,7 +397,7 @@ static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs
     nx *= in, ny *= in, nz *= in;
     sgs_vf ndotl = (nx * l->dir[0] + ny * l->dir[1]) + nz * l->dir[2];
     if (!l->specular_on) {
-        const sgs_vf d = sgs_vsel(ndotl > 0.0f, ndotl, sgs_vsplat(0.0f));
+        const sgs_vf d = sgs_vsel(sgs_vgt(ndotl, sgs_vsplat(0.0f)), ndotl, sgs_vsplat(0.0f));
         for (int k = 0; k < 3; k++)
             out[k] = sgs_vclamp01(base[k] * l->ambient[k] + base[k] * (d * l->color[k]));
         return;
@@ -350,9 +408,9 @@ static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs
     sgs_vf ih = sgs_vinv_len(hx, hy, hz);
     hx *= ih, hy *= ih, hz *= ih;
     sgs_vf ndoth = (nx * hx + ny * hy) + nz * hz;
-    sgs_vf pw =
-        sgs_vpow_unit(sgs_vsel(ndoth > l->min_x, ndoth, sgs_vsplat(l->min_x)), l->shininess);
-    const sgs_vi lit = ndotl > 0.0f;
+    sgs_vf pw = sgs_vpow_unit(
+        sgs_vsel(sgs_vgt(ndoth, sgs_vsplat(l->min_x)), ndoth, sgs_vsplat(l->min_x)), l->shininess);
+    const sgs_vi lit = sgs_vgt(ndotl, sgs_vsplat(0.0f));
     sgs_vf d = sgs_vsel(lit, ndotl, sgs_vsplat(0.0f)), s = sgs_vsel(lit, pw, sgs_vsplat(0.0f));
     for (int k = 0; k < 3; k++)
         out[k] = sgs_vclamp01(base[k] * l->ambient[k] + base[k] * (d * l->color[k])) +
@@ -458,7 +516,7 @@ static inline sgs_vf sgs_vnoise3(sgs_vf x, sgs_vf y, sgs_vf z) {
  * their total weight: in [0, 1]. */
 static inline sgs_vf sgs_vturb1(sgs_vf x, sgs_vf y, sgs_vf z) {
     sgs_vf n = 2.0f * sgs_vnoise3(x, y, z) - 1.0f;
-    return sgs_vsel(n < 0.0f, -n, n);
+    return sgs_vsel(sgs_vlt(n, sgs_vsplat(0.0f)), -n, n);
 }
 static inline sgs_vf sgs_vturbulence(sgs_vf x, sgs_vf y, sgs_vf z) {
     sgs_vf sum = sgs_vturb1(x, y, z);
