@@ -4,8 +4,9 @@
 #   render_identical.sh RENDER_BINARY SOURCE_DIR WORK_DIR OPTION VALUE...
 # --threads 1 2 3 5: bins share no pixels and keep submission order, so the thread count must
 # never show in the output. --simd scalar sse2 avx2 avx512 neon: the vector paths compute the same IEEE
-# operations in the same order as the scalar reference; a set this CPU does not run is refused at
-# device creation and skipped.
+# operations in the same order as the scalar reference, and so do the built-in shaders' compilations
+# the set picks (baseline, AVX2, AVX-512); a set this CPU does not run is refused at device
+# creation and skipped.
 set -eu
 render=$1
 src=$2

@@ -35,14 +35,14 @@ static void assert_contains(const char *text, const char *want) {
 static void builtin_library(void **state) {
     (void)state;
     int n = 0, again = 0;
-    const sgShaderInfo *const *list = sg_builtin_shaders(&n);
+    const sgShaderInfo *const *list = sg_builtin_shaders(SG_SIMD_DEFAULT, &n);
     assert_int_equal(n, 9);
     assert_string_equal(list[0]->name, "unlit");
-    assert_ptr_equal(sg_builtin_shaders(&again), list); /* the same every call */
+    assert_ptr_equal(sg_builtin_shaders(SG_SIMD_DEFAULT, &again), list); /* the same every call */
     assert_int_equal(again, n);
     TEST_MSG(err);
     sc_shaders *s;
-    assert_true(sc_shaders_open(&s, &err));
+    assert_true(sc_shaders_open(&s, SG_SIMD_DEFAULT, &err));
     const sgShaderInfo *unlit = sc_shaders_find(s, "unlit");
     assert_non_null(unlit);
     assert_int_equal(unlit->uniform_count, 1);
@@ -119,7 +119,7 @@ static void load_library(void **state) {
     char path[1024];
     TEST_MSG(err);
     sc_shaders *s;
-    assert_true(sc_shaders_open(&s, &err));
+    assert_true(sc_shaders_open(&s, SG_SIMD_DEFAULT, &err));
     if (!sc_shaders_load(s, lib_path(path, sizeof path, "tint.so"), &err)) fail_msg("%s", MSG(err));
     const sgShaderInfo *tint = sc_shaders_find(s, "tint");
     assert_non_null(tint);
@@ -150,7 +150,7 @@ static void refused_libraries(void **state) {
     char path[1024];
     TEST_MSG(err);
     sc_shaders *s;
-    assert_true(sc_shaders_open(&s, &err));
+    assert_true(sc_shaders_open(&s, SG_SIMD_DEFAULT, &err));
 
     assert_false(sc_shaders_load(s, lib_path(path, sizeof path, "missing.so"), &err));
     assert_contains(MSG(err), "missing.so': No such file or directory");
@@ -200,7 +200,7 @@ static void check_scene_shaders(void **state) {
     char path[1024];
     TEST_MSG(err);
     sc_shaders *s;
-    assert_true(sc_shaders_open(&s, &err));
+    assert_true(sc_shaders_open(&s, SG_SIMD_DEFAULT, &err));
     if (!sc_shaders_load(s, lib_path(path, sizeof path, "tint.so"), &err)) fail_msg("%s", MSG(err));
     static const struct {
         const char *keys, *want; /* want NULL: the draw fits */

@@ -145,7 +145,8 @@ static void usage(FILE *f) {
             "  --threads T     the multi-threaded measurements' thread count (default: all cores)\n"
             "  --samples N     samples a pixel, 1 or 4, for every scene, sgapi's and lavapipe's\n"
             "                  (default: each scene's \"samples\")\n"
-            "  --simd SET      sgapi's instruction set: scalar, sse2, avx2, avx512 or neon\n"
+            "  --simd SET      sgapi's instruction set (raster, built-in shaders): scalar, sse2,\n"
+            "                  avx2, avx512 or neon\n"
             "                  (default: the best this CPU runs)\n"
             "  --csv FILE      also write the table as CSV\n"
             "  --mipmap MODE     every draw's \"mipmap\" (none, nearest, linear), for sgapi and\n"
@@ -1452,8 +1453,8 @@ int main(int argc, char **argv) {
     /* The shaders the files name: a problem there is a bad argument (exit 2), before any
      * measuring. */
     sc_msg shader_err = {0};
-    if (!sc_shaders_prepare(&shaders, (const char *const *)o.shader_libs, o.shader_lib_count, files,
-                            loaded, &shader_err)) {
+    if (!sc_shaders_prepare(&shaders, o.simd, (const char *const *)o.shader_libs,
+                            o.shader_lib_count, files, loaded, &shader_err)) {
         fprintf(stderr, "sgapi-bench: %s\n", shader_err.text);
         sc_msg_free(&shader_err);
         status = 2;

@@ -116,7 +116,7 @@ done:
     return ok;
 }
 
-bool sc_shaders_open(sc_shaders **out, sc_msg *err) {
+bool sc_shaders_open(sc_shaders **out, sgSimd simd, sc_msg *err) {
     *out = NULL;
     sc_shaders *s = calloc(1, sizeof *s);
     if (!s) {
@@ -124,7 +124,7 @@ bool sc_shaders_open(sc_shaders **out, sc_msg *err) {
         return false;
     }
     int n = 0;
-    const sgShaderInfo *const *builtin = sg_builtin_shaders(&n);
+    const sgShaderInfo *const *builtin = sg_builtin_shaders(simd, &n);
     if (!add_shaders(s, builtin, n, sc_format("the built-in library"), NULL, err)) {
         sc_shaders_close(s);
         return false;
@@ -291,9 +291,9 @@ void sc_shaders_close(sc_shaders *s) {
     free(s);
 }
 
-bool sc_shaders_prepare(sc_shaders **out, const char *const *libs, int nlibs, const sc_file *files,
-                        int nfiles, sc_msg *err) {
-    bool ok = sc_shaders_open(out, err);
+bool sc_shaders_prepare(sc_shaders **out, sgSimd simd, const char *const *libs, int nlibs,
+                        const sc_file *files, int nfiles, sc_msg *err) {
+    bool ok = sc_shaders_open(out, simd, err);
     for (int i = 0; ok && i < nlibs; i++) ok = sc_shaders_load(*out, libs[i], err);
     for (int i = 0; ok && i < nfiles; i++) ok = sc_shaders_check(*out, &files[i], err);
     if (!ok) {

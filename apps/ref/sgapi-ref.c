@@ -1929,7 +1929,7 @@ int main(int argc, char **argv) {
     /* The shaders scene files may name: the built-in ones and the libraries given. */
     sc_shaders *shaders = NULL;
     sc_msg err = {0};
-    if (!sc_shaders_prepare(&shaders, libs, nlibs, NULL, 0, &err)) {
+    if (!sc_shaders_prepare(&shaders, SG_SIMD_DEFAULT, libs, nlibs, NULL, 0, &err)) {
         fprintf(stderr, "sgapi-ref: %s\n", sc_msg_text(&err));
         sc_msg_free(&err);
         return 2;

@@ -116,9 +116,9 @@ static void usage(FILE *f) {
                "  --bin-memory B  bytes of binned work a pass holds before it renders them and\n"
                "                  goes on (sgDeviceDesc.bin_memory_limit; default 0: 256 MiB;\n"
                "                  same images)\n"
-               "  --simd SET      instruction set of the raster: scalar, sse2, avx2, avx512 or\n"
-               "                  neon (default: the best this CPU runs; all give the same\n"
-               "                  images)\n"
+               "  --simd SET      instruction set of the raster and the built-in shaders: scalar,\n"
+               "                  sse2, avx2, avx512 or neon (default: the best this CPU runs;\n"
+               "                  all give the same images)\n"
                "  --compare DIR   compare each image with DIR/<scene name>.png: print PSNR,\n"
                "                  %% of pixels over 2/255 and coverage mismatch next to the time,\n"
                "                  and write DIR_OUT/<scene name>-heat.png\n"
@@ -1165,8 +1165,8 @@ int main(int argc, char **argv) {
      * anything renders. */
     status = 2;
     sc_msg shader_err = {0};
-    if (!sc_shaders_prepare(&shaders, (const char *const *)o.shader_libs, o.shader_lib_count, files,
-                            loaded, &shader_err)) {
+    if (!sc_shaders_prepare(&shaders, o.simd, (const char *const *)o.shader_libs,
+                            o.shader_lib_count, files, loaded, &shader_err)) {
         fprintf(stderr, "sgapi-render: %s\n", shader_err.text);
         sc_msg_free(&shader_err);
         goto done;

@@ -5,9 +5,10 @@
 
 #include "sgapi/sgapi_shaders.h"
 
-/** The built-in shaders: *count pointers, the same every call (the copy of the best instruction
- *  set this CPU runs). */
-const sgShaderInfo *const *sg_builtin_shaders(int *count);
+/** The built-in shaders for a device of instruction set `simd`: *count pointers, the same every
+ *  call with the same set. SG_SIMD_DEFAULT: the copy of the best set this CPU runs; AVX2 and
+ *  AVX-512: that set's copy where this CPU runs it; any other set: the baseline's. */
+const sgShaderInfo *const *sg_builtin_shaders(sgSimd simd, int *count);
 
 /** The compilations of the built-in shaders (shader_math.h), the same bits each. */
 typedef enum sgs_copy {

@@ -45,10 +45,12 @@ const sgShaderInfo *const *sg_builtin_shaders_copy(sgs_copy copy, int *count) {
     }
 }
 
-const sgShaderInfo *const *sg_builtin_shaders(int *count) {
-    for (int copy = SGS_COPY_COUNT - 1; copy > SGS_COPY_BASELINE; copy--) {
-        const sgShaderInfo *const *l = sg_builtin_shaders_copy((sgs_copy)copy, count);
-        if (l) return l;
-    }
-    return sg_builtin_shaders_copy(SGS_COPY_BASELINE, count);
+const sgShaderInfo *const *sg_builtin_shaders(sgSimd simd, int *count) {
+    const sgShaderInfo *const *l = NULL;
+    if (simd == SG_SIMD_AVX512) l = sg_builtin_shaders_copy(SGS_COPY_AVX512, count);
+    if (simd == SG_SIMD_AVX2) l = sg_builtin_shaders_copy(SGS_COPY_AVX2, count);
+    for (int copy = SGS_COPY_COUNT - 1; simd == SG_SIMD_DEFAULT && !l && copy > SGS_COPY_BASELINE;
+         copy--)
+        l = sg_builtin_shaders_copy((sgs_copy)copy, count);
+    return l ? l : sg_builtin_shaders_copy(SGS_COPY_BASELINE, count);
 }

@@ -730,8 +730,8 @@ int main(int argc, char **argv) {
     /* The shaders the scene names: a problem there is a bad argument (exit 2), before any
      * frame. */
     sc_msg shader_err = {0};
-    if (!sc_shaders_prepare(&v.shaders, (const char *const *)o.shader_libs, o.shader_lib_count,
-                            &v.file, 1, &shader_err)) {
+    if (!sc_shaders_prepare(&v.shaders, SG_SIMD_DEFAULT, (const char *const *)o.shader_libs,
+                            o.shader_lib_count, &v.file, 1, &shader_err)) {
         fprintf(stderr, PROG ": %s\n", shader_err.text);
         sc_msg_free(&shader_err);
         status = 2;
