@@ -109,13 +109,16 @@ static void test_light_without_specular(void **state) {
         sgs_light skip = sgs_light_read(u, 0, 3, 6, 11, 16), full = skip;
         assert_int_equal(skip.specular_on, 0);
         full.specular_on = 1;
+        float pf[3][SGS_W], nf[3][SGS_W], bf[3][SGS_W];
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < SGS_W; i++) {
+                pf[k][i] = rnd(&seed, -3.0f, 3.0f);
+                nf[k][i] = i == 1 ? 0.0f : rnd(&seed, -1.0f, 1.0f); /* a zero normal too */
+                bf[k][i] = rnd(&seed, 0.0f, 1.2f);
+            }
         sgs_vf p[3], n[3], base[3], a[3], b[3];
         for (int k = 0; k < 3; k++)
-            for (int i = 0; i < SGS_LANES; i++) {
-                p[k][i] = rnd(&seed, -3.0f, 3.0f);
-                n[k][i] = i == 5 ? 0.0f : rnd(&seed, -1.0f, 1.0f); /* a zero normal too */
-                base[k][i] = rnd(&seed, 0.0f, 1.2f);
-            }
+            p[k] = sgs_vload(pf[k]), n[k] = sgs_vload(nf[k]), base[k] = sgs_vload(bf[k]);
         sgs_vlight_eval(&skip, p[0], p[1], p[2], n[0], n[1], n[2], base, a);
         sgs_vlight_eval(&full, p[0], p[1], p[2], n[0], n[1], n[2], base, b);
         assert_memory_equal(a, b, sizeof a);

@@ -35,23 +35,30 @@ SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms
     const float threshold = u[0], inv_width = u[1] > 0.0f ? 1.0f / u[1] : 0.0f;
     const float flip = b->front_facing ? 1.0f : -1.0f;
     const float glow[3] = {u[3], u[4], u[5]};
-    sgs_vf n =
-        sgs_vfbm(sgs_vload(b->varying[0]), sgs_vload(b->varying[1]), sgs_vload(b->varying[2]));
-    const sgs_vi gone = sgs_vlt(n, sgs_vsplat(threshold));
+    float noise[SGS_LANES];
     uint32_t discard = 0;
-    for (int i = 0; i < SGS_LANES; i++) discard |= ((uint32_t)gone[i] & 1u) << i;
+    SGS_EACH_VECTOR(h) {
+        const sgs_vf n = sgs_vfbm(sgs_vload(b->varying[0] + h), sgs_vload(b->varying[1] + h),
+                                  sgs_vload(b->varying[2] + h));
+        sgs_vstore(noise + h, n);
+        const sgs_vi gone = sgs_vlt(n, sgs_vsplat(threshold));
+        for (int i = 0; i < SGS_W; i++) discard |= ((uint32_t)gone[i] & 1u) << (h + i);
+    }
     b->discard = discard;
     if ((discard & b->mask) == b->mask) return; /* nothing of the tile is drawn */
-    /* 1 at the cut, 0 from the band's top up */
-    sgs_vf e = 1.0f - sgs_vclamp01((n - threshold) * inv_width);
-    const sgs_vf base[3] = {sgs_vload(b->varying[9]), sgs_vload(b->varying[10]),
-                            sgs_vload(b->varying[11])};
-    sgs_vf c[3];
-    sgs_vlight_eval(&l, sgs_vload(b->varying[3]), sgs_vload(b->varying[4]),
-                    sgs_vload(b->varying[5]), sgs_vload(b->varying[6]) * flip,
-                    sgs_vload(b->varying[7]) * flip, sgs_vload(b->varying[8]) * flip, base, c);
-    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k] + (glow[k] - c[k]) * e);
-    sgs_vstore(b->color[3], sgs_vsplat(1.0f));
+    SGS_EACH_VECTOR(h) {
+        /* 1 at the cut, 0 from the band's top up */
+        const sgs_vf e = 1.0f - sgs_vclamp01((sgs_vload(noise + h) - threshold) * inv_width);
+        const sgs_vf base[3] = {sgs_vload(b->varying[9] + h), sgs_vload(b->varying[10] + h),
+                                sgs_vload(b->varying[11] + h)};
+        sgs_vf c[3];
+        sgs_vlight_eval(&l, sgs_vload(b->varying[3] + h), sgs_vload(b->varying[4] + h),
+                        sgs_vload(b->varying[5] + h), sgs_vload(b->varying[6] + h) * flip,
+                        sgs_vload(b->varying[7] + h) * flip, sgs_vload(b->varying[8] + h) * flip,
+                        base, c);
+        for (int k = 0; k < 3; k++) sgs_vstore(b->color[k] + h, c[k] + (glow[k] - c[k]) * e);
+        sgs_vstore(b->color[3] + h, sgs_vsplat(1.0f));
+    }
 }
 
 static const char dissolve_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS

@@ -30,25 +30,28 @@ SGS_STAGE static void marble_fragment(sgFragmentBatch *b, const void *uniforms) 
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 8, 11, 14, 17, 20);
     const float turb = u[1], sr = u[2], sg = u[3], sb = u[4], vr = u[5], vg = u[6], vb = u[7];
-    const sgs_vf x = sgs_vload(b->varying[0]), y = sgs_vload(b->varying[1]),
-                 z = sgs_vload(b->varying[2]);
-    sgs_vf t = sgs_vturbulence(x, y, z);
-    /* Bands across x + y / 2, two units apart, shifted by the turbulence; v is 0 on a vein. */
-    sgs_vf s = 0.5f * ((x + 0.5f * y) + turb * t);
-    sgs_vf w = s - sgs_vfloor(s);
-    sgs_vf v = 2.0f * w - 1.0f;
-    v = sgs_vsel(sgs_vlt(v, sgs_vsplat(0.0f)), -v, v);
-    sgs_vf q = sgs_vclamp01(v * 2.85714286f); /* smoothstep(0, 0.35, v) */
-    sgs_vf vein = 1.0f - q * q * (3.0f - 2.0f * q);
-    sgs_vf grain = 0.85f + 0.15f * t;
-    sgs_vf s0 = sr * grain, s1 = sg * grain, s2 = sb * grain;
-    const sgs_vf base[3] = {s0 + (vr - s0) * vein, s1 + (vg - s1) * vein, s2 + (vb - s2) * vein};
-    sgs_vf c[3];
-    sgs_vlight_eval(&l, sgs_vload(b->varying[3]), sgs_vload(b->varying[4]),
-                    sgs_vload(b->varying[5]), sgs_vload(b->varying[6]), sgs_vload(b->varying[7]),
-                    sgs_vload(b->varying[8]), base, c);
-    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
-    sgs_vstore(b->color[3], sgs_vsplat(1.0f));
+    SGS_EACH_VECTOR(h) {
+        const sgs_vf x = sgs_vload(b->varying[0] + h), y = sgs_vload(b->varying[1] + h),
+                     z = sgs_vload(b->varying[2] + h);
+        sgs_vf t = sgs_vturbulence(x, y, z);
+        /* Bands across x + y / 2, two units apart, shifted by the turbulence; v is 0 on a vein. */
+        sgs_vf s = 0.5f * ((x + 0.5f * y) + turb * t);
+        sgs_vf w = s - sgs_vfloor(s);
+        sgs_vf v = 2.0f * w - 1.0f;
+        v = sgs_vsel(sgs_vlt(v, sgs_vsplat(0.0f)), -v, v);
+        sgs_vf q = sgs_vclamp01(v * 2.85714286f); /* smoothstep(0, 0.35, v) */
+        sgs_vf vein = 1.0f - q * q * (3.0f - 2.0f * q);
+        sgs_vf grain = 0.85f + 0.15f * t;
+        sgs_vf s0 = sr * grain, s1 = sg * grain, s2 = sb * grain;
+        const sgs_vf base[3] = {s0 + (vr - s0) * vein, s1 + (vg - s1) * vein,
+                                s2 + (vb - s2) * vein};
+        sgs_vf c[3];
+        sgs_vlight_eval(&l, sgs_vload(b->varying[3] + h), sgs_vload(b->varying[4] + h),
+                        sgs_vload(b->varying[5] + h), sgs_vload(b->varying[6] + h),
+                        sgs_vload(b->varying[7] + h), sgs_vload(b->varying[8] + h), base, c);
+        for (int k = 0; k < 3; k++) sgs_vstore(b->color[k] + h, c[k]);
+        sgs_vstore(b->color[3] + h, sgs_vsplat(1.0f));
+    }
 }
 
 static const char marble_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS

@@ -40,31 +40,36 @@ SGS_STAGE static void normal_map_fragment(sgFragmentBatch *b, const void *unifor
     float map[4][SGS_LANES], tex[4][SGS_LANES];
     sgSample(b, 0, b->varying[10], b->varying[11], map);
     sgSample(b, 1, b->varying[10], b->varying[11], tex);
-    sgs_vf nx = sgs_vload(b->varying[3]), ny = sgs_vload(b->varying[4]),
-           nz = sgs_vload(b->varying[5]);
-    sgs_vf in = sgs_vinv_len(nx, ny, nz);
-    nx *= in, ny *= in, nz *= in;
-    /* T made perpendicular to N (Gram-Schmidt): interpolation bends them apart. */
-    sgs_vf tx = sgs_vload(b->varying[6]), ty = sgs_vload(b->varying[7]),
-           tz = sgs_vload(b->varying[8]);
-    sgs_vf d = (nx * tx + ny * ty) + nz * tz;
-    tx = tx - nx * d, ty = ty - ny * d, tz = tz - nz * d;
-    sgs_vf it = sgs_vinv_len(tx, ty, tz);
-    tx *= it, ty *= it, tz *= it;
-    sgs_vf w = sgs_vsel(sgs_vlt(sgs_vload(b->varying[9]), sgs_vsplat(0.0f)), sgs_vsplat(-1.0f),
-                        sgs_vsplat(1.0f));
-    sgs_vf bx = (ny * tz - nz * ty) * w, by = (nz * tx - nx * tz) * w, bz = (nx * ty - ny * tx) * w;
-    sgs_vf mx = (sgs_vload(map[0]) * 2.0f - 1.0f) * strength,
-           my = (sgs_vload(map[1]) * 2.0f - 1.0f) * strength, mz = sgs_vload(map[2]) * 2.0f - 1.0f;
-    sgs_vf sx = (tx * mx + bx * my) + nx * mz, sy = (ty * mx + by * my) + ny * mz,
-           sz = (tz * mx + bz * my) + nz * mz;
-    sgs_vf base[3];
-    for (int k = 0; k < 3; k++)
-        base[k] = sgs_vload(b->varying[12 + k]) * (1.0f + (sgs_vload(tex[k]) - 1.0f) * weight);
-    sgs_vf c[3];
-    sgs_vlight_eval(&l, sgs_vload(b->varying[0]), sgs_vload(b->varying[1]),
-                    sgs_vload(b->varying[2]), sx, sy, sz, base, c);
-    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
+    SGS_EACH_VECTOR(h) {
+        sgs_vf nx = sgs_vload(b->varying[3] + h), ny = sgs_vload(b->varying[4] + h),
+               nz = sgs_vload(b->varying[5] + h);
+        sgs_vf in = sgs_vinv_len(nx, ny, nz);
+        nx *= in, ny *= in, nz *= in;
+        /* T made perpendicular to N (Gram-Schmidt): interpolation bends them apart. */
+        sgs_vf tx = sgs_vload(b->varying[6] + h), ty = sgs_vload(b->varying[7] + h),
+               tz = sgs_vload(b->varying[8] + h);
+        sgs_vf d = (nx * tx + ny * ty) + nz * tz;
+        tx = tx - nx * d, ty = ty - ny * d, tz = tz - nz * d;
+        sgs_vf it = sgs_vinv_len(tx, ty, tz);
+        tx *= it, ty *= it, tz *= it;
+        sgs_vf w = sgs_vsel(sgs_vlt(sgs_vload(b->varying[9] + h), sgs_vsplat(0.0f)),
+                            sgs_vsplat(-1.0f), sgs_vsplat(1.0f));
+        sgs_vf bx = (ny * tz - nz * ty) * w, by = (nz * tx - nx * tz) * w,
+               bz = (nx * ty - ny * tx) * w;
+        sgs_vf mx = (sgs_vload(map[0] + h) * 2.0f - 1.0f) * strength,
+               my = (sgs_vload(map[1] + h) * 2.0f - 1.0f) * strength,
+               mz = sgs_vload(map[2] + h) * 2.0f - 1.0f;
+        sgs_vf sx = (tx * mx + bx * my) + nx * mz, sy = (ty * mx + by * my) + ny * mz,
+               sz = (tz * mx + bz * my) + nz * mz;
+        sgs_vf base[3];
+        for (int k = 0; k < 3; k++)
+            base[k] = sgs_vload(b->varying[12 + k] + h) *
+                      (1.0f + (sgs_vload(tex[k] + h) - 1.0f) * weight);
+        sgs_vf c[3];
+        sgs_vlight_eval(&l, sgs_vload(b->varying[0] + h), sgs_vload(b->varying[1] + h),
+                        sgs_vload(b->varying[2] + h), sx, sy, sz, base, c);
+        for (int k = 0; k < 3; k++) sgs_vstore(b->color[k] + h, c[k]);
+    }
     memcpy(b->color[3], b->varying[15], sizeof b->color[3]);
 }
 

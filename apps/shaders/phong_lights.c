@@ -77,66 +77,69 @@ SGS_STAGE static void phong_lights_fragment(sgFragmentBatch *b, const void *unif
     lights l;
     lights_read(u, &l);
     float(*v)[SGS_LANES] = b->varying;
-    const sgs_vf px = sgs_vload(v[0]), py = sgs_vload(v[1]), pz = sgs_vload(v[2]);
-    sgs_vf nx = sgs_vload(v[3]), ny = sgs_vload(v[4]), nz = sgs_vload(v[5]);
-    const sgs_vf in = sgs_vinv_len(nx, ny, nz);
-    nx *= in, ny *= in, nz *= in;
-    const sgs_vf iv = sgs_vinv_len(px, py, pz);
-    const sgs_vf vx = -px * iv, vy = -py * iv, vz = -pz * iv;
-    const sgs_vf zero = sgs_vsplat(0.0f);
-    sgs_vf diff[3] = {zero, zero, zero}, spec[3] = {zero, zero, zero};
-    for (int j = 0; j < l.count; j++) {
-        sgs_vf lx, ly, lz, att;
-        if (l.point[j]) {
-            const sgs_vf dx = l.v[j][0] - px, dy = l.v[j][1] - py, dz = l.v[j][2] - pz;
-            const sgs_vf d2 = (dx * dx + dy * dy) + dz * dz, d = sgs_vsqrt(d2);
-            const sgs_vf inv =
-                sgs_vsel(sgs_vgt(d, zero) & sgs_vle(d, sgs_vsplat(FLT_MAX)), 1.0f / d, zero);
-            lx = dx * inv, ly = dy * inv, lz = dz * inv;
-            const sgs_vf den = (l.att[j][0] + l.att[j][1] * d) + l.att[j][2] * d2;
-            att = 1.0f / sgs_vsel(sgs_vgt(den, sgs_vsplat(FLT_MIN)), den, sgs_vsplat(FLT_MIN));
-        } else {
-            lx = sgs_vsplat(l.v[j][0]), ly = sgs_vsplat(l.v[j][1]), lz = sgs_vsplat(l.v[j][2]);
-            att = sgs_vsplat(1.0f);
+    float texel[4][SG_SHADER_LANES];
+    if (u[4] != 0.0f) sgSample(b, 0, v[10], v[11], texel);
+    SGS_EACH_VECTOR(h) {
+        const sgs_vf px = sgs_vload(v[0] + h), py = sgs_vload(v[1] + h), pz = sgs_vload(v[2] + h);
+        sgs_vf nx = sgs_vload(v[3] + h), ny = sgs_vload(v[4] + h), nz = sgs_vload(v[5] + h);
+        const sgs_vf in = sgs_vinv_len(nx, ny, nz);
+        nx *= in, ny *= in, nz *= in;
+        const sgs_vf iv = sgs_vinv_len(px, py, pz);
+        const sgs_vf vx = -px * iv, vy = -py * iv, vz = -pz * iv;
+        const sgs_vf zero = sgs_vsplat(0.0f);
+        sgs_vf diff[3] = {zero, zero, zero}, spec[3] = {zero, zero, zero};
+        for (int j = 0; j < l.count; j++) {
+            sgs_vf lx, ly, lz, att;
+            if (l.point[j]) {
+                const sgs_vf dx = l.v[j][0] - px, dy = l.v[j][1] - py, dz = l.v[j][2] - pz;
+                const sgs_vf d2 = (dx * dx + dy * dy) + dz * dz, d = sgs_vsqrt(d2);
+                const sgs_vf inv =
+                    sgs_vsel(sgs_vgt(d, zero) & sgs_vle(d, sgs_vsplat(FLT_MAX)), 1.0f / d, zero);
+                lx = dx * inv, ly = dy * inv, lz = dz * inv;
+                const sgs_vf den = (l.att[j][0] + l.att[j][1] * d) + l.att[j][2] * d2;
+                att = 1.0f / sgs_vsel(sgs_vgt(den, sgs_vsplat(FLT_MIN)), den, sgs_vsplat(FLT_MIN));
+            } else {
+                lx = sgs_vsplat(l.v[j][0]), ly = sgs_vsplat(l.v[j][1]), lz = sgs_vsplat(l.v[j][2]);
+                att = sgs_vsplat(1.0f);
+            }
+            const sgs_vf ndotl = (nx * lx + ny * ly) + nz * lz;
+            const sgs_vi lit = sgs_vgt(ndotl, zero);
+            const sgs_vf f = att * ndotl;
+            for (int k = 0; k < 3; k++)
+                diff[k] = sgs_vsel(lit, diff[k] + f * l.color[j][k], diff[k]);
+            if (!l.specular_on) continue;
+            sgs_vf hx = lx + vx, hy = ly + vy, hz = lz + vz;
+            const sgs_vf ih = sgs_vinv_len(hx, hy, hz);
+            hx *= ih, hy *= ih, hz *= ih;
+            const sgs_vf ndoth = (nx * hx + ny * hy) + nz * hz;
+            const sgs_vf g = att * sgs_vpow_unit(sgs_vsel(sgs_vgt(ndoth, sgs_vsplat(l.min_x)),
+                                                          ndoth, sgs_vsplat(l.min_x)),
+                                                 l.shininess);
+            for (int k = 0; k < 3; k++)
+                spec[k] = sgs_vsel(lit, spec[k] + g * l.color[j][k], spec[k]);
         }
-        const sgs_vf ndotl = (nx * lx + ny * ly) + nz * lz;
-        const sgs_vi lit = sgs_vgt(ndotl, zero);
-        const sgs_vf f = att * ndotl;
-        for (int k = 0; k < 3; k++) diff[k] = sgs_vsel(lit, diff[k] + f * l.color[j][k], diff[k]);
-        if (!l.specular_on) continue;
-        sgs_vf hx = lx + vx, hy = ly + vy, hz = lz + vz;
-        const sgs_vf ih = sgs_vinv_len(hx, hy, hz);
-        hx *= ih, hy *= ih, hz *= ih;
-        const sgs_vf ndoth = (nx * hx + ny * hy) + nz * hz;
-        const sgs_vf g = att * sgs_vpow_unit(sgs_vsel(sgs_vgt(ndoth, sgs_vsplat(l.min_x)), ndoth,
-                                                      sgs_vsplat(l.min_x)),
-                                             l.shininess);
-        for (int k = 0; k < 3; k++) spec[k] = sgs_vsel(lit, spec[k] + g * l.color[j][k], spec[k]);
-    }
-    sgs_vf prim[4];
-    for (int k = 0; k < 3; k++) {
-        /* sums that overflowed stop at FLT_MAX, as the fixed lighting's (light.h) */
-        const sgs_vf dk =
-            sgs_vsel(sgs_vlt(diff[k], sgs_vsplat(FLT_MAX)), diff[k], sgs_vsplat(FLT_MAX));
-        const sgs_vf base = sgs_vload(v[6 + k]);
-        prim[k] = sgs_vclamp01(base * u[5 + k] + base * dk);
-    }
-    prim[3] = sgs_vload(v[9]);
-    if (u[4] != 0.0f) {
-        float texel[4][SG_SHADER_LANES];
-        sgSample(b, 0, v[10], v[11], texel);
-        for (int k = 0; k < 4; k++) prim[k] = prim[k] * sgs_vload(texel[k]);
-    }
-    for (int k = 0; k < 3; k++) {
-        sgs_vf c = prim[k];
-        if (l.specular_on) { /* clamped as the output is: a huge light gives 1, not infinity */
-            const sgs_vf sk =
-                sgs_vsel(sgs_vlt(spec[k], sgs_vsplat(FLT_MAX)), spec[k], sgs_vsplat(FLT_MAX));
-            c = sgs_vclamp01(c + sk * u[8 + k]);
+        sgs_vf prim[4];
+        for (int k = 0; k < 3; k++) {
+            /* sums that overflowed stop at FLT_MAX, as the fixed lighting's (light.h) */
+            const sgs_vf dk =
+                sgs_vsel(sgs_vlt(diff[k], sgs_vsplat(FLT_MAX)), diff[k], sgs_vsplat(FLT_MAX));
+            const sgs_vf base = sgs_vload(v[6 + k] + h);
+            prim[k] = sgs_vclamp01(base * u[5 + k] + base * dk);
         }
-        sgs_vstore(b->color[k], c);
+        prim[3] = sgs_vload(v[9] + h);
+        if (u[4] != 0.0f)
+            for (int k = 0; k < 4; k++) prim[k] = prim[k] * sgs_vload(texel[k] + h);
+        for (int k = 0; k < 3; k++) {
+            sgs_vf c = prim[k];
+            if (l.specular_on) { /* clamped as the output is: a huge light gives 1, not infinity */
+                const sgs_vf sk =
+                    sgs_vsel(sgs_vlt(spec[k], sgs_vsplat(FLT_MAX)), spec[k], sgs_vsplat(FLT_MAX));
+                c = sgs_vclamp01(c + sk * u[8 + k]);
+            }
+            sgs_vstore(b->color[k] + h, c);
+        }
+        sgs_vstore(b->color[3] + h, prim[3]);
     }
-    sgs_vstore(b->color[3], prim[3]);
 }
 
 static const char phong_lights_glsl_vertex[] =

@@ -44,11 +44,10 @@
 #else
 #define SGS_STAGE
 #endif
-/* GCC lowers the vector code below for the file's own target before it makes the copies above,
- * so their AVX2 and AVX-512 copies keep the baseline's narrow pieces and spill them lane by lane:
- * on a CPU with AVX-512 or AVX2 the built-in shaders run from a compilation of their files for
- * that set (SGS_AVX512, SGS_AVX2, its shaders named <name>_avx512 or <name>_avx2, library.c
- * chooses), where 16 lanes are one register or two throughout. */
+/* GCC lowers vector code for the file's own target before it makes the copies above, so a clone
+ * for a wider set keeps the baseline's vectors: on a CPU with AVX-512 or AVX2 the built-in shaders
+ * run from a compilation of their files for that set (SGS_AVX512, SGS_AVX2, its shaders named
+ * <name>_avx512 or <name>_avx2, library.c chooses), whose vectors are that set's registers. */
 #ifdef SGS_AVX512
 #define SGS_NAME(name) name##_avx512
 #elif defined(SGS_AVX2)
@@ -57,24 +56,37 @@
 #define SGS_NAME(name) name
 #endif
 
-/* ---- 16 lanes as one value ---------------------------------------------------------------------
+/* ---- a register of lanes as one value ----------------------------------------------------------
  *
  * The lane loops with conditions (lighting, pow, noise) are written on GCC vector types, not as
  * loops over lanes: the compiler turns a loop's selects into branches where it duplicates code
  * (jump threading), and the loop then stays scalar. An operation on a vector is the same IEEE
- * operation in every lane, in the order written, so these give the bits of the scalar code; the
- * AVX-512 copy computes a vector in one register, the AVX2 one in two, the baseline in four. */
+ * operation in every lane, in the order written, so these give the bits of the scalar code.
+ *
+ * A vector is one register of the compilation's set, SGS_W lanes: 16 with AVX-512, 8 with AVX2, 4
+ * otherwise, and a stage goes over its 16 lanes a vector at a time (SGS_EACH_VECTOR). Vectors wider
+ * than the registers would cost more than the extra loop: GCC 12 compares them one lane at a time,
+ * with a branch each, and a long chain of them (the lights of phong_lights) spills. */
+#if defined(__AVX512F__)
+#define SGS_W 16
+#elif defined(__AVX__)
+#define SGS_W 8
+#else
+#define SGS_W 4
+#endif
+#define SGS_EACH_VECTOR(h) for (int h = 0; h < SGS_LANES; h += SGS_W)
 
-/* 64-byte vectors are passed only to inline functions, here and in the files that include this
- * header: the note that their calling convention differs without AVX-512 does not apply. */
+/* Vectors are passed only to inline functions, here and in the files that include this header:
+ * the note that their calling convention depends on the set does not apply. */
 #pragma GCC diagnostic ignored "-Wpragmas"
 #pragma GCC diagnostic ignored "-Wunknown-warning-option"
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-typedef float sgs_vf __attribute__((vector_size(4 * SGS_LANES)));
-typedef int32_t sgs_vi __attribute__((vector_size(4 * SGS_LANES)));
-typedef uint32_t sgs_vu __attribute__((vector_size(4 * SGS_LANES)));
+typedef float sgs_vf __attribute__((vector_size(4 * SGS_W)));
+typedef int32_t sgs_vi __attribute__((vector_size(4 * SGS_W)));
+typedef uint32_t sgs_vu __attribute__((vector_size(4 * SGS_W)));
 
+/* SGS_W lanes from p, into p. */
 static inline sgs_vf sgs_vload(const float *p) {
     sgs_vf v;
     memcpy(&v, p, sizeof v);
@@ -84,42 +96,23 @@ static inline void sgs_vstore(float *p, sgs_vf v) {
     memcpy(p, &v, sizeof v);
 }
 static inline sgs_vf sgs_vsplat(float s) {
-    return (sgs_vf){s, s, s, s, s, s, s, s, s, s, s, s, s, s, s, s};
-}
-/* The comparisons, lane by lane: all bits set where a op b holds, none elsewhere. GCC 12 compiles
- * a comparison operator on a vector wider than the target's registers one lane at a time, with a
- * branch each; these compare registers' widths of lanes at a time (the pieces below), so a shader
- * compares with them, never with the operators. */
-#if defined(__AVX512F__)
-#define SGS_PIECE 16
-#elif defined(__AVX__)
-#define SGS_PIECE 8
-#else
-#define SGS_PIECE 4
-#endif
-typedef float sgs_pf __attribute__((vector_size(4 * SGS_PIECE)));
-typedef int32_t sgs_pi __attribute__((vector_size(4 * SGS_PIECE)));
-typedef union sgs_uf {
     sgs_vf v;
-    sgs_pf p[SGS_LANES / SGS_PIECE];
-} sgs_uf;
-typedef union sgs_ui {
-    sgs_vi v;
-    sgs_pi p[SGS_LANES / SGS_PIECE];
-} sgs_ui;
-#define SGS_VCOMPARE(name, op)                                                                     \
-    static inline sgs_vi name(sgs_vf a, sgs_vf b) {                                                \
-        const sgs_uf x = {a}, y = {b};                                                             \
-        sgs_ui r;                                                                                  \
-        for (int k = 0; k < SGS_LANES / SGS_PIECE; k++) r.p[k] = x.p[k] op y.p[k];                 \
-        return r.v;                                                                                \
-    }
-SGS_VCOMPARE(sgs_vgt, >)
-SGS_VCOMPARE(sgs_vge, >=)
-SGS_VCOMPARE(sgs_vlt, <)
-SGS_VCOMPARE(sgs_vle, <=)
-#undef SGS_VCOMPARE
-
+    for (int i = 0; i < SGS_W; i++) v[i] = s;
+    return v;
+}
+/* The comparisons, lane by lane: all bits set where a op b holds, none elsewhere. */
+static inline sgs_vi sgs_vgt(sgs_vf a, sgs_vf b) {
+    return a > b;
+}
+static inline sgs_vi sgs_vge(sgs_vf a, sgs_vf b) {
+    return a >= b;
+}
+static inline sgs_vi sgs_vlt(sgs_vf a, sgs_vf b) {
+    return a < b;
+}
+static inline sgs_vi sgs_vle(sgs_vf a, sgs_vf b) {
+    return a <= b;
+}
 /* m ? a : b lane by lane, m from a comparison (all bits set or none). */
 static inline sgs_vf sgs_vsel(sgs_vi m, sgs_vf a, sgs_vf b) {
     return (sgs_vf)((m & (sgs_vi)a) | (~m & (sgs_vi)b));
@@ -127,25 +120,21 @@ static inline sgs_vf sgs_vsel(sgs_vi m, sgs_vf a, sgs_vf b) {
 static inline sgs_vi sgs_vseli(sgs_vi m, sgs_vi a, sgs_vi b) {
     return (m & a) | (~m & b);
 }
-/* Square root lane by lane: a correctly rounded square root per register of lanes (the lanes of a
- * loop over the whole vector stay scalar, with a library call for errno, where the registers are
- * narrower than the vector). */
+/* Square root lane by lane, correctly rounded: the set's instruction (a loop over the lanes calls
+ * the library for errno where the compiler may not assume it away). */
 static inline sgs_vf sgs_vsqrt(sgs_vf v) {
-    sgs_uf x = {v};
-    for (int k = 0; k < SGS_LANES / SGS_PIECE; k++) {
 #if defined(__AVX512F__)
-        x.p[k] = (sgs_pf)_mm512_sqrt_ps((__m512)x.p[k]);
+    return (sgs_vf)_mm512_sqrt_ps((__m512)v);
 #elif defined(__AVX__)
-        x.p[k] = (sgs_pf)_mm256_sqrt_ps((__m256)x.p[k]);
+    return (sgs_vf)_mm256_sqrt_ps((__m256)v);
 #elif defined(__SSE2__)
-        x.p[k] = (sgs_pf)_mm_sqrt_ps((__m128)x.p[k]);
+    return (sgs_vf)_mm_sqrt_ps((__m128)v);
 #elif defined(__aarch64__)
-        x.p[k] = (sgs_pf)vsqrtq_f32((float32x4_t)x.p[k]);
+    return (sgs_vf)vsqrtq_f32((float32x4_t)v);
 #else
-        for (int i = 0; i < SGS_PIECE; i++) x.p[k][i] = __builtin_sqrtf(x.p[k][i]);
+    for (int i = 0; i < SGS_W; i++) v[i] = __builtin_sqrtf(v[i]);
+    return v;
 #endif
-    }
-    return x.v;
 }
 
 /* ---- the twins' declarations ------------------------------------------------------------------
@@ -320,28 +309,31 @@ static inline void sgs_transform_from(sgVertexBatch *b, const float (*p)[SGS_LAN
     const float *m = b->world_view, *pr = b->proj;
     float nm[9];
     sgs_normal_matrix(m, nm);
-    /* On whole vectors: as a loop over lanes, the compiler could not rule out that the stores
-     * into the batch change the inputs p and n, and kept it scalar. */
-    const sgs_vf x = sgs_vload(p[0]), y = sgs_vload(p[1]), z = sgs_vload(p[2]), w = sgs_vload(p[3]);
-    const sgs_vf v0 = ((m[0] * x + m[1] * y) + m[2] * z) + m[3] * w;
-    const sgs_vf v1 = ((m[4] * x + m[5] * y) + m[6] * z) + m[7] * w;
-    const sgs_vf v2 = ((m[8] * x + m[9] * y) + m[10] * z) + m[11] * w;
-    const sgs_vf v3 = ((m[12] * x + m[13] * y) + m[14] * z) + m[15] * w;
-    sgs_vf nx = {0}, ny = {0}, nz = {0};
-    if (vn >= 0) nx = sgs_vload(n[0]), ny = sgs_vload(n[1]), nz = sgs_vload(n[2]);
-    sgs_vstore(b->clip[0], ((pr[0] * v0 + pr[1] * v1) + pr[2] * v2) + pr[3] * v3);
-    sgs_vstore(b->clip[1], ((pr[4] * v0 + pr[5] * v1) + pr[6] * v2) + pr[7] * v3);
-    sgs_vstore(b->clip[2], ((pr[8] * v0 + pr[9] * v1) + pr[10] * v2) + pr[11] * v3);
-    sgs_vstore(b->clip[3], ((pr[12] * v0 + pr[13] * v1) + pr[14] * v2) + pr[15] * v3);
-    if (vp >= 0) {
-        sgs_vstore(b->varying[vp], v0);
-        sgs_vstore(b->varying[vp + 1], v1);
-        sgs_vstore(b->varying[vp + 2], v2);
-    }
-    if (vn >= 0) {
-        sgs_vstore(b->varying[vn], (nm[0] * nx + nm[1] * ny) + nm[2] * nz);
-        sgs_vstore(b->varying[vn + 1], (nm[3] * nx + nm[4] * ny) + nm[5] * nz);
-        sgs_vstore(b->varying[vn + 2], (nm[6] * nx + nm[7] * ny) + nm[8] * nz);
+    /* On vectors: as a loop over lanes, the compiler could not rule out that the stores into the
+     * batch change the inputs p and n, and kept it scalar. */
+    SGS_EACH_VECTOR(h) {
+        const sgs_vf x = sgs_vload(p[0] + h), y = sgs_vload(p[1] + h), z = sgs_vload(p[2] + h),
+                     w = sgs_vload(p[3] + h);
+        const sgs_vf v0 = ((m[0] * x + m[1] * y) + m[2] * z) + m[3] * w;
+        const sgs_vf v1 = ((m[4] * x + m[5] * y) + m[6] * z) + m[7] * w;
+        const sgs_vf v2 = ((m[8] * x + m[9] * y) + m[10] * z) + m[11] * w;
+        const sgs_vf v3 = ((m[12] * x + m[13] * y) + m[14] * z) + m[15] * w;
+        sgs_vf nx = {0}, ny = {0}, nz = {0};
+        if (vn >= 0) nx = sgs_vload(n[0] + h), ny = sgs_vload(n[1] + h), nz = sgs_vload(n[2] + h);
+        sgs_vstore(b->clip[0] + h, ((pr[0] * v0 + pr[1] * v1) + pr[2] * v2) + pr[3] * v3);
+        sgs_vstore(b->clip[1] + h, ((pr[4] * v0 + pr[5] * v1) + pr[6] * v2) + pr[7] * v3);
+        sgs_vstore(b->clip[2] + h, ((pr[8] * v0 + pr[9] * v1) + pr[10] * v2) + pr[11] * v3);
+        sgs_vstore(b->clip[3] + h, ((pr[12] * v0 + pr[13] * v1) + pr[14] * v2) + pr[15] * v3);
+        if (vp >= 0) {
+            sgs_vstore(b->varying[vp] + h, v0);
+            sgs_vstore(b->varying[vp + 1] + h, v1);
+            sgs_vstore(b->varying[vp + 2] + h, v2);
+        }
+        if (vn >= 0) {
+            sgs_vstore(b->varying[vn] + h, (nm[0] * nx + nm[1] * ny) + nm[2] * nz);
+            sgs_vstore(b->varying[vn + 1] + h, (nm[3] * nx + nm[4] * ny) + nm[5] * nz);
+            sgs_vstore(b->varying[vn + 2] + h, (nm[6] * nx + nm[7] * ny) + nm[8] * nz);
+        }
     }
 }
 
@@ -390,7 +382,8 @@ static inline sgs_light sgs_light_read(const float *u, int ambient, int directio
     return l;
 }
 
-/* The equation for 16 lanes: view-space point (px, py, pz), normal (nx, ny, nz), base colour. */
+/* The equation for a vector of lanes: view-space point (px, py, pz), normal (nx, ny, nz), base
+ * colour. */
 static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs_vf pz, sgs_vf nx,
                                    sgs_vf ny, sgs_vf nz, const sgs_vf base[3], sgs_vf out[3]) {
     sgs_vf in = sgs_vinv_len(nx, ny, nz);
@@ -421,11 +414,13 @@ static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs
  * normal and its base colour (three each), into colour channels 0..2. */
 static inline void sgs_vlight_varyings(const sgs_light *l, sgFragmentBatch *b, int first) {
     float(*v)[SGS_LANES] = b->varying + first;
-    const sgs_vf base[3] = {sgs_vload(v[6]), sgs_vload(v[7]), sgs_vload(v[8])};
-    sgs_vf c[3];
-    sgs_vlight_eval(l, sgs_vload(v[0]), sgs_vload(v[1]), sgs_vload(v[2]), sgs_vload(v[3]),
-                    sgs_vload(v[4]), sgs_vload(v[5]), base, c);
-    for (int k = 0; k < 3; k++) sgs_vstore(b->color[k], c[k]);
+    SGS_EACH_VECTOR(h) {
+        const sgs_vf base[3] = {sgs_vload(v[6] + h), sgs_vload(v[7] + h), sgs_vload(v[8] + h)};
+        sgs_vf c[3];
+        sgs_vlight_eval(l, sgs_vload(v[0] + h), sgs_vload(v[1] + h), sgs_vload(v[2] + h),
+                        sgs_vload(v[3] + h), sgs_vload(v[4] + h), sgs_vload(v[5] + h), base, c);
+        for (int k = 0; k < 3; k++) sgs_vstore(b->color[k] + h, c[k]);
+    }
 }
 
 /* normalize, 0 for a zero length (sgs_vinv_len's). */

@@ -23,20 +23,23 @@ SGS_STAGE static void waves_vertex(sgVertexBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const float time = u[0];
     float p[4][SGS_LANES], n[3][SGS_LANES];
-    const sgs_vf x = sgs_vload(b->position[0]), z = sgs_vload(b->position[2]);
-    sgs_vf y = sgs_vload(b->position[1]), dx = sgs_vsplat(0.0f), dz = sgs_vsplat(0.0f);
-    for (int w = 0; w < 3; w++) {
-        const float *wave = u + 1 + 4 * w;
-        sgs_vf phase = (wave[1] * x + wave[2] * z) + wave[3] * time;
-        sgs_vf s = sgs_vsin(phase), c = sgs_vcos(phase);
-        y = y + wave[0] * s;
-        dx = dx + (wave[0] * wave[1]) * c;
-        dz = dz + (wave[0] * wave[2]) * c;
+    SGS_EACH_VECTOR(h) {
+        const sgs_vf x = sgs_vload(b->position[0] + h), z = sgs_vload(b->position[2] + h);
+        sgs_vf y = sgs_vload(b->position[1] + h), dx = sgs_vsplat(0.0f), dz = sgs_vsplat(0.0f);
+        for (int w = 0; w < 3; w++) {
+            const float *wave = u + 1 + 4 * w;
+            sgs_vf phase = (wave[1] * x + wave[2] * z) + wave[3] * time;
+            sgs_vf s = sgs_vsin(phase), c = sgs_vcos(phase);
+            y = y + wave[0] * s;
+            dx = dx + (wave[0] * wave[1]) * c;
+            dz = dz + (wave[0] * wave[2]) * c;
+        }
+        sgs_vstore(p[0] + h, x), sgs_vstore(p[1] + h, y), sgs_vstore(p[2] + h, z);
+        /* The surface (x, y(x, z), z): tangents (1, dy/dx, 0) and (0, dy/dz, 1). */
+        sgs_vstore(n[0] + h, -dx), sgs_vstore(n[1] + h, sgs_vsplat(1.0f));
+        sgs_vstore(n[2] + h, -dz);
     }
-    sgs_vstore(p[0], x), sgs_vstore(p[1], y), sgs_vstore(p[2], z);
     memcpy(p[3], b->position[3], sizeof p[3]);
-    /* The surface (x, y(x, z), z): tangents (1, dy/dx, 0) and (0, dy/dz, 1). */
-    sgs_vstore(n[0], -dx), sgs_vstore(n[1], sgs_vsplat(1.0f)), sgs_vstore(n[2], -dz);
     for (int k = 0; k < 3; k++)
         SGS_SIMD for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] =
             b->color[k][i] * u[13 + k];
@@ -47,7 +50,7 @@ SGS_STAGE static void waves_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     const sgs_light l = sgs_light_read(u, 16, 19, 22, 25, 28);
     sgs_vlight_varyings(&l, b, 0);
-    sgs_vstore(b->color[3], sgs_vsplat(1.0f));
+    SGS_EACH_VECTOR(h) sgs_vstore(b->color[3] + h, sgs_vsplat(1.0f));
 }
 
 static const char waves_glsl_vertex[] = SGS_GLSL_HEADER SGS_GLSL_DRAW SGS_GLSL_INPUTS
