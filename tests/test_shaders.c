@@ -54,6 +54,11 @@ static void test_floor(void **state) {
                         8388607.5f, -8388607.5f, 1e-30f,      -1e-30f};
     for (size_t i = 0; i < sizeof xs / sizeof xs[0]; i++)
         assert_true(sgs_floor(xs[i]) == floorf(xs[i]));
+    /* past 2^31 too, where a conversion to int is undefined: the value itself */
+    const float big[] = {8388608.0f, -8388608.0f, 3e9f, -3e9f, 1e30f, -1e30f, INFINITY, -INFINITY};
+    for (size_t i = 0; i < sizeof big / sizeof big[0]; i++)
+        assert_true(sgs_floor(big[i]) == big[i]);
+    assert_true(isnan(sgs_floor(NAN)));
     uint32_t s = 1;
     for (int i = 0; i < 100000; i++) {
         float x = rnd(&s, -1000.0f, 1000.0f);

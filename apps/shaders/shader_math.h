@@ -178,11 +178,16 @@ static inline float sgs_sqrt(float v) {
     return __builtin_sqrtf(v); /* one instruction; no errno for the values used here (>= 0) */
 }
 
-/* floor for |x| < 2^31, by truncation and a correction: a conversion the SIMD sets all have
- * (floorf needs SSE4.1 to be inlined). Exactly floor, as GLSL's. */
+/* floor, by truncation and a correction: a conversion the SIMD sets all have (floorf needs
+ * SSE4.1 to be inlined). Exactly floor, as GLSL's. From 2^23 up every float is an integer, its
+ * own floor, and not converted: past 2^31 (a uniform gone wild) the conversion would be undefined.
+ * Two selects, as sgs_clamp01's, so that a lane loop still vectorises. */
 static inline float sgs_floor(float x) {
-    float t = (float)(int32_t)x, below = t - 1.0f;
-    return t > x ? below : t;
+    const int small = (x > -8388608.0f) & (x < 8388608.0f); /* NaN: not small */
+    float c = small ? x : 0.0f;
+    float t = (float)(int32_t)c, below = t - 1.0f;
+    float r = t > c ? below : t;
+    return small ? r : x;
 }
 
 /* 1 / |v|, 0 for a zero length (never NaN), as the fixed lighting normalises (light.h).
