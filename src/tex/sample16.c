@@ -18,7 +18,9 @@ typedef void unit_copy(const sg_texview *tv, const float *s, const float *t,
                        float (*out)[SG_SHADER_LANES]);
 unit_copy sg_sample16_nearest_clamp_avx512, sg_sample16_nearest_repeat_avx512,
     sg_sample16_bilinear_clamp_avx512, sg_sample16_bilinear_repeat_avx512,
-    sg_sample16_bilinear_clamp_window_avx512, sg_sample16_bilinear_repeat_window_avx512;
+    sg_sample16_bilinear_clamp_window_avx512, sg_sample16_bilinear_repeat_window_avx512,
+    sg_sample16_nearest_clamp_avx2, sg_sample16_nearest_repeat_avx2,
+    sg_sample16_bilinear_clamp_avx2, sg_sample16_bilinear_repeat_avx2;
 #endif
 
 sg_sample16_unit_fn sg_sample16_unit_fn_of(int simd, bool bilinear, bool repeat, bool window) {
@@ -30,6 +32,10 @@ sg_sample16_unit_fn sg_sample16_unit_fn_of(int simd, bool bilinear, bool repeat,
                       : sg_sample16_bilinear_clamp_window_avx512;
     if (simd == SG_SAMPLE16_AVX512)
         return repeat ? sg_sample16_bilinear_repeat_avx512 : sg_sample16_bilinear_clamp_avx512;
+    if (simd == SG_SAMPLE16_AVX2 && !bilinear) /* the AVX2 lookups' window is their own choice */
+        return repeat ? sg_sample16_nearest_repeat_avx2 : sg_sample16_nearest_clamp_avx2;
+    if (simd == SG_SAMPLE16_AVX2)
+        return repeat ? sg_sample16_bilinear_repeat_avx2 : sg_sample16_bilinear_clamp_avx2;
 #endif
     (void)simd, (void)bilinear, (void)repeat, (void)window;
     return NULL;

@@ -80,9 +80,10 @@ static inline void sg_texels_to_unit(int simd, const int32_t texel[4][SG_SHADER_
 typedef void (*sg_sample16_unit_fn)(const sg_texview *tv, const float s[SG_SHADER_LANES],
                                     const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]);
 
-/** That copy for (simd, bilinear, repeat, window), where one is made (the AVX-512 lookups; the
+/** That copy for (simd, bilinear, repeat, window), where one is made (the AVX-512 lookups, whose
  *  nearest ones gather with or without a texel window: one gather of 16 texels costs less than the
- *  window's loads, permutes and test on both the Intel and the AMD CPUs measured), else NULL. */
+ *  window's loads, permutes and test on both the Intel and the AMD CPUs measured; the AVX2
+ *  lookups, which choose their window themselves), else NULL. */
 sg_sample16_unit_fn sg_sample16_unit_fn_of(int simd, bool bilinear, bool repeat, bool window);
 
 /** sg_sample16's channels as sg_texels_to_unit gives them, in one call. */

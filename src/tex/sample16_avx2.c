@@ -65,6 +65,28 @@ void sg_texels_to_unit_avx2(const int32_t texel[4][SG_SHADER_LANES],
                 unit8(_mm256_loadu_si256((const __m256i *)(const void *)(texel[k] + 8 * half))));
 }
 
+/* sg_sample16_unit_fn_of's copies (sample16.c): the lookup of one filter and wrap and the
+ * conversion, a leaf of four arguments that sgSample jumps to. (The AVX2 lookups always try their
+ * window, so there is no copy without it.) */
+INLINE void unit_leaf(const sg_texview *tv, const int bilinear, const int repeat, const float *s,
+                      const float *t, float out[4][SG_SHADER_LANES]) {
+    __m256i c[2][4];
+    lookup_all(tv, bilinear, repeat, s, t, c);
+    for (int half = 0; half < 2; half++)
+        for (int k = 0; k < 4; k++) _mm256_storeu_ps(out[k] + 8 * half, unit8(c[half][k]));
+}
+
+#define SG_UNIT_LEAF(name, bilinear, repeat)                                                       \
+    void name(const sg_texview *tv, const float s[SG_SHADER_LANES],                                \
+              const float t[SG_SHADER_LANES], float out[4][SG_SHADER_LANES]) {                     \
+        unit_leaf(tv, bilinear, repeat, s, t, out);                                                \
+    }
+SG_UNIT_LEAF(sg_sample16_nearest_clamp_avx2, 0, 0)
+SG_UNIT_LEAF(sg_sample16_nearest_repeat_avx2, 0, 1)
+SG_UNIT_LEAF(sg_sample16_bilinear_clamp_avx2, 1, 0)
+SG_UNIT_LEAF(sg_sample16_bilinear_repeat_avx2, 1, 1)
+#undef SG_UNIT_LEAF
+
 /* The lookups and the conversion in one call, the channels kept in registers between them. */
 void sg_sample16_unit_avx2(const sg_texview *tv, bool bilinear, bool repeat, bool window,
                            const float s[SG_SHADER_LANES], const float t[SG_SHADER_LANES],
