@@ -41,7 +41,7 @@ SGS_STAGE static void dissolve_fragment(sgFragmentBatch *b, const void *uniforms
         const sgs_vf n = sgs_vfbm(sgs_vload(b->varying[0] + h), sgs_vload(b->varying[1] + h),
                                   sgs_vload(b->varying[2] + h));
         sgs_vstore(noise + h, n);
-        const sgs_vi gone = sgs_vlt(n, sgs_vsplat(threshold));
+        const sgs_vi gone = n < threshold;
         for (int i = 0; i < SGS_W; i++) discard |= ((uint32_t)gone[i] & 1u) << (h + i);
     }
     b->discard = discard;

@@ -38,7 +38,7 @@ SGS_STAGE static void marble_fragment(sgFragmentBatch *b, const void *uniforms) 
         sgs_vf s = 0.5f * ((x + 0.5f * y) + turb * t);
         sgs_vf w = s - sgs_vfloor(s);
         sgs_vf v = 2.0f * w - 1.0f;
-        v = sgs_vsel(sgs_vlt(v, sgs_vsplat(0.0f)), -v, v);
+        v = sgs_vsel(v < 0.0f, -v, v);
         sgs_vf q = sgs_vclamp01(v * 2.85714286f); /* smoothstep(0, 0.35, v) */
         sgs_vf vein = 1.0f - q * q * (3.0f - 2.0f * q);
         sgs_vf grain = 0.85f + 0.15f * t;

@@ -52,8 +52,8 @@ SGS_STAGE static void normal_map_fragment(sgFragmentBatch *b, const void *unifor
         tx = tx - nx * d, ty = ty - ny * d, tz = tz - nz * d;
         sgs_vf it = sgs_vinv_len(tx, ty, tz);
         tx *= it, ty *= it, tz *= it;
-        sgs_vf w = sgs_vsel(sgs_vlt(sgs_vload(b->varying[9] + h), sgs_vsplat(0.0f)),
-                            sgs_vsplat(-1.0f), sgs_vsplat(1.0f));
+        sgs_vf w =
+            sgs_vsel(sgs_vload(b->varying[9] + h) < 0.0f, sgs_vsplat(-1.0f), sgs_vsplat(1.0f));
         sgs_vf bx = (ny * tz - nz * ty) * w, by = (nz * tx - nx * tz) * w,
                bz = (nx * ty - ny * tx) * w;
         sgs_vf mx = (sgs_vload(map[0] + h) * 2.0f - 1.0f) * strength,

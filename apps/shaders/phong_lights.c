@@ -93,17 +93,16 @@ SGS_STAGE static void phong_lights_fragment(sgFragmentBatch *b, const void *unif
             if (l.point[j]) {
                 const sgs_vf dx = l.v[j][0] - px, dy = l.v[j][1] - py, dz = l.v[j][2] - pz;
                 const sgs_vf d2 = (dx * dx + dy * dy) + dz * dz, d = sgs_vsqrt(d2);
-                const sgs_vf inv =
-                    sgs_vsel(sgs_vgt(d, zero) & sgs_vle(d, sgs_vsplat(FLT_MAX)), 1.0f / d, zero);
+                const sgs_vf inv = sgs_vsel((d > 0.0f) & (d <= FLT_MAX), 1.0f / d, zero);
                 lx = dx * inv, ly = dy * inv, lz = dz * inv;
                 const sgs_vf den = (l.att[j][0] + l.att[j][1] * d) + l.att[j][2] * d2;
-                att = 1.0f / sgs_vsel(sgs_vgt(den, sgs_vsplat(FLT_MIN)), den, sgs_vsplat(FLT_MIN));
+                att = 1.0f / sgs_vsel(den > FLT_MIN, den, sgs_vsplat(FLT_MIN));
             } else {
                 lx = sgs_vsplat(l.v[j][0]), ly = sgs_vsplat(l.v[j][1]), lz = sgs_vsplat(l.v[j][2]);
                 att = sgs_vsplat(1.0f);
             }
             const sgs_vf ndotl = (nx * lx + ny * ly) + nz * lz;
-            const sgs_vi lit = sgs_vgt(ndotl, zero);
+            const sgs_vi lit = ndotl > 0.0f;
             const sgs_vf f = att * ndotl;
             for (int k = 0; k < 3; k++)
                 diff[k] = sgs_vsel(lit, diff[k] + f * l.color[j][k], diff[k]);
@@ -112,17 +111,16 @@ SGS_STAGE static void phong_lights_fragment(sgFragmentBatch *b, const void *unif
             const sgs_vf ih = sgs_vinv_len(hx, hy, hz);
             hx *= ih, hy *= ih, hz *= ih;
             const sgs_vf ndoth = (nx * hx + ny * hy) + nz * hz;
-            const sgs_vf g = att * sgs_vpow_unit(sgs_vsel(sgs_vgt(ndoth, sgs_vsplat(l.min_x)),
-                                                          ndoth, sgs_vsplat(l.min_x)),
-                                                 l.shininess);
+            const sgs_vf g =
+                att *
+                sgs_vpow_unit(sgs_vsel(ndoth > l.min_x, ndoth, sgs_vsplat(l.min_x)), l.shininess);
             for (int k = 0; k < 3; k++)
                 spec[k] = sgs_vsel(lit, spec[k] + g * l.color[j][k], spec[k]);
         }
         sgs_vf prim[4];
         for (int k = 0; k < 3; k++) {
             /* sums that overflowed stop at FLT_MAX, as the fixed lighting's (light.h) */
-            const sgs_vf dk =
-                sgs_vsel(sgs_vlt(diff[k], sgs_vsplat(FLT_MAX)), diff[k], sgs_vsplat(FLT_MAX));
+            const sgs_vf dk = sgs_vsel(diff[k] < FLT_MAX, diff[k], sgs_vsplat(FLT_MAX));
             const sgs_vf base = sgs_vload(v[6 + k] + h);
             prim[k] = sgs_vclamp01(base * u[5 + k] + base * dk);
         }
@@ -132,8 +130,7 @@ SGS_STAGE static void phong_lights_fragment(sgFragmentBatch *b, const void *unif
         for (int k = 0; k < 3; k++) {
             sgs_vf c = prim[k];
             if (l.specular_on) { /* clamped as the output is: a huge light gives 1, not infinity */
-                const sgs_vf sk =
-                    sgs_vsel(sgs_vlt(spec[k], sgs_vsplat(FLT_MAX)), spec[k], sgs_vsplat(FLT_MAX));
+                const sgs_vf sk = sgs_vsel(spec[k] < FLT_MAX, spec[k], sgs_vsplat(FLT_MAX));
                 c = sgs_vclamp01(c + sk * u[8 + k]);
             }
             sgs_vstore(b->color[k] + h, c);

@@ -100,20 +100,7 @@ static inline sgs_vf sgs_vsplat(float s) {
     for (int i = 0; i < SGS_W; i++) v[i] = s;
     return v;
 }
-/* The comparisons, lane by lane: all bits set where a op b holds, none elsewhere. */
-static inline sgs_vi sgs_vgt(sgs_vf a, sgs_vf b) {
-    return a > b;
-}
-static inline sgs_vi sgs_vge(sgs_vf a, sgs_vf b) {
-    return a >= b;
-}
-static inline sgs_vi sgs_vlt(sgs_vf a, sgs_vf b) {
-    return a < b;
-}
-static inline sgs_vi sgs_vle(sgs_vf a, sgs_vf b) {
-    return a <= b;
-}
-/* m ? a : b lane by lane, m from a comparison (all bits set or none). */
+/* m ? a : b lane by lane, m from a comparison (a < b on vectors: all bits set or none). */
 static inline sgs_vf sgs_vsel(sgs_vi m, sgs_vf a, sgs_vf b) {
     return (sgs_vf)((m & (sgs_vi)a) | (~m & (sgs_vi)b));
 }
@@ -205,16 +192,16 @@ static inline float sgs_inv_len(float x, float y, float z) {
 static inline sgs_vf sgs_vfloor(sgs_vf x) {
     sgs_vf t = __builtin_convertvector(__builtin_convertvector(x, sgs_vi), sgs_vf),
            below = t - 1.0f;
-    return sgs_vsel(sgs_vgt(t, x), below, t);
+    return sgs_vsel(t > x, below, t);
 }
 static inline sgs_vf sgs_vclamp01(sgs_vf v) {
-    sgs_vf c = sgs_vsel(sgs_vgt(v, sgs_vsplat(0.0f)), v, sgs_vsplat(0.0f));
-    return sgs_vsel(sgs_vlt(c, sgs_vsplat(1.0f)), c, sgs_vsplat(1.0f));
+    sgs_vf c = sgs_vsel(v > 0.0f, v, sgs_vsplat(0.0f));
+    return sgs_vsel(c < 1.0f, c, sgs_vsplat(1.0f));
 }
 static inline sgs_vf sgs_vinv_len(sgs_vf x, sgs_vf y, sgs_vf z) {
     sgs_vf len2 = (x * x + y * y) + z * z;
     sgs_vf inv = 1.0f / sgs_vsqrt(len2);
-    return sgs_vsel(sgs_vgt(len2, sgs_vsplat(0.0f)), inv, sgs_vsplat(0.0f));
+    return sgs_vsel(len2 > 0.0f, inv, sgs_vsplat(0.0f));
 }
 
 /* sin(x) for |x| < 2^20: x less the nearest multiple of 2 pi (in two parts, so the reduction is
@@ -223,8 +210,8 @@ static inline sgs_vf sgs_vsin(sgs_vf x) {
     sgs_vf k = sgs_vfloor(x * 0.159154943f + 0.5f);
     sgs_vf r = (x - k * 6.28318548f) - k * -1.74845553e-7f;
     sgs_vf above = 3.14159265f - r, below = -3.14159265f - r;
-    r = sgs_vsel(sgs_vgt(r, sgs_vsplat(1.57079633f)), above, r);
-    r = sgs_vsel(sgs_vlt(r, sgs_vsplat(-1.57079633f)), below, r);
+    r = sgs_vsel(r > 1.57079633f, above, r);
+    r = sgs_vsel(r < -1.57079633f, below, r);
     sgs_vf r2 = r * r;
     sgs_vf p = sgs_vsplat(-2.50521084e-8f);
     p = p * r2 + 2.75573192e-6f;
@@ -249,12 +236,12 @@ static inline float sgs_cos(float x) {
  * (2^(0 log2 x)); the caller raises x to FLT_MIN for s = 0 (sgs_light.min_x), so that 0^0 = 1
  * too without a test of s per lane. */
 static inline sgs_vf sgs_vpow_unit(sgs_vf x, float s) {
-    const sgs_vi normal = sgs_vge(x, sgs_vsplat(FLT_MIN));
+    const sgs_vi normal = x >= FLT_MIN;
     sgs_vu bits = (sgs_vu)sgs_vsel(normal, x, sgs_vsplat(1.0f));
     sgs_vi e = (sgs_vi)((bits >> 23) & 255u) - 127;
     bits = (bits & 0x007fffffu) | 0x3f800000u;
     sgs_vf m = (sgs_vf)bits;
-    const sgs_vi big = sgs_vgt(m, sgs_vsplat(1.41421356f));
+    const sgs_vi big = m > 1.41421356f;
     sgs_vf half = m * 0.5f;
     m = sgs_vsel(big, half, m);
     e = sgs_vseli(big, e + 1, e);
@@ -266,7 +253,7 @@ static inline sgs_vf sgs_vpow_unit(sgs_vf x, float s) {
     p = p * t2 + 1.0f / 3.0f;
     p = p * t2 + 1.0f;
     sgs_vf z = s * (__builtin_convertvector(e, sgs_vf) + (p * t) * 2.88539008f);
-    const sgs_vi above = sgs_vge(z, sgs_vsplat(-126.0f));
+    const sgs_vi above = z >= -126.0f;
     sgs_vf zc = sgs_vsel(above, z, sgs_vsplat(-126.0f));
     sgs_vf n = sgs_vfloor(zc + 0.5f);
     sgs_vf y = (zc - n) * 0.693147181f;
@@ -395,7 +382,7 @@ static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs
     nx *= in, ny *= in, nz *= in;
     sgs_vf ndotl = (nx * l->dir[0] + ny * l->dir[1]) + nz * l->dir[2];
     if (!l->specular_on) {
-        const sgs_vf d = sgs_vsel(sgs_vgt(ndotl, sgs_vsplat(0.0f)), ndotl, sgs_vsplat(0.0f));
+        const sgs_vf d = sgs_vsel(ndotl > 0.0f, ndotl, sgs_vsplat(0.0f));
         for (int k = 0; k < 3; k++)
             out[k] = sgs_vclamp01(base[k] * l->ambient[k] + base[k] * (d * l->color[k]));
         return;
@@ -406,9 +393,9 @@ static inline void sgs_vlight_eval(const sgs_light *l, sgs_vf px, sgs_vf py, sgs
     sgs_vf ih = sgs_vinv_len(hx, hy, hz);
     hx *= ih, hy *= ih, hz *= ih;
     sgs_vf ndoth = (nx * hx + ny * hy) + nz * hz;
-    sgs_vf pw = sgs_vpow_unit(
-        sgs_vsel(sgs_vgt(ndoth, sgs_vsplat(l->min_x)), ndoth, sgs_vsplat(l->min_x)), l->shininess);
-    const sgs_vi lit = sgs_vgt(ndotl, sgs_vsplat(0.0f));
+    sgs_vf pw =
+        sgs_vpow_unit(sgs_vsel(ndoth > l->min_x, ndoth, sgs_vsplat(l->min_x)), l->shininess);
+    const sgs_vi lit = ndotl > 0.0f;
     sgs_vf d = sgs_vsel(lit, ndotl, sgs_vsplat(0.0f)), s = sgs_vsel(lit, pw, sgs_vsplat(0.0f));
     for (int k = 0; k < 3; k++)
         out[k] = sgs_vclamp01(base[k] * l->ambient[k] + base[k] * (d * l->color[k])) +
@@ -516,7 +503,7 @@ static inline sgs_vf sgs_vnoise3(sgs_vf x, sgs_vf y, sgs_vf z) {
  * their total weight: in [0, 1]. */
 static inline sgs_vf sgs_vturb1(sgs_vf x, sgs_vf y, sgs_vf z) {
     sgs_vf n = 2.0f * sgs_vnoise3(x, y, z) - 1.0f;
-    return sgs_vsel(sgs_vlt(n, sgs_vsplat(0.0f)), -n, n);
+    return sgs_vsel(n < 0.0f, -n, n);
 }
 static inline sgs_vf sgs_vturbulence(sgs_vf x, sgs_vf y, sgs_vf z) {
     sgs_vf sum = sgs_vturb1(x, y, z);
