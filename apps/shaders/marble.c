@@ -36,7 +36,7 @@ SGS_STAGE static void marble_fragment(sgFragmentBatch *b, const void *uniforms) 
         sgs_vf t = sgs_vturbulence(x, y, z);
         /* Bands across x + y / 2, two units apart, shifted by the turbulence; v is 0 on a vein. */
         sgs_vf s = 0.5f * ((x + 0.5f * y) + turb * t);
-        sgs_vf w = s - sgs_vfloor(s);
+        sgs_vf w = s - sgs_vfloor_small(s);
         sgs_vf v = 2.0f * w - 1.0f;
         v = sgs_vsel(v < 0.0f, -v, v);
         sgs_vf q = sgs_vclamp01(v * 2.85714286f); /* smoothstep(0, 0.35, v) */

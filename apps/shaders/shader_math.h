@@ -188,11 +188,20 @@ static inline float sgs_inv_len(float x, float y, float z) {
     return len2 > 0.0f ? inv : 0.0f;
 }
 
-/* The same lane by lane. */
-static inline sgs_vf sgs_vfloor(sgs_vf x) {
+/* floor lane by lane: sgs_floor's bits within +-2^23. Past 2^31 the conversion gives a different
+ * value on each set (x86 the least integer, NEON the nearest), so an argument that far out (a
+ * uniform gone wild) differs between sets. For the hot loops, where three more operations a lane
+ * show: sin's reduction (|x| < 2^20), pow's exponent, noise's lattice (converted to integers
+ * anyway) and marble's bands. */
+static inline sgs_vf sgs_vfloor_small(sgs_vf x) {
     sgs_vf t = __builtin_convertvector(__builtin_convertvector(x, sgs_vi), sgs_vf),
            below = t - 1.0f;
     return sgs_vsel(t > x, below, t);
+}
+/* sgs_floor's bits for every value, at three more operations than sgs_vfloor_small. */
+static inline sgs_vf sgs_vfloor(sgs_vf x) {
+    const sgs_vi small = (x > -8388608.0f) & (x < 8388608.0f);
+    return sgs_vsel(small, sgs_vfloor_small(sgs_vsel(small, x, sgs_vsplat(0.0f))), x);
 }
 static inline sgs_vf sgs_vclamp01(sgs_vf v) {
     sgs_vf c = sgs_vsel(v > 0.0f, v, sgs_vsplat(0.0f));
@@ -207,7 +216,7 @@ static inline sgs_vf sgs_vinv_len(sgs_vf x, sgs_vf y, sgs_vf z) {
 /* sin(x) for |x| < 2^20: x less the nearest multiple of 2 pi (in two parts, so the reduction is
  * exact to float), folded into [-pi/2, pi/2], then Taylor to x^11 (error below 1e-7). */
 static inline sgs_vf sgs_vsin(sgs_vf x) {
-    sgs_vf k = sgs_vfloor(x * 0.159154943f + 0.5f);
+    sgs_vf k = sgs_vfloor_small(x * 0.159154943f + 0.5f);
     sgs_vf r = (x - k * 6.28318548f) - k * -1.74845553e-7f;
     sgs_vf above = 3.14159265f - r, below = -3.14159265f - r;
     r = sgs_vsel(r > 1.57079633f, above, r);
@@ -255,7 +264,7 @@ static inline sgs_vf sgs_vpow_unit(sgs_vf x, float s) {
     sgs_vf z = s * (__builtin_convertvector(e, sgs_vf) + (p * t) * 2.88539008f);
     const sgs_vi above = z >= -126.0f;
     sgs_vf zc = sgs_vsel(above, z, sgs_vsplat(-126.0f));
-    sgs_vf n = sgs_vfloor(zc + 0.5f);
+    sgs_vf n = sgs_vfloor_small(zc + 0.5f);
     sgs_vf y = (zc - n) * 0.693147181f;
     sgs_vf q = sgs_vsplat(1.0f / 5040.0f);
     q = q * y + 1.0f / 720.0f;
@@ -485,7 +494,7 @@ static inline sgs_vf sgs_vlerp(sgs_vf a, sgs_vf b, sgs_vf t) {
 }
 
 static inline sgs_vf sgs_vnoise3(sgs_vf x, sgs_vf y, sgs_vf z) {
-    sgs_vf fx = sgs_vfloor(x), fy = sgs_vfloor(y), fz = sgs_vfloor(z);
+    sgs_vf fx = sgs_vfloor_small(x), fy = sgs_vfloor_small(y), fz = sgs_vfloor_small(z);
     sgs_vi ix = __builtin_convertvector(fx, sgs_vi), iy = __builtin_convertvector(fy, sgs_vi),
            iz = __builtin_convertvector(fz, sgs_vi);
     sgs_vf tx = x - fx, ty = y - fy, tz = z - fz;

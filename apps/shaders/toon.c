@@ -22,31 +22,35 @@ SGS_STAGE static void toon_vertex(sgVertexBatch *b, const void *uniforms) {
         SGS_SIMD for (int i = 0; i < SGS_LANES; i++) b->varying[6 + k][i] = b->color[k][i] * u[k];
 }
 
+/* On the set's vectors, not a loop over lanes: the floor's and the clamps' selects kept the loop
+ * scalar in every compilation. */
 SGS_STAGE static void toon_fragment(sgFragmentBatch *b, const void *uniforms) {
     const float *u = uniforms;
     float il = sgs_inv_len(u[3], u[4], u[5]);
     const float lx = -u[3] * il, ly = -u[4] * il, lz = -u[5] * il;
     const float ambient = u[9], bands = u[10] >= 2.0f ? u[10] : 2.0f, width = u[11];
-    const float lr = u[6], lg = u[7], lb = u[8], rr = u[12], rg = u[13], rb = u[14];
-    SGS_SIMD for (int i = 0; i < SGS_LANES; i++) {
-        float px = b->varying[0][i], py = b->varying[1][i], pz = b->varying[2][i];
-        float nx = b->varying[3][i], ny = b->varying[4][i], nz = b->varying[5][i];
-        float in = sgs_inv_len(nx, ny, nz), iv = sgs_inv_len(px, py, pz);
+    const float steps = bands - 1.0f, lit = 1.0f - ambient;
+    const float light[3] = {u[6], u[7], u[8]}, rim_color[3] = {u[12], u[13], u[14]};
+    SGS_EACH_VECTOR(h) {
+        const sgs_vf px = sgs_vload(b->varying[0] + h), py = sgs_vload(b->varying[1] + h),
+                     pz = sgs_vload(b->varying[2] + h);
+        sgs_vf nx = sgs_vload(b->varying[3] + h), ny = sgs_vload(b->varying[4] + h),
+               nz = sgs_vload(b->varying[5] + h);
+        const sgs_vf in = sgs_vinv_len(nx, ny, nz), iv = sgs_vinv_len(px, py, pz);
         nx *= in, ny *= in, nz *= in;
-        float ndotl = (nx * lx + ny * ly) + nz * lz;
-        float ndotv = ((nx * -px + ny * -py) + nz * -pz) * iv;
-        float band = sgs_floor(sgs_max(ndotl, 0.0f) * bands);
-        float level = sgs_min(band / (bands - 1.0f), 1.0f);
-        float shade = ambient + (1.0f - ambient) * level;
+        const sgs_vf ndotl = (nx * lx + ny * ly) + nz * lz;
+        const sgs_vf ndotv = ((nx * -px + ny * -py) + nz * -pz) * iv;
+        const sgs_vf d = sgs_vsel(ndotl > 0.0f, ndotl, sgs_vsplat(0.0f));
+        const sgs_vf band = sgs_vfloor(d * bands), level = band / steps;
+        const sgs_vf shade = ambient + lit * sgs_vsel(level < 1.0f, level, sgs_vsplat(1.0f));
         /* rim = 1 - smoothstep(width, width + 0.05, N.V) */
-        float t = sgs_clamp01((ndotv - width) * 20.0f);
-        float rim = 1.0f - t * t * (3.0f - 2.0f * t);
-        float c0 = b->varying[6][i] * (shade * lr), c1 = b->varying[7][i] * (shade * lg),
-              c2 = b->varying[8][i] * (shade * lb);
-        b->color[0][i] = c0 + (rr - c0) * rim;
-        b->color[1][i] = c1 + (rg - c1) * rim;
-        b->color[2][i] = c2 + (rb - c2) * rim;
-        b->color[3][i] = 1.0f;
+        const sgs_vf t = sgs_vclamp01((ndotv - width) * 20.0f);
+        const sgs_vf rim = 1.0f - t * t * (3.0f - 2.0f * t);
+        for (int k = 0; k < 3; k++) {
+            const sgs_vf c = sgs_vload(b->varying[6 + k] + h) * (shade * light[k]);
+            sgs_vstore(b->color[k] + h, c + (rim_color[k] - c) * rim);
+        }
+        sgs_vstore(b->color[3] + h, sgs_vsplat(1.0f));
     }
 }
 
