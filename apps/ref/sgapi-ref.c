@@ -1820,13 +1820,12 @@ static void usage(FILE *f) {
                "                  scene's \"samples\")\n"
                "  --mipmap MODE   every draw's \"mipmap\" (none, nearest, linear), whatever the\n"
                "                  scenes say\n"
-               "  --shaders LIB   also know the shaders of that shader library (a shared object\n"
-               "                  exporting sgapi_shader_library; repeatable); their GLSL twins\n"
-               "                  render the scenes' shader draws\n"
+               "  --shaders LIB.so\n"
+               "                  load the shaders of a shader library (a shared object\n"
+               "                  exporting sgapi_shader_library; repeatable): scene files\n"
+               "                  name them with \"shader\", their GLSL twins render them\n"
                "  --strict        an unknown key in a scene file is an error (exit 1, nothing\n"
                "                  rendered), not a warning\n"
-               "  --shaders LIB.so  load the shaders of a shader library (repeatable): scene\n"
-               "                  files name them with \"shader\"\n"
                "  -h, --help      show this help\n");
 }
 
