@@ -66,6 +66,35 @@ static void test_floor(void **state) {
     }
 }
 
+/* The vector floors give sgs_floor's bits lane by lane: sgs_vfloor for every value, NaN included,
+ * sgs_vfloor_small within +-2^23. */
+static void expect_vfloor(float x, bool small_too) {
+    const float want = sgs_floor(x);
+    const sgs_vf v = sgs_vsplat(x);
+    const float got = sgs_vfloor(v)[SGS_W - 1];
+    if (isnan(want)) {
+        assert_true(isnan(got));
+        return;
+    }
+    assert_memory_equal(&got, &want, sizeof want);
+    if (!small_too) return; /* past 2^31 its conversion is the set's own */
+    const float got_small = sgs_vfloor_small(v)[0];
+    assert_memory_equal(&got_small, &want, sizeof want);
+}
+
+static void test_vfloor(void **state) {
+    (void)state;
+    const float xs[] = {0.0f,       -0.0f,       0.5f,       -0.5f,       1.0f,   -1.0f,
+                        2.9999998f, -2.9999998f, 8388607.5f, -8388607.5f, 1e-30f, -1e-30f};
+    for (size_t i = 0; i < sizeof xs / sizeof xs[0]; i++) expect_vfloor(xs[i], true);
+    const float big[] = {8388608.0f, -8388608.0f, 3e9f,      -3e9f, 1e30f,
+                         -1e30f,     INFINITY,    -INFINITY, NAN};
+    for (size_t i = 0; i < sizeof big / sizeof big[0]; i++) expect_vfloor(big[i], false);
+    uint32_t s = 7;
+    for (int i = 0; i < 100000; i++) expect_vfloor(rnd(&s, -1e7f, 1e7f), false);
+    for (int i = 0; i < 100000; i++) expect_vfloor(rnd(&s, -1000.0f, 1000.0f), true);
+}
+
 static void test_sin(void **state) {
     (void)state;
     double worst = 0.0;
@@ -619,13 +648,21 @@ static void test_twins_compile(void **state) {
 int main(int argc, char **argv) {
     if (argc == 3) validator = argv[1], scratch = argv[2];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_floor),           cmocka_unit_test(test_sin),
-        cmocka_unit_test(test_pow_unit),        cmocka_unit_test(test_light_without_specular),
-        cmocka_unit_test(test_noise),           cmocka_unit_test(test_phong),
-        cmocka_unit_test(test_phong_lights),    cmocka_unit_test(test_toon_bands),
-        cmocka_unit_test(test_normal_map_flat), cmocka_unit_test(test_waves),
-        cmocka_unit_test(test_dissolve),        cmocka_unit_test(test_instanced_grid),
-        cmocka_unit_test(test_all_finite),      cmocka_unit_test(test_twins_compile),
+        cmocka_unit_test(test_floor),
+        cmocka_unit_test(test_vfloor),
+        cmocka_unit_test(test_sin),
+        cmocka_unit_test(test_pow_unit),
+        cmocka_unit_test(test_light_without_specular),
+        cmocka_unit_test(test_noise),
+        cmocka_unit_test(test_phong),
+        cmocka_unit_test(test_phong_lights),
+        cmocka_unit_test(test_toon_bands),
+        cmocka_unit_test(test_normal_map_flat),
+        cmocka_unit_test(test_waves),
+        cmocka_unit_test(test_dissolve),
+        cmocka_unit_test(test_instanced_grid),
+        cmocka_unit_test(test_all_finite),
+        cmocka_unit_test(test_twins_compile),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
