@@ -43,8 +43,11 @@ cmake --build "$build" -j "$jobs"
 # makes again (tools/tsan.sh); and bin_memory_identical, every scene five times at two bin memory
 # limits, whose flushes alloc_fail makes under the sanitizers with a smaller limit.
 # test_shade_simd takes a quarter of its random cases (SGAPI_SHADE_SIMD_CASES): each one reads
-# its textures as the rest do, and the plain suite runs them all.
+# its textures as the rest do, and the plain suite runs them all. test_line likewise a quarter of
+# its random segments (SG_LINE_SEGMENTS): each walks the same code, against an exact reference
+# that takes most of the test's 30 s here.
 cd "$build"
+SG_LINE_SEGMENTS=25000 \
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --output-on-failure --no-tests=error -j "$jobs" -E '^(install_consumer|report_browser|ci_examples|regression_report|slurm_batch|threads_identical|bin_memory_identical)$'
