@@ -1,6 +1,7 @@
 #!/bin/sh
 # Renders every scene file of scenes/ and the hard cases once for each value of one sgapi-render option
-# and requires every image to be identical byte for byte to the first value's.
+# and requires every image to be identical byte for byte to the first value's (PNG level 0: the
+# pixels are what is compared, and an eighth of the time went into compressing them).
 #   render_identical.sh RENDER_BINARY SOURCE_DIR WORK_DIR OPTION VALUE...
 # --threads 1 2 3 5: bins share no pixels and keep submission order, so the thread count must
 # never show in the output. --simd scalar sse2 avx2 avx512 neon: the vector paths compute the same IEEE
@@ -28,15 +29,16 @@ for v in $values; do
     for f in "$src"/scenes/*.json; do
         name=$(basename "$f" .json)
         [ "$name" = scale ] && continue # millions of triangles a scene: sgapi-bench's, not a test's
-        "$render" "$f" -o "$work/$v/$name" "$option" "$v" >/dev/null
+        "$render" "$f" -o "$work/$v/$name" "$option" "$v" --png-level 0 >/dev/null
     done
     for f in "$src"/scenes/hard/*.json; do
-        "$render" "$f" -o "$work/$v/hard" "$option" "$v" >/dev/null
+        "$render" "$f" -o "$work/$v/hard" "$option" "$v" --png-level 0 >/dev/null
     done
     # Shaders (discards, depth written where a fragment stays) and blends at 4 samples too: the
     # multisampled bins' in-place paths.
     for name in shaders transparency; do
-        "$render" "$src/scenes/$name.json" -o "$work/$v/${name}_4" "$option" "$v" --samples 4 >/dev/null
+        "$render" "$src/scenes/$name.json" -o "$work/$v/${name}_4" "$option" "$v" --samples 4 \
+            --png-level 0 >/dev/null
     done
 done
 status=0
