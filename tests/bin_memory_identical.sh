@@ -9,16 +9,16 @@ render=$1
 src=$2
 work=$3
 rm -rf "$work"
-render_all() { # DIR OPTIONS...
+render_all() { # DIR OPTIONS... (PNG level 0: the pixels are what is compared)
     dir=$1
     shift
     for f in "$src"/scenes/*.json; do
         name=$(basename "$f" .json)
         [ "$name" = scale ] && continue # millions of triangles a scene: for sgapi-bench
-        "$render" "$f" -o "$dir/$name" "$@" >/dev/null
+        "$render" "$f" -o "$dir/$name" --png-level 0 "$@" >/dev/null
     done
     for f in "$src"/scenes/hard/*.json; do
-        "$render" "$f" -o "$dir/hard" "$@" >/dev/null
+        "$render" "$f" -o "$dir/hard" --png-level 0 "$@" >/dev/null
     done
 }
 render_all "$work/default" --threads 1
