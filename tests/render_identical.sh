@@ -1,7 +1,7 @@
 #!/bin/sh
 # Renders every scene file of scenes/ and the hard cases once for each value of one sgapi-render option
 # and requires every image to be identical byte for byte to the first value's (PNG level 0: the
-# pixels are what is compared, and an eighth of the time went into compressing them).
+# pixels are what is compared, and compressing them took a third of the time).
 #   render_identical.sh RENDER_BINARY SOURCE_DIR WORK_DIR OPTION VALUE...
 # --threads 1 2 3 5: bins share no pixels and keep submission order, so the thread count must
 # never show in the output. --simd scalar sse2 avx2 avx512 neon: the vector paths compute the same IEEE

@@ -189,7 +189,7 @@ static inline float sgs_inv_len(float x, float y, float z) {
 }
 
 /* floor lane by lane: sgs_floor's bits within +-2^23. Past 2^31 the conversion gives a different
- * value on each set (x86 the least integer, NEON the nearest), so an argument that far out (a
+ * value on each set (x86 gives INT_MIN, NEON saturates), so an argument that far out (a
  * uniform gone wild) differs between sets. For the hot loops, where three more operations a lane
  * show: sin's reduction (|x| < 2^20), pow's exponent, noise's lattice (converted to integers
  * anyway) and marble's bands. */
