@@ -116,7 +116,8 @@ INLINE void pair_fetch(const tex16 *tx, __m512i idx, __mmask16 m, __m512i *first
  * before the tile's first pixel's texel, or, with `least`, at the least column and row that m's
  * pixels read: the shader stage's lookups take that (they come one tile at a time, and the first
  * misses most footprints of textures whose rows run up the screen); the fixed shading, two tiles
- * at a time, is quicker without the reductions. a and b are the split's columns and rows before
+ * at a time, is quicker without the reductions. With `least`, a footprint of 3 x 3 split texels
+ * reads only the window's first 4 x 4 texels. a and b are the split's columns and rows before
  * any wrap or clamp: where every pixel of m has a - wx and b - wy in [0, 6], columns a, a + 1 and
  * rows b, b + 1 are all inside the texture and the window, so no wrap or clamp would change them,
  * in either mode, and the four texels are window entries k, k + 1, k + 8 and k + 9. False: the
@@ -137,11 +138,32 @@ INLINE bool window_fetch(const tex16 *tx, __m512i a, __m512i b, __mmask16 m, con
     wy = wy < 0 ? 0 : (wy > th - 8 ? th - 8 : wy);
     __m512i c = _mm512_sub_epi32(a, _mm512_set1_epi32(wx));
     __m512i d = _mm512_sub_epi32(b, _mm512_set1_epi32(wy));
+    /* Texture row j is memory row th - 1 - j (top row first); window row r is row wy + r. */
+    const int *row = tx->texels + (size_t)(th - 1 - wy) * (size_t)tw + (size_t)wx;
+    if (least) {
+        /* A footprint of at most 3 x 3 split texels (a magnified texture: 37-74 % of the shader
+         * stage's lookups in the textured default and gapi-task scenes) lies in the window's first
+         * 4 x 4 texels: one vector, one one-source permute a texel instead of two and a blend. */
+        const __m512i three = _mm512_set1_epi32(3);
+        if (_mm512_mask_cmplt_epu32_mask(_mm512_mask_cmplt_epu32_mask(m, c, three), d, three) ==
+            m) {
+#define SG_ROW4(r) _mm_loadu_si128((const __m128i *)(const void *)(row - (size_t)(r) * (size_t)tw))
+            __m512i w = _mm512_castsi128_si512(SG_ROW4(0));
+            w = _mm512_inserti32x4(w, SG_ROW4(1), 1);
+            w = _mm512_inserti32x4(w, SG_ROW4(2), 2);
+            w = _mm512_inserti32x4(w, SG_ROW4(3), 3);
+#undef SG_ROW4
+            const __m512i idx = _mm512_add_epi32(_mm512_slli_epi32(d, 2), c);
+            *t00 = _mm512_permutexvar_epi32(idx, w);
+            *t10 = _mm512_permutexvar_epi32(_mm512_add_epi32(idx, _mm512_set1_epi32(1)), w);
+            *t01 = _mm512_permutexvar_epi32(_mm512_add_epi32(idx, _mm512_set1_epi32(4)), w);
+            *t11 = _mm512_permutexvar_epi32(_mm512_add_epi32(idx, _mm512_set1_epi32(5)), w);
+            return true;
+        }
+    }
     const __m512i seven = _mm512_set1_epi32(7);
     __mmask16 in = _mm512_mask_cmplt_epu32_mask(m, c, seven);
     if (_mm512_mask_cmplt_epu32_mask(in, d, seven) != m) return false;
-    /* Texture row j is memory row th - 1 - j (top row first); window row r is row wy + r. */
-    const int *row = tx->texels + (size_t)(th - 1 - wy) * (size_t)tw + (size_t)wx;
     __m512i w[4];
     for (int k = 0; k < 4; k++) {
         const int *r0 = row - (size_t)(2 * k) * (size_t)tw, *r1 = r0 - tw;
