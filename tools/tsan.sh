@@ -50,11 +50,22 @@ done
 echo "tsan: a turntable of 4 frames, 3 threads, 2 writers"
 "$build/apps/sgapi-render" "$src/scenes/shadows.json" --scene shadow_teapots -o "$out/turn" \
     --turntable 4 --threads 3 --writers 2 --quiet >/dev/null
-echo "tsan: allocation failures at 3 and 5 threads"
-"$build/tests/test_alloc_fail" 3
-"$build/tests/test_alloc_fail" 5
-echo "tsan: the committed API sequences at 1 and 3 threads"
-"$build/tests/test_api_seq" "$src/tests/fuzz/corpus" >/dev/null
+# Side by side: none of the three keeps two cores busy throughout, so together they end sooner.
+echo "tsan: allocation failures at 3 and 5 threads, the committed API sequences at 1 and 3 threads"
+mkdir "$out/log"
+"$build/tests/test_alloc_fail" 3 >"$out/log/alloc_fail_3" 2>&1 &
+alloc3=$!
+"$build/tests/test_alloc_fail" 5 >"$out/log/alloc_fail_5" 2>&1 &
+alloc5=$!
+"$build/tests/test_api_seq" "$src/tests/fuzz/corpus" >"$out/log/api_seq" 2>&1 &
+seq=$!
+failed=
+wait "$alloc3" || failed="$failed alloc_fail_3"
+wait "$alloc5" || failed="$failed alloc_fail_5"
+wait "$seq" || failed="$failed api_seq"
+cat "$out/log/alloc_fail_3" "$out/log/alloc_fail_5"
+case $failed in *api_seq*) cat "$out/log/api_seq" >&2 ;; esac
+[ -z "$failed" ] || { echo "tsan: failed:$failed" >&2; exit 1; }
 echo "tsan: the animation example, 3 threads"
 "$build/apps/examples/animate_objects" 40 32 >/dev/null
 echo "tsan: no report"
